@@ -1,0 +1,33 @@
+/* lpv_propagate: one propagation step of light between the 26 neighbours (paper eq. 2.4),
+ * as a gather: each destination cell sums what its neighbours send it, in the fixed order
+ * of lpv_transfer_offsets, so the result does not depend on the thread count.
+ *
+ *   dst[c] = sum_j (1 - b_j) ((1 - l_t) <src[c - o_j] | G_j> + g_j l_s <src[c - o_j] | 1>) G_j
+ *
+ * with b_j = clamp(<B[c - o_j] | G_j>, 0, 1) from the source cell's blocking (0 when
+ * blocking is off), l_t = l_a + l_s clamped to 1. Light leaving the lattice is lost. */
+#ifndef CAVELIGHT_LPV_PROPAGATE_H
+#define CAVELIGHT_LPV_PROPAGATE_H
+
+#include "lpv_transfer.h"
+#include "lpv_volume.h"
+#include "workpool.h"
+
+typedef struct lpv_propagate_desc {
+    const lpv_transfer *transfer;
+    const lpv_volume *geometry; /* 4-channel blocking volume, or NULL for none */
+    int use_blocking;           /* 0 in the first step after injection */
+    float absorption;           /* l_a per step (see lpv_transfer_step_probability) */
+    float scattering;           /* l_s per step */
+    int clamp_negative;         /* clamp <src|G_j> at 0: no negative light, not linear */
+    workpool *pool;             /* NULL = run on the calling thread */
+} lpv_propagate_desc;
+
+/* src and dst must have the same shape and 12 channels, and must differ. */
+void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);
+
+/* Floating-point operations of one step on a lattice of `cells` cells, as counted for the
+ * benchmark's GFLOP/s. */
+double lpv_propagate_flops(size_t cells, int use_blocking);
+
+#endif

@@ -1,0 +1,7 @@
+/* Benchmark subcommands of cavelight-bench. Each prints one JSON object on one line. */
+#ifndef CAVELIGHT_BENCH_H
+#define CAVELIGHT_BENCH_H
+
+int bench_lpv(int argc, char **argv);
+
+#endif

@@ -1,0 +1,26 @@
+/* cavelight-bench: benchmarks that print one JSON line each. One subcommand per file. */
+#include <stdio.h>
+#include <string.h>
+
+#include "bench.h"
+
+static const struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *usage;
+} benches[] = {
+    {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
+};
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2) {
+        for (size_t i = 0; i < sizeof benches / sizeof benches[0]; i++)
+            if (strcmp(argv[1], benches[i].name) == 0)
+                return benches[i].run(argc - 1, argv + 1);
+    }
+    fprintf(stderr, "usage: cavelight-bench <benchmark> [options]\n");
+    for (size_t i = 0; i < sizeof benches / sizeof benches[0]; i++)
+        fprintf(stderr, "  %s\n", benches[i].usage);
+    return 2;
+}
