@@ -1,0 +1,53 @@
+/* frame_params: everything a render node needs to render one frame, as plain values.
+ *
+ * The master's parameter store (params.h) is turned into one of these on every node for
+ * every frame version; the standalone node fills one from the scene and the command line.
+ * Nodes that hold equal frame_params render bit-identical LPVs. frame_params_default()
+ * gives the renderer's defaults; lights start from the scene's own. */
+#ifndef CAVELIGHT_FRAME_PARAMS_H
+#define CAVELIGHT_FRAME_PARAMS_H
+
+#include <stdint.h>
+
+enum { FRAME_MAX_LIGHTS = 8 };
+
+typedef enum frame_environment {
+    FRAME_ENV_DARK = 0,   /* end-to-end gamma 1.5 */
+    FRAME_ENV_DIM = 1,    /* 1.25 */
+    FRAME_ENV_OFFICE = 2, /* 1.125 */
+} frame_environment;
+
+typedef struct frame_light {
+    int enabled;
+    float position[3];    /* world space, metres */
+    float direction[3];   /* unit, spot axis */
+    float color[3];       /* linear RGB, 0..1 */
+    float intensity;      /* candela-like scale: radiant intensity on the axis, W/sr */
+    float outer_angle;    /* radians, half angle where the cone reaches 0 */
+    float inner_angle;    /* radians, half angle where the penumbra starts */
+} frame_light;
+
+typedef struct frame_params {
+    uint64_t version;       /* committed frame version (0 standalone) */
+    uint32_t reset_epoch;   /* raised by the master to drop every node's LPV history */
+    double time;            /* seconds since the session started */
+    float head[16];         /* tracked head pose in CAVE space (column-major) */
+    float wand[16];         /* wand pose in CAVE space */
+    float navigation[16];   /* CAVE-to-world transform */
+    int light_count;
+    frame_light lights[FRAME_MAX_LIGHTS];
+    int lpv_steps;          /* propagation steps per frame */
+    float lambda_incr;      /* share of the previous frame's light kept, [0,1) */
+    float absorption;       /* per-metre probabilities, [0,1] */
+    float scattering;
+    frame_environment environment;
+    float display_gamma;    /* 2.2 by default */
+    float exposure;         /* linear scale before tone mapping, 1 by default */
+    int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
+} frame_params;
+
+void frame_params_default(frame_params *p);
+/* End-to-end gamma of the environment (paper table 3.1). */
+float frame_params_e2e_gamma(frame_environment env);
+
+#endif

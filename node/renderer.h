@@ -1,0 +1,63 @@
+/* renderer: the render node's work on the current GL context.
+ *
+ *   renderer_frame_pass()  once per frame, view independent: RSM per spotlight -> VPLs ->
+ *                          injection -> ILPV merge and propagation. Returns the LPV
+ *                          checksum the master compares across nodes.
+ *   renderer_eye_pass()    per (screen, eye): G-buffer -> direct + indirect shading ->
+ *                          tone map + gamma -> 8-bit RGB (and optional linear floats).
+ *
+ * The renderer loads nothing: the caller passes a loaded scene and owns it. */
+#ifndef CAVELIGHT_RENDERER_H
+#define CAVELIGHT_RENDERER_H
+
+#include <stdint.h>
+#include "frame_params.h"
+#include "scene.h"
+
+typedef struct renderer renderer;
+
+typedef enum renderer_lpv_backend {
+    RENDERER_LPV_AUTO = 0, /* CPU on llvmpipe/softpipe, GL compute on a real GPU */
+    RENDERER_LPV_CPU,
+    RENDERER_LPV_GL,
+} renderer_lpv_backend;
+
+typedef struct renderer_desc {
+    const scene *scene;
+    renderer_lpv_backend lpv_backend;
+    int rsm_size;        /* 0 = 256 */
+    int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
+    int threads;         /* CPU propagation threads, 0 = all cores */
+} renderer_desc;
+
+typedef struct renderer_view {
+    float view[16];       /* world-to-eye, column-major */
+    float projection[16]; /* eye-to-clip (off-axis or symmetric) */
+    float eye_position[3];/* world space */
+    int width, height;
+} renderer_view;
+
+typedef struct renderer_image {
+    int width, height;
+    uint8_t *rgb;          /* width*height*3, top row first; owned by the renderer */
+    const float *final;    /* linear RGB floats, or NULL unless requested */
+    const float *direct;
+    const float *indirect;
+} renderer_image;
+
+typedef struct renderer_timings {
+    double rsm_ms, inject_ms, propagate_ms;        /* frame pass (GPU or host clock) */
+    double gbuffer_ms, shade_ms, final_ms;          /* last eye pass */
+    double frame_host_ms, eye_host_ms;
+} renderer_timings;
+
+/* Returns NULL with a one-line reason in err. */
+renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
+void renderer_destroy(renderer *r);
+uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
+/* want_linear: also read back final/direct/indirect linear images for measurement. */
+int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
+                      int want_linear, renderer_image *out);
+void renderer_get_timings(const renderer *r, renderer_timings *out);
+
+#endif
