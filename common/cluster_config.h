@@ -1,0 +1,112 @@
+/* cluster_config: a cluster described in JSON (configs/clusters/NAME.json, docs/cluster.md).
+ *
+ *   master    {"bind": "tcp://0.0.0.0:5570", "connect": "tcp://host:5570"}
+ *   observer  {"eye_separation": m, "head_to_eye": [x,y,z] (head space), "home": [x,y,z],
+ *              "tracker_to_cave": {"translation": [..], "rotation_deg": [x,y,z], "scale": s}}
+ *   screens   [{"name", "bottom_left", "bottom_right", "top_left" (CAVE space),
+ *               "overview": [x, y] (pixel offset in the unfolded overview, optional)}]
+ *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution"}],
+ *               "resolution": [w, h], "eyes": "mono|stereo|left|right",
+ *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
+ *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
+ *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
+ *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms"}
+ * Loading validates everything; a failure is one line naming the file and the field. */
+#ifndef CAVELIGHT_CLUSTER_CONFIG_H
+#define CAVELIGHT_CLUSTER_CONFIG_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+enum {
+    CLUSTER_MAX_SCREENS = 32,
+    CLUSTER_MAX_NODES = 32,
+    CLUSTER_NODE_MAX_SCREENS = 8,
+    CLUSTER_NAME_MAX = 32,
+    CLUSTER_TEXT_MAX = 256,
+};
+
+typedef enum cluster_eyes {
+    CLUSTER_EYES_MONO = 0, /* one centre eye */
+    CLUSTER_EYES_STEREO,
+    CLUSTER_EYES_LEFT,
+    CLUSTER_EYES_RIGHT,
+} cluster_eyes;
+
+typedef enum cluster_output {
+    CLUSTER_OUTPUT_WINDOW = 0,
+    CLUSTER_OUTPUT_HEADLESS, /* render, show nothing */
+    CLUSTER_OUTPUT_PNG,      /* write one PNG per screen and eye on every swap */
+} cluster_output;
+
+typedef enum cluster_stereo {
+    CLUSTER_STEREO_QUAD = 0,     /* quad-buffered, where the driver offers it */
+    CLUSTER_STEREO_SIDE_BY_SIDE,
+    CLUSTER_STEREO_TOP_BOTTOM,
+    CLUSTER_STEREO_WINDOW_PER_EYE,
+    CLUSTER_STEREO_ANAGLYPH,     /* red-cyan, for a desk */
+} cluster_stereo;
+
+typedef struct cluster_screen {
+    char name[CLUSTER_NAME_MAX + 1];
+    float bottom_left[3], bottom_right[3], top_left[3];
+    int overview[2]; /* pixel offset in the overview; -1 = not shown */
+} cluster_screen;
+
+typedef struct cluster_node_screen {
+    int screen;        /* index into cluster_config.screens */
+    int width, height; /* pixels */
+} cluster_node_screen;
+
+typedef struct cluster_node {
+    char name[CLUSTER_NAME_MAX + 1];
+    char host[CLUSTER_TEXT_MAX];
+    int screen_count;
+    cluster_node_screen screens[CLUSTER_NODE_MAX_SCREENS];
+    cluster_eyes eyes;
+    cluster_output output;
+    cluster_stereo stereo;
+    int monitor;    /* GLFW monitor index for fullscreen windows */
+    int fullscreen;
+} cluster_node;
+
+typedef struct cluster_observer {
+    float eye_separation;   /* metres */
+    float head_to_eye[3];   /* tracker sensor to the point between the eyes, head space */
+    float tracker_to_cave[16]; /* column-major */
+    float home[3];          /* untracked head position in CAVE space (default 0, 1.7, 0) */
+} cluster_observer;
+
+typedef struct cluster_config {
+    char path[CLUSTER_TEXT_MAX];
+    char name[CLUSTER_TEXT_MAX];
+    char scene[CLUSTER_TEXT_MAX];          /* "" = the built-in default scene */
+    char master_bind[CLUSTER_TEXT_MAX];
+    char master_connect[CLUSTER_TEXT_MAX];
+    char launch[CLUSTER_TEXT_MAX];         /* {host} and {command} are substituted */
+    int barrier_timeout_ms;  /* a node not READY by then is dropped (default 2000) */
+    int heartbeat_ms;        /* idle heartbeat period (default 250) */
+    int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
+    cluster_observer observer;
+    int screen_count;
+    cluster_screen screens[CLUSTER_MAX_SCREENS];
+    int node_count;
+    cluster_node nodes[CLUSTER_MAX_NODES];
+    uint64_t hash;           /* FNV-1a of the file bytes; HELLO carries it */
+} cluster_config;
+
+/* Return 0, or -1 with "cluster config FILE: field F: problem" in err. */
+int cluster_config_load(const char *path, cluster_config *out, char *err, size_t errlen);
+int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *out,
+                         char *err, size_t errlen);
+/* Index of the node or screen with this name, or -1. */
+int cluster_config_find_node(const cluster_config *c, const char *name);
+int cluster_config_find_screen(const cluster_config *c, const char *name);
+const char *cluster_eyes_name(cluster_eyes e);
+const char *cluster_output_name(cluster_output o);
+const char *cluster_stereo_name(cluster_stereo s);
+/* Parse names as in the file; return -1 when unknown. */
+int cluster_output_parse(const char *s);
+int cluster_stereo_parse(const char *s);
+
+#endif

@@ -1,0 +1,84 @@
+/* wire: the binary messages between master and nodes (one ZeroMQ frame each).
+ *
+ * Header, 16 bytes little-endian: magic "CVLT", protocol version u16, type u16, payload
+ * length u32, CRC-32 (IEEE) of the first 12 header bytes followed by the payload.
+ * Payloads:
+ *   HELLO     name, config hash u64, version the sender holds u64
+ *   SNAPSHOT  version u64, params encoding (all keys)
+ *   FRAME     version u64, base version u64, params delta (keys changed after base)
+ *   READY     name, version u64, LPV checksum u64, timings 4 x f32 (ms)
+ *   SWAP      version u64
+ *   BYE       name, reason u32
+ *   HEARTBEAT name, version u64
+ * A name is a u8 length and 1..WIRE_NAME_MAX bytes of [A-Za-z0-9_.-].
+ * wire_decode() checks everything (size, magic, version, type, length, CRC, payload
+ * layout, name characters) and never reads outside the buffer; params point into it. */
+#ifndef CAVELIGHT_WIRE_H
+#define CAVELIGHT_WIRE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+enum {
+    WIRE_MAGIC = 0x544c5643u, /* "CVLT" as little-endian bytes */
+    WIRE_PROTOCOL = 1,
+    WIRE_HEADER_SIZE = 16,
+    WIRE_NAME_MAX = 32,
+    WIRE_MAX_PAYLOAD = 8192,
+    WIRE_MAX_MESSAGE = WIRE_HEADER_SIZE + WIRE_MAX_PAYLOAD,
+};
+
+typedef enum wire_type {
+    WIRE_HELLO = 1,
+    WIRE_SNAPSHOT,
+    WIRE_FRAME,
+    WIRE_READY,
+    WIRE_SWAP,
+    WIRE_BYE,
+    WIRE_HEARTBEAT,
+    WIRE_TYPE_END
+} wire_type;
+
+typedef enum wire_error {
+    WIRE_OK = 0,
+    WIRE_E_SHORT,     /* shorter than a header */
+    WIRE_E_MAGIC,
+    WIRE_E_PROTOCOL,  /* another protocol version */
+    WIRE_E_TYPE,
+    WIRE_E_LENGTH,    /* payload length disagrees with the frame, or too large */
+    WIRE_E_CHECKSUM,
+    WIRE_E_PAYLOAD,   /* payload does not match its type's layout */
+    WIRE_E_COUNT
+} wire_error;
+
+typedef enum wire_timing {
+    WIRE_TIMING_APPLY = 0, /* applying the delta */
+    WIRE_TIMING_FRAME,     /* frame pass: RSM, injection, propagation */
+    WIRE_TIMING_EYES,      /* all eye passes */
+    WIRE_TIMING_TOTAL,     /* FRAME received to READY sent */
+    WIRE_TIMING_COUNT
+} wire_timing;
+
+typedef struct wire_msg {
+    wire_type type;
+    char name[WIRE_NAME_MAX + 1]; /* HELLO, READY, BYE, HEARTBEAT */
+    uint64_t version;             /* every type but BYE */
+    uint64_t base_version;        /* FRAME */
+    uint64_t config_hash;         /* HELLO */
+    uint64_t checksum;            /* READY */
+    float timings[WIRE_TIMING_COUNT]; /* READY */
+    uint32_t reason;              /* BYE */
+    const uint8_t *params;        /* SNAPSHOT, FRAME */
+    size_t params_len;
+} wire_msg;
+
+uint32_t wire_crc32(const void *data, size_t len);
+/* Returns the message size, or 0 when it does not fit cap or a field is invalid. */
+size_t wire_encode(const wire_msg *m, uint8_t *buf, size_t cap);
+wire_error wire_decode(const uint8_t *buf, size_t len, wire_msg *out);
+const char *wire_error_string(wire_error e);
+const char *wire_type_name(int type);
+/* 1 when name is 1..WIRE_NAME_MAX characters of [A-Za-z0-9_.-]. */
+int wire_name_valid(const char *name);
+
+#endif

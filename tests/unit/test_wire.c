@@ -1,0 +1,166 @@
+/* wire: round trips, CRC, and that no truncated, corrupted, oversized or random buffer
+ * ever decodes as a valid message. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "wire.h"
+
+static size_t sample(int type, uint8_t *buf, size_t cap, const uint8_t *params, size_t plen)
+{
+    wire_msg m = {.type = (wire_type)type, .version = 42, .base_version = 41,
+                  .config_hash = 0x1122334455667788ull, .checksum = 0xdeadbeefcafef00dull,
+                  .timings = {0.5f, 1.5f, 2.5f, 3.5f}, .reason = 7, .params = params, .params_len = plen};
+    strcpy(m.name, "n01");
+    return wire_encode(&m, buf, cap);
+}
+
+static void test_crc32_reference(void **state)
+{
+    assert_int_equal(wire_crc32("123456789", 9), 0xCBF43926u);
+    assert_int_equal(wire_crc32("", 0), 0);
+}
+
+static void test_round_trip_every_type(void **state)
+{
+    uint8_t params[100], buf[WIRE_MAX_MESSAGE];
+    for (int i = 0; i < 100; i++)
+        params[i] = (uint8_t)(i * 7);
+    for (int t = WIRE_HELLO; t < WIRE_TYPE_END; t++) {
+        size_t len = sample(t, buf, sizeof buf, params, sizeof params);
+        assert_true(len >= WIRE_HEADER_SIZE);
+        wire_msg m;
+        assert_int_equal(wire_decode(buf, len, &m), WIRE_OK);
+        assert_int_equal(m.type, t);
+        switch (t) {
+        case WIRE_HELLO:
+            assert_string_equal(m.name, "n01");
+            assert_int_equal(m.config_hash, 0x1122334455667788ull);
+            assert_int_equal(m.version, 42);
+            break;
+        case WIRE_SNAPSHOT:
+        case WIRE_FRAME:
+            assert_int_equal(m.version, 42);
+            assert_int_equal(m.base_version, t == WIRE_FRAME ? 41 : 0);
+            assert_int_equal(m.params_len, sizeof params);
+            assert_memory_equal(m.params, params, sizeof params);
+            break;
+        case WIRE_READY:
+            assert_string_equal(m.name, "n01");
+            assert_int_equal(m.checksum, 0xdeadbeefcafef00dull);
+            assert_float_equal(m.timings[WIRE_TIMING_TOTAL], 3.5f, 0);
+            break;
+        case WIRE_SWAP:
+            assert_int_equal(m.version, 42);
+            break;
+        case WIRE_BYE:
+            assert_int_equal(m.reason, 7);
+            break;
+        case WIRE_HEARTBEAT:
+            assert_string_equal(m.name, "n01");
+            break;
+        }
+    }
+}
+
+static void test_truncation_and_bit_flips_rejected(void **state)
+{
+    uint8_t params[40], buf[WIRE_MAX_MESSAGE];
+    memset(params, 0xab, sizeof params);
+    for (int t = WIRE_HELLO; t < WIRE_TYPE_END; t++) {
+        size_t len = sample(t, buf, sizeof buf, params, sizeof params);
+        wire_msg m;
+        for (size_t cut = 0; cut < len; cut++)
+            assert_int_not_equal(wire_decode(buf, cut, &m), WIRE_OK);
+        for (size_t bit = 0; bit < len * 8; bit++) {
+            buf[bit / 8] ^= (uint8_t)(1u << (bit % 8));
+            assert_int_not_equal(wire_decode(buf, len, &m), WIRE_OK);
+            buf[bit / 8] ^= (uint8_t)(1u << (bit % 8));
+        }
+        assert_int_equal(wire_decode(buf, len, &m), WIRE_OK);
+    }
+}
+
+static void test_oversized_and_bad_fields(void **state)
+{
+    static uint8_t big[WIRE_MAX_PAYLOAD + 1], buf[WIRE_MAX_MESSAGE + 64];
+    /* Encoder refuses what the decoder would refuse. */
+    assert_int_equal(sample(WIRE_FRAME, buf, sizeof buf, big, sizeof big), 0);
+    assert_int_equal(sample(WIRE_FRAME, buf, 20, big, 10), 0);
+    wire_msg m = {.type = WIRE_HELLO};
+    strcpy(m.name, "bad name");
+    assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
+    m.name[0] = 0;
+    assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
+    m.type = (wire_type)99;
+    assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
+
+    /* A header claiming a huge payload is refused before anything is read. */
+    size_t len = sample(WIRE_SWAP, buf, sizeof buf, NULL, 0);
+    wire_msg d;
+    buf[8] = 0xff; buf[9] = 0xff; buf[10] = 0xff; buf[11] = 0x7f;
+    assert_int_equal(wire_decode(buf, len, &d), WIRE_E_LENGTH);
+    /* Trailing bytes after a valid message. */
+    len = sample(WIRE_SWAP, buf, sizeof buf, NULL, 0);
+    assert_int_equal(wire_decode(buf, len + 1, &d), WIRE_E_LENGTH);
+    /* Other protocol version and type, with a correct CRC. */
+    buf[4] = 2;
+    uint32_t crc;
+    {
+        uint8_t tmp[64];
+        memcpy(tmp, buf, 12);
+        memcpy(tmp + 12, buf + WIRE_HEADER_SIZE, len - WIRE_HEADER_SIZE);
+        crc = wire_crc32(tmp, 12 + len - WIRE_HEADER_SIZE);
+    }
+    memcpy(buf + 12, &crc, 4);
+    assert_int_equal(wire_decode(buf, len, &d), WIRE_E_PROTOCOL);
+}
+
+static void test_random_garbage_never_decodes(void **state)
+{
+    uint8_t buf[512];
+    srand(12345);
+    for (int i = 0; i < 200000; i++) {
+        size_t len = (size_t)(rand() % (int)sizeof buf);
+        for (size_t k = 0; k < len; k++)
+            buf[k] = (uint8_t)rand();
+        /* Half the time, a plausible header so the CRC and payload checks are reached. */
+        if (len >= WIRE_HEADER_SIZE && (i & 1)) {
+            uint32_t magic = WIRE_MAGIC, payload = (uint32_t)(len - WIRE_HEADER_SIZE);
+            memcpy(buf, &magic, 4);
+            buf[4] = WIRE_PROTOCOL;
+            buf[5] = 0;
+            buf[6] = (uint8_t)(1 + rand() % 7);
+            buf[7] = 0;
+            memcpy(buf + 8, &payload, 4);
+        }
+        wire_msg m;
+        assert_int_not_equal(wire_decode(buf, len, &m), WIRE_OK);
+    }
+}
+
+static void test_names(void **state)
+{
+    assert_true(wire_name_valid("n01"));
+    assert_true(wire_name_valid("front-left_2.a"));
+    assert_false(wire_name_valid(""));
+    assert_false(wire_name_valid("a/b"));
+    assert_false(wire_name_valid("0123456789012345678901234567890123"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crc32_reference),
+        cmocka_unit_test(test_round_trip_every_type),
+        cmocka_unit_test(test_truncation_and_bit_flips_rejected),
+        cmocka_unit_test(test_oversized_and_bad_fields),
+        cmocka_unit_test(test_random_garbage_never_decodes),
+        cmocka_unit_test(test_names),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
