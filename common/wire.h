@@ -51,6 +51,14 @@ typedef enum wire_error {
     WIRE_E_COUNT
 } wire_error;
 
+/* BYE reasons. */
+typedef enum wire_bye_reason {
+    WIRE_BYE_SHUTDOWN = 1,        /* master is stopping the session */
+    WIRE_BYE_DROPPED = 2,         /* master dropped the node (barrier timeout): say HELLO again */
+    WIRE_BYE_CONFIG_MISMATCH = 3, /* HELLO carried another config hash */
+    WIRE_BYE_LEAVING = 4,         /* node is exiting */
+} wire_bye_reason;
+
 typedef enum wire_timing {
     WIRE_TIMING_APPLY = 0, /* applying the delta */
     WIRE_TIMING_FRAME,     /* frame pass: RSM, injection, propagation */

@@ -1,0 +1,400 @@
+#include "cluster_master.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <zmq.h>
+
+typedef struct peer {
+    cluster_peer_stats s;
+    int in_barrier;          /* got FRAME(v) of the current barrier */
+    int ready;               /* sent READY(v) for it */
+    double frame_sent;       /* ms clock */
+    double last_heard;
+} peer;
+
+struct cluster_master {
+    const cluster_config *cfg;
+    void *ctx, *sock;
+    params_store params;
+    int barrier_timeout_ms;
+    int quiet;
+    int raise_epoch;         /* a node joined: the next commit resets LPV history */
+    peer peers[CLUSTER_MAX_NODES];
+    cluster_master_stats st;
+    double last_heartbeat;
+    uint8_t buf[WIRE_MAX_MESSAGE];
+    uint8_t params_buf[PARAMS_ENCODED_MAX];
+};
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* Problems caused by peers are logged, but only the first few of each kind and then one
+ * per 1000, so a flood cannot fill the disk. */
+static int should_log(uint64_t count) { return count <= 5 || count % 1000 == 0; }
+
+static int send_to(cluster_master *m, int node, const wire_msg *msg)
+{
+    size_t len = wire_encode(msg, m->buf, sizeof m->buf);
+    if (len == 0)
+        return -1;
+    const char *id = m->cfg->nodes[node].name;
+    /* ROUTER drops a message for a peer that is gone or whose queue is full: never blocks. */
+    if (zmq_send(m->sock, id, strlen(id), ZMQ_SNDMORE | ZMQ_DONTWAIT) < 0)
+        return -1;
+    if (zmq_send(m->sock, m->buf, len, ZMQ_DONTWAIT) < 0)
+        return -1;
+    m->st.bytes_sent += len;
+    m->st.messages_sent++;
+    return 0;
+}
+
+static void send_snapshot(cluster_master *m, int node)
+{
+    size_t n = params_encode_snapshot(&m->params, m->params_buf, sizeof m->params_buf);
+    wire_msg msg = {.type = WIRE_SNAPSHOT, .version = m->params.version,
+                    .params = m->params_buf, .params_len = n};
+    send_to(m, node, &msg);
+}
+
+static void send_bye(cluster_master *m, int node, uint32_t reason)
+{
+    wire_msg msg = {.type = WIRE_BYE, .reason = reason};
+    snprintf(msg.name, sizeof msg.name, "master");
+    send_to(m, node, &msg);
+}
+
+static int live_count(const cluster_master *m)
+{
+    int n = 0;
+    for (int i = 0; i < m->cfg->node_count; i++)
+        n += m->peers[i].s.state == CLUSTER_PEER_LIVE;
+    return n;
+}
+
+int cluster_master_live_count(const cluster_master *m) { return live_count(m); }
+
+static void join(cluster_master *m, int node, const wire_msg *msg)
+{
+    peer *p = &m->peers[node];
+    if (msg->config_hash != m->cfg->hash) {
+        fprintf(stderr, "cavelight-master: node %s runs another cluster config (hash %016llx, "
+                "master %s has %016llx): refused, give both the same file\n",
+                m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
+                (unsigned long long)m->cfg->hash);
+        send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);
+        return;
+    }
+    int rejoin = p->s.joins > 0;
+    p->s.state = CLUSTER_PEER_LIVE;
+    p->s.version = m->params.version;
+    p->s.joins++;
+    p->in_barrier = 0;
+    p->ready = 0;
+    m->st.joins++;
+    m->raise_epoch = 1;
+    send_snapshot(m, node);
+    if (!m->quiet)
+        fprintf(stderr, "cavelight-master: node %s %s at version %llu\n", m->cfg->nodes[node].name,
+                rejoin ? "rejoined" : "joined", (unsigned long long)m->params.version);
+}
+
+/* Receives one message if any is queued. Returns 1 when a message was handled (valid or
+ * not), 0 when none was waiting. */
+static int handle_one(cluster_master *m)
+{
+    zmq_msg_t id, body;
+    zmq_msg_init(&id);
+    zmq_msg_init(&body);
+    if (zmq_msg_recv(&id, m->sock, ZMQ_DONTWAIT) < 0) {
+        zmq_msg_close(&id);
+        zmq_msg_close(&body);
+        return 0;
+    }
+    /* ROUTER delivers [routing id][body]; anything else is malformed. Extra frames are
+     * read and discarded so the next message starts clean. */
+    int parts = 1;
+    if (zmq_msg_more(&id) && zmq_msg_recv(&body, m->sock, 0) >= 0) {
+        parts++;
+        while (zmq_msg_more(&body)) {
+            zmq_msg_t extra;
+            zmq_msg_init(&extra);
+            int rc = zmq_msg_recv(&extra, m->sock, 0);
+            int more = rc >= 0 && zmq_msg_more(&extra);
+            zmq_msg_close(&extra);
+            parts++;
+            if (!more)
+                break;
+        }
+    }
+    char name[WIRE_NAME_MAX + 1] = "";
+    size_t idlen = zmq_msg_size(&id);
+    if (idlen <= WIRE_NAME_MAX) {
+        memcpy(name, zmq_msg_data(&id), idlen);
+        name[idlen] = 0;
+    }
+    int node = idlen <= WIRE_NAME_MAX && wire_name_valid(name) ? cluster_config_find_node(m->cfg, name) : -1;
+    size_t len = zmq_msg_size(&body);
+    m->st.messages_received++;
+    m->st.bytes_received += len;
+    wire_msg msg;
+    wire_error e = WIRE_OK;
+    if (node < 0) {
+        if (should_log(++m->st.unknown_peers))
+            fprintf(stderr, "cavelight-master: message from unknown peer '%s' dropped (%llu so far): only "
+                    "nodes named in %s may connect\n", node < 0 && wire_name_valid(name) ? name : "?",
+                    (unsigned long long)m->st.unknown_peers, m->cfg->path);
+        goto done;
+    }
+    e = parts == 2 ? wire_decode(zmq_msg_data(&body), len, &msg) : WIRE_E_PAYLOAD;
+    if (e == WIRE_OK && (msg.type == WIRE_SNAPSHOT || msg.type == WIRE_FRAME || msg.type == WIRE_SWAP))
+        e = WIRE_E_TYPE; /* master-to-node messages */
+    if (e == WIRE_OK && strcmp(msg.name, name) != 0)
+        e = WIRE_E_PAYLOAD; /* a node speaking for another */
+    if (e != WIRE_OK) {
+        if (should_log(++m->st.malformed))
+            fprintf(stderr, "cavelight-master: malformed message from node %s dropped (%s; %llu so far)\n",
+                    name, wire_error_string(e), (unsigned long long)m->st.malformed);
+        goto done;
+    }
+    peer *p = &m->peers[node];
+    p->last_heard = now_ms();
+    switch (msg.type) {
+    case WIRE_HELLO:
+        join(m, node, &msg);
+        break;
+    case WIRE_READY:
+        if (p->s.state == CLUSTER_PEER_LIVE && p->in_barrier && !p->ready && msg.version == m->params.version) {
+            p->ready = 1;
+            p->s.version = msg.version;
+            p->s.checksum = msg.checksum;
+            p->s.frames_ready++;
+            memcpy(p->s.timings, msg.timings, sizeof p->s.timings);
+            p->s.ready_ms = p->last_heard - p->frame_sent;
+        } else {
+            m->st.stale++;
+        }
+        break;
+    case WIRE_BYE:
+        if (p->s.state == CLUSTER_PEER_LIVE && !m->quiet)
+            fprintf(stderr, "cavelight-master: node %s left\n", name);
+        p->s.state = CLUSTER_PEER_ABSENT;
+        p->in_barrier = 0;
+        break;
+    default: /* HEARTBEAT: last_heard is enough */
+        break;
+    }
+done:
+    zmq_msg_close(&id);
+    zmq_msg_close(&body);
+    return 1;
+}
+
+/* Handles messages until the deadline or until done(m) holds. */
+static void pump(cluster_master *m, double deadline, int (*done)(cluster_master *, void *), void *arg)
+{
+    for (;;) {
+        while (handle_one(m))
+            if (done && done(m, arg))
+                return;
+        if (done && done(m, arg))
+            return;
+        double left = deadline - now_ms();
+        if (left <= 0)
+            return;
+        zmq_pollitem_t item = {.socket = m->sock, .events = ZMQ_POLLIN};
+        if (zmq_poll(&item, 1, (long)(left + 0.999)) < 0 && errno != EINTR)
+            return;
+    }
+}
+
+cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen)
+{
+    cluster_master *m = calloc(1, sizeof *m);
+    if (!m) {
+        snprintf(err, errlen, "cluster master: out of memory");
+        return NULL;
+    }
+    m->cfg = desc->config;
+    m->quiet = desc->quiet;
+    m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;
+    params_init(&m->params);
+    m->ctx = zmq_ctx_new();
+    m->sock = m->ctx ? zmq_socket(m->ctx, ZMQ_ROUTER) : NULL;
+    const char *ep = desc->bind ? desc->bind : m->cfg->master_bind;
+    if (!m->sock) {
+        snprintf(err, errlen, "cluster master: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
+        cluster_master_destroy(m);
+        return NULL;
+    }
+    int one = 1, zero = 0, hwm = 1000;
+    int64_t maxmsg = WIRE_MAX_MESSAGE;
+    zmq_setsockopt(m->sock, ZMQ_LINGER, &zero, sizeof zero);
+    zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
+    /* A restarted node reuses its name: its new connection takes over the routing id. */
+    zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    if (zmq_bind(m->sock, ep) != 0) {
+        snprintf(err, errlen, "cluster master: cannot bind %s (%s, from %s): free the port or pass --bind",
+                 ep, zmq_strerror(errno), desc->bind ? "--bind" : m->cfg->path);
+        cluster_master_destroy(m);
+        return NULL;
+    }
+    return m;
+}
+
+void cluster_master_destroy(cluster_master *m)
+{
+    if (!m)
+        return;
+    if (m->sock) {
+        for (int i = 0; m->cfg && i < m->cfg->node_count; i++)
+            if (m->peers[i].s.state != CLUSTER_PEER_ABSENT)
+                send_bye(m, i, WIRE_BYE_SHUTDOWN);
+        /* Give the BYEs a moment to leave (linger is 0 so close never blocks). */
+        zmq_pollitem_t item = {.socket = m->sock, .events = ZMQ_POLLIN};
+        zmq_poll(&item, 1, 20);
+        zmq_close(m->sock);
+    }
+    if (m->ctx)
+        zmq_ctx_term(m->ctx);
+    free(m);
+}
+
+params_store *cluster_master_params(cluster_master *m) { return &m->params; }
+
+typedef struct wait_arg {
+    int count;
+} wait_arg;
+
+static int enough_live(cluster_master *m, void *arg)
+{
+    return live_count(m) >= ((wait_arg *)arg)->count;
+}
+
+int cluster_master_wait_nodes(cluster_master *m, int count, int timeout_ms)
+{
+    double deadline = now_ms() + timeout_ms;
+    wait_arg a = {count};
+    while (!enough_live(m, &a) && now_ms() < deadline) {
+        double step = now_ms() + m->cfg->heartbeat_ms;
+        pump(m, step < deadline ? step : deadline, enough_live, &a);
+        /* Tell waiting nodes the master is alive. */
+        for (int i = 0; i < m->cfg->node_count; i++)
+            if (m->peers[i].s.state == CLUSTER_PEER_LIVE) {
+                wire_msg hb = {.type = WIRE_HEARTBEAT, .version = m->params.version};
+                snprintf(hb.name, sizeof hb.name, "master");
+                send_to(m, i, &hb);
+            }
+    }
+    return live_count(m);
+}
+
+static int all_ready(cluster_master *m, void *arg)
+{
+    for (int i = 0; i < m->cfg->node_count; i++)
+        if (m->peers[i].s.state == CLUSTER_PEER_LIVE && m->peers[i].in_barrier && !m->peers[i].ready)
+            return 0;
+    return 1;
+}
+
+int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double t0 = now_ms();
+    pump(m, t0, NULL, NULL); /* joins and leaves that arrived since the last frame */
+    if (live_count(m) == 0)
+        return -1;
+    if (m->raise_epoch) {
+        params_set_u32(&m->params, PARAMS_RESET_EPOCH, params_get_u32(&m->params, PARAMS_RESET_EPOCH) + 1);
+        m->raise_epoch = 0;
+    }
+    uint64_t v = params_commit(&m->params);
+    out->version = v;
+    out->epoch = params_get_u32(&m->params, PARAMS_RESET_EPOCH);
+
+    /* Nodes at v-1 (the usual case) share one encoded delta. */
+    uint8_t common[PARAMS_ENCODED_MAX];
+    size_t common_len = params_encode_delta(&m->params, v - 1, common, sizeof common);
+    for (int i = 0; i < m->cfg->node_count; i++) {
+        peer *p = &m->peers[i];
+        p->in_barrier = p->ready = 0;
+        if (p->s.state != CLUSTER_PEER_LIVE)
+            continue;
+        wire_msg msg = {.type = WIRE_FRAME, .version = v, .base_version = p->s.version};
+        if (p->s.version == v - 1) {
+            msg.params = common;
+            msg.params_len = common_len;
+        } else {
+            msg.params = m->params_buf;
+            msg.params_len = params_encode_delta(&m->params, p->s.version, m->params_buf, sizeof m->params_buf);
+        }
+        p->frame_sent = now_ms();
+        if (send_to(m, i, &msg) == 0) {
+            p->in_barrier = 1;
+            out->live++;
+            if (msg.params == common)
+                out->frame_bytes = wire_encode(&msg, m->buf, sizeof m->buf);
+        }
+    }
+    double tb = now_ms();
+    pump(m, tb + m->barrier_timeout_ms, all_ready, NULL);
+    out->barrier_ms = now_ms() - tb;
+
+    uint64_t first = 0;
+    int have_first = 0;
+    for (int i = 0; i < m->cfg->node_count; i++) {
+        peer *p = &m->peers[i];
+        if (!p->in_barrier)
+            continue;
+        if (!p->ready) {
+            if (p->s.state == CLUSTER_PEER_LIVE) {
+                fprintf(stderr, "cavelight-master: node %s not ready for frame %llu within %d ms: dropped, "
+                        "the others go on\n", m->cfg->nodes[i].name, (unsigned long long)v, m->barrier_timeout_ms);
+                p->s.state = CLUSTER_PEER_DROPPED;
+                p->s.drops++;
+                m->st.drops++;
+                out->dropped++;
+                send_bye(m, i, WIRE_BYE_DROPPED);
+            }
+            continue;
+        }
+        out->ready++;
+        if (!have_first) {
+            first = p->s.checksum;
+            have_first = 1;
+        } else if (p->s.checksum != first) {
+            out->desync = 1;
+        }
+    }
+    if (out->desync) {
+        m->st.desyncs++;
+        fprintf(stderr, "cavelight-master: desync in frame %llu: LPV checksums differ:", (unsigned long long)v);
+        for (int i = 0; i < m->cfg->node_count; i++)
+            if (m->peers[i].in_barrier && m->peers[i].ready)
+                fprintf(stderr, " %s=%016llx", m->cfg->nodes[i].name, (unsigned long long)m->peers[i].s.checksum);
+        fprintf(stderr, "\n");
+    }
+    wire_msg swap = {.type = WIRE_SWAP, .version = v};
+    for (int i = 0; i < m->cfg->node_count; i++)
+        if (m->peers[i].in_barrier && m->peers[i].ready)
+            send_to(m, i, &swap);
+    m->st.frames++;
+    out->round_trip_ms = now_ms() - t0;
+    return 0;
+}
+
+void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out) { *out = m->st; }
+
+void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out)
+{
+    *out = m->peers[node].s;
+}

@@ -1,0 +1,80 @@
+/* cluster_master: the master's side of the frame barrier over a ZeroMQ ROUTER socket.
+ *
+ * Nodes (DEALER, routing id = node name from the config) say HELLO and get a SNAPSHOT at
+ * the current version; the next commit raises the history-reset epoch so every node's
+ * incremental LPV restarts from the same frame. cluster_master_frame() commits the
+ * parameter store as version v, sends FRAME(v, delta since each node's version), waits
+ * for READY(v) from every live node until the barrier timeout, drops the late ones,
+ * compares LPV checksums (a difference is a desync) and sends SWAP(v).
+ * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
+ * Queues are bounded by high-water marks and a maximum message size; every wait times out. */
+#ifndef CAVELIGHT_CLUSTER_MASTER_H
+#define CAVELIGHT_CLUSTER_MASTER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cluster_config.h"
+#include "params.h"
+#include "wire.h"
+
+typedef struct cluster_master cluster_master;
+
+typedef struct cluster_master_desc {
+    const cluster_config *config;
+    const char *bind;        /* NULL = config->master_bind */
+    int barrier_timeout_ms;  /* 0 = config->barrier_timeout_ms */
+    int quiet;               /* 1: log only errors */
+} cluster_master_desc;
+
+typedef enum cluster_peer_state {
+    CLUSTER_PEER_ABSENT = 0, /* never said HELLO (or left) */
+    CLUSTER_PEER_LIVE,       /* takes part in the barrier */
+    CLUSTER_PEER_DROPPED,    /* missed a barrier; must say HELLO again */
+} cluster_peer_state;
+
+typedef struct cluster_peer_stats {
+    cluster_peer_state state;
+    uint64_t version;        /* last version the node applied (snapshot or READY) */
+    uint64_t checksum;       /* LPV checksum of its last READY */
+    uint64_t frames_ready;
+    uint32_t joins, drops;
+    float timings[WIRE_TIMING_COUNT]; /* of the last READY */
+    double ready_ms;         /* FRAME sent to READY received, last frame */
+} cluster_peer_stats;
+
+typedef struct cluster_master_stats {
+    uint64_t frames, desyncs;
+    uint64_t malformed, unknown_peers, stale;
+    uint64_t bytes_sent, bytes_received, messages_sent, messages_received;
+    uint64_t joins, drops;
+} cluster_master_stats;
+
+typedef struct cluster_frame_result {
+    uint64_t version;
+    int live;                /* nodes in the barrier */
+    int ready;               /* of them, READY in time (and swapped) */
+    int dropped;             /* dropped at this barrier */
+    int desync;              /* 1 when READY checksums differed */
+    uint32_t epoch;          /* history-reset epoch of this version */
+    double barrier_ms;       /* FRAME sends to the last READY (or the timeout) */
+    double round_trip_ms;    /* commit to SWAP sent */
+    size_t frame_bytes;      /* bytes of one FRAME message (to a node at v-1) */
+} cluster_frame_result;
+
+/* Returns NULL with a one-line reason in err. */
+cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen);
+/* Sends BYE(shutdown) to every live node, then closes. */
+void cluster_master_destroy(cluster_master *m);
+/* The store to set keys in before each cluster_master_frame(). */
+params_store *cluster_master_params(cluster_master *m);
+/* Handles HELLO/HEARTBEAT/BYE for up to timeout_ms or until `count` nodes are live.
+ * Returns the number of live nodes. */
+int cluster_master_wait_nodes(cluster_master *m, int count, int timeout_ms);
+/* One frame: commit, FRAME, barrier, SWAP. Returns 0, or -1 when no node is live. */
+int cluster_master_frame(cluster_master *m, cluster_frame_result *out);
+void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out);
+void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out);
+int cluster_master_live_count(const cluster_master *m);
+
+#endif

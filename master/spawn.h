@@ -1,0 +1,36 @@
+/* spawn: the master's child processes (nodes on this machine, or launch commands that
+ * start nodes on their hosts).
+ *
+ * spawn_local() runs a program directly; spawn_remote() runs the config's launch
+ * template through /bin/sh with {host} and {command} replaced (ssh by default, like
+ * Equalizer's launch command). Children get SIGTERM if the master dies (PR_SET_PDEATHSIG);
+ * spawn_stop_all() sends SIGTERM, waits, then SIGKILLs what is left. */
+#ifndef CAVELIGHT_SPAWN_H
+#define CAVELIGHT_SPAWN_H
+
+#include <stddef.h>
+#include <sys/types.h>
+
+enum { SPAWN_MAX = 64 };
+
+typedef struct spawn_set {
+    int count;
+    pid_t pid[SPAWN_MAX];
+    char label[SPAWN_MAX][64];
+    int exited[SPAWN_MAX];
+    int status[SPAWN_MAX];
+} spawn_set;
+
+/* argv is NULL-terminated; argv[0] is the program. Returns 0 or -1 with err. */
+int spawn_local(spawn_set *s, const char *label, char *const argv[], char *err, size_t errlen);
+/* Builds the shell command from template (with {host}, {command}) and runs it. */
+int spawn_remote(spawn_set *s, const char *label, const char *launch_template, const char *host,
+                 const char *command, char *err, size_t errlen);
+/* Reaps exited children without blocking; returns how many are still running. */
+int spawn_reap(spawn_set *s);
+/* SIGTERM to all, wait up to timeout_ms, then SIGKILL. */
+void spawn_stop_all(spawn_set *s, int timeout_ms);
+/* Quotes s for /bin/sh into out (single quotes). Returns 0, or -1 if out is too small. */
+int spawn_shell_quote(const char *s, char *out, size_t cap);
+
+#endif

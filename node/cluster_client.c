@@ -1,0 +1,280 @@
+#include "cluster_client.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <zmq.h>
+
+typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
+
+struct cluster_client {
+    const cluster_config *cfg;
+    char name[WIRE_NAME_MAX + 1];
+    void *ctx, *sock;
+    int quiet;
+    client_state state;
+    params_store params;
+    double last_heard, last_sent, last_hello;
+    cluster_client_stats st;
+    uint8_t buf[WIRE_MAX_MESSAGE];
+};
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int send_msg(cluster_client *c, wire_msg *msg)
+{
+    snprintf(msg->name, sizeof msg->name, "%s", c->name);
+    size_t len = wire_encode(msg, c->buf, sizeof c->buf);
+    if (len == 0)
+        return -1;
+    /* ZMQ_IMMEDIATE: with no connection this fails at once instead of queueing stale HELLOs. */
+    if (zmq_send(c->sock, c->buf, len, ZMQ_DONTWAIT) < 0)
+        return -1;
+    c->st.bytes_sent += len;
+    c->last_sent = now_ms();
+    return 0;
+}
+
+static void send_hello(cluster_client *c)
+{
+    wire_msg m = {.type = WIRE_HELLO, .config_hash = c->cfg->hash, .version = c->params.version};
+    send_msg(c, &m);
+    c->last_hello = now_ms();
+}
+
+cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err, size_t errlen)
+{
+    if (cluster_config_find_node(desc->config, desc->name) < 0) {
+        snprintf(err, errlen, "cluster node: no node named '%s' in %s: pass one of its node names",
+                 desc->name, desc->config->path);
+        return NULL;
+    }
+    cluster_client *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, errlen, "cluster node: out of memory");
+        return NULL;
+    }
+    c->cfg = desc->config;
+    c->quiet = desc->quiet;
+    snprintf(c->name, sizeof c->name, "%s", desc->name);
+    params_init(&c->params);
+    c->ctx = zmq_ctx_new();
+    c->sock = c->ctx ? zmq_socket(c->ctx, ZMQ_DEALER) : NULL;
+    if (!c->sock) {
+        snprintf(err, errlen, "cluster node: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
+        cluster_client_destroy(c);
+        return NULL;
+    }
+    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 1000;
+    int64_t maxmsg = WIRE_MAX_MESSAGE;
+    zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
+    zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
+    zmq_setsockopt(c->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(c->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(c->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
+    zmq_setsockopt(c->sock, ZMQ_IMMEDIATE, &one, sizeof one);
+    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL, &ivl, sizeof ivl);
+    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL_MAX, &ivl_max, sizeof ivl_max);
+    const char *ep = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
+    if (zmq_connect(c->sock, ep) != 0) {
+        snprintf(err, errlen, "cluster node %s: cannot connect to %s (%s): check master.connect in %s",
+                 c->name, ep, zmq_strerror(errno), c->cfg->path);
+        cluster_client_destroy(c);
+        return NULL;
+    }
+    c->state = STATE_HELLO;
+    c->last_heard = now_ms();
+    send_hello(c);
+    return c;
+}
+
+void cluster_client_destroy(cluster_client *c)
+{
+    if (!c)
+        return;
+    if (c->sock) {
+        wire_msg bye = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
+        send_msg(c, &bye);
+        zmq_pollitem_t item = {.socket = c->sock, .events = ZMQ_POLLIN};
+        zmq_poll(&item, 1, 10); /* let the BYE leave; linger is 0 */
+        zmq_close(c->sock);
+    }
+    if (c->ctx)
+        zmq_ctx_term(c->ctx);
+    free(c);
+}
+
+const params_store *cluster_client_params(const cluster_client *c) { return &c->params; }
+
+void cluster_client_stats_get(const cluster_client *c, cluster_client_stats *out) { *out = c->st; }
+
+int cluster_client_ready(cluster_client *c, uint64_t version, uint64_t checksum,
+                         const float timings[WIRE_TIMING_COUNT])
+{
+    wire_msg m = {.type = WIRE_READY, .version = version, .checksum = checksum};
+    memcpy(m.timings, timings, sizeof m.timings);
+    return send_msg(c, &m);
+}
+
+/* Heartbeats while joined, HELLO every half second otherwise, LOST after master_ms. */
+static int housekeeping(cluster_client *c, double now)
+{
+    int period = c->cfg->heartbeat_ms;
+    if (c->state == STATE_JOINED) {
+        if (now - c->last_heard > c->cfg->master_timeout_ms) {
+            c->state = STATE_LOST;
+            c->st.lost++;
+            return 1;
+        }
+        if (now - c->last_sent >= period) {
+            wire_msg hb = {.type = WIRE_HEARTBEAT, .version = c->params.version};
+            send_msg(c, &hb);
+        }
+    } else if (now - c->last_hello >= (period > 500 ? period : 500)) {
+        send_hello(c);
+    }
+    return 0;
+}
+
+cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
+{
+    memset(ev, 0, sizeof *ev);
+    double deadline = now_ms() + timeout_ms;
+    int pending = 0; /* a FRAME applied and not yet overtaken */
+    for (;;) {
+        double now = now_ms();
+        if (housekeeping(c, now)) {
+            ev->type = CLUSTER_EVENT_LOST;
+            return ev->type;
+        }
+        zmq_msg_t msg;
+        zmq_msg_init(&msg);
+        if (zmq_msg_recv(&msg, c->sock, ZMQ_DONTWAIT) < 0) {
+            zmq_msg_close(&msg);
+            if (pending) {
+                ev->type = CLUSTER_EVENT_FRAME;
+                return ev->type;
+            }
+            if (now >= deadline)
+                return CLUSTER_EVENT_NONE;
+            double wait = deadline - now;
+            if (wait > c->cfg->heartbeat_ms)
+                wait = c->cfg->heartbeat_ms;
+            zmq_pollitem_t item = {.socket = c->sock, .events = ZMQ_POLLIN};
+            zmq_poll(&item, 1, (long)(wait + 0.999));
+            continue;
+        }
+        size_t len = zmq_msg_size(&msg);
+        c->st.bytes_received += len;
+        wire_msg m;
+        wire_error e = zmq_msg_more(&msg) ? WIRE_E_PAYLOAD : wire_decode(zmq_msg_data(&msg), len, &m);
+        if (e == WIRE_OK && (m.type == WIRE_HELLO || m.type == WIRE_READY))
+            e = WIRE_E_TYPE; /* node-to-master messages */
+        if (e != WIRE_OK) {
+            c->st.malformed++;
+            if (c->st.malformed <= 5 || c->st.malformed % 1000 == 0)
+                fprintf(stderr, "cavelight-node %s: malformed message from the master dropped (%s; %llu so far)\n",
+                        c->name, wire_error_string(e), (unsigned long long)c->st.malformed);
+            /* Drain the rest of a multipart message. */
+            while (zmq_msg_more(&msg)) {
+                zmq_msg_close(&msg);
+                zmq_msg_init(&msg);
+                if (zmq_msg_recv(&msg, c->sock, 0) < 0)
+                    break;
+            }
+            zmq_msg_close(&msg);
+            continue;
+        }
+        c->last_heard = now_ms();
+        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE) {
+            /* The master is back but does not know us yet (or never forgot): resync. */
+            if (now - c->last_hello >= 100)
+                send_hello(c);
+        }
+        switch (m.type) {
+        case WIRE_SNAPSHOT: {
+            params_store fresh;
+            params_init(&fresh);
+            if (params_apply(&fresh, m.version, m.params, m.params_len) == 0) {
+                c->params = fresh;
+                client_state was = c->state;
+                c->state = STATE_JOINED;
+                c->st.snapshots++;
+                pending = 0;
+                if (!c->quiet)
+                    fprintf(stderr, "cavelight-node %s: %s master at version %llu\n", c->name,
+                            was == STATE_LOST ? "reconnected to" : "joined", (unsigned long long)m.version);
+                ev->type = CLUSTER_EVENT_JOINED;
+                ev->version = m.version;
+                zmq_msg_close(&msg);
+                return ev->type;
+            }
+            c->st.malformed++;
+            break;
+        }
+        case WIRE_FRAME:
+            if (c->state != STATE_JOINED || m.base_version != c->params.version) {
+                /* A gap in the chain of deltas: only a snapshot can repair it. */
+                c->st.resyncs++;
+                if (now - c->last_hello >= 100)
+                    send_hello(c);
+                pending = 0;
+                break;
+            }
+            double t0 = now_ms();
+            if (params_apply(&c->params, m.version, m.params, m.params_len) != 0) {
+                c->st.malformed++;
+                send_hello(c);
+                pending = 0;
+                break;
+            }
+            ev->apply_ms += now_ms() - t0;
+            if (pending)
+                c->st.skipped++;
+            c->st.frames++;
+            pending = 1;
+            ev->version = m.version;
+            break;
+        case WIRE_SWAP:
+            if (!pending) {
+                c->st.swaps++;
+                ev->type = CLUSTER_EVENT_SWAP;
+                ev->version = m.version;
+                zmq_msg_close(&msg);
+                return ev->type;
+            }
+            break;
+        case WIRE_BYE:
+            pending = 0;
+            if (m.reason == WIRE_BYE_DROPPED) {
+                if (!c->quiet)
+                    fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining\n",
+                            c->name);
+                c->state = STATE_HELLO;
+                send_hello(c);
+            } else if (m.reason == WIRE_BYE_CONFIG_MISMATCH) {
+                fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
+                        "and nodes the same file\n", c->name, c->cfg->path);
+                ev->type = CLUSTER_EVENT_REFUSED;
+                zmq_msg_close(&msg);
+                return ev->type;
+            } else {
+                c->state = STATE_LOST;
+                ev->type = CLUSTER_EVENT_SHUTDOWN;
+                zmq_msg_close(&msg);
+                return ev->type;
+            }
+            break;
+        default: /* HEARTBEAT */
+            break;
+        }
+        zmq_msg_close(&msg);
+    }
+}

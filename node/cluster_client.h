@@ -1,0 +1,62 @@
+/* cluster_client: a render node's connection to the master (ZeroMQ DEALER, routing id =
+ * node name).
+ *
+ * Says HELLO (name, config hash) and mirrors the master's parameter store: a SNAPSHOT
+ * replaces it, FRAME(v, delta) applies on top when the base version matches (otherwise
+ * the client asks for a new snapshot). cluster_client_poll() returns one event at a time:
+ * FRAME v (render it, then cluster_client_ready()), SWAP v (present), LOST (nothing heard
+ * from the master for master_ms: keep the window, the client keeps saying HELLO until it
+ * answers), SHUTDOWN, REFUSED. A FRAME already overtaken by a newer one in the queue is
+ * applied but not returned, so a node that stalled catches up instead of replaying.
+ * Heartbeats go out while idle. Malformed input is dropped and counted. */
+#ifndef CAVELIGHT_CLUSTER_CLIENT_H
+#define CAVELIGHT_CLUSTER_CLIENT_H
+
+#include <stdint.h>
+
+#include "cluster_config.h"
+#include "params.h"
+#include "wire.h"
+
+typedef struct cluster_client cluster_client;
+
+typedef struct cluster_client_desc {
+    const cluster_config *config;
+    const char *name;      /* this node, as named in the config */
+    const char *endpoint;  /* NULL = config->master_connect */
+    int quiet;             /* 1: log only errors */
+} cluster_client_desc;
+
+typedef enum cluster_event_type {
+    CLUSTER_EVENT_NONE = 0, /* timeout */
+    CLUSTER_EVENT_FRAME,    /* params now hold version `version`: render it */
+    CLUSTER_EVENT_SWAP,     /* present the frame `version` */
+    CLUSTER_EVENT_LOST,     /* the master went silent */
+    CLUSTER_EVENT_JOINED,   /* a snapshot arrived (first join or after LOST/drop) */
+    CLUSTER_EVENT_SHUTDOWN, /* the master ended the session */
+    CLUSTER_EVENT_REFUSED,  /* the master runs another config */
+} cluster_event_type;
+
+typedef struct cluster_event {
+    cluster_event_type type;
+    uint64_t version;
+    double apply_ms;        /* FRAME: time spent applying deltas */
+} cluster_event;
+
+typedef struct cluster_client_stats {
+    uint64_t frames, skipped, snapshots, swaps, malformed, resyncs, lost;
+    uint64_t bytes_sent, bytes_received;
+} cluster_client_stats;
+
+cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err, size_t errlen);
+/* Sends BYE(leaving) and closes. */
+void cluster_client_destroy(cluster_client *c);
+/* Waits up to timeout_ms for the next event; returns its type (NONE on timeout). */
+cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev);
+const params_store *cluster_client_params(const cluster_client *c);
+/* READY(version, checksum, timings in ms as in wire_timing). */
+int cluster_client_ready(cluster_client *c, uint64_t version, uint64_t checksum,
+                         const float timings[WIRE_TIMING_COUNT]);
+void cluster_client_stats_get(const cluster_client *c, cluster_client_stats *out);
+
+#endif
