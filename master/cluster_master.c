@@ -398,3 +398,9 @@ void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_s
 {
     *out = m->peers[node].s;
 }
+
+int cluster_master_endpoint(const cluster_master *m, char *buf, size_t cap)
+{
+    size_t len = cap;
+    return zmq_getsockopt(m->sock, ZMQ_LAST_ENDPOINT, buf, &len);
+}

@@ -76,5 +76,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out);
 void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out);
 void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out);
 int cluster_master_live_count(const cluster_master *m);
+/* The endpoint actually bound (resolves a wildcard port such as tcp://127.0.0.1:*). */
+int cluster_master_endpoint(const cluster_master *m, char *buf, size_t cap);
 
 #endif

@@ -10,6 +10,7 @@ static const struct {
     const char *usage;
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
+    {"cluster", bench_cluster, "cluster --nodes N [--frames F]"},
 };
 
 int main(int argc, char **argv)

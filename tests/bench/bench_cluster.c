@@ -1,0 +1,222 @@
+/* cavelight-bench cluster: the frame barrier plus delta round trip (master commits, sends
+ * FRAME to every node, waits for every READY, sends SWAP) with N nodes in stub render
+ * mode over TCP loopback, next to a raw TCP ping-pong of the same message size measured
+ * in the same run; and the bytes of a head-tracked FRAME versus a full SNAPSHOT.
+ * Nodes are threads running the real node loop (cluster_node_run), each with its own
+ * ZeroMQ context, as separate processes would have. */
+#define _DEFAULT_SOURCE
+#include <arpa/inet.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench.h"
+
+#if defined(CAVELIGHT_HAVE_MASTER) && defined(CAVELIGHT_HAVE_NODE)
+#include "cluster_master.h"
+#include "cluster_node.h"
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double pct(double *v, int n, double p)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    int i = (int)ceil(p * n) - 1;
+    return v[i < 0 ? 0 : i >= n ? n - 1 : i];
+}
+
+typedef struct node_thread {
+    pthread_t t;
+    cluster_node_desc d;
+    char name[16];
+    int rc;
+} node_thread;
+
+static void *node_main(void *arg)
+{
+    node_thread *n = arg;
+    char err[256];
+    n->rc = cluster_node_run(&n->d, NULL, err, sizeof err);
+    if (n->rc)
+        fprintf(stderr, "bench node %s: %s\n", n->name, err);
+    return NULL;
+}
+
+/* Raw TCP: an echo thread on loopback, TCP_NODELAY on both ends. */
+typedef struct echo {
+    int listen_fd, port, bytes;
+} echo;
+
+static int read_full(int fd, char *buf, int n)
+{
+    for (int got = 0; got < n;) {
+        ssize_t r = read(fd, buf + got, (size_t)(n - got));
+        if (r <= 0)
+            return -1;
+        got += (int)r;
+    }
+    return 0;
+}
+
+static void *echo_main(void *arg)
+{
+    echo *e = arg;
+    int fd = accept(e->listen_fd, NULL, NULL);
+    int one = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    char buf[4096];
+    while (read_full(fd, buf, e->bytes) == 0)
+        if (write(fd, buf, (size_t)e->bytes) != e->bytes)
+            break;
+    close(fd);
+    return NULL;
+}
+
+static int tcp_ping_pong(int bytes, int rounds, double *median, double *p99)
+{
+    echo e = {.bytes = bytes};
+    e.listen_fd = socket(AF_INET, SOCK_STREAM, 0);
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    socklen_t len = sizeof a;
+    if (bind(e.listen_fd, (struct sockaddr *)&a, sizeof a) || listen(e.listen_fd, 1) ||
+        getsockname(e.listen_fd, (struct sockaddr *)&a, &len))
+        return -1;
+    pthread_t t;
+    pthread_create(&t, NULL, echo_main, &e);
+    int fd = socket(AF_INET, SOCK_STREAM, 0), one = 1;
+    if (connect(fd, (struct sockaddr *)&a, sizeof a))
+        return -1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    char buf[4096];
+    memset(buf, 1, sizeof buf);
+    double *rt = malloc(sizeof *rt * (size_t)rounds);
+    for (int i = 0; i < rounds + 100; i++) {
+        double t0 = now_ms();
+        if (write(fd, buf, (size_t)bytes) != bytes || read_full(fd, buf, bytes))
+            return -1;
+        if (i >= 100)
+            rt[i - 100] = now_ms() - t0;
+    }
+    close(fd);
+    pthread_join(t, NULL);
+    close(e.listen_fd);
+    *median = pct(rt, rounds, 0.5);
+    *p99 = pct(rt, rounds, 0.99);
+    free(rt);
+    return 0;
+}
+
+int bench_cluster(int argc, char **argv)
+{
+    int nodes = 10, frames = 2000;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (strcmp(argv[i], "--nodes") == 0)
+            nodes = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--frames") == 0)
+            frames = atoi(argv[i + 1]);
+    }
+    if (nodes < 1 || nodes > CLUSTER_MAX_NODES || frames < 10) {
+        fprintf(stderr, "cavelight-bench cluster: --nodes 1..%d, --frames >= 10\n", CLUSTER_MAX_NODES);
+        return 2;
+    }
+    /* A config with N one-screen nodes on an ephemeral loopback port. */
+    static char json[16384];
+    int n = snprintf(json, sizeof json,
+                     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+                     " \"timeouts\": {\"barrier_ms\": 5000, \"heartbeat_ms\": 250, \"master_ms\": 10000},"
+                     " \"screens\": [{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0],"
+                     " \"top_left\": [0,1,0]}], \"nodes\": [");
+    for (int i = 0; i < nodes; i++)
+        n += snprintf(json + n, sizeof json - (size_t)n, "%s{\"name\": \"n%d\", \"screens\": [\"s\"], \"resolution\": [4,4]}",
+                      i ? "," : "", i);
+    snprintf(json + n, sizeof json - (size_t)n, "]}");
+    static cluster_config cfg;
+    char err[512], ep[256];
+    if (cluster_config_parse(json, strlen(json), "(bench)", &cfg, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    cluster_master_desc md = {.config = &cfg, .quiet = 1};
+    cluster_master *m = cluster_master_create(&md, err, sizeof err);
+    if (!m) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    cluster_master_endpoint(m, ep, sizeof ep);
+    static volatile sig_atomic_t stop;
+    static node_thread th[CLUSTER_MAX_NODES];
+    for (int i = 0; i < nodes; i++) {
+        snprintf(th[i].name, sizeof th[i].name, "n%d", i);
+        th[i].d = (cluster_node_desc){.config = &cfg, .name = th[i].name, .endpoint = ep,
+                                      .render = CLUSTER_RENDER_NONE, .output = -1, .quiet = 1, .stop = &stop};
+        pthread_create(&th[i].t, NULL, node_main, &th[i]);
+    }
+    int live = cluster_master_wait_nodes(m, nodes, 10000);
+    params_store *p = cluster_master_params(m);
+    double *rt = malloc(sizeof *rt * (size_t)frames);
+    size_t head_bytes = 0;
+    int incomplete = 0;
+    for (int f = -100; f < frames; f++) {
+        /* A head-tracked frame: the head pose and the time change, nothing else. */
+        float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.1f * sinf(f * 0.01f), 1.7f, 0, 1};
+        params_set_mat4(p, PARAMS_HEAD, head);
+        params_set_f64(p, PARAMS_TIME, f / 60.0);
+        cluster_frame_result r;
+        if (cluster_master_frame(m, &r) != 0)
+            break;
+        incomplete += r.ready != nodes;
+        if (f >= 0) {
+            rt[f] = r.round_trip_ms;
+            head_bytes = r.frame_bytes;
+        }
+    }
+    static uint8_t snap[PARAMS_ENCODED_MAX], msg[WIRE_MAX_MESSAGE];
+    wire_msg sm = {.type = WIRE_SNAPSHOT, .version = p->version, .params = snap};
+    sm.params_len = params_encode_snapshot(p, snap, sizeof snap);
+    size_t snap_bytes = wire_encode(&sm, msg, sizeof msg);
+    cluster_master_stats st;
+    cluster_master_stats_get(m, &st);
+    stop = 1;
+    for (int i = 0; i < nodes; i++)
+        pthread_join(th[i].t, NULL);
+    cluster_master_destroy(m);
+
+    double tcp_med = 0, tcp_p99 = 0;
+    if (tcp_ping_pong((int)head_bytes, frames, &tcp_med, &tcp_p99) != 0)
+        fprintf(stderr, "cavelight-bench cluster: raw TCP baseline failed\n");
+    double med = pct(rt, frames, 0.5), p99 = pct(rt, frames, 0.99);
+    printf("{\"bench\": \"cluster\", \"nodes\": %d, \"nodes_live\": %d, \"frames\": %d, \"incomplete_frames\": %d, "
+           "\"desyncs\": %llu, \"round_trip_ms\": {\"median\": %.4f, \"p99\": %.4f}, "
+           "\"tcp_ping_pong_ms\": {\"median\": %.4f, \"p99\": %.4f, \"bytes\": %zu}, "
+           "\"round_trip_over_tcp\": %.2f, \"bytes_per_frame_head_tracked\": %zu, "
+           "\"bytes_per_frame_all_nodes\": %zu, \"snapshot_bytes\": %zu}\n",
+           nodes, live, frames, incomplete, (unsigned long long)st.desyncs, med, p99, tcp_med, tcp_p99, head_bytes,
+           tcp_med > 0 ? med / tcp_med : 0, head_bytes, head_bytes * (size_t)nodes, snap_bytes);
+    free(rt);
+    return incomplete || live != nodes ? 1 : 0;
+}
+#else
+int bench_cluster(int argc, char **argv)
+{
+    fprintf(stderr, "cavelight-bench cluster: built without the master or node library\n");
+    return 2;
+}
+#endif
