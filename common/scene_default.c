@@ -66,13 +66,13 @@ int scene_default_build(scene *s, char *err, size_t errlen)
 
     /* Spot from near the ceiling towards the floor beside the red wall. */
     scene_light spot = {
-        .position = {0.6f, 2.8f, 0.6f},
+        .position = {0.8f, 2.7f, 0.8f},
         .color = {1.0f, 0.95f, 0.85f},
         .intensity = 12.0f,
         .outer_angle = 0.55f,
         .inner_angle = 0.40f,
     };
-    const float target[3] = {-1.3f, 0.0f, -0.6f};
+    const float target[3] = {-2.0f, 0.4f, -0.5f};
     float len = 0;
     for (int a = 0; a < 3; a++) {
         spot.direction[a] = target[a] - spot.position[a];
@@ -84,7 +84,7 @@ int scene_default_build(scene *s, char *err, size_t errlen)
     if (scene_add_light(s, &spot) < 0)
         goto oom;
 
-    s->camera = (scene_camera){1, {0.0f, 1.5f, 1.9f}, {-0.3f, 0.9f, -1.0f}, 1.2f};
+    s->camera = (scene_camera){1, {1.3f, 1.6f, 1.9f}, {-0.5f, 0.9f, -1.2f}, 1.15f};
     return 0;
 oom:
     snprintf(err, errlen, "default scene: out of memory");

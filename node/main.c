@@ -341,6 +341,7 @@ static int standalone_main(const node_options *o)
     cJSON_AddNumberToObject(report, "height", o->height);
     cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
     cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
+    cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
     cJSON *frames = cJSON_AddArrayToObject(report, "frames");
     enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
     static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",

@@ -33,6 +33,8 @@ typedef struct renderer_desc {
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
     int threads;         /* CPU propagation threads, 0 = all cores */
     int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
+    float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
+                               mean free path (docs/node.md) */
 } renderer_desc;
 
 typedef struct renderer_view {
@@ -69,5 +71,6 @@ void renderer_get_timings(const renderer *r, renderer_timings *out);
 renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);
 const lattice_desc *renderer_get_lattice(const renderer *r);
 const lpv_volume *renderer_get_lpv(const renderer *r);
+float renderer_get_indirect_scale(const renderer *r);
 
 #endif

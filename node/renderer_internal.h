@@ -56,6 +56,7 @@ struct renderer {
     /* LPV */
     renderer_lpv_backend backend;
     int clamp_negative;
+    float indirect_scale;
     lattice_desc lattice;
     lpv_transfer transfer;
     lpv_volume geometry;

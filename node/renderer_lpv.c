@@ -141,6 +141,34 @@ static int init_gl_backend(renderer *r, char *err, size_t errlen)
     return 0;
 }
 
+/* The ILPV keeps the lattice's energy equal to one frame's injected flux, i.e. light that
+ * lives for one propagation step; in a room it lives for the mean free path 4V/A
+ * (V volume, A surface area) before it hits a surface, d_mean * cell per step. The ratio
+ * is how much brighter the steady indirect light is than the lattice says. */
+static float auto_indirect_scale(const renderer *r)
+{
+    const scene *s = r->scene;
+    double volume = 1, area = 0, cell = r->lattice.cell;
+    for (int a = 0; a < 3; a++)
+        volume *= fmax(s->bounds_max[a] - s->bounds_min[a], cell);
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *p = s->positions + 9 * t;
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = p[3 + k] - p[k];
+            e2[k] = p[6 + k] - p[k];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+    }
+    int longest = r->lattice.n[0];
+    for (int a = 1; a < 3; a++)
+        longest = r->lattice.n[a] > longest ? r->lattice.n[a] : longest;
+    double k = area > 0 ? 4.0 * volume / (area * LPV_MEAN_NEIGHBOUR_DISTANCE * cell) : 1.0;
+    return (float)fmin(fmax(k, 1.0), (double)longest);
+}
+
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err,
                       size_t errlen)
 {
@@ -174,6 +202,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     }
     lpv_geometry_add_triangles(&r->geometry, &r->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
+    r->indirect_scale = desc->indirect_scale > 0 ? desc->indirect_scale : auto_indirect_scale(r);
     size_t cells = lattice_cell_count(&r->lattice);
     size_t texels = (size_t)r->rsm_size * r->rsm_size;
     r->upload = malloc(cells * 4 * sizeof(float));
@@ -388,4 +417,9 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
 const lpv_volume *renderer_get_lpv(const renderer *r)
 {
     return r->backend == RENDERER_LPV_GL ? &r->gl_result : ilpv_result(&r->cpu);
+}
+
+float renderer_get_indirect_scale(const renderer *r)
+{
+    return r->indirect_scale;
 }

@@ -28,6 +28,7 @@ uniform sampler3D u_lpv_b;
 uniform vec3 u_lpv_origin;
 uniform float u_lpv_cell;
 uniform vec3 u_lpv_size;             // cells per axis
+uniform float u_indirect_scale;      // light lifetime in steps (renderer.h)
 
 layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
@@ -95,7 +96,7 @@ void main()
                                dot(lobe, texture(u_lpv_g, uvw)),
                                dot(lobe, texture(u_lpv_b, uvw)));
         irradiance = max(irradiance, vec3(0.0)) / (u_lpv_cell * u_lpv_cell);
-        indirect = albedo / PI * irradiance;
+        indirect = albedo / PI * irradiance * u_indirect_scale;
     }
     direct *= u_exposure;
     indirect *= u_exposure;
