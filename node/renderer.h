@@ -12,6 +12,9 @@
 
 #include <stdint.h>
 #include "frame_params.h"
+#include "gl_functions.h"
+#include "lattice.h"
+#include "lpv_volume.h"
 #include "scene.h"
 
 typedef struct renderer renderer;
@@ -23,11 +26,15 @@ typedef enum renderer_lpv_backend {
 } renderer_lpv_backend;
 
 typedef struct renderer_desc {
+    const gl_functions *gl; /* the current context's table (glctx_gl()) */
     const scene *scene;
     renderer_lpv_backend lpv_backend;
     int rsm_size;        /* 0 = 256 */
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
     int threads;         /* CPU propagation threads, 0 = all cores */
+    int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
+    float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
+                               mean free path (docs/node.md) */
 } renderer_desc;
 
 typedef struct renderer_view {
@@ -59,5 +66,11 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
 int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
                       int want_linear, renderer_image *out);
 void renderer_get_timings(const renderer *r, renderer_timings *out);
+/* The resolved LPV backend (never AUTO), its lattice, and the propagated light after the
+ * last frame pass (12 channels, host memory; read back from GL with the GL backend). */
+renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);
+const lattice_desc *renderer_get_lattice(const renderer *r);
+const lpv_volume *renderer_get_lpv(const renderer *r);
+float renderer_get_indirect_scale(const renderer *r);
 
 #endif
