@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "cluster_master.h"
+#include "overview.h"
+#include "scene.h"
 #include "spawn.h"
 #include "script.h"
 
@@ -37,11 +39,11 @@ static void usage(void)
             "usage: cavelight-master --config FILE [--spawn-local | --spawn-remote] [--bind EP] [--frames N]\n"
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
-            "         [--barrier-ms MS] [--quiet]\n");
+            "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png] [--quiet]\n");
 }
 
 typedef struct options {
-    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args;
+    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview;
     int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet;
     double dt, fps;
 } options;
@@ -69,6 +71,8 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--output") == 0) o->output = v;
         else if (strcmp(a, "--out") == 0) o->out_dir = v;
         else if (strcmp(a, "--node-args") == 0) o->node_args = v;
+        else if (strcmp(a, "--scene") == 0) o->scene = v;
+        else if (strcmp(a, "--overview") == 0) o->overview = v;
         else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
         else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
         else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
@@ -102,8 +106,9 @@ static int node_argv(const options *o, const char *config_abs, const char *exe, 
         argv[n++] = "--master";
         argv[n++] = (char *)connect;
     }
-    const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", o->out_dir}};
-    for (int i = 0; i < 3; i++)
+    const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", o->out_dir},
+                              {"--scene", o->scene}};
+    for (int i = 0; i < 4; i++)
         if (pairs[i][1]) {
             argv[n++] = (char *)pairs[i][0];
             argv[n++] = (char *)pairs[i][1];
@@ -296,6 +301,20 @@ int main(int argc, char **argv)
         return 1;
     }
 
+    /* The master holds the scene too: its lights and defaults seed the parameter store. */
+    scene sc_start;
+    const char *scene_path = o.scene ? o.scene : cfg.scene[0] ? cfg.scene : "default";
+    if (scene_load(scene_path, &sc_start, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        cluster_master_destroy(m);
+        return 1;
+    }
+    frame_params fp;
+    frame_params_default(&fp);
+    frame_params_lights_from_scene(&fp, &sc_start);
+    scene_free(&sc_start);
+    params_set_from_frame(cluster_master_params(m), &fp);
+
     static spawn_set children;
     if (o.spawn_local || o.spawn_remote) {
         char exe[PATH_MAX], config_abs[PATH_MAX], connect_buf[256];
@@ -387,6 +406,15 @@ int main(int argc, char **argv)
             if (!(WIFEXITED(s) && WEXITSTATUS(s) == 0) && !(WIFSIGNALED(s) && WTERMSIG(s) == SIGTERM)) {
                 fprintf(stderr, "cavelight-master: node %s exited abnormally (status %d)\n", children.label[i], s);
             }
+        }
+    }
+    /* After the nodes are gone, every image on disk is from the last frame. */
+    if (o.overview) {
+        if (overview_compose(&cfg, o.out_dir ? o.out_dir : ".", o.overview, err, sizeof err) != 0) {
+            fprintf(stderr, "cavelight-master: %s\n", err);
+            exit_code = 1;
+        } else if (!o.quiet) {
+            fprintf(stderr, "cavelight-master: wrote %s\n", o.overview);
         }
     }
     fprintf(stderr, "cavelight-master: %llu frames in %.2f s, %llu desyncs, %llu drops, %llu joins, "

@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include "cluster_client.h"
+#include "cluster_view.h"
 #include "params.h"
 
 static double now_ms(void)
@@ -18,10 +19,29 @@ static double now_ms(void)
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
     cluster_node_stats st = {0};
+    int node = cluster_config_find_node(d->config, d->name);
+    if (node < 0) {
+        snprintf(err, errlen, "cluster node: no node named '%s' in %s: pass one of its node names", d->name,
+                 d->config->path);
+        return 1;
+    }
+    /* Scene, context and renderer before connecting: a joined node is ready to render. */
+    cluster_view *view = NULL;
+    if (d->render == CLUSTER_RENDER_GL) {
+        cluster_view_desc vd = {.config = d->config, .node = node,
+                                .output = d->output >= 0 ? (cluster_output)d->output : d->config->nodes[node].output,
+                                .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
+                                .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size};
+        view = cluster_view_create(&vd, err, errlen);
+        if (!view)
+            return 1;
+    }
     cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet};
     cluster_client *client = cluster_client_create(&cd, err, errlen);
-    if (!client)
+    if (!client) {
+        cluster_view_destroy(view);
         return 1;
+    }
     int rc = 0, lost_reported = 0;
     uint64_t pending_swap = 0;
     while (!(d->stop && *d->stop)) {
@@ -33,9 +53,14 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             frame_params f;
             params_to_frame(ps, &f);
             uint64_t checksum = params_checksum(ps);
+            float timings[WIRE_TIMING_COUNT] = {0};
+            if (view && cluster_view_render(view, &f, params_get_i32(ps, PARAMS_LPV_RESOLUTION), &checksum, timings,
+                                            err, errlen) != 0) {
+                rc = 1;
+                goto out;
+            }
             if (d->fault_checksum_from && ev.version >= d->fault_checksum_from)
                 checksum ^= 0x5a5a5a5a5a5a5a5aull;
-            float timings[WIRE_TIMING_COUNT] = {0};
             timings[WIRE_TIMING_APPLY] = (float)ev.apply_ms;
             timings[WIRE_TIMING_TOTAL] = (float)(ev.apply_ms + now_ms() - t0);
             cluster_client_ready(client, ev.version, checksum, timings);
@@ -47,8 +72,13 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             break;
         }
         case CLUSTER_EVENT_SWAP:
-            if (ev.version == pending_swap)
-                st.swaps++;
+            if (ev.version != pending_swap)
+                break;
+            st.swaps++;
+            if (view && cluster_view_present(view, err, errlen) != 0) {
+                rc = 1;
+                goto out;
+            }
             break;
         case CLUSTER_EVENT_LOST:
             if (!lost_reported && !d->quiet)
@@ -74,6 +104,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     }
 out:
     cluster_client_destroy(client);
+    cluster_view_destroy(view);
     if (stats)
         *stats = st;
     return rc;
@@ -100,13 +131,14 @@ static void usage(void)
     fprintf(stderr,
             "usage: cavelight-node --cluster FILE --name NODE [--master ENDPOINT] [--render gl|none]\n"
             "         [--output window|headless|png] [--out DIR] [--scene FILE] [--lpv-threads N]\n"
+            "         [--lattice CELLS] [--rsm SIZE]\n"
             "         [--exit-with-master] [--quiet]\n");
 }
 
 int cluster_node_main(int argc, char **argv)
 {
     const char *config_path = NULL;
-    cluster_node_desc d = {.output = -1, .render = CLUSTER_RENDER_NONE, .stop = &node_stop};
+    cluster_node_desc d = {.output = -1, .render = CLUSTER_RENDER_GL, .stop = &node_stop};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -123,6 +155,10 @@ int cluster_node_main(int argc, char **argv)
             d.scene = v;
         else if (strcmp(a, "--lpv-threads") == 0 && v)
             d.lpv_threads = atoi(v);
+        else if (strcmp(a, "--lattice") == 0 && v)
+            d.lattice_cells = atoi(v);
+        else if (strcmp(a, "--rsm") == 0 && v)
+            d.rsm_size = atoi(v);
         else if (strcmp(a, "--fault-checksum-from") == 0 && v)
             d.fault_checksum_from = strtoull(v, NULL, 10);
         else if (strcmp(a, "--render") == 0 && v) {

@@ -29,6 +29,7 @@ typedef struct cluster_node_desc {
     const char *out_dir;        /* png output folder, NULL = "." */
     const char *scene;          /* NULL = config scene or the built-in default */
     int lpv_threads;            /* CPU LPV threads, 0 = all cores */
+    int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
     int exit_with_master;       /* 1: leave when the master ends the session */
     int quiet;
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */

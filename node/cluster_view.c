@@ -1,0 +1,243 @@
+#include "cluster_view.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "glctx.h"
+#include "image.h"
+#include "offaxis.h"
+#include "scene.h"
+
+typedef struct eye_image {
+    int width, height;
+    uint8_t *rgb;
+} eye_image;
+
+struct cluster_view {
+    const cluster_config *cfg;
+    int node;
+    cluster_output output;
+    char out_dir[1024];
+    int lpv_threads, rsm_size, lattice_desc, lattice_now;
+    scene sc;
+    int scene_loaded;
+    glctx *ctx;
+    renderer *r;
+    float far_plane;
+    eye_image img[CLUSTER_NODE_MAX_SCREENS][CLUSTER_VIEW_MAX_EYES];
+    int rendered;
+};
+
+int cluster_view_eye_count(const cluster_config *cfg, int node)
+{
+    return cfg->nodes[node].eyes == CLUSTER_EYES_STEREO ? 2 : 1;
+}
+
+static int eye_side(const cluster_config *cfg, int node, int eye)
+{
+    switch (cfg->nodes[node].eyes) {
+    case CLUSTER_EYES_STEREO: return eye == 0 ? -1 : 1;
+    case CLUSTER_EYES_LEFT: return -1;
+    case CLUSTER_EYES_RIGHT: return 1;
+    default: return 0;
+    }
+}
+
+const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye)
+{
+    int side = eye_side(cfg, node, eye);
+    return side < 0 ? "left" : side > 0 ? "right" : "mono";
+}
+
+static void transform_point(const float m[16], const float p[3], float out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+}
+
+int cluster_view_compute(const cluster_config *cfg, int screen, int side, const frame_params *f,
+                         int width, int height, float far_plane, renderer_view *out)
+{
+    const cluster_screen *s = &cfg->screens[screen];
+    const cluster_observer *o = &cfg->observer;
+    /* Eye in CAVE space: head pose times the head-to-eye offset, then along the head's
+     * right axis (the pose's first column). */
+    float mid[3], right[3], eye_cave[3];
+    transform_point(f->head, o->head_to_eye, mid);
+    float len = sqrtf(f->head[0] * f->head[0] + f->head[1] * f->head[1] + f->head[2] * f->head[2]);
+    for (int i = 0; i < 3; i++)
+        right[i] = len > 0 ? f->head[i] / len : (i == 0);
+    for (int i = 0; i < 3; i++)
+        eye_cave[i] = mid[i] + side * 0.5f * o->eye_separation * right[i];
+    offaxis_screen_desc d = {.near_plane = 0.05f, .far_plane = far_plane};
+    transform_point(f->navigation, s->bottom_left, d.bottom_left);
+    transform_point(f->navigation, s->bottom_right, d.bottom_right);
+    transform_point(f->navigation, s->top_left, d.top_left);
+    transform_point(f->navigation, eye_cave, d.eye);
+    memset(out, 0, sizeof *out);
+    out->width = width;
+    out->height = height;
+    memcpy(out->eye_position, d.eye, sizeof d.eye);
+    return offaxis_screen(&d, out->view, out->projection);
+}
+
+static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
+{
+    renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
+                        .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads};
+    renderer *r = renderer_create(&rd, err, errlen);
+    if (!r)
+        return -1;
+    if (v->r)
+        renderer_destroy(v->r);
+    v->r = r;
+    v->lattice_now = lattice;
+    return 0;
+}
+
+cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen)
+{
+    cluster_view *v = calloc(1, sizeof *v);
+    if (!v) {
+        snprintf(err, errlen, "cluster view: out of memory");
+        return NULL;
+    }
+    v->cfg = desc->config;
+    v->node = desc->node;
+    v->output = desc->output;
+    v->lpv_threads = desc->lpv_threads;
+    v->rsm_size = desc->rsm_size;
+    v->lattice_desc = desc->lattice_cells;
+    snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : ".");
+    const cluster_node *n = &v->cfg->nodes[v->node];
+    if (v->output == CLUSTER_OUTPUT_WINDOW) {
+        snprintf(err, errlen, "cluster node %s: window output is not available in this build: use --output "
+                 "headless or png", n->name);
+        goto fail;
+    }
+    if (v->output == CLUSTER_OUTPUT_PNG && mkdir(v->out_dir, 0777) != 0 && errno != EEXIST) {
+        snprintf(err, errlen, "cluster node %s: cannot create output folder %s (%s)", n->name, v->out_dir,
+                 strerror(errno));
+        goto fail;
+    }
+    const char *scene_path = desc->scene ? desc->scene : v->cfg->scene[0] ? v->cfg->scene : "default";
+    if (scene_load(scene_path, &v->sc, err, errlen) != 0)
+        goto fail;
+    v->scene_loaded = 1;
+    float extent = 0;
+    for (int a = 0; a < 3; a++)
+        extent += (v->sc.bounds_max[a] - v->sc.bounds_min[a]) * (v->sc.bounds_max[a] - v->sc.bounds_min[a]);
+    v->far_plane = 4.0f * sqrtf(extent) + 10.0f;
+    glctx_desc gd = {.backend = GLCTX_EGL};
+    v->ctx = glctx_create(&gd, err, errlen);
+    if (!v->ctx) {
+        gd.backend = GLCTX_OSMESA; /* no EGL: software fallback */
+        v->ctx = glctx_create(&gd, err, errlen);
+    }
+    if (!v->ctx || make_renderer(v, v->lattice_desc, err, errlen) != 0)
+        goto fail;
+    for (int s = 0; s < n->screen_count; s++)
+        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
+            eye_image *im = &v->img[s][e];
+            im->width = n->screens[s].width;
+            im->height = n->screens[s].height;
+            im->rgb = calloc((size_t)im->width * im->height, 3);
+            if (!im->rgb) {
+                snprintf(err, errlen, "cluster node %s: out of memory for images", n->name);
+                goto fail;
+            }
+        }
+    return v;
+fail:
+    cluster_view_destroy(v);
+    return NULL;
+}
+
+void cluster_view_destroy(cluster_view *v)
+{
+    if (!v)
+        return;
+    if (v->r)
+        renderer_destroy(v->r);
+    if (v->ctx)
+        glctx_destroy(v->ctx);
+    if (v->scene_loaded)
+        scene_free(&v->sc);
+    for (int s = 0; s < CLUSTER_NODE_MAX_SCREENS; s++)
+        for (int e = 0; e < CLUSTER_VIEW_MAX_EYES; e++)
+            free(v->img[s][e].rgb);
+    free(v);
+}
+
+int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
+                        float timings[WIRE_TIMING_COUNT], char *err, size_t errlen)
+{
+    int want = lattice_cells > 0 ? lattice_cells : v->lattice_desc;
+    if (want != v->lattice_now && make_renderer(v, want, err, errlen) != 0)
+        return -1;
+    *checksum = renderer_frame_pass(v->r, f);
+    renderer_timings t;
+    renderer_get_timings(v->r, &t);
+    timings[WIRE_TIMING_FRAME] = (float)t.frame_host_ms;
+    double eyes = 0;
+    const cluster_node *n = &v->cfg->nodes[v->node];
+    for (int s = 0; s < n->screen_count; s++)
+        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
+            eye_image *im = &v->img[s][e];
+            renderer_view view;
+            if (cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f, im->width,
+                                     im->height, v->far_plane, &view) != 0) {
+                snprintf(err, errlen, "cluster node %s: eye lies in the plane of screen %s: no projection",
+                         n->name, v->cfg->screens[n->screens[s].screen].name);
+                return -1;
+            }
+            renderer_image out;
+            if (renderer_eye_pass(v->r, f, &view, 0, &out) != 0) {
+                snprintf(err, errlen, "cluster node %s: eye pass failed", n->name);
+                return -1;
+            }
+            memcpy(im->rgb, out.rgb, (size_t)im->width * im->height * 3);
+            renderer_timings te;
+            renderer_get_timings(v->r, &te);
+            eyes += te.eye_host_ms;
+        }
+    timings[WIRE_TIMING_EYES] = (float)eyes;
+    v->rendered = 1;
+    return 0;
+}
+
+int cluster_view_present(cluster_view *v, char *err, size_t errlen)
+{
+    if (!v->rendered || v->output != CLUSTER_OUTPUT_PNG)
+        return 0;
+    const cluster_node *n = &v->cfg->nodes[v->node];
+    for (int s = 0; s < n->screen_count; s++)
+        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
+            char path[1200], tmp[1300];
+            const char *screen = v->cfg->screens[n->screens[s].screen].name;
+            snprintf(path, sizeof path, "%s/%s-%s.png", v->out_dir, screen, cluster_view_eye_name(v->cfg, v->node, e));
+            /* Write then rename: a reader never sees half a file. */
+            snprintf(tmp, sizeof tmp, "%s.%s.tmp", path, n->name);
+            const eye_image *im = &v->img[s][e];
+            if (image_write_png(tmp, im->width, im->height, im->rgb, err, errlen) != 0)
+                return -1;
+            if (rename(tmp, path) != 0) {
+                snprintf(err, errlen, "cluster node %s: cannot rename %s to %s (%s)", n->name, tmp, path,
+                         strerror(errno));
+                return -1;
+            }
+        }
+    return 0;
+}
+
+const uint8_t *cluster_view_image(const cluster_view *v, int screen, int eye, int *width, int *height)
+{
+    const eye_image *im = &v->img[screen][eye];
+    *width = im->width;
+    *height = im->height;
+    return im->rgb;
+}

@@ -1,0 +1,54 @@
+/* cluster_view: what one cluster node renders and shows.
+ *
+ * Owns the node's scene, GL context and renderer. cluster_view_render() runs the frame
+ * pass (RSM, injection, propagation) once and then an eye pass per (screen, eye) of the
+ * node, with an off-axis projection from the tracked head: the eyes sit at the head pose
+ * times observer.head_to_eye, offset by +-eye_separation/2 along the head's right axis;
+ * screens and eyes go from CAVE space to world space through the navigation transform.
+ * cluster_view_present() shows the images of the last rendered frame: PNG files
+ * (DIR/SCREEN-EYE.png, replaced atomically), a GLFW window in the node's stereo mode,
+ * or nothing (headless). The renderer is rebuilt when the LPV resolution key changes. */
+#ifndef CAVELIGHT_CLUSTER_VIEW_H
+#define CAVELIGHT_CLUSTER_VIEW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cluster_config.h"
+#include "frame_params.h"
+#include "renderer.h"
+#include "wire.h"
+
+typedef struct cluster_view cluster_view;
+
+typedef struct cluster_view_desc {
+    const cluster_config *config;
+    int node;                 /* index into config->nodes */
+    cluster_output output;
+    const char *out_dir;      /* PNG output, NULL = "." */
+    const char *scene;        /* NULL = config scene, "" there = "default" */
+    int lpv_threads;          /* 0 = all cores */
+    int lattice_cells;        /* 0 = renderer default (overridden by the lpv_resolution key) */
+    int rsm_size;             /* 0 = renderer default */
+} cluster_view_desc;
+
+enum { CLUSTER_VIEW_MAX_EYES = 2 };
+
+cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen);
+void cluster_view_destroy(cluster_view *v);
+/* Frame pass + all eye passes. Returns 0 and the LPV checksum, or -1 with err.
+ * lattice_cells: the lpv_resolution key (0 = keep the desc's). */
+int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
+                        float timings[WIRE_TIMING_COUNT], char *err, size_t errlen);
+int cluster_view_present(cluster_view *v, char *err, size_t errlen);
+/* The last rendered image of (node screen index, eye index), top row first. */
+const uint8_t *cluster_view_image(const cluster_view *v, int screen, int eye, int *width, int *height);
+int cluster_view_eye_count(const cluster_config *cfg, int node);
+const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye);
+
+/* The view of one screen for one eye: side -1 left, 0 centre, +1 right. Pure maths,
+ * no GL: the seam test and other tools use it too. Returns 0 or -1 (degenerate). */
+int cluster_view_compute(const cluster_config *cfg, int screen, int side, const frame_params *f,
+                         int width, int height, float far_plane, renderer_view *out);
+
+#endif
