@@ -39,11 +39,12 @@ static void usage(void)
             "usage: cavelight-master --config FILE [--spawn-local | --spawn-remote] [--bind EP] [--frames N]\n"
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
-            "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png] [--quiet]\n");
+            "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
+            "         [--endpoint-file FILE] [--quiet]\n");
 }
 
 typedef struct options {
-    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview;
+    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file;
     int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet;
     double dt, fps;
 } options;
@@ -73,6 +74,7 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--node-args") == 0) o->node_args = v;
         else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--overview") == 0) o->overview = v;
+        else if (strcmp(a, "--endpoint-file") == 0) o->endpoint_file = v;
         else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
         else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
         else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
@@ -124,17 +126,17 @@ static int node_argv(const options *o, const char *config_abs, const char *exe, 
     return n;
 }
 
-/* The endpoint nodes connect to when the master binds another one than the config's. */
-static const char *connect_endpoint(const char *bind, char *buf, size_t cap)
+/* The endpoint spawned nodes connect to when --bind overrides the config: the address
+ * actually bound (a wildcard port resolved), with a wildcard host replaced by loopback. */
+static const char *connect_endpoint(const cluster_master *m, const char *bind, char *buf, size_t cap)
 {
-    if (!bind)
+    if (!bind || cluster_master_endpoint(m, buf, cap) != 0)
         return NULL;
-    snprintf(buf, cap, "%s", bind);
-    char *star = strstr(buf, "://*:");
-    if (star) {
+    char *any = strstr(buf, "://0.0.0.0:");
+    if (any) {
         char port[64];
-        snprintf(port, sizeof port, "%s", star + 5);
-        snprintf(star, cap - (size_t)(star - buf), "://127.0.0.1:%s", port);
+        snprintf(port, sizeof port, "%s", any + 11);
+        snprintf(any, cap - (size_t)(any - buf), "://127.0.0.1:%s", port);
     }
     return buf;
 }
@@ -301,6 +303,16 @@ int main(int argc, char **argv)
         return 1;
     }
 
+    if (o.endpoint_file) {
+        char ep[256];
+        FILE *f = fopen(o.endpoint_file, "w");
+        if (!f || cluster_master_endpoint(m, ep, sizeof ep) != 0 || fprintf(f, "%s\n", ep) < 0) {
+            fprintf(stderr, "cavelight-master: cannot write %s\n", o.endpoint_file);
+            cluster_master_destroy(m);
+            return 1;
+        }
+        fclose(f);
+    }
     /* The master holds the scene too: its lights and defaults seed the parameter store. */
     scene sc_start;
     const char *scene_path = o.scene ? o.scene : cfg.scene[0] ? cfg.scene : "default";
@@ -328,7 +340,7 @@ int main(int argc, char **argv)
         }
         if (!realpath(o.config, config_abs))
             snprintf(config_abs, sizeof config_abs, "%s", o.config);
-        const char *connect = connect_endpoint(o.bind, connect_buf, sizeof connect_buf);
+        const char *connect = connect_endpoint(m, o.bind, connect_buf, sizeof connect_buf);
         for (int i = 0; i < cfg.node_count; i++) {
             char storage[1024], *nargv[64];
             node_argv(&o, config_abs, exe, cfg.nodes[i].name, connect, storage, sizeof storage, nargv, 64);
@@ -353,7 +365,10 @@ int main(int argc, char **argv)
     }
 
     int exit_code = 0;
-    int live = cluster_master_wait_nodes(m, cfg.node_count, o.wait_ms);
+    /* Wait in short steps so that SIGTERM is honoured while nodes are still missing. */
+    int live = 0;
+    for (double until = now_ms() + o.wait_ms; !stop_requested && now_ms() < until && live < cfg.node_count;)
+        live = cluster_master_wait_nodes(m, cfg.node_count, 200);
     if (live < cfg.node_count)
         fprintf(stderr, "cavelight-master: %d of %d nodes joined within %d ms; going on with them\n", live,
                 cfg.node_count, o.wait_ms);

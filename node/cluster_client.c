@@ -123,16 +123,11 @@ int cluster_client_ready(cluster_client *c, uint64_t version, uint64_t checksum,
     return send_msg(c, &m);
 }
 
-/* Heartbeats while joined, HELLO every half second otherwise, LOST after master_ms. */
-static int housekeeping(cluster_client *c, double now)
+/* Heartbeats while joined, HELLO every half second otherwise. */
+static void housekeeping(cluster_client *c, double now)
 {
     int period = c->cfg->heartbeat_ms;
     if (c->state == STATE_JOINED) {
-        if (now - c->last_heard > c->cfg->master_timeout_ms) {
-            c->state = STATE_LOST;
-            c->st.lost++;
-            return 1;
-        }
         if (now - c->last_sent >= period) {
             wire_msg hb = {.type = WIRE_HEARTBEAT, .version = c->params.version};
             send_msg(c, &hb);
@@ -140,7 +135,14 @@ static int housekeeping(cluster_client *c, double now)
     } else if (now - c->last_hello >= (period > 500 ? period : 500)) {
         send_hello(c);
     }
-    return 0;
+}
+
+/* At most one HELLO per 100 ms however many reasons arrive together. */
+static void ask_snapshot(cluster_client *c)
+{
+    c->state = c->state == STATE_LOST ? STATE_LOST : STATE_HELLO;
+    if (now_ms() - c->last_hello >= 100)
+        send_hello(c);
 }
 
 cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
@@ -150,16 +152,21 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
     int pending = 0; /* a FRAME applied and not yet overtaken */
     for (;;) {
         double now = now_ms();
-        if (housekeeping(c, now)) {
-            ev->type = CLUSTER_EVENT_LOST;
-            return ev->type;
-        }
+        housekeeping(c, now);
         zmq_msg_t msg;
         zmq_msg_init(&msg);
         if (zmq_msg_recv(&msg, c->sock, ZMQ_DONTWAIT) < 0) {
             zmq_msg_close(&msg);
             if (pending) {
                 ev->type = CLUSTER_EVENT_FRAME;
+                return ev->type;
+            }
+            /* Silence counts only once the queue is empty: a node that was stalled reads
+             * what the master sent before it decides the master is gone. */
+            if (c->state == STATE_JOINED && now - c->last_heard > c->cfg->master_timeout_ms) {
+                c->state = STATE_LOST;
+                c->st.lost++;
+                ev->type = CLUSTER_EVENT_LOST;
                 return ev->type;
             }
             if (now >= deadline)
@@ -193,11 +200,8 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             continue;
         }
         c->last_heard = now_ms();
-        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE) {
-            /* The master is back but does not know us yet (or never forgot): resync. */
-            if (now - c->last_hello >= 100)
-                send_hello(c);
-        }
+        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE)
+            ask_snapshot(c); /* the master is back: resync */
         switch (m.type) {
         case WIRE_SNAPSHOT: {
             params_store fresh;
@@ -220,18 +224,21 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             break;
         }
         case WIRE_FRAME:
-            if (c->state != STATE_JOINED || m.base_version != c->params.version) {
+            if (c->state != STATE_JOINED) {
+                pending = 0; /* a snapshot is on its way */
+                break;
+            }
+            if (m.base_version != c->params.version) {
                 /* A gap in the chain of deltas: only a snapshot can repair it. */
                 c->st.resyncs++;
-                if (now - c->last_hello >= 100)
-                    send_hello(c);
+                ask_snapshot(c);
                 pending = 0;
                 break;
             }
             double t0 = now_ms();
             if (params_apply(&c->params, m.version, m.params, m.params_len) != 0) {
                 c->st.malformed++;
-                send_hello(c);
+                ask_snapshot(c);
                 pending = 0;
                 break;
             }
@@ -258,7 +265,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                     fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining\n",
                             c->name);
                 c->state = STATE_HELLO;
-                send_hello(c);
+                ask_snapshot(c);
             } else if (m.reason == WIRE_BYE_CONFIG_MISMATCH) {
                 fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
                         "and nodes the same file\n", c->name, c->cfg->path);

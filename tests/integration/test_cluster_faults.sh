@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Faults with real rendering, nodes started by hand: kill a node mid-run (the others go
+# on after the barrier timeout), restart it (it rejoins from a snapshot, the master raises
+# the history-reset epoch, and its LPV checksum equals the others' again), stall another
+# (SIGSTOP: dropped; SIGCONT: it catches up and rejoins), and stop the master while the
+# nodes run (they say so, stay up, and reconnect to a new master).
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/cluster_lib.sh"
+
+make_config "$tmp/c3.json" 1500 a b c
+"$build/cavelight-master" --config "$tmp/c3.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" \
+  --frames 110 --fps 10 --report "$tmp/r.json" 2> "$tmp/master.log" &
+master=$!
+pids+=($master)
+wait_for_file "$tmp/ep" 10
+ep=$(cat "$tmp/ep")
+start_node() {
+  "$build/cavelight-node" --cluster "$tmp/c3.json" --name "$1" --master "$ep" --output headless \
+    --exit-with-master $small_render 2>> "$tmp/node-$1.log" &
+  pids+=($!)
+  eval "pid_$1=$!"
+}
+start_node a; start_node b; start_node c
+sleep 2
+kill -9 "$pid_c"
+sleep 2.5
+grep -q "node c not ready" "$tmp/master.log" || { cat "$tmp/master.log"; fail "killed node c was not dropped"; }
+start_node c
+sleep 2
+kill -STOP "$pid_b"
+sleep 2.5
+kill -CONT "$pid_b"
+wait "$master" || { cat "$tmp/master.log"; fail "master failed"; }
+cat "$tmp/master.log" | grep -v "^$" | head -20
+
+[ "$(json 'r["desyncs"]' "$tmp/r.json")" = 0 ] || fail "desync after rejoin"
+[ "$(json 'r["drops"] >= 2' "$tmp/r.json")" = True ] || fail "expected the killed and the stalled node dropped"
+[ "$(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")" = "[1, 2, 2]" ] || fail "joins per node: $(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")"
+[ "$(json 'all(n["state"] == "live" for n in r["per_node"])' "$tmp/r.json")" = True ] || fail "not every node live at the end"
+[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$tmp/r.json")" = 1 ] || fail "checksums differ at the end"
+[ "$(json 'r["nodes_live_min"]' "$tmp/r.json")" -le 2 ] || fail "no frame ran without the dropped node"
+echo "kill, restart, stall: drops $(json 'r["drops"]' "$tmp/r.json"), final checksums equal"
+
+# The master goes away while nodes run; a new master on the same endpoint gets them back.
+"$build/cavelight-master" --config "$tmp/c3.json" --bind "$ep" --frames 0 --fps 20 --wait-ms 60000 2> "$tmp/m2.log" &
+m2=$!; pids+=($m2)
+for n in a b; do
+  "$build/cavelight-node" --cluster "$tmp/c3.json" --name $n --master "$ep" --render none 2> "$tmp/n2-$n.log" &
+  pids+=($!)
+done
+sleep 2
+kill -TERM $m2; wait $m2 || true
+sleep 4   # master_ms is 3 s in the test config
+grep -q "master ended the session; waiting" "$tmp/n2-a.log" || fail "node a did not report the master gone"
+"$build/cavelight-master" --config "$tmp/c3.json" --bind "$ep" --frames 20 --wait-ms 3000 --report "$tmp/r3.json" 2> "$tmp/m3.log" \
+  || { cat "$tmp/m3.log" "$tmp/n2-a.log"; fail "second master failed"; }
+[ "$(json 'r["nodes_live_min"]' "$tmp/r3.json")" = 2 ] || fail "nodes did not reconnect to the new master"
+grep -q "reconnected to master" "$tmp/n2-a.log" || fail "node a did not say it reconnected"
+echo "master restart: both nodes reconnected"
