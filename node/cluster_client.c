@@ -13,6 +13,8 @@ struct cluster_client {
     const cluster_config *cfg;
     char name[WIRE_NAME_MAX + 1];
     void *ctx, *sock;
+    const char *endpoint;
+    double opened;
     int quiet;
     client_state state;
     params_store params;
@@ -45,8 +47,53 @@ static int send_msg(cluster_client *c, wire_msg *msg)
 static void send_hello(cluster_client *c)
 {
     wire_msg m = {.type = WIRE_HELLO, .config_hash = c->cfg->hash, .version = c->params.version};
-    send_msg(c, &m);
-    c->last_hello = now_ms();
+    /* Not yet connected (ZMQ_IMMEDIATE): the next housekeeping round tries again. */
+    if (send_msg(c, &m) == 0)
+        c->last_hello = now_ms();
+}
+
+static int open_socket(cluster_client *c, char *err, size_t errlen)
+{
+    c->sock = zmq_socket(c->ctx, ZMQ_DEALER);
+    if (!c->sock) {
+        snprintf(err, errlen, "cluster node: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
+        return -1;
+    }
+    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 1000;
+    int64_t maxmsg = WIRE_MAX_MESSAGE;
+    zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
+    zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
+    zmq_setsockopt(c->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(c->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
+    zmq_setsockopt(c->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
+    zmq_setsockopt(c->sock, ZMQ_IMMEDIATE, &one, sizeof one);
+    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL, &ivl, sizeof ivl);
+    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL_MAX, &ivl_max, sizeof ivl_max);
+    if (zmq_connect(c->sock, c->endpoint) != 0) {
+        snprintf(err, errlen, "cluster node %s: cannot connect to %s (%s): check master.connect in %s",
+                 c->name, c->endpoint, zmq_strerror(errno), c->cfg->path);
+        zmq_close(c->sock);
+        c->sock = NULL;
+        return -1;
+    }
+    c->opened = now_ms();
+    return 0;
+}
+
+/* ZeroMQ does not reconnect after a protocol error (e.g. an oversized message): a node
+ * that has heard nothing for master_ms since its socket opened starts a fresh one. */
+static void reopen_if_dead(cluster_client *c, double now)
+{
+    if (now - c->last_heard < c->cfg->master_timeout_ms || now - c->opened < c->cfg->master_timeout_ms)
+        return;
+    char err[256];
+    zmq_close(c->sock);
+    if (open_socket(c, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return;
+    }
+    c->st.reopens++;
+    send_hello(c);
 }
 
 cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err, size_t errlen)
@@ -66,26 +113,8 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     snprintf(c->name, sizeof c->name, "%s", desc->name);
     params_init(&c->params);
     c->ctx = zmq_ctx_new();
-    c->sock = c->ctx ? zmq_socket(c->ctx, ZMQ_DEALER) : NULL;
-    if (!c->sock) {
-        snprintf(err, errlen, "cluster node: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
-        cluster_client_destroy(c);
-        return NULL;
-    }
-    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 1000;
-    int64_t maxmsg = WIRE_MAX_MESSAGE;
-    zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
-    zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
-    zmq_setsockopt(c->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
-    zmq_setsockopt(c->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
-    zmq_setsockopt(c->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
-    zmq_setsockopt(c->sock, ZMQ_IMMEDIATE, &one, sizeof one);
-    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL, &ivl, sizeof ivl);
-    zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL_MAX, &ivl_max, sizeof ivl_max);
-    const char *ep = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
-    if (zmq_connect(c->sock, ep) != 0) {
-        snprintf(err, errlen, "cluster node %s: cannot connect to %s (%s): check master.connect in %s",
-                 c->name, ep, zmq_strerror(errno), c->cfg->path);
+    c->endpoint = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
+    if (!c->ctx || open_socket(c, err, errlen) != 0) {
         cluster_client_destroy(c);
         return NULL;
     }
@@ -169,6 +198,8 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                 ev->type = CLUSTER_EVENT_LOST;
                 return ev->type;
             }
+            if (c->state != STATE_JOINED)
+                reopen_if_dead(c, now);
             if (now >= deadline)
                 return CLUSTER_EVENT_NONE;
             double wait = deadline - now;

@@ -8,7 +8,9 @@
  * from the master for master_ms: keep the window, the client keeps saying HELLO until it
  * answers), SHUTDOWN, REFUSED. A FRAME already overtaken by a newer one in the queue is
  * applied but not returned, so a node that stalled catches up instead of replaying.
- * Heartbeats go out while idle. Malformed input is dropped and counted. */
+ * Heartbeats go out while idle. Malformed input is dropped and counted. A socket that
+ * stays silent for master_ms while not joined is replaced (ZeroMQ gives up on a
+ * connection after a protocol error such as an oversized message). */
 #ifndef CAVELIGHT_CLUSTER_CLIENT_H
 #define CAVELIGHT_CLUSTER_CLIENT_H
 
@@ -44,7 +46,7 @@ typedef struct cluster_event {
 } cluster_event;
 
 typedef struct cluster_client_stats {
-    uint64_t frames, skipped, snapshots, swaps, malformed, resyncs, lost;
+    uint64_t frames, skipped, snapshots, swaps, malformed, resyncs, lost, reopens;
     uint64_t bytes_sent, bytes_received;
 } cluster_client_stats;
 
