@@ -75,9 +75,17 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             if (ev.version != pending_swap)
                 break;
             st.swaps++;
-            if (view && cluster_view_present(view, err, errlen) != 0) {
-                rc = 1;
-                goto out;
+            if (view) {
+                int pr = cluster_view_present(view, err, errlen);
+                if (pr < 0) {
+                    rc = 1;
+                    goto out;
+                }
+                if (pr > 0) {
+                    if (!d->quiet)
+                        fprintf(stderr, "cavelight-node %s: window closed: leaving\n", d->name);
+                    goto out;
+                }
             }
             break;
         case CLUSTER_EVENT_LOST:

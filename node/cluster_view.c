@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cluster_window.h"
 #include "glctx.h"
 #include "image.h"
 #include "offaxis.h"
@@ -25,8 +26,13 @@ struct cluster_view {
     int lpv_threads, rsm_size, lattice_desc, lattice_now;
     scene sc;
     int scene_loaded;
-    glctx *ctx;
+    glctx *ctx;          /* headless context, or the first window's */
     renderer *r;
+    cluster_window *win[2];
+    cluster_stereo stereo; /* effective window stereo mode */
+    int strip_w, strip_h;  /* all of the node's screens side by side, one eye */
+    int comp_w, comp_h;
+    uint8_t *compose[2];
     float far_plane;
     eye_image img[CLUSTER_NODE_MAX_SCREENS][CLUSTER_VIEW_MAX_EYES];
     int rendered;
@@ -85,6 +91,99 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     return offaxis_screen(&d, out->view, out->projection);
 }
 
+/* Window output: one window (or one per eye) sized for the node's screens in its stereo mode. */
+static int open_windows(cluster_view *v, char *err, size_t errlen)
+{
+    const cluster_node *n = &v->cfg->nodes[v->node];
+    for (int s = 0; s < n->screen_count; s++) {
+        v->strip_w += n->screens[s].width;
+        if (n->screens[s].height > v->strip_h)
+            v->strip_h = n->screens[s].height;
+    }
+    int stereo = cluster_view_eye_count(v->cfg, v->node) == 2;
+    v->stereo = n->stereo;
+    v->comp_w = v->strip_w * (stereo && v->stereo == CLUSTER_STEREO_SIDE_BY_SIDE ? 2 : 1);
+    v->comp_h = v->strip_h * (stereo && v->stereo == CLUSTER_STEREO_TOP_BOTTOM ? 2 : 1);
+    char title[96];
+    snprintf(title, sizeof title, "cavelight %s%s", n->name, stereo && v->stereo == CLUSTER_STEREO_WINDOW_PER_EYE ? " left" : "");
+    cluster_window_desc wd = {.width = v->comp_w, .height = v->comp_h, .title = title, .monitor = n->monitor,
+                              .fullscreen = n->fullscreen, .want_quad = stereo && v->stereo == CLUSTER_STEREO_QUAD};
+    if (!(v->win[0] = cluster_window_create(&wd, err, errlen)))
+        return -1;
+    if (wd.want_quad && !cluster_window_quad(v->win[0])) {
+        fprintf(stderr, "cavelight-node %s: the driver offers no quad-buffered window: showing side-by-side\n",
+                n->name);
+        v->stereo = CLUSTER_STEREO_SIDE_BY_SIDE;
+        v->comp_w = 2 * v->strip_w;
+    }
+    if (stereo && v->stereo == CLUSTER_STEREO_WINDOW_PER_EYE) {
+        snprintf(title, sizeof title, "cavelight %s right", n->name);
+        wd.monitor = n->monitor + 1; /* the right eye's projector, when fullscreen */
+        if (!(v->win[1] = cluster_window_create(&wd, err, errlen)))
+            return -1;
+        cluster_window_make_current(v->win[0]);
+    }
+    v->ctx = cluster_window_context(v->win[0]);
+    for (int e = 0; e < 2; e++)
+        if (!(v->compose[e] = calloc((size_t)v->comp_w * v->comp_h, 3))) {
+            snprintf(err, errlen, "cluster node %s: out of memory for the window image", n->name);
+            return -1;
+        }
+    return 0;
+}
+
+/* Copies one eye's images of all the node's screens, side by side, into dst at (x0, y0). */
+static void compose_strip(const cluster_view *v, int eye, uint8_t *dst, int dst_w, int x0, int y0)
+{
+    const cluster_node *n = &v->cfg->nodes[v->node];
+    for (int s = 0, x = x0; s < n->screen_count; x += v->img[s][eye].width, s++) {
+        const eye_image *im = &v->img[s][eye];
+        for (int y = 0; y < im->height; y++)
+            memcpy(dst + ((size_t)(y0 + y) * dst_w + x) * 3, im->rgb + (size_t)y * im->width * 3, (size_t)im->width * 3);
+    }
+}
+
+static int present_window(cluster_view *v, char *err, size_t errlen)
+{
+    int stereo = cluster_view_eye_count(v->cfg, v->node) == 2;
+    uint8_t *a = v->compose[0], *b = v->compose[1];
+    const uint8_t *right = NULL;
+    cluster_window *second = NULL;
+    compose_strip(v, 0, a, v->comp_w, 0, 0);
+    if (stereo) {
+        switch (v->stereo) {
+        case CLUSTER_STEREO_SIDE_BY_SIDE: compose_strip(v, 1, a, v->comp_w, v->strip_w, 0); break;
+        case CLUSTER_STEREO_TOP_BOTTOM: compose_strip(v, 1, a, v->comp_w, 0, v->strip_h); break;
+        case CLUSTER_STEREO_ANAGLYPH:
+            /* Red-cyan: red from the left eye, green and blue from the right. */
+            compose_strip(v, 1, b, v->comp_w, 0, 0);
+            for (size_t i = 0; i < (size_t)v->comp_w * v->comp_h; i++) {
+                a[3 * i + 1] = b[3 * i + 1];
+                a[3 * i + 2] = b[3 * i + 2];
+            }
+            break;
+        case CLUSTER_STEREO_QUAD:
+            compose_strip(v, 1, b, v->comp_w, 0, 0);
+            right = b;
+            break;
+        case CLUSTER_STEREO_WINDOW_PER_EYE:
+            compose_strip(v, 1, b, v->comp_w, 0, 0);
+            second = v->win[1];
+            break;
+        }
+    }
+    int open = cluster_window_show(v->win[0], a, right, v->comp_w, v->comp_h);
+    if (open > 0 && second) {
+        open = cluster_window_show(second, b, NULL, v->comp_w, v->comp_h);
+        cluster_window_make_current(v->win[0]);
+    }
+    if (open < 0) {
+        snprintf(err, errlen, "cluster node %s: showing the frame failed (GL error)", v->cfg->nodes[v->node].name);
+        return -1;
+    }
+    return open ? 0 : 1;
+}
+
 static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
 {
     renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
@@ -114,11 +213,6 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->lattice_desc = desc->lattice_cells;
     snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : ".");
     const cluster_node *n = &v->cfg->nodes[v->node];
-    if (v->output == CLUSTER_OUTPUT_WINDOW) {
-        snprintf(err, errlen, "cluster node %s: window output is not available in this build: use --output "
-                 "headless or png", n->name);
-        goto fail;
-    }
     if (v->output == CLUSTER_OUTPUT_PNG && mkdir(v->out_dir, 0777) != 0 && errno != EEXIST) {
         snprintf(err, errlen, "cluster node %s: cannot create output folder %s (%s)", n->name, v->out_dir,
                  strerror(errno));
@@ -132,11 +226,16 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     for (int a = 0; a < 3; a++)
         extent += (v->sc.bounds_max[a] - v->sc.bounds_min[a]) * (v->sc.bounds_max[a] - v->sc.bounds_min[a]);
     v->far_plane = 4.0f * sqrtf(extent) + 10.0f;
-    glctx_desc gd = {.backend = GLCTX_EGL};
-    v->ctx = glctx_create(&gd, err, errlen);
-    if (!v->ctx) {
-        gd.backend = GLCTX_OSMESA; /* no EGL: software fallback */
+    if (v->output == CLUSTER_OUTPUT_WINDOW) {
+        if (open_windows(v, err, errlen) != 0)
+            goto fail;
+    } else {
+        glctx_desc gd = {.backend = GLCTX_EGL};
         v->ctx = glctx_create(&gd, err, errlen);
+        if (!v->ctx) {
+            gd.backend = GLCTX_OSMESA; /* no EGL: software fallback */
+            v->ctx = glctx_create(&gd, err, errlen);
+        }
     }
     if (!v->ctx || make_renderer(v, v->lattice_desc, err, errlen) != 0)
         goto fail;
@@ -161,10 +260,19 @@ void cluster_view_destroy(cluster_view *v)
 {
     if (!v)
         return;
+    if (v->win[0])
+        cluster_window_make_current(v->win[0]);
     if (v->r)
         renderer_destroy(v->r);
-    if (v->ctx)
+    if (v->win[0]) {
+        /* The windows own the GL contexts; the second goes first (GLFW shuts down with it). */
+        cluster_window_destroy(v->win[1]);
+        cluster_window_destroy(v->win[0]);
+    } else if (v->ctx) {
         glctx_destroy(v->ctx);
+    }
+    free(v->compose[0]);
+    free(v->compose[1]);
     if (v->scene_loaded)
         scene_free(&v->sc);
     for (int s = 0; s < CLUSTER_NODE_MAX_SCREENS; s++)
@@ -212,8 +320,10 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
 
 int cluster_view_present(cluster_view *v, char *err, size_t errlen)
 {
-    if (!v->rendered || v->output != CLUSTER_OUTPUT_PNG)
+    if (!v->rendered || v->output == CLUSTER_OUTPUT_HEADLESS)
         return 0;
+    if (v->output == CLUSTER_OUTPUT_WINDOW)
+        return present_window(v, err, errlen);
     const cluster_node *n = &v->cfg->nodes[v->node];
     for (int s = 0; s < n->screen_count; s++)
         for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {

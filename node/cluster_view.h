@@ -6,8 +6,10 @@
  * times observer.head_to_eye, offset by +-eye_separation/2 along the head's right axis;
  * screens and eyes go from CAVE space to world space through the navigation transform.
  * cluster_view_present() shows the images of the last rendered frame: PNG files
- * (DIR/SCREEN-EYE.png, replaced atomically), a GLFW window in the node's stereo mode,
- * or nothing (headless). The renderer is rebuilt when the LPV resolution key changes. */
+ * (DIR/SCREEN-EYE.png, replaced atomically), a GLFW window in the node's stereo mode
+ * (the node's screens side by side; stereo as side-by-side, top-bottom, red-cyan
+ * anaglyph, quad-buffered when the driver offers it (else side-by-side), or one window
+ * per eye), or nothing (headless). The renderer is rebuilt when the LPV resolution key changes. */
 #ifndef CAVELIGHT_CLUSTER_VIEW_H
 #define CAVELIGHT_CLUSTER_VIEW_H
 
@@ -40,6 +42,7 @@ void cluster_view_destroy(cluster_view *v);
  * lattice_cells: the lpv_resolution key (0 = keep the desc's). */
 int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
                         float timings[WIRE_TIMING_COUNT], char *err, size_t errlen);
+/* Returns 0, 1 when the window was closed (the node should leave), -1 with err. */
 int cluster_view_present(cluster_view *v, char *err, size_t errlen);
 /* The last rendered image of (node screen index, eye index), top row first. */
 const uint8_t *cluster_view_image(const cluster_view *v, int screen, int eye, int *width, int *height);
