@@ -259,9 +259,9 @@ void cluster_master_destroy(cluster_master *m)
         for (int i = 0; m->cfg && i < m->cfg->node_count; i++)
             if (m->peers[i].s.state != CLUSTER_PEER_ABSENT)
                 send_bye(m, i, WIRE_BYE_SHUTDOWN);
-        /* Give the BYEs a moment to leave (linger is 0 so close never blocks). */
-        zmq_pollitem_t item = {.socket = m->sock, .events = ZMQ_POLLIN};
-        zmq_poll(&item, 1, 20);
+        /* Let the BYEs leave: linger briefly (a dead peer cannot hold the close longer). */
+        int linger = 200;
+        zmq_setsockopt(m->sock, ZMQ_LINGER, &linger, sizeof linger);
         zmq_close(m->sock);
     }
     if (m->ctx)

@@ -131,8 +131,8 @@ void cluster_client_destroy(cluster_client *c)
     if (c->sock) {
         wire_msg bye = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
         send_msg(c, &bye);
-        zmq_pollitem_t item = {.socket = c->sock, .events = ZMQ_POLLIN};
-        zmq_poll(&item, 1, 10); /* let the BYE leave; linger is 0 */
+        int linger = 200; /* let the BYE leave, but never wait long for a dead master */
+        zmq_setsockopt(c->sock, ZMQ_LINGER, &linger, sizeof linger);
         zmq_close(c->sock);
     }
     if (c->ctx)
