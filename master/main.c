@@ -348,10 +348,11 @@ int main(int argc, char **argv)
             if (o.spawn_local) {
                 rc = spawn_local(&children, cfg.nodes[i].name, nargv, err, sizeof err);
             } else {
-                char cmd[4096] = "", q[1024];
+                /* exec: the node replaces the remote shell, so signals reach it directly. */
+                char cmd[4096] = "exec", q[1024];
                 for (int k = 0; nargv[k]; k++) {
                     spawn_shell_quote(nargv[k], q, sizeof q);
-                    snprintf(cmd + strlen(cmd), sizeof cmd - strlen(cmd), "%s%s", k ? " " : "", q);
+                    snprintf(cmd + strlen(cmd), sizeof cmd - strlen(cmd), " %s", q);
                 }
                 rc = spawn_remote(&children, cfg.nodes[i].name, cfg.launch, cfg.nodes[i].host, cmd, err, sizeof err);
             }

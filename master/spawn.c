@@ -26,6 +26,8 @@ static int start(spawn_set *s, const char *label, const char *path, char *const 
         prctl(PR_SET_PDEATHSIG, SIGTERM);
         if (getppid() != parent)
             _exit(127);
+        /* Own process group: stopping the child also stops what a launch shell started. */
+        setpgid(0, 0);
         execv(path, argv);
         fprintf(stderr, "cavelight-master: cannot run %s: %s\n", path, strerror(errno));
         _exit(127);
@@ -124,14 +126,14 @@ void spawn_stop_all(spawn_set *s, int timeout_ms)
 {
     for (int i = 0; i < s->count; i++)
         if (!s->exited[i])
-            kill(s->pid[i], SIGTERM);
+            kill(-s->pid[i], SIGTERM);
     struct timespec step = {0, 10 * 1000 * 1000};
     for (int waited = 0; spawn_reap(s) > 0 && waited < timeout_ms; waited += 10)
         nanosleep(&step, NULL);
     for (int i = 0; i < s->count; i++)
         if (!s->exited[i]) {
             fprintf(stderr, "cavelight-master: %s did not stop within %d ms: killed\n", s->label[i], timeout_ms);
-            kill(s->pid[i], SIGKILL);
+            kill(-s->pid[i], SIGKILL);
             waitpid(s->pid[i], &s->status[i], 0);
             s->exited[i] = 1;
         }

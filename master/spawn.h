@@ -3,8 +3,9 @@
  *
  * spawn_local() runs a program directly; spawn_remote() runs the config's launch
  * template through /bin/sh with {host} and {command} replaced (ssh by default, like
- * Equalizer's launch command). Children get SIGTERM if the master dies (PR_SET_PDEATHSIG);
- * spawn_stop_all() sends SIGTERM, waits, then SIGKILLs what is left. */
+ * Equalizer's launch command). Each child leads its own process group and gets SIGTERM
+ * if the master dies (PR_SET_PDEATHSIG); spawn_stop_all() sends SIGTERM to each group,
+ * waits, then SIGKILLs what is left. */
 #ifndef CAVELIGHT_SPAWN_H
 #define CAVELIGHT_SPAWN_H
 

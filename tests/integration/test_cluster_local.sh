@@ -36,3 +36,18 @@ wait "${pids[0]}" || fail "master (fault run) failed"
 [ "$(json 'r["desyncs"]' "$tmp/r2.json")" = 5 ] || fail "expected 5 desync frames, got $(json 'r["desyncs"]' "$tmp/r2.json")"
 grep -q "desync in frame 4" "$tmp/master2.log" || fail "desync not reported in the log"
 echo "desync detected in frames 4..8 as expected"
+
+# --spawn-remote goes through the config's launch template ({host}, {command}); here the
+# "remote shell" is a local sh that records the host it was given.
+python3 - "$tmp/c3.json" "$tmp/remote.json" "$tmp" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c["launch"] = "echo {host} >> " + sys.argv[3] + "/hosts; exec sh -c {command}"
+for i, n in enumerate(c["nodes"]): n["host"] = "render%d.example" % i
+json.dump(c, open(sys.argv[2], "w"))
+PY
+"$build/cavelight-master" --config "$tmp/remote.json" --bind 'tcp://127.0.0.1:*' --spawn-remote --render none \
+  --frames 20 --report "$tmp/r3.json" --quiet 2> "$tmp/master3.log" || { cat "$tmp/master3.log"; fail "spawn-remote failed"; }
+[ "$(json 'min(n["frames_ready"] for n in r["per_node"])' "$tmp/r3.json")" = 20 ] || fail "remote-launched nodes missed frames"
+[ "$(sort "$tmp/hosts" | tr '\n' ' ')" = "render0.example render1.example render2.example " ] || fail "launch template hosts: $(cat "$tmp/hosts")"
+echo "spawn-remote through the launch template: 3 nodes, 20 frames"
