@@ -69,7 +69,11 @@ static void take_pose(input_pose *best, const input_pose *p, const float xf[16],
 {
     if (!p->valid || (best->valid && best->time > p->time))
         return;
-    *best = *p;
+    /* Field by field, so that padding stays zero and states compare bytewise. */
+    best->valid = 1;
+    best->time = p->time;
+    memcpy(best->position, p->position, sizeof best->position);
+    memcpy(best->rotation, p->rotation, sizeof best->rotation);
     if (transform)
         input_pose_transform(best, xf);
 }

@@ -2,6 +2,7 @@
 #include "input_dtrack.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,7 +43,8 @@ static int read_number(cursor *c, double *out)
     tmp[n] = '\0';
     char *e;
     double v = strtod(tmp, &e);
-    if (*e != '\0' || !isfinite(v))
+    /* Everything is stored as float: a value beyond float range is as bad as NaN. */
+    if (*e != '\0' || !isfinite(v) || fabs(v) > FLT_MAX)
         return -1;
     *out = v;
     return 0;

@@ -110,6 +110,7 @@ static void test_bad_values_dropped(void **state)
         "fr 99999999999",
         "ts -1",
         "3d 1 [0 1][0 0 0",
+        "6d 1 [0 1.0][1e39 0 0][1 0 0 0 1 0 0 0 1]",       /* beyond float (found by fuzzing) */
         "6d 1 [0 1.0][1 2 3][1 0 0 0 1 0 0 0 1000000000000000000000000000000000000000000000000000000000000001]",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
