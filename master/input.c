@@ -12,6 +12,7 @@
 #include "input_dtrack.h"
 #include "input_playback.h"
 #include "input_source.h"
+#include "input_vrpn.h"
 
 enum { INPUT_MAX_SOURCES = 16 };
 
@@ -235,6 +236,38 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
             return NULL;
         return input_dtrack_open(&d, err, errlen);
     }
+    if (strcmp(type, "vrpn") == 0) {
+        /* "tracker": "Tracker0@host:port" as VRPN users write it, or name, host, port apart. */
+        char tracker[64] = "Tracker0", host[256] = "localhost";
+        int port = get_int(j, "port", INPUT_VRPN_DEFAULT_PORT);
+        const char *t = get_str(j, "tracker");
+        if (t) {
+            const char *at = strchr(t, '@');
+            snprintf(tracker, sizeof tracker, "%.*s", at ? (int)(at - t) : (int)strlen(t), t);
+            if (at) {
+                const char *colon = strrchr(at + 1, ':');
+                snprintf(host, sizeof host, "%.*s", colon ? (int)(colon - at - 1) : (int)strlen(at + 1),
+                         at + 1);
+                if (colon)
+                    port = atoi(colon + 1);
+            }
+        }
+        if (get_str(j, "host"))
+            snprintf(host, sizeof host, "%s", get_str(j, "host"));
+        const cJSON *rc = cJSON_GetObjectItemCaseSensitive(j, "reconnect");
+        input_vrpn_desc d = {.name = name, .host = host, .port = port, .tracker = tracker,
+                             .sensors_set = 1, .head_sensor = get_int(j, "head", 0),
+                             .wand_sensor = get_int(j, "wand", 1),
+                             .buttons = get_str(j, "button_device"),
+                             .analog = get_str(j, "analog_device"),
+                             .reconnect_interval = cJSON_IsNumber(rc) ? rc->valuedouble : 1.0};
+        if (parse_map(cJSON_GetObjectItemCaseSensitive(j, "buttons"), button_names, 5,
+                      &d.button_map, path, "buttons", "L, M, R, C, AUX", err, errlen) ||
+            parse_map(cJSON_GetObjectItemCaseSensitive(j, "axes"), axis_names, 4, &d.axis_map,
+                      path, "axes", "X, Y, Z, W", err, errlen))
+            return NULL;
+        return input_vrpn_open(&d, err, errlen);
+    }
     if (strcmp(type, "playback") == 0) {
         const char *file = get_str(j, "file");
         if (!file) {
@@ -251,7 +284,7 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
         return input_playback_open(&d, err, errlen);
     }
     snprintf(err, errlen, "input config %s: sources[%d] has unknown type \"%s\" (dtrack, "
-             "playback)", path, index, type);
+             "vrpn, playback)", path, index, type);
     return NULL;
 }
 
