@@ -12,6 +12,7 @@
 #include "input_dtrack.h"
 #include "input_playback.h"
 #include "input_source.h"
+#include "input_usb.h"
 #include "input_vrpn.h"
 
 enum { INPUT_MAX_SOURCES = 16 };
@@ -203,6 +204,80 @@ static void resolve_path(const char *config, const char *rel, char *out, size_t 
         snprintf(out, n, "%.*s/%s", (int)(slash - config), config, rel);
 }
 
+/* A number, or a string in C notation ("0x046d"). */
+static int get_id(const cJSON *o, const char *key, long *out)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    if (cJSON_IsNumber(v)) {
+        *out = (long)v->valuedouble;
+        return 0;
+    }
+    if (cJSON_IsString(v)) {
+        char *e;
+        *out = strtol(v->valuestring, &e, 0);
+        return *e ? -1 : 0;
+    }
+    return -1;
+}
+
+static int name_index(const char *s, const char *const *names, int n)
+{
+    for (int i = 0; s && i < n; i++)
+        if (strcmp(s, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+static int parse_usb(const cJSON *j, const char *path, int index, input_usb_desc *d, char *err,
+                     size_t errlen)
+{
+    long vendor, product;
+    if (get_id(j, "vendor", &vendor) || get_id(j, "product", &product) || vendor < 0 ||
+        vendor > 0xffff || product < 0 || product > 0xffff) {
+        snprintf(err, errlen, "input config %s: sources[%d] (usb) needs \"vendor\" and "
+                 "\"product\" ids, e.g. \"0x046d\" (see lsusb)", path, index);
+        return -1;
+    }
+    d->vendor = (uint16_t)vendor;
+    d->product = (uint16_t)product;
+    d->interface_number = get_int(j, "interface", 0);
+    long ep = 0;
+    if (cJSON_GetObjectItemCaseSensitive(j, "endpoint") && get_id(j, "endpoint", &ep) == 0)
+        d->endpoint = (uint8_t)ep;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItemCaseSensitive(j, "buttons")) {
+        int to = name_index(get_str(it, "to"), button_names, 5);
+        if (d->button_count == INPUT_USB_MAX_BUTTONS || to < 0) {
+            snprintf(err, errlen, "input config %s: sources[%d].buttons[%d]: \"to\" must be L, "
+                     "M, R, C or AUX (at most %d buttons)", path, index, d->button_count,
+                     INPUT_USB_MAX_BUTTONS);
+            return -1;
+        }
+        d->buttons[d->button_count++] = (input_usb_button){.byte = get_int(it, "byte", 0),
+                                                           .bit = get_int(it, "bit", 0), .to = to};
+    }
+    static const char *const formats[] = {"u8", "s8", "u16", "s16"};
+    cJSON_ArrayForEach(it, cJSON_GetObjectItemCaseSensitive(j, "axes")) {
+        int to = name_index(get_str(it, "to"), axis_names, 4);
+        const char *fs = get_str(it, "format");
+        int format = fs ? name_index(fs, formats, 4) : 0;
+        if (d->axis_count == INPUT_USB_MAX_AXES || to < 0 || format < 0) {
+            snprintf(err, errlen, "input config %s: sources[%d].axes[%d]: \"to\" must be X, Y, Z "
+                     "or W and \"format\" u8, s8, u16 or s16 (got \"%s\")", path, index,
+                     d->axis_count, fs ? fs : "");
+            return -1;
+        }
+        const cJSON *mn = cJSON_GetObjectItemCaseSensitive(it, "min");
+        const cJSON *mx = cJSON_GetObjectItemCaseSensitive(it, "max");
+        d->axes[d->axis_count++] = (input_usb_axis){
+            .byte = get_int(it, "byte", 0), .format = (input_usb_format)format,
+            .min = cJSON_IsNumber(mn) ? (float)mn->valuedouble : 0.0f,
+            .max = cJSON_IsNumber(mx) ? (float)mx->valuedouble : 0.0f, .to = to,
+            .invert = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(it, "invert"))};
+    }
+    return 0;
+}
+
 static input_source *open_source(const cJSON *j, const char *path, int index, char *err,
                                  size_t errlen)
 {
@@ -268,6 +343,12 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
             return NULL;
         return input_vrpn_open(&d, err, errlen);
     }
+    if (strcmp(type, "usb") == 0) {
+        input_usb_desc d = {.name = name};
+        if (parse_usb(j, path, index, &d, err, errlen))
+            return NULL;
+        return input_usb_open(&d, err, errlen);
+    }
     if (strcmp(type, "playback") == 0) {
         const char *file = get_str(j, "file");
         if (!file) {
@@ -284,7 +365,7 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
         return input_playback_open(&d, err, errlen);
     }
     snprintf(err, errlen, "input config %s: sources[%d] has unknown type \"%s\" (dtrack, "
-             "vrpn, playback)", path, index, type);
+             "vrpn, usb, desk, playback)", path, index, type);
     return NULL;
 }
 
