@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "input_desk.h"
 #include "input_dtrack.h"
 #include "input_playback.h"
 #include "input_source.h"
@@ -342,6 +343,11 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
                       path, "axes", "X, Y, Z, W", err, errlen))
             return NULL;
         return input_vrpn_open(&d, err, errlen);
+    }
+    if (strcmp(type, "desk") == 0) {
+        input_desk_desc d = {.name = name, .width = get_int(j, "width", 0),
+                             .height = get_int(j, "height", 0)};
+        return input_desk_open(&d, err, errlen);
     }
     if (strcmp(type, "usb") == 0) {
         input_usb_desc d = {.name = name};
