@@ -234,12 +234,50 @@ static void test_bad_recordings(void **state)
     assert_non_null(strstr(err, "cannot open"));
 }
 
+/* The demo's recorded session (configs/input) replays completely and drives every layout;
+ * it opens the same way directly and through configs/input/demo.json. */
+static void test_sample_session(void **state)
+{
+    const char *paths[] = {CAVELIGHT_SOURCE_DIR "/configs/input/demo-session.txt",
+                           CAVELIGHT_SOURCE_DIR "/configs/input/demo.json"};
+    static entry stream[2][POLLS + 10];
+    static input_state states[POLLS + 10];
+    for (int k = 0; k < 2; k++) {
+        char err[256];
+        input *in = input_open(&(input_desc){.path = paths[k]}, err, sizeof err);
+        if (!in)
+            fail_msg("%s", err);
+        int n;
+        run(in, stream[k], states, &n);
+        input_close(in);
+        assert_int_equal(n, 150);
+        uint32_t all = 0;
+        for (int i = 0; i < n; i++)
+            all |= stream[k][i].changed;
+        const uint32_t want = INTERACTION_CHANGED_HEAD | INTERACTION_CHANGED_WAND |
+                              INTERACTION_CHANGED_NAVIGATION | INTERACTION_CHANGED_LIGHT |
+                              INTERACTION_CHANGED_STEPS | INTERACTION_CHANGED_ABSORPTION |
+                              INTERACTION_CHANGED_LAMBDA | INTERACTION_CHANGED_LAYOUT;
+        assert_int_equal(all & want, want);
+        const frame_params *last = &stream[k][n - 1].p;
+        assert_int_equal(last->hud_layout, INTERACTION_SETTINGS);
+        assert_true(last->navigation[14] < -0.3f);             /* flew forward */
+        assert_true(last->navigation[8] > 0.2f);  /* turned left: CAVE -Z now points to -X */
+        assert_float_equal(last->lights[0].intensity, 20.0f, 1e-3);
+        assert_true(last->lights[0].color[2] < 0.9f);          /* tinted */
+        assert_int_equal(last->lpv_steps, 9);
+        assert_float_equal(last->lambda_incr, 0.8f, 0);
+    }
+    assert_memory_equal(stream[0], stream[1], sizeof stream[0]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_record_and_replay_twice),
         cmocka_unit_test(test_realtime_playback),
         cmocka_unit_test(test_bad_recordings),
+        cmocka_unit_test(test_sample_session),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
