@@ -10,6 +10,7 @@ static const struct {
     const char *usage;
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
+    {"input", bench_input, "input [--iterations N]"},
 };
 
 int main(int argc, char **argv)
