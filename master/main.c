@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "cluster_master.h"
+#include "input.h"
+#include "interaction.h"
 #include "overview.h"
 #include "scene.h"
 #include "spawn.h"
@@ -40,11 +42,11 @@ static void usage(void)
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
             "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--quiet]\n");
+            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n");
 }
 
 typedef struct options {
-    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file;
+    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input;
     int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet;
     double dt, fps;
 } options;
@@ -75,6 +77,7 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--overview") == 0) o->overview = v;
         else if (strcmp(a, "--endpoint-file") == 0) o->endpoint_file = v;
+        else if (strcmp(a, "--input") == 0) o->input = v;
         else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
         else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
         else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
@@ -380,11 +383,38 @@ int main(int argc, char **argv)
     static run_stats rs;
     script sc;
     script_init(&sc, &cfg, cluster_master_params(m));
+    /* Live or recorded input (docs/input.md) replaces the scripted path. */
+    input *in = NULL;
+    interaction ia;
+    if (o.input) {
+        input_desc idesc = {.path = o.input};
+        memcpy(idesc.tracker_to_cave, cfg.observer.tracker_to_cave, sizeof idesc.tracker_to_cave);
+        if (!(in = input_open(&idesc, err, sizeof err))) {
+            fprintf(stderr, "cavelight-master: %s\n", err);
+            exit_code = 1;
+            stop_requested = 1;
+        }
+        interaction_init(&ia, &(interaction_desc){0});
+    }
     double start = now_ms();
     uint64_t last_version = 0;
     for (int frame = 0; (o.frames == 0 || frame < o.frames) && !stop_requested; frame++) {
-        double t = o.dt > 0 ? frame * o.dt : (now_ms() - start) / 1000.0;
-        script_apply(&sc, t, cluster_master_params(m));
+        params_store *store = cluster_master_params(m);
+        if (in) {
+            input_state ist;
+            if (input_poll(in, &ist, err, sizeof err) != 0)
+                fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+            if (ist.finished)
+                break; /* a stepped recording has ended */
+            interaction_update(&ia, &ist, ist.dt, &fp);
+            fp.time = ist.time;
+            fp.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns the epoch */
+            params_set_from_frame(store, &fp);
+            params_set_i32(store, PARAMS_LPV_RESOLUTION, interaction_pipeline(&ia) ? 64 : 0);
+        } else {
+            double t = o.dt > 0 ? frame * o.dt : (now_ms() - start) / 1000.0;
+            script_apply(&sc, t, store);
+        }
         cluster_frame_result r;
         if (cluster_master_frame(m, &r) != 0) {
             fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", o.wait_ms);
@@ -412,6 +442,8 @@ int main(int argc, char **argv)
     cluster_master_stats_get(m, &st);
     if (o.report && write_report(o.report, &cfg, m, &rs, wall, last_version, snap_bytes) != 0)
         exit_code = 1;
+    if (in)
+        input_close(in);
     cluster_master_destroy(m); /* BYE: spawned nodes leave by themselves */
     if (children.count) {
         for (int waited = 0; spawn_reap(&children) > 0 && waited < 10000; waited += 20)

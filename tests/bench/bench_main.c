@@ -11,6 +11,7 @@ static const struct {
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
     {"cluster", bench_cluster, "cluster --nodes N [--frames F]"},
+    {"input", bench_input, "input [--iterations N]"},
 };
 
 int main(int argc, char **argv)
