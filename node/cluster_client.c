@@ -228,6 +228,8 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                     break;
             }
             zmq_msg_close(&msg);
+            if (!pending && now_ms() >= deadline)
+                return CLUSTER_EVENT_NONE;
             continue;
         }
         c->last_heard = now_ms();
@@ -314,5 +316,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             break;
         }
         zmq_msg_close(&msg);
+        if (!pending && now_ms() >= deadline)
+            return CLUSTER_EVENT_NONE; /* a flood cannot hold the caller past its timeout */
     }
 }
