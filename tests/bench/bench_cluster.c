@@ -2,6 +2,7 @@
  * FRAME to every node, waits for every READY, sends SWAP) with N nodes in stub render
  * mode over TCP loopback, next to a raw TCP ping-pong of the same message size measured
  * in the same run; and the bytes of a head-tracked FRAME versus a full SNAPSHOT.
+ * --transport ipc uses a Unix socket instead of TCP loopback (the baseline stays TCP).
  * Nodes are threads running the real node loop (cluster_node_run), each with its own
  * ZeroMQ context, as separate processes would have. */
 #define _DEFAULT_SOURCE
@@ -127,11 +128,14 @@ static int tcp_ping_pong(int bytes, int rounds, double *median, double *p99)
 int bench_cluster(int argc, char **argv)
 {
     int nodes = 10, frames = 2000;
+    const char *transport = "tcp";
     for (int i = 1; i + 1 < argc; i += 2) {
         if (strcmp(argv[i], "--nodes") == 0)
             nodes = atoi(argv[i + 1]);
         else if (strcmp(argv[i], "--frames") == 0)
             frames = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--transport") == 0)
+            transport = argv[i + 1];
     }
     if (nodes < 1 || nodes > CLUSTER_MAX_NODES || frames < 10) {
         fprintf(stderr, "cavelight-bench cluster: --nodes 1..%d, --frames >= 10\n", CLUSTER_MAX_NODES);
@@ -154,7 +158,10 @@ int bench_cluster(int argc, char **argv)
         fprintf(stderr, "%s\n", err);
         return 1;
     }
-    cluster_master_desc md = {.config = &cfg, .quiet = 1};
+    char ipc[128];
+    snprintf(ipc, sizeof ipc, "ipc:///tmp/cavelight-bench-%d", (int)getpid());
+    int use_ipc = strcmp(transport, "ipc") == 0;
+    cluster_master_desc md = {.config = &cfg, .quiet = 1, .bind = use_ipc ? ipc : NULL};
     cluster_master *m = cluster_master_create(&md, err, sizeof err);
     if (!m) {
         fprintf(stderr, "%s\n", err);
@@ -203,12 +210,14 @@ int bench_cluster(int argc, char **argv)
     if (tcp_ping_pong((int)head_bytes, frames, &tcp_med, &tcp_p99) != 0)
         fprintf(stderr, "cavelight-bench cluster: raw TCP baseline failed\n");
     double med = pct(rt, frames, 0.5), p99 = pct(rt, frames, 0.99);
-    printf("{\"bench\": \"cluster\", \"nodes\": %d, \"nodes_live\": %d, \"frames\": %d, \"incomplete_frames\": %d, "
+    if (use_ipc)
+        unlink(ipc + 6);
+    printf("{\"bench\": \"cluster\", \"transport\": \"%s\", \"nodes\": %d, \"nodes_live\": %d, \"frames\": %d, \"incomplete_frames\": %d, "
            "\"desyncs\": %llu, \"round_trip_ms\": {\"median\": %.4f, \"p99\": %.4f}, "
            "\"tcp_ping_pong_ms\": {\"median\": %.4f, \"p99\": %.4f, \"bytes\": %zu}, "
            "\"round_trip_over_tcp\": %.2f, \"bytes_per_frame_head_tracked\": %zu, "
            "\"bytes_per_frame_all_nodes\": %zu, \"snapshot_bytes\": %zu}\n",
-           nodes, live, frames, incomplete, (unsigned long long)st.desyncs, med, p99, tcp_med, tcp_p99, head_bytes,
+           use_ipc ? "ipc" : "tcp", nodes, live, frames, incomplete, (unsigned long long)st.desyncs, med, p99, tcp_med, tcp_p99, head_bytes,
            tcp_med > 0 ? med / tcp_med : 0, head_bytes, head_bytes * (size_t)nodes, snap_bytes);
     free(rt);
     return incomplete || live != nodes ? 1 : 0;

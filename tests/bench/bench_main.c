@@ -10,7 +10,7 @@ static const struct {
     const char *usage;
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
-    {"cluster", bench_cluster, "cluster --nodes N [--frames F]"},
+    {"cluster", bench_cluster, "cluster --nodes N [--frames F] [--transport tcp|ipc]"},
     {"input", bench_input, "input [--iterations N]"},
 };
 
