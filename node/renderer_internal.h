@@ -18,7 +18,7 @@ typedef struct renderer_queries {
     GLuint id[RENDERER_QUERY_RING][4];
     int pending[RENDERER_QUERY_RING];
     int next;
-    int warm;                /* 0 until the first result was dropped */
+    long dropped;            /* implausible readings thrown away */
     double ms[4];            /* latest results that arrived */
 } renderer_queries;
 
