@@ -4,7 +4,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "sh.h"
 
 /* One kernel, written against a tiny 8-lane vector layer: AVX2+FMA intrinsics when the
  * build targets them, plain C with fmaf otherwise. Both layers perform the same IEEE
@@ -240,7 +239,8 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
             jb.g[j][s] = t->gamma[j][s];
             jb.a[j][s] = (float)((1.0 - lt) * t->gamma[j][s]);
         }
-        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls * SH_ENERGY);
+        /* g_j l_s <S|1> / <G_j|1> = (g_j l_s / G_j0) S_0 */
+        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls / t->gamma[j][0]);
     }
     workpool_run(desc->pool, src->n[2], slice, &jb);
 }
