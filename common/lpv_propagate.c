@@ -4,7 +4,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "sh.h"
 
 /* One kernel, written against a tiny 8-lane vector layer: AVX2+FMA intrinsics when the
  * build targets them, plain C with fmaf otherwise. Both layers perform the same IEEE
@@ -70,7 +69,9 @@ static inline void vf_store(float *p, vf a, int n) { memcpy(p, a.v, (size_t)(n <
 
 #define ALWAYS_INLINE inline __attribute__((always_inline))
 
-enum { CHUNK = 128 }; /* cells of a row whose blocking weights are held at once */
+/* Cells of a row whose blocking weights are held at once; rows of the buffer are W_STRIDE
+ * apart (not a power of two, so that the 26 rows spread over the L1 sets). */
+enum { CHUNK = 128, W_STRIDE = CHUNK + 16 };
 
 typedef struct job {
     const lpv_volume *src;
@@ -90,10 +91,11 @@ typedef struct row_ctx {
     int nx;
 } row_ctx;
 
-/* w_j = 1 - clamp(<B[c - o_j] | G_j>, 0, 1) for the cells [cx, cx + cn) of the row. Lanes
- * past a row's ends read neighbouring cells or the guard; they multiply zero light. */
+/* w_j = 1 - clamp(<B[c - o_j] | G_j>, 0, 1) for the cells [cx, cx + cn) of the row (cn a
+ * multiple of 16). Lanes past a row's ends read neighbouring cells or the guard; they
+ * belong to cells that are never stored. */
 static void blocking_chunk(const job *jb, const row_ctx *r, int cx, int cn,
-                           float w[LPV_NEIGHBOURS][CHUNK])
+                           float w[LPV_NEIGHBOURS][W_STRIDE])
 {
     const lpv_volume *geo = jb->geometry;
     const vf one = vf_set1(1.0f), zero = vf_zero();
@@ -115,101 +117,146 @@ static void blocking_chunk(const job *jb, const row_ctx *r, int cx, int cn,
     }
 }
 
-/* Eight destination cells starting at x0: per colour, four accumulators summed over the
- * 26 neighbours in their fixed order. edge: the block touches a row end, so loads are
- * masked to the row. */
-static ALWAYS_INLINE void block(const job *jb, const row_ctx *r, int x0,
-                                const float w[LPV_NEIGHBOURS][CHUNK], int wx, int edge,
-                                int blocking, int clamp)
+/* Sixteen destination cells from x0, one colour at a time: eight accumulators (two
+ * vectors of 4 SH coefficients) stay in registers across the 26 neighbours, summed in
+ * their fixed order, and each broadcast coefficient serves both vectors. Few enough live
+ * values (8 accumulators, 2 factors, 1 coefficient, 4 channel pointers) that nothing
+ * spills on x86-64 with AVX2. edge: the pair holds x = 0 or x = nx - 1, where a
+ * neighbour's source cell may lie beyond the row (x = -1 for dx = +1, x = nx for
+ * dx = -1); its factor is masked to zero there (one AND per factor, not per load).
+ * Lanes past the row's end are computed from whatever lies there and never stored. */
+static ALWAYS_INLINE void pair(const job *jb, const row_ctx *r, int x0,
+                               const float w[LPV_NEIGHBOURS][W_STRIDE], int wx, int edge,
+                               int blocking, int clamp)
 {
-    vmask mask[3];
+    const int nx = r->nx;
+    vmask mask[2][3]; /* [half][dx + 1]: lanes whose source x = x0 + 8 h + l - dx is in the row */
     if (edge)
-        for (int d = 0; d < 3; d++) /* source x = x0 + l - dx must lie in [0, nx) */
-            mask[d] = vmask_range(d - 1 - x0, r->nx - x0 + d - 1);
+        for (int h = 0; h < 2; h++)
+            for (int d = 0; d < 3; d++) {
+                int xb = x0 + 8 * h;
+                mask[h][d] = vmask_range(d - 1 - xb, nx - xb + d - 1);
+            }
     const vf zero = vf_zero();
     for (int c = 0; c < 3; c++) {
         const float *s0 = jb->src->ch[4 * c], *s1 = jb->src->ch[4 * c + 1];
         const float *s2 = jb->src->ch[4 * c + 2], *s3 = jb->src->ch[4 * c + 3];
-        vf acc0 = zero, acc1 = zero, acc2 = zero, acc3 = zero;
+        vf u0 = zero, u1 = zero, u2 = zero, u3 = zero; /* cells x0 .. x0 + 7 */
+        vf v0 = zero, v1 = zero, v2 = zero, v3 = zero; /* cells x0 + 8 .. x0 + 15 */
         for (int j = 0; j < LPV_NEIGHBOURS; j++) {
             if (!r->valid[j])
                 continue;
-            ptrdiff_t o = r->off[j] + x0;
-            vf v0 = vf_load(s0 + o), v1 = vf_load(s1 + o);
-            vf v2 = vf_load(s2 + o), v3 = vf_load(s3 + o);
+            const ptrdiff_t o = r->off[j] + x0;
+            vf a = vf_set1(jb->a[j][0]);
+            vf p = vf_mul(a, vf_load(s0 + o)), q = vf_mul(a, vf_load(s0 + o + 8));
+            a = vf_set1(jb->a[j][1]);
+            p = vf_fma(a, vf_load(s1 + o), p);
+            q = vf_fma(a, vf_load(s1 + o + 8), q);
+            a = vf_set1(jb->a[j][2]);
+            p = vf_fma(a, vf_load(s2 + o), p);
+            q = vf_fma(a, vf_load(s2 + o + 8), q);
+            a = vf_set1(jb->a[j][3]);
+            p = vf_fma(a, vf_load(s3 + o), p);
+            q = vf_fma(a, vf_load(s3 + o + 8), q);
             if (edge) {
-                vmask m = mask[lpv_transfer_offsets[j][0] + 1];
-                v0 = vf_and(v0, m);
-                v1 = vf_and(v1, m);
-                v2 = vf_and(v2, m);
-                v3 = vf_and(v3, m);
+                const int d = lpv_transfer_offsets[j][0] + 1;
+                p = vf_and(p, mask[0][d]);
+                q = vf_and(q, mask[1][d]);
             }
-            vf p = vf_mul(vf_set1(jb->a[j][0]), v0);
-            p = vf_fma(vf_set1(jb->a[j][1]), v1, p);
-            p = vf_fma(vf_set1(jb->a[j][2]), v2, p);
-            p = vf_fma(vf_set1(jb->a[j][3]), v3, p);
-            if (clamp)
+            if (clamp) {
                 p = vf_max(p, zero);
-            if (blocking)
+                q = vf_max(q, zero);
+            }
+            if (blocking) {
                 p = vf_mul(p, vf_load(&w[j][wx]));
-            acc0 = vf_fma(p, vf_set1(jb->g[j][0]), acc0);
-            acc1 = vf_fma(p, vf_set1(jb->g[j][1]), acc1);
-            acc2 = vf_fma(p, vf_set1(jb->g[j][2]), acc2);
-            acc3 = vf_fma(p, vf_set1(jb->g[j][3]), acc3);
+                q = vf_mul(q, vf_load(&w[j][wx + 8]));
+            }
+            vf g = vf_set1(jb->g[j][0]);
+            u0 = vf_fma(p, g, u0);
+            v0 = vf_fma(q, g, v0);
+            g = vf_set1(jb->g[j][1]);
+            u1 = vf_fma(p, g, u1);
+            v1 = vf_fma(q, g, v1);
+            g = vf_set1(jb->g[j][2]);
+            u2 = vf_fma(p, g, u2);
+            v2 = vf_fma(q, g, v2);
+            g = vf_set1(jb->g[j][3]);
+            u3 = vf_fma(p, g, u3);
+            v3 = vf_fma(q, g, v3);
         }
-        int n = r->nx - x0;
         size_t d = r->row + (size_t)x0;
-        vf_store(jb->dst->ch[4 * c] + d, acc0, n);
-        vf_store(jb->dst->ch[4 * c + 1] + d, acc1, n);
-        vf_store(jb->dst->ch[4 * c + 2] + d, acc2, n);
-        vf_store(jb->dst->ch[4 * c + 3] + d, acc3, n);
+        float *const *out = &jb->dst->ch[4 * c];
+        int n = nx - x0;
+        vf_store(out[0] + d, u0, n);
+        vf_store(out[1] + d, u1, n);
+        vf_store(out[2] + d, u2, n);
+        vf_store(out[3] + d, u3, n);
+        if (n > 8) {
+            vf_store(out[0] + d + 8, v0, n - 8);
+            vf_store(out[1] + d + 8, v1, n - 8);
+            vf_store(out[2] + d + 8, v2, n - 8);
+            vf_store(out[3] + d + 8, v3, n - 8);
+        }
     }
 }
 
 /* The row loop, specialized on the two settings so the inner loop has no branches on them. */
 static ALWAYS_INLINE void row_blocks(const job *jb, const row_ctx *r, int blocking, int clamp)
 {
-    _Alignas(32) float w[LPV_NEIGHBOURS][CHUNK];
+    _Alignas(32) float w[LPV_NEIGHBOURS][W_STRIDE];
     int nx = r->nx;
     for (int cx = 0; cx < nx; cx += CHUNK) {
         int cn = nx - cx < CHUNK ? nx - cx : CHUNK;
         if (blocking)
-            blocking_chunk(jb, r, cx, cn, w);
-        for (int x0 = cx; x0 < cx + cn; x0 += 8) {
-            if (x0 == 0 || x0 + 8 >= nx)
-                block(jb, r, x0, w, x0 - cx, 1, blocking, clamp);
+            blocking_chunk(jb, r, cx, (cn + 15) & ~15, w);
+        for (int x0 = cx; x0 < cx + cn; x0 += 16) {
+            if (x0 == 0 || x0 + 16 >= nx)
+                pair(jb, r, x0, w, x0 - cx, 1, blocking, clamp);
             else
-                block(jb, r, x0, w, x0 - cx, 0, blocking, clamp);
+                pair(jb, r, x0, w, x0 - cx, 0, blocking, clamp);
         }
     }
 }
 
-/* One z slice: the work item of the pool. Every cell's sum is the same whatever thread
- * runs it. */
-static void slice(void *ctx, int z)
+/* Destination rows are visited y-major inside a tile of Z_TILE slices: a source row is
+ * used by the 3 x 3 destination rows around it, which then come within a few rows of
+ * each other, so it is read from L2 instead of L3 (y-major over whole slices would
+ * evict it between slices). */
+enum { Z_TILE = 8 };
+
+static void one_row(const job *jb, int y, int z)
 {
-    const job *jb = ctx;
     const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
     row_ctx r;
     r.nx = nx;
-    for (int y = 0; y < ny; y++) {
-        for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-            const int *o = lpv_transfer_offsets[j];
-            int sy = y - o[1], sz = z - o[2];
-            r.valid[j] = sy >= 0 && sy < ny && sz >= 0 && sz < nz;
-            r.off[j] = ((ptrdiff_t)sz * ny + sy) * nx - o[0];
-        }
-        r.row = ((size_t)z * ny + y) * nx;
-        int blocking = jb->geometry != NULL;
-        if (blocking && jb->clamp)
-            row_blocks(jb, &r, 1, 1);
-        else if (blocking)
-            row_blocks(jb, &r, 1, 0);
-        else if (jb->clamp)
-            row_blocks(jb, &r, 0, 1);
-        else
-            row_blocks(jb, &r, 0, 0);
+    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
+        const int *o = lpv_transfer_offsets[j];
+        int sy = y - o[1], sz = z - o[2];
+        r.valid[j] = sy >= 0 && sy < ny && sz >= 0 && sz < nz;
+        r.off[j] = ((ptrdiff_t)sz * ny + sy) * nx - o[0];
     }
+    r.row = ((size_t)z * ny + y) * nx;
+    int blocking = jb->geometry != NULL;
+    if (blocking && jb->clamp)
+        row_blocks(jb, &r, 1, 1);
+    else if (blocking)
+        row_blocks(jb, &r, 1, 0);
+    else if (jb->clamp)
+        row_blocks(jb, &r, 0, 1);
+    else
+        row_blocks(jb, &r, 0, 0);
+}
+
+/* One tile of Z_TILE slices: the work item of the pool. Every cell's sum is the same
+ * whatever thread runs it and in whatever order the rows are visited. */
+static void tile(void *ctx, int item)
+{
+    const job *jb = ctx;
+    const int ny = jb->src->n[1], nz = jb->src->n[2];
+    int z0 = item * Z_TILE, z1 = z0 + Z_TILE < nz ? z0 + Z_TILE : nz;
+    for (int y = 0; y < ny; y++)
+        for (int z = z0; z < z1; z++)
+            one_row(jb, y, z);
 }
 
 static float unit_clamp(float x)
@@ -240,9 +287,10 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
             jb.g[j][s] = t->gamma[j][s];
             jb.a[j][s] = (float)((1.0 - lt) * t->gamma[j][s]);
         }
-        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls * SH_ENERGY);
+        /* g_j l_s <S|1> / <G_j|1> = (g_j l_s / G_j0) S_0 */
+        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls / t->gamma[j][0]);
     }
-    workpool_run(desc->pool, src->n[2], slice, &jb);
+    workpool_run(desc->pool, (src->n[2] + Z_TILE - 1) / Z_TILE, tile, &jb);
 }
 
 double lpv_propagate_flops(size_t cells, int use_blocking)
