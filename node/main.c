@@ -347,8 +347,8 @@ static int standalone_main(const node_options *o)
     static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
                                           "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms"};
     double *samples = calloc((size_t)o->frames * M_COUNT, sizeof *samples);
-    int rc = samples ? 0 : 1;
-    for (int f = 0; f < o->frames && rc == 0; f++) {
+    int rc = samples ? 0 : 1, frames_done_early = 0, frames_run = 0;
+    for (int f = 0; f < o->frames && rc == 0 && !frames_done_early; f++) {
         fp.version = (uint64_t)f;
         fp.time = f / 60.0;
         uint64_t checksum = renderer_frame_pass(r, &fp);
@@ -377,6 +377,12 @@ static int standalone_main(const node_options *o)
             eye_sum[2] += te.final_ms;
             eye_sum[3] += te.eye_host_ms;
         }
+        /* A window shows the first eye; closing it ends the run. */
+        if (rc == 0 && o->gl == GLCTX_GLFW) {
+            renderer_present(r, o->width, o->height);
+            if (!glctx_swap(ctx))
+                frames_done_early = 1;
+        }
         double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
                                 eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
         for (int m = 0; m < M_COUNT; m++) {
@@ -384,6 +390,7 @@ static int standalone_main(const node_options *o)
             samples[(size_t)m * o->frames + f] = vals[m];
         }
         cJSON_AddItemToArray(frames, jf);
+        frames_run++;
         printf("frame %d: lpv %s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
                "eyes %.2f ms\n", f, hex, t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms,
                eye_sum[3]);
@@ -393,7 +400,7 @@ static int standalone_main(const node_options *o)
         cJSON *med = cJSON_AddObjectToObject(report, "median");
         double m[M_COUNT];
         for (int k = 0; k < M_COUNT; k++) {
-            m[k] = median(samples + (size_t)k * o->frames, o->frames);
+            m[k] = median(samples + (size_t)k * o->frames, frames_run);
             cJSON_AddNumberToObject(med, mnames[k], m[k]);
         }
         double total = m[M_FRAME] + m[M_EYE];

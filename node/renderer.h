@@ -66,6 +66,9 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
 int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
                       int want_linear, renderer_image *out);
 void renderer_get_timings(const renderer *r, renderer_timings *out);
+/* Copies the last eye pass's final image into the default framebuffer (a window),
+ * scaled to width x height; for the GLFW backend before glctx_swap(). */
+void renderer_present(renderer *r, int width, int height);
 /* The resolved LPV backend (never AUTO), its lattice, and the propagated light after the
  * last frame pass (12 channels, host memory; read back from GL with the GL backend). */
 renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);

@@ -18,9 +18,8 @@ uniform int u_clamp_negative;
 uniform float u_keep;      // 1 - lambda_t
 uniform float u_scatter;   // lambda_s
 
-const float SH_ONE = 3.544907701811032;  // <Y0|1> = 2 sqrt(pi): energy of the first coefficient
-
-// What neighbour s sends to c: p = <A|L_s> with A = (1 - l_t) G + (g_j l_s <.|1>, 0, 0, 0),
+// What neighbour s sends to c: p = <A|L_s> with A = (1 - l_t) G + (g_j l_s / G_0, 0, 0, 0)
+// (the scattered energy <L_s|1> g_j l_s as a factor of G, whose energy is <G|1>),
 // optionally clamped at 0, times the share 1 - b_j the source cell lets through.
 void gather(ivec3 c, ivec3 o, vec4 g, float outscatter, inout vec4 ar, inout vec4 ag,
             inout vec4 ab)
@@ -29,7 +28,7 @@ void gather(ivec3 c, ivec3 o, vec4 g, float outscatter, inout vec4 ar, inout vec
     if (any(lessThan(s, ivec3(0))) || any(greaterThanEqual(s, u_size)))
         return;
     vec4 a = u_keep * g;
-    a.x += outscatter * u_scatter * SH_ONE;
+    a.x += outscatter * u_scatter / g.x;
     vec3 p = vec3(dot(a, imageLoad(u_src_r, s)), dot(a, imageLoad(u_src_g, s)),
                   dot(a, imageLoad(u_src_b, s)));
     if (u_clamp_negative != 0)

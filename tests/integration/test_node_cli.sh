@@ -24,6 +24,17 @@ done
 cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/osmesa/report.json") \
     || fail "EGL and OSMesa LPV checksums differ"
 
+# A GLFW window on a virtual X display, where xvfb-run exists: same LPV as EGL.
+if command -v xvfb-run > /dev/null; then
+    xvfb-run -a -s "-screen 0 640x480x24" "$node" --standalone --gl glfw --frames 2 \
+        --width 320 --height 240 --out "$out/glfw" > /dev/null || fail "--gl glfw exited non-zero"
+    [ -s "$out/glfw/frame0001_mono.png" ] || fail "GLFW run wrote no PNG"
+    cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/glfw/report.json") \
+        || fail "EGL and GLFW LPV checksums differ"
+else
+    echo "xvfb-run not installed: GLFW window check skipped"
+fi
+
 # Stereo on an off-axis screen (the room's back wall) with linear images.
 "$node" --standalone --frames 1 --width 96 --height 72 --rsm 64 --lattice 16 --eyes stereo \
     --screen -2,0,-2,2,0,-2,-2,3,-2 --eye 0.3,1.6,1.5 --pfm --out "$out/stereo" > /dev/null \
