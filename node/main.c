@@ -363,8 +363,8 @@ static int standalone_main(const node_options *o)
         for (int e = 0; e < eye_count && rc == 0; e++) {
             renderer_image img;
             if (renderer_eye_pass(r, &fp, &eyes[e].view, o->pfm, &img) != 0) {
-                fprintf(stderr, "cavelight-node: eye pass failed (frame %d, eye %s)\n", f,
-                        eyes[e].name);
+                fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
+                        renderer_last_error(r));
                 rc = 1;
                 break;
             }

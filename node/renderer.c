@@ -265,7 +265,7 @@ static int eye_targets(renderer *r, int w, int h)
         return 0;
     const gl_functions *gl = r->gl;
     free_eye_targets(r);
-    char err[160];
+    char err[160] = "out of memory for the eye targets";
     r->g_position = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
     r->g_normal = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
     r->g_albedo = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
@@ -305,8 +305,7 @@ static int eye_targets(renderer *r, int w, int h)
     for (int i = 0; i < 3; i++)
         r->linear[i] = malloc((size_t)w * h * 3 * sizeof(float));
     if (bad || !r->rgba || !r->rgb || !r->linear[0] || !r->linear[1] || !r->linear[2]) {
-        if (bad)
-            fprintf(stderr, "renderer: %s\n", err);
+        snprintf(r->error, sizeof r->error, "renderer: %s (%dx%d)", err, w, h);
         free_eye_targets(r);
         return -1;
     }
@@ -640,7 +639,12 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
                       int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
-    if (view->width <= 0 || view->height <= 0 || eye_targets(r, view->width, view->height))
+    if (view->width <= 0 || view->height <= 0) {
+        snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
+                 view->width, view->height);
+        return -1;
+    }
+    if (eye_targets(r, view->width, view->height))
         return -1;
     double t0 = now_ms();
     int w = view->width, h = view->height;
@@ -765,7 +769,7 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     r->timings.eye_host_ms = now_ms() - t0;
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR) {
-        fprintf(stderr, "renderer: GL error 0x%x in the eye pass\n", (unsigned)e);
+        snprintf(r->error, sizeof r->error, "renderer: GL error 0x%x in the eye pass", (unsigned)e);
         return -1;
     }
     return 0;
@@ -782,6 +786,11 @@ void renderer_present(renderer *r, int width, int height)
     gl->BlitFramebuffer(0, 0, r->eye_w, r->eye_h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
                         GL_LINEAR);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+const char *renderer_last_error(const renderer *r)
+{
+    return r->error;
 }
 
 void renderer_get_timings(const renderer *r, renderer_timings *out)

@@ -66,6 +66,8 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
 int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
                       int want_linear, renderer_image *out);
 void renderer_get_timings(const renderer *r, renderer_timings *out);
+/* One line: why the last renderer_eye_pass() returned -1. */
+const char *renderer_last_error(const renderer *r);
 /* Copies the last eye pass's final image into the default framebuffer (a window),
  * scaled to width x height; for the GLFW backend before glctx_swap(). */
 void renderer_present(renderer *r, int width, int height);

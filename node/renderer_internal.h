@@ -83,6 +83,7 @@ struct renderer {
 
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
+    char error[256];         /* why the last eye pass failed */
 };
 
 /* renderer.c */

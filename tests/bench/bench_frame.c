@@ -152,7 +152,7 @@ int bench_frame(int argc, char **argv)
         double total = med[6] + med[7];
         printf(",\"lpv_share\":%.3f}\n", total > 0 ? (med[1] + med[2]) / total : 0.0);
     } else {
-        fprintf(stderr, "bench frame: eye pass failed\n");
+        fprintf(stderr, "bench frame: %s\n", renderer_last_error(r));
     }
     free(s);
     renderer_destroy(r);
