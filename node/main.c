@@ -21,6 +21,7 @@ typedef struct node_options {
     glctx_backend gl;
     const char *scene;
     renderer_lpv_backend lpv;
+    renderer_tiles tiles;
     int rsm, lattice, threads, clamp_negative;
     int frames, width, height;
     const char *out;
@@ -50,6 +51,7 @@ static void usage(FILE *f)
         "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
         "  --absorption S --scattering S --clamp-negative\n"
+        "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
         "  --env dark|dim|office --display-gamma G --exposure E\n");
 }
 
@@ -126,6 +128,11 @@ static int parse_options(int argc, char **argv, node_options *o)
             if (strcmp(v, "auto") == 0) o->lpv = RENDERER_LPV_AUTO;
             else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
             else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
+            else bad = 1;
+        } else if (strcmp(a, "--gl-tiles") == 0) {
+            if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
+            else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
+            else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
             else bad = 1;
         } else if (strcmp(a, "--env") == 0) {
             if (strcmp(v, "dark") == 0) o->env = FRAME_ENV_DARK;
@@ -305,6 +312,7 @@ static int standalone_main(const node_options *o)
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lpv_gl_tiles = o->tiles,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {

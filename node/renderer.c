@@ -58,9 +58,10 @@ static char *read_text(const char *name, char *err, size_t errlen)
     return s;
 }
 
-/* Source = version + common.glsl + file, with "// @BODY@" in the file replaced by body. */
-static GLuint compile(renderer *r, GLenum type, const char *name, const char *body,
-                      char *err, size_t errlen)
+/* Source = version + defines + common.glsl + file, with "// @BODY@" in the file replaced
+ * by body. defines and body may be NULL. */
+static GLuint compile(renderer *r, GLenum type, const char *name, const char *defines,
+                      const char *body, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
     char *common = read_text("common.glsl", err, errlen);
@@ -70,10 +71,12 @@ static GLuint compile(renderer *r, GLenum type, const char *name, const char *bo
         return 0;
     }
     const char *marker = body ? strstr(text, "// @BODY@") : NULL;
-    const char *parts[6];
-    GLint lengths[6];
+    const char *parts[7];
+    GLint lengths[7];
     int count = 0;
     parts[count] = "#version 430 core\n";
+    lengths[count++] = -1;
+    parts[count] = defines ? defines : "";
     lengths[count++] = -1;
     parts[count] = common;
     lengths[count++] = -1;
@@ -109,18 +112,18 @@ static GLuint compile(renderer *r, GLenum type, const char *name, const char *bo
 }
 
 GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *comp_body, char *err, size_t errlen)
+                        const char *defines, const char *comp_body, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
     GLuint shaders[2] = {0, 0};
     int n = 0;
     if (comp) {
-        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, comp_body, err, errlen)))
+        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, defines, comp_body, err, errlen)))
             return 0;
     } else {
-        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, NULL, err, errlen)))
+        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, defines, NULL, err, errlen)))
             return 0;
-        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, NULL, err, errlen))) {
+        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, defines, NULL, err, errlen))) {
             gl->DeleteShader(shaders[0]);
             return 0;
         }
@@ -489,10 +492,10 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
-    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, err, errlen)) ||
+    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
         renderer_lpv_init(r, desc, software, err, errlen)) {
         renderer_destroy(r);

@@ -25,6 +25,12 @@ typedef enum renderer_lpv_backend {
     RENDERER_LPV_GL,
 } renderer_lpv_backend;
 
+typedef enum renderer_tiles {
+    RENDERER_TILES_AUTO = 0, /* shared-memory tiles on a GPU, plain image loads on llvmpipe */
+    RENDERER_TILES_ON,
+    RENDERER_TILES_OFF,
+} renderer_tiles;
+
 typedef struct renderer_desc {
     const gl_functions *gl; /* the current context's table (glctx_gl()) */
     const scene *scene;
@@ -33,6 +39,7 @@ typedef struct renderer_desc {
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
     int threads;         /* CPU propagation threads, 0 = all cores */
     int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
+    renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */
     float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
                                mean free path (docs/node.md) */
 } renderer_desc;

@@ -56,6 +56,7 @@ struct renderer {
     /* LPV */
     renderer_lpv_backend backend;
     int clamp_negative;
+    int gl_tiles;            /* GL propagation through shared-memory tiles */
     float indirect_scale;
     lattice_desc lattice;
     lpv_transfer transfer;
@@ -88,7 +89,7 @@ struct renderer {
 
 /* renderer.c */
 GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *comp_body, char *err, size_t errlen);
+                        const char *defines, const char *comp_body, char *err, size_t errlen);
 GLuint renderer_texture3d(renderer *r, const int n[3]);
 
 /* renderer_lpv.c */

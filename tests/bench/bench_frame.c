@@ -38,6 +38,7 @@ int bench_frame(int argc, char **argv)
     const char *scene_arg = "default", *gl_name = "egl";
     int width = 320, height = 240, frames = 10, rsm = 256, lattice = 32;
     renderer_lpv_backend lpv = RENDERER_LPV_AUTO;
+    renderer_tiles tiles = RENDERER_TILES_AUTO;
     for (int i = 1; i + 1 < argc; i += 2) {
         if (strcmp(argv[i], "--scene") == 0) scene_arg = argv[i + 1];
         else if (strcmp(argv[i], "--width") == 0) width = atoi(argv[i + 1]);
@@ -46,6 +47,9 @@ int bench_frame(int argc, char **argv)
         else if (strcmp(argv[i], "--rsm") == 0) rsm = atoi(argv[i + 1]);
         else if (strcmp(argv[i], "--lattice") == 0) lattice = atoi(argv[i + 1]);
         else if (strcmp(argv[i], "--gl") == 0) gl_name = argv[i + 1];
+        else if (strcmp(argv[i], "--tiles") == 0)
+            tiles = strcmp(argv[i + 1], "on") == 0 ? RENDERER_TILES_ON
+                    : strcmp(argv[i + 1], "off") == 0 ? RENDERER_TILES_OFF : RENDERER_TILES_AUTO;
         else if (strcmp(argv[i], "--lpv") == 0)
             lpv = strcmp(argv[i + 1], "gl") == 0 ? RENDERER_LPV_GL
                   : strcmp(argv[i + 1], "cpu") == 0 ? RENDERER_LPV_CPU : RENDERER_LPV_AUTO;
@@ -85,7 +89,7 @@ int bench_frame(int argc, char **argv)
         return 1;
     }
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
-                        .rsm_size = rsm, .lattice_cells = lattice};
+                        .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);

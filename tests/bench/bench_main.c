@@ -11,7 +11,7 @@ static const struct {
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
     {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
-                           "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl]"},
+                           "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
 };
 
 int main(int argc, char **argv)
