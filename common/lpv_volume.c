@@ -30,10 +30,11 @@ int lpv_volume_init(lpv_volume *v, const int n[3], int channels)
     }
     if (cells > ((size_t)1 << 34))
         return -1;
-    /* Whole 64-byte lines plus a zeroed guard line before and after each channel, so that
-     * vector loads one cell past either end of a channel stay inside the allocation, and
+    /* Whole 64-byte lines plus zeroed guards before and after each channel, so that
+     * vector loads a few cells past either end of a channel stay inside the allocation, and
      * room for the stagger below. */
-    size_t bytes = ((cells * sizeof(float) + 63) & ~(size_t)63) + 2 * 64 + 63 * 64;
+    size_t bytes = ((cells * sizeof(float) + 63) & ~(size_t)63) +
+                   2 * LPV_VOLUME_GUARD * sizeof(float) + 63 * 64;
     v->cells = cells;
     v->channels = channels;
     for (int c = 0; c < channels; c++) {
