@@ -9,6 +9,8 @@
 
 #include <stdint.h>
 
+struct scene;
+
 enum { FRAME_MAX_LIGHTS = 8 };
 
 typedef enum frame_environment {
@@ -47,6 +49,9 @@ typedef struct frame_params {
 } frame_params;
 
 void frame_params_default(frame_params *p);
+/* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
+ * one spot 1.5 x its height above the centre of its bounds, pointing down. */
+void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);
 

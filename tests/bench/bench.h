@@ -3,5 +3,6 @@
 #define CAVELIGHT_BENCH_H
 
 int bench_lpv(int argc, char **argv);
+int bench_frame(int argc, char **argv);
 
 #endif

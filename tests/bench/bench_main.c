@@ -10,6 +10,8 @@ static const struct {
     const char *usage;
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
+    {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
+                           "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
 };
 
 int main(int argc, char **argv)

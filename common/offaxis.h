@@ -1,0 +1,29 @@
+/* offaxis: view and projection matrices for screens and simple cameras.
+ *
+ * offaxis_screen(): Kooima's generalized perspective projection. A screen is given by its
+ * bottom-left, bottom-right and top-left corners in world space, the eye by its position;
+ * the result is a view matrix (world to eye, looking along the screen's -normal, axes
+ * aligned with the screen) and an asymmetric frustum whose near plane is the screen
+ * scaled to the near distance. Matrices are column-major, OpenGL clip conventions. */
+#ifndef CAVELIGHT_OFFAXIS_H
+#define CAVELIGHT_OFFAXIS_H
+
+typedef struct offaxis_screen_desc {
+    float bottom_left[3], bottom_right[3], top_left[3];
+    float eye[3];
+    float near_plane, far_plane; /* 0 = 0.05, 100 */
+} offaxis_screen_desc;
+
+/* Returns 0, or -1 when the corners are degenerate or the eye lies in the screen plane. */
+int offaxis_screen(const offaxis_screen_desc *desc, float view[16], float projection[16]);
+
+/* Symmetric perspective camera at position looking at target, up = +y (or +z when the
+ * view is vertical). yfov in radians. Returns -1 if position == target. */
+int offaxis_look_at(const float position[3], const float target[3], float yfov, float aspect,
+                    float near_plane, float far_plane, float view[16], float projection[16]);
+
+/* Eye positions for stereo: the head position offset by +-separation/2 along `right`. */
+void offaxis_stereo_eyes(const float head[3], const float right[3], float separation,
+                         float left_eye[3], float right_eye[3]);
+
+#endif

@@ -1,0 +1,86 @@
+/* scene: the scene model every node loads for itself.
+ *
+ * Meshes are flattened to world-space triangles (3 vertices each, no index buffer) with
+ * per-vertex unit normals and uvs and one material index per triangle. Materials carry a
+ * linear base colour factor, an optional base colour texture (RGBA8, sRGB-encoded as in
+ * glTF) and emitted radiance (emissive surfaces are surface lights). Lights are spots.
+ *
+ * scene_load() picks the loader: "default" builds the built-in room (scene_default.c),
+ * *.gltf / *.glb go through tinygltf (gltf_import.cpp). The scene owns its arrays;
+ * scene_free() releases them. The scene_add_* builders are what the loaders use. */
+#ifndef CAVELIGHT_SCENE_H
+#define CAVELIGHT_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+enum { SCENE_MAX_LIGHTS = 8 };
+
+typedef struct scene_material {
+    float base_color[4];    /* linear RGBA factor */
+    int base_color_texture; /* index into textures, -1 = none */
+    float emissive[3];      /* emitted radiance, linear RGB, W/(sr m^2) */
+    float roughness;        /* [0,1], glTF roughnessFactor */
+} scene_material;
+
+typedef struct scene_texture {
+    int width, height;
+    uint8_t *rgba;          /* width*height*4, first row first, sRGB-encoded */
+} scene_texture;
+
+typedef struct scene_light {
+    float position[3];
+    float direction[3];     /* unit spot axis */
+    float color[3];         /* linear RGB */
+    float intensity;        /* radiant intensity on the axis, W/sr (glTF candela taken as W/sr) */
+    float outer_angle;      /* half angle, radians */
+    float inner_angle;
+} scene_light;
+
+typedef struct scene_camera {
+    int valid;
+    float position[3], target[3];
+    float yfov;             /* radians */
+} scene_camera;
+
+typedef struct scene {
+    size_t triangle_count;
+    float *positions;       /* 9 floats per triangle */
+    float *normals;         /* 9 floats per triangle, unit */
+    float *uvs;             /* 6 floats per triangle */
+    uint32_t *triangle_material;
+    size_t triangle_capacity;
+    size_t material_count;
+    scene_material *materials;
+    size_t texture_count;
+    scene_texture *textures;
+    int light_count;
+    scene_light lights[SCENE_MAX_LIGHTS];
+    scene_camera camera;    /* suggested view, if the scene has one */
+    float bounds_min[3], bounds_max[3]; /* valid after scene_finish() */
+} scene;
+
+/* "default" or a .gltf/.glb path. Returns 0, or -1 with one line in err (and *out empty). */
+int scene_load(const char *path, scene *out, char *err, size_t errlen);
+void scene_free(scene *s);
+
+/* Builders. Each returns the new index (>= 0) or -1 when out of memory. */
+int scene_add_material(scene *s, const scene_material *m);
+/* Takes ownership of rgba (malloc'ed, width*height*4). */
+int scene_add_texture(scene *s, int width, int height, uint8_t *rgba);
+/* normals: 9 floats or NULL for the face normal; uvs: 6 floats or NULL for zeros. */
+long scene_add_triangle(scene *s, const float positions[9], const float *normals,
+                        const float *uvs, uint32_t material);
+/* Appends an axis-aligned box with outward (or inward, for a room) faces. */
+int scene_add_box(scene *s, const float min[3], const float max[3], int inward, uint32_t material);
+int scene_add_light(scene *s, const scene_light *l);
+/* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
+int scene_finish(scene *s, char *err, size_t errlen);
+
+/* Built-in room: 4 x 3 x 4 m, red left wall, green right wall, white rest, two boxes,
+ * a small emissive panel and one spotlight. Needs no files. */
+int scene_default_build(scene *s, char *err, size_t errlen);
+/* glTF 2.0 via tinygltf (gltf_import.cpp). */
+int gltf_import(const char *path, scene *out, char *err, size_t errlen);
+
+#endif

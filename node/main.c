@@ -1,0 +1,455 @@
+/* cavelight-node: a render node. `--standalone` renders without a master and writes
+ * images and a timing report; cluster mode (a master's FRAME/SWAP loop) plugs in at
+ * node_main() below. */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "frame_params.h"
+#include "glctx.h"
+#include "image.h"
+#include "offaxis.h"
+#include "renderer.h"
+#include "scene.h"
+
+typedef struct node_options {
+    int standalone;
+    glctx_backend gl;
+    const char *scene;
+    renderer_lpv_backend lpv;
+    renderer_tiles tiles;
+    int rsm, lattice, threads, clamp_negative;
+    int frames, width, height;
+    const char *out;
+    int pfm;
+    /* camera: look-at unless a screen is given */
+    int have_position, have_target, have_screen, have_eye;
+    float position[3], target[3], fov_deg;
+    float screen[9], eye[3];
+    int stereo;
+    float eye_separation;
+    /* frame parameters */
+    int steps;
+    float lambda, absorption, scattering, display_gamma, exposure;
+    frame_environment env;
+} node_options;
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "usage: cavelight-node --standalone [options]\n"
+        "  --gl egl|osmesa|glfw         GL context (default egl)\n"
+        "  --scene FILE|default         glTF 2.0 (.gltf/.glb) or the built-in room\n"
+        "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
+        "  --pfm                        also write linear final/direct/indirect PFMs\n"
+        "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
+        "  --screen blx,bly,blz,brx,bry,brz,tlx,tly,tlz --eye x,y,z   off-axis screen\n"
+        "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
+        "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
+        "  --absorption S --scattering S --clamp-negative\n"
+        "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
+        "  --env dark|dim|office --display-gamma G --exposure E\n");
+}
+
+static int parse_floats(const char *s, float *out, int n)
+{
+    for (int i = 0; i < n; i++) {
+        char *end;
+        errno = 0;
+        out[i] = strtof(s, &end);
+        if (end == s || errno || !isfinite(out[i]))
+            return -1;
+        s = end;
+        if (i + 1 < n) {
+            if (*s != ',')
+                return -1;
+            s++;
+        }
+    }
+    return *s ? -1 : 0;
+}
+
+static int parse_int(const char *s, int *out, int lo, int hi)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+static int parse_options(int argc, char **argv, node_options *o)
+{
+    *o = (node_options){
+        .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
+        .fov_deg = -1, .eye_separation = 0.065f, .steps = -1, .lambda = -1,
+        .absorption = 0, .scattering = 0, .display_gamma = 2.2f, .exposure = 1,
+        .env = FRAME_ENV_DIM,
+    };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int bad = 0, takes = 1;
+        if (strcmp(a, "--standalone") == 0) { o->standalone = 1; takes = 0; }
+        else if (strcmp(a, "--pfm") == 0) { o->pfm = 1; takes = 0; }
+        else if (strcmp(a, "--clamp-negative") == 0) { o->clamp_negative = 1; takes = 0; }
+        else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout); exit(0); }
+        else if (!v) bad = 1;
+        else if (strcmp(a, "--gl") == 0) bad = glctx_parse_backend(v, &o->gl);
+        else if (strcmp(a, "--scene") == 0) o->scene = v;
+        else if (strcmp(a, "--out") == 0) o->out = v;
+        else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
+        else if (strcmp(a, "--width") == 0) bad = parse_int(v, &o->width, 1, 16384);
+        else if (strcmp(a, "--height") == 0) bad = parse_int(v, &o->height, 1, 16384);
+        else if (strcmp(a, "--rsm") == 0) bad = parse_int(v, &o->rsm, 8, 4096);
+        else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
+        else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
+        else if (strcmp(a, "--steps") == 0) bad = parse_int(v, &o->steps, 0, 1000);
+        else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &o->lambda, 1) || o->lambda < 0 || o->lambda >= 1;
+        else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &o->absorption, 1);
+        else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &o->scattering, 1);
+        else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &o->display_gamma, 1) || o->display_gamma <= 0;
+        else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &o->exposure, 1) || o->exposure <= 0;
+        else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
+        else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
+        else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
+        else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
+        else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
+        else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
+        else if (strcmp(a, "--eyes") == 0) {
+            o->stereo = strcmp(v, "stereo") == 0;
+            bad = !o->stereo && strcmp(v, "mono") != 0;
+        } else if (strcmp(a, "--lpv") == 0) {
+            if (strcmp(v, "auto") == 0) o->lpv = RENDERER_LPV_AUTO;
+            else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
+            else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
+            else bad = 1;
+        } else if (strcmp(a, "--gl-tiles") == 0) {
+            if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
+            else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
+            else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
+            else bad = 1;
+        } else if (strcmp(a, "--env") == 0) {
+            if (strcmp(v, "dark") == 0) o->env = FRAME_ENV_DARK;
+            else if (strcmp(v, "dim") == 0) o->env = FRAME_ENV_DIM;
+            else if (strcmp(v, "office") == 0) o->env = FRAME_ENV_OFFICE;
+            else bad = 1;
+        } else {
+            fprintf(stderr, "cavelight-node: unknown option %s (see --help)\n", a);
+            return -1;
+        }
+        if (bad) {
+            fprintf(stderr, "cavelight-node: bad or missing value for %s%s%s (see --help)\n",
+                    a, v ? ": " : "", v && takes ? v : "");
+            return -1;
+        }
+        i += takes;
+    }
+    if (o->have_screen != o->have_eye) {
+        fprintf(stderr, "cavelight-node: --screen and --eye go together\n");
+        return -1;
+    }
+    return 0;
+}
+
+typedef struct eye_setup {
+    const char *name;
+    renderer_view view;
+} eye_setup;
+
+/* Mono: one view; stereo: left and right eyes offset along the screen's (or camera's)
+ * right vector, with off-axis frusta for screens and parallel axes for cameras. */
+static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
+{
+    float right[3], head[3];
+    float aspect = (float)o->width / (float)o->height;
+    if (o->have_screen) {
+        float len = 0;
+        for (int i = 0; i < 3; i++) {
+            right[i] = o->screen[3 + i] - o->screen[i];
+            len += right[i] * right[i];
+        }
+        len = sqrtf(len);
+        for (int i = 0; i < 3; i++)
+            right[i] = len > 0 ? right[i] / len : 0;
+        memcpy(head, o->eye, sizeof head);
+    } else {
+        memcpy(head, o->position, sizeof head);
+        float f[3], up[3] = {0, 1, 0};
+        for (int i = 0; i < 3; i++)
+            f[i] = o->target[i] - o->position[i];
+        right[0] = f[1] * up[2] - f[2] * up[1];
+        right[1] = f[2] * up[0] - f[0] * up[2];
+        right[2] = f[0] * up[1] - f[1] * up[0];
+        float len = sqrtf(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+        for (int i = 0; i < 3; i++)
+            right[i] = len > 0 ? right[i] / len : (i == 0);
+    }
+    float pos[2][3];
+    *count = o->stereo ? 2 : 1;
+    if (o->stereo) {
+        offaxis_stereo_eyes(head, right, o->eye_separation, pos[0], pos[1]);
+        eyes[0].name = "left";
+        eyes[1].name = "right";
+    } else {
+        memcpy(pos[0], head, sizeof head);
+        eyes[0].name = "mono";
+    }
+    float extent = 0;
+    for (int a = 0; a < 3; a++)
+        extent += (s->bounds_max[a] - s->bounds_min[a]) * (s->bounds_max[a] - s->bounds_min[a]);
+    float far_plane = 4.0f * sqrtf(extent) + 10.0f;
+    for (int e = 0; e < *count; e++) {
+        renderer_view *v = &eyes[e].view;
+        v->width = o->width;
+        v->height = o->height;
+        memcpy(v->eye_position, pos[e], sizeof pos[e]);
+        int rc;
+        if (o->have_screen) {
+            offaxis_screen_desc sd = {.near_plane = 0.02f, .far_plane = far_plane};
+            memcpy(sd.bottom_left, o->screen, 12);
+            memcpy(sd.bottom_right, o->screen + 3, 12);
+            memcpy(sd.top_left, o->screen + 6, 12);
+            memcpy(sd.eye, pos[e], 12);
+            rc = offaxis_screen(&sd, v->view, v->projection);
+        } else {
+            float target[3];
+            for (int i = 0; i < 3; i++)
+                target[i] = o->target[i] + pos[e][i] - head[i];
+            rc = offaxis_look_at(pos[e], target, o->fov_deg * 3.14159265f / 180.0f, aspect,
+                                 0.02f, far_plane, v->view, v->projection);
+        }
+        if (rc != 0) {
+            fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
+                    "in the screen plane, or position equal to target)\n");
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static double median(double *v, int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = t;
+        }
+    return n ? (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])) : 0;
+}
+
+static int write_images(const node_options *o, int frame, const char *eye,
+                        const renderer_image *img)
+{
+    char path[4096], err[256];
+    snprintf(path, sizeof path, "%s/frame%04d_%s.png", o->out, frame, eye);
+    if (image_write_png(path, img->width, img->height, img->rgb, err, sizeof err))
+        return fprintf(stderr, "cavelight-node: %s\n", err), -1;
+    if (!o->pfm)
+        return 0;
+    const char *kind[3] = {"final", "direct", "indirect"};
+    const float *data[3] = {img->final, img->direct, img->indirect};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/frame%04d_%s_%s.pfm", o->out, frame, eye, kind[k]);
+        if (image_write_pfm(path, img->width, img->height, data[k], err, sizeof err))
+            return fprintf(stderr, "cavelight-node: %s\n", err), -1;
+    }
+    return 0;
+}
+
+static int standalone_main(const node_options *o)
+{
+    char err[512];
+    if (o->out && mkdir(o->out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "cavelight-node: cannot create output folder %s (%s)\n", o->out,
+                strerror(errno));
+        return 1;
+    }
+    scene sc;
+    if (scene_load(o->scene, &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        return 1;
+    }
+    node_options opt = *o;
+    if (!opt.have_position || !opt.have_target) {
+        float centre[3], size = 0;
+        for (int a = 0; a < 3; a++) {
+            centre[a] = 0.5f * (sc.bounds_min[a] + sc.bounds_max[a]);
+            size = fmaxf(size, sc.bounds_max[a] - sc.bounds_min[a]);
+        }
+        if (!opt.have_position) {
+            if (sc.camera.valid)
+                memcpy(opt.position, sc.camera.position, 12);
+            else
+                for (int a = 0; a < 3; a++)
+                    opt.position[a] = centre[a] + (a == 2 ? 1.5f * size : a == 1 ? 0.3f * size : 0);
+        }
+        if (!opt.have_target)
+            memcpy(opt.target, sc.camera.valid ? sc.camera.target : centre, 12);
+    }
+    if (opt.fov_deg <= 0)
+        opt.fov_deg = sc.camera.valid ? sc.camera.yfov * 180.0f / 3.14159265f : 60.0f;
+    eye_setup eyes[2];
+    int eye_count;
+    if (make_views(&opt, &sc, eyes, &eye_count) != 0) {
+        scene_free(&sc);
+        return 1;
+    }
+    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
+                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        scene_free(&sc);
+        return 1;
+    }
+    renderer_desc rd = {
+        .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
+        .lattice_cells = o->lattice, .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lpv_gl_tiles = o->tiles,
+    };
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    if (!r) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        glctx_destroy(ctx);
+        scene_free(&sc);
+        return 1;
+    }
+    frame_params fp;
+    frame_params_default(&fp);
+    frame_params_lights_from_scene(&fp, &sc);
+    if (o->steps >= 0) fp.lpv_steps = o->steps;
+    if (o->lambda >= 0) fp.lambda_incr = o->lambda;
+    fp.absorption = o->absorption;
+    fp.scattering = o->scattering;
+    fp.environment = o->env;
+    fp.display_gamma = o->display_gamma;
+    fp.exposure = o->exposure;
+
+    const lattice_desc *lat = renderer_get_lattice(r);
+    const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
+    printf("cavelight-node: %s, %s, scene %s (%zu triangles), lattice %dx%dx%d, LPV on %s\n",
+           glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc.triangle_count, lat->n[0],
+           lat->n[1], lat->n[2], backend);
+
+    cJSON *report = cJSON_CreateObject();
+    cJSON_AddStringToObject(report, "scene", o->scene);
+    cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
+    cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
+    cJSON_AddStringToObject(report, "lpv_backend", backend);
+    cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
+    cJSON_AddNumberToObject(report, "triangles", (double)sc.triangle_count);
+    cJSON_AddNumberToObject(report, "width", o->width);
+    cJSON_AddNumberToObject(report, "height", o->height);
+    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
+    cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
+    cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
+    cJSON *frames = cJSON_AddArrayToObject(report, "frames");
+    enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
+    static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
+                                          "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms"};
+    double *samples = calloc((size_t)o->frames * M_COUNT, sizeof *samples);
+    int rc = samples ? 0 : 1, frames_done_early = 0, frames_run = 0;
+    for (int f = 0; f < o->frames && rc == 0 && !frames_done_early; f++) {
+        fp.version = (uint64_t)f;
+        fp.time = f / 60.0;
+        uint64_t checksum = renderer_frame_pass(r, &fp);
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        cJSON *jf = cJSON_CreateObject();
+        char hex[17];
+        snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
+        cJSON_AddNumberToObject(jf, "frame", f);
+        cJSON_AddStringToObject(jf, "lpv_checksum", hex);
+        double eye_sum[4] = {0, 0, 0, 0};
+        for (int e = 0; e < eye_count && rc == 0; e++) {
+            renderer_image img;
+            if (renderer_eye_pass(r, &fp, &eyes[e].view, o->pfm, &img) != 0) {
+                fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
+                        renderer_last_error(r));
+                rc = 1;
+                break;
+            }
+            if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
+                rc = 1;
+            renderer_timings te;
+            renderer_get_timings(r, &te);
+            eye_sum[0] += te.gbuffer_ms;
+            eye_sum[1] += te.shade_ms;
+            eye_sum[2] += te.final_ms;
+            eye_sum[3] += te.eye_host_ms;
+        }
+        /* A window shows the first eye; closing it ends the run. */
+        if (rc == 0 && o->gl == GLCTX_GLFW) {
+            renderer_present(r, o->width, o->height);
+            if (!glctx_swap(ctx))
+                frames_done_early = 1;
+        }
+        double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
+                                eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
+        for (int m = 0; m < M_COUNT; m++) {
+            cJSON_AddNumberToObject(jf, mnames[m], vals[m]);
+            samples[(size_t)m * o->frames + f] = vals[m];
+        }
+        cJSON_AddItemToArray(frames, jf);
+        frames_run++;
+        printf("frame %d: lpv %s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
+               "eyes %.2f ms\n", f, hex, t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms,
+               eye_sum[3]);
+    }
+    if (rc == 0) {
+        /* GPU timer results arrive a few frames late: the first frames report 0 there. */
+        cJSON *med = cJSON_AddObjectToObject(report, "median");
+        double m[M_COUNT];
+        for (int k = 0; k < M_COUNT; k++) {
+            m[k] = median(samples + (size_t)k * o->frames, frames_run);
+            cJSON_AddNumberToObject(med, mnames[k], m[k]);
+        }
+        double total = m[M_FRAME] + m[M_EYE];
+        cJSON_AddNumberToObject(report, "lpv_share",
+                                total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);
+        if (o->out) {
+            char path[4096];
+            snprintf(path, sizeof path, "%s/report.json", o->out);
+            char *text = cJSON_Print(report);
+            FILE *f = fopen(path, "w");
+            if (!text || !f || fputs(text, f) < 0) {
+                fprintf(stderr, "cavelight-node: cannot write %s\n", path);
+                rc = 1;
+            }
+            if (f)
+                fclose(f);
+            free(text);
+        }
+    }
+    free(samples);
+    cJSON_Delete(report);
+    renderer_destroy(r);
+    glctx_destroy(ctx);
+    scene_free(&sc);
+    return rc;
+}
+
+/* Cluster mode (--config / --connect) is added here by the cluster client. */
+static int node_main(const node_options *o)
+{
+    if (o->standalone)
+        return standalone_main(o);
+    fprintf(stderr, "cavelight-node: no mode given: use --standalone (cluster mode is not in "
+            "this build)\n");
+    return 2;
+}
+
+int main(int argc, char **argv)
+{
+    node_options o;
+    if (parse_options(argc, argv, &o) != 0)
+        return 2;
+    return node_main(&o);
+}

@@ -1,0 +1,805 @@
+/* renderer: GL passes of the render node (RSM, G-buffer, shading, final) and the frame /
+ * eye pass orchestration. The LPV backends live in renderer_lpv.c. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "offaxis.h"
+#include "renderer_internal.h"
+
+enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void mat4_mul(const float a[16], const float b[16], float out[16])
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            float s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a[k * 4 + r] * b[c * 4 + k];
+            out[c * 4 + r] = s;
+        }
+}
+
+/* ---- shaders ---------------------------------------------------------------------- */
+
+static char *read_text(const char *name, char *err, size_t errlen)
+{
+    const char *dir = getenv("CAVELIGHT_SHADERS");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir && *dir ? dir : CAVELIGHT_SHADER_DIR, name);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "shader %s: cannot open (%s; set CAVELIGHT_SHADERS to the "
+                 "shaders/ folder)", path, strerror(errno));
+        return NULL;
+    }
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) {
+        free(s);
+        fclose(f);
+        snprintf(err, errlen, "shader %s: cannot read", path);
+        return NULL;
+    }
+    s[n] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* Source = version + defines + common.glsl + file, with "// @BODY@" in the file replaced
+ * by body. defines and body may be NULL. */
+static GLuint compile(renderer *r, GLenum type, const char *name, const char *defines,
+                      const char *body, char *err, size_t errlen)
+{
+    const gl_functions *gl = r->gl;
+    char *common = read_text("common.glsl", err, errlen);
+    char *text = common ? read_text(name, err, errlen) : NULL;
+    if (!text) {
+        free(common);
+        return 0;
+    }
+    const char *marker = body ? strstr(text, "// @BODY@") : NULL;
+    const char *parts[7];
+    GLint lengths[7];
+    int count = 0;
+    parts[count] = "#version 430 core\n";
+    lengths[count++] = -1;
+    parts[count] = defines ? defines : "";
+    lengths[count++] = -1;
+    parts[count] = common;
+    lengths[count++] = -1;
+    if (marker) {
+        parts[count] = text;
+        lengths[count++] = (GLint)(marker - text);
+        parts[count] = body;
+        lengths[count++] = -1;
+        parts[count] = marker + 9;
+        lengths[count++] = -1;
+    } else {
+        parts[count] = text;
+        lengths[count++] = -1;
+    }
+    GLuint s = gl->CreateShader(type);
+    gl->ShaderSource(s, count, parts, lengths);
+    gl->CompileShader(s);
+    free(common);
+    free(text);
+    GLint ok = 0;
+    gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->GetShaderInfoLog(s, sizeof log, NULL, log);
+        char *nl = strchr(log, '\n');
+        if (nl)
+            *nl = '\0';
+        snprintf(err, errlen, "shader %s does not compile: %s", name, log);
+        gl->DeleteShader(s);
+        return 0;
+    }
+    return s;
+}
+
+GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
+                        const char *defines, const char *comp_body, char *err, size_t errlen)
+{
+    const gl_functions *gl = r->gl;
+    GLuint shaders[2] = {0, 0};
+    int n = 0;
+    if (comp) {
+        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, defines, comp_body, err, errlen)))
+            return 0;
+    } else {
+        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, defines, NULL, err, errlen)))
+            return 0;
+        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, defines, NULL, err, errlen))) {
+            gl->DeleteShader(shaders[0]);
+            return 0;
+        }
+    }
+    GLuint p = gl->CreateProgram();
+    for (int i = 0; i < n; i++)
+        gl->AttachShader(p, shaders[i]);
+    gl->LinkProgram(p);
+    for (int i = 0; i < n; i++)
+        gl->DeleteShader(shaders[i]);
+    GLint ok = 0;
+    gl->GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->GetProgramInfoLog(p, sizeof log, NULL, log);
+        char *nl = strchr(log, '\n');
+        if (nl)
+            *nl = '\0';
+        snprintf(err, errlen, "shader program %s does not link: %s", comp ? comp : frag, log);
+        gl->DeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+static GLint loc(renderer *r, GLuint prog, const char *name)
+{
+    return r->gl->GetUniformLocation(prog, name);
+}
+
+/* ---- resources -------------------------------------------------------------------- */
+
+static GLuint texture2d(renderer *r, GLenum format, int w, int h, GLenum filter)
+{
+    const gl_functions *gl = r->gl;
+    GLuint t;
+    gl->GenTextures(1, &t);
+    gl->BindTexture(GL_TEXTURE_2D, t);
+    gl->TexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, (GLint)filter);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, (GLint)filter);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+static GLuint texture_array(renderer *r, GLenum format, int size, int layers)
+{
+    const gl_functions *gl = r->gl;
+    GLuint t;
+    gl->GenTextures(1, &t);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, t);
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, size, size, layers);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+GLuint renderer_texture3d(renderer *r, const int n[3])
+{
+    const gl_functions *gl = r->gl;
+    GLuint t;
+    gl->GenTextures(1, &t);
+    gl->BindTexture(GL_TEXTURE_3D, t);
+    gl->TexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA32F, n[0], n[1], n[2]);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+static int fbo_complete(renderer *r, const char *what, char *err, size_t errlen)
+{
+    GLenum st = r->gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err, errlen, "%s framebuffer incomplete (status 0x%x): the driver lacks "
+                 "float render targets", what, (unsigned)st);
+        return -1;
+    }
+    return 0;
+}
+
+static const GLenum draw_buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                       GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+
+static int create_rsm(renderer *r, char *err, size_t errlen)
+{
+    const gl_functions *gl = r->gl;
+    int s = r->rsm_size;
+    r->rsm_position = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_normal = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_flux = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_depth = texture_array(r, GL_DEPTH_COMPONENT32F, s, FRAME_MAX_LIGHTS);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    gl->GenFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
+    for (int i = 0; i < FRAME_MAX_LIGHTS; i++) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[i]);
+        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->rsm_position, 0, i);
+        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->rsm_normal, 0, i);
+        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->rsm_flux, 0, i);
+        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->rsm_depth, 0, i);
+        gl->DrawBuffers(3, draw_buffers);
+        if (fbo_complete(r, "RSM", err, errlen))
+            return -1;
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return 0;
+}
+
+static void free_eye_targets(renderer *r)
+{
+    const gl_functions *gl = r->gl;
+    GLuint tex[] = {r->g_position, r->g_normal, r->g_albedo, r->g_emissive, r->g_depth,
+                    r->s_final, r->s_direct, r->s_indirect, r->f_color};
+    for (size_t i = 0; i < sizeof tex / sizeof tex[0]; i++)
+        if (tex[i])
+            gl->DeleteTextures(1, &tex[i]);
+    GLuint fbo[] = {r->gbuffer_fbo, r->shade_fbo, r->final_fbo};
+    for (size_t i = 0; i < 3; i++)
+        if (fbo[i])
+            gl->DeleteFramebuffers(1, &fbo[i]);
+    free(r->rgba);
+    free(r->rgb);
+    for (int i = 0; i < 3; i++)
+        free(r->linear[i]);
+    r->rgba = r->rgb = NULL;
+    memset(r->linear, 0, sizeof r->linear);
+    r->eye_w = r->eye_h = 0;
+}
+
+static int eye_targets(renderer *r, int w, int h)
+{
+    if (w == r->eye_w && h == r->eye_h)
+        return 0;
+    const gl_functions *gl = r->gl;
+    free_eye_targets(r);
+    char err[160] = "out of memory for the eye targets";
+    r->g_position = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
+    r->g_normal = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
+    r->g_albedo = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
+    r->g_emissive = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
+    r->g_depth = texture2d(r, GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    gl->GenFramebuffers(1, &r->gbuffer_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->gbuffer_fbo);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->g_position, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->g_normal, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->g_albedo, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, r->g_emissive, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->g_depth, 0);
+    gl->DrawBuffers(4, draw_buffers);
+    int bad = fbo_complete(r, "G-buffer", err, sizeof err);
+
+    r->s_final = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
+    r->s_direct = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
+    r->s_indirect = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
+    gl->GenFramebuffers(1, &r->shade_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->s_final, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->s_direct, 0);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->s_indirect, 0);
+    gl->DrawBuffers(3, draw_buffers);
+    bad |= fbo_complete(r, "shading", err, sizeof err);
+
+    r->f_color = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
+    gl->GenFramebuffers(1, &r->final_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->f_color, 0);
+    gl->DrawBuffers(1, draw_buffers);
+    bad |= fbo_complete(r, "final", err, sizeof err);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+
+    r->rgba = malloc((size_t)w * h * 4);
+    r->rgb = malloc((size_t)w * h * 3);
+    for (int i = 0; i < 3; i++)
+        r->linear[i] = malloc((size_t)w * h * 3 * sizeof(float));
+    if (bad || !r->rgba || !r->rgb || !r->linear[0] || !r->linear[1] || !r->linear[2]) {
+        snprintf(r->error, sizeof r->error, "renderer: %s (%dx%d)", err, w, h);
+        free_eye_targets(r);
+        return -1;
+    }
+    r->eye_w = w;
+    r->eye_h = h;
+    return 0;
+}
+
+/* Triangles grouped by material (stable), one draw per group. */
+static int upload_scene(renderer *r, char *err, size_t errlen)
+{
+    const gl_functions *gl = r->gl;
+    const scene *s = r->scene;
+    size_t nt = s->triangle_count;
+    float *v = malloc(nt * 3 * 8 * sizeof(float));
+    size_t *order = malloc(nt * sizeof *order);
+    size_t *start = calloc(s->material_count + 1, sizeof *start);
+    r->ranges = calloc(s->material_count, sizeof *r->ranges);
+    if (!v || !order || !start || !r->ranges) {
+        free(v); free(order); free(start);
+        snprintf(err, errlen, "renderer: out of memory for %zu triangles", nt);
+        return -1;
+    }
+    for (size_t t = 0; t < nt; t++)
+        start[s->triangle_material[t] + 1]++;
+    for (size_t m = 0; m < s->material_count; m++)
+        start[m + 1] += start[m];
+    for (size_t m = 0; m < s->material_count; m++)
+        if (start[m + 1] > start[m])
+            r->ranges[r->range_count++] = (renderer_draw_range){
+                (uint32_t)m, (GLint)(3 * start[m]), (GLsizei)(3 * (start[m + 1] - start[m]))};
+    for (size_t t = 0; t < nt; t++)
+        order[start[s->triangle_material[t]]++] = t;
+    for (size_t i = 0; i < nt; i++)
+        for (int k = 0; k < 3; k++) {
+            float *d = v + (i * 3 + k) * 8;
+            size_t t = order[i];
+            memcpy(d, s->positions + 9 * t + 3 * k, 3 * sizeof(float));
+            memcpy(d + 3, s->normals + 9 * t + 3 * k, 3 * sizeof(float));
+            memcpy(d + 6, s->uvs + 6 * t + 2 * k, 2 * sizeof(float));
+        }
+    gl->GenVertexArrays(1, &r->vao);
+    gl->GenVertexArrays(1, &r->empty_vao);
+    gl->BindVertexArray(r->vao);
+    gl->GenBuffers(1, &r->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nt * 3 * 8 * sizeof(float)), v, GL_STATIC_DRAW);
+    for (GLuint a = 0; a < 3; a++) {
+        gl->EnableVertexAttribArray(a);
+        gl->VertexAttribPointer(a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float),
+                                (const void *)(uintptr_t)(a * 3 * sizeof(float)));
+    }
+    gl->BindVertexArray(0);
+    free(v); free(order); free(start);
+
+    r->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *r->textures);
+    if (!r->textures)
+        return snprintf(err, errlen, "renderer: out of memory"), -1;
+    for (size_t i = 0; i < s->texture_count; i++) {
+        const scene_texture *t = &s->textures[i];
+        int levels = 1;
+        while ((t->width >> levels) > 0 || (t->height >> levels) > 0)
+            levels++;
+        gl->GenTextures(1, &r->textures[i]);
+        gl->BindTexture(GL_TEXTURE_2D, r->textures[i]);
+        gl->TexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, t->width, t->height);
+        gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA,
+                          GL_UNSIGNED_BYTE, t->rgba);
+        gl->GenerateMipmap(GL_TEXTURE_2D);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    return 0;
+}
+
+/* Material uniforms shared by the G-buffer and RSM programs (same names). */
+static void bind_material(renderer *r, GLuint prog, uint32_t mi)
+{
+    const gl_functions *gl = r->gl;
+    const scene_material *m = &r->scene->materials[mi];
+    gl->Uniform4fv(loc(r, prog, "u_base_color"), 1, m->base_color);
+    int tex = m->base_color_texture >= 0 && (size_t)m->base_color_texture < r->scene->texture_count;
+    gl->Uniform1i(loc(r, prog, "u_has_texture"), tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, tex ? r->textures[m->base_color_texture] : 0);
+    gl->Uniform1i(loc(r, prog, "u_base_texture"), 0);
+    GLint e = loc(r, prog, "u_emissive");
+    if (e >= 0)
+        gl->Uniform3fv(e, 1, m->emissive);
+    GLint ro = loc(r, prog, "u_roughness");
+    if (ro >= 0)
+        gl->Uniform1f(ro, m->roughness);
+}
+
+static void draw_scene(renderer *r, GLuint prog)
+{
+    const gl_functions *gl = r->gl;
+    gl->BindVertexArray(r->vao);
+    for (int i = 0; i < r->range_count; i++) {
+        bind_material(r, prog, r->ranges[i].material);
+        gl->DrawArrays(GL_TRIANGLES, r->ranges[i].first, r->ranges[i].count);
+    }
+    gl->BindVertexArray(0);
+}
+
+/* ---- timer queries ---------------------------------------------------------------- */
+
+static void queries_init(renderer *r, renderer_queries *q)
+{
+    for (int i = 0; i < RENDERER_QUERY_RING; i++)
+        r->gl->GenQueries(4, q->id[i]);
+}
+
+/* Collects every finished slot without waiting; returns the slot to use now. A slot whose
+ * results are still out is simply reused (its numbers are dropped, the pipeline never
+ * stalls). */
+static int queries_begin_frame(renderer *r, renderer_queries *q, int used)
+{
+    const gl_functions *gl = r->gl;
+    for (int k = 0; k < RENDERER_QUERY_RING; k++) {
+        int slot = (q->next + k) % RENDERER_QUERY_RING;
+        if (!(q->pending[slot]))
+            continue;
+        int last = 0;
+        for (int i = 0; i < used; i++)
+            if (q->pending[slot] & (1 << i))
+                last = i;
+        GLint ready = 0;
+        gl->GetQueryObjectiv(q->id[slot][last], GL_QUERY_RESULT_AVAILABLE, &ready);
+        if (!ready)
+            continue;
+        for (int i = 0; i < used; i++) {
+            if (!(q->pending[slot] & (1 << i)))
+                continue;
+            GLuint64 ns = 0;
+            gl->GetQueryObjectui64v(q->id[slot][i], GL_QUERY_RESULT, &ns);
+            /* llvmpipe now and then times a query from an undefined start (hundreds of
+             * seconds, seen on the first query of a context and after compute work): a
+             * pass longer than 10 s is such a reading, dropped and counted. */
+            if (ns < 10000000000ull)
+                q->ms[i] = (double)ns * 1e-6;
+            else
+                q->dropped++;
+        }
+        q->pending[slot] = 0;
+    }
+    int slot = q->next;
+    q->next = (q->next + 1) % RENDERER_QUERY_RING;
+    q->pending[slot] = 0;
+    return slot;
+}
+
+static void query_begin(renderer *r, renderer_queries *q, int slot, int i)
+{
+    r->gl->BeginQuery(GL_TIME_ELAPSED, q->id[slot][i]);
+}
+
+static void query_end(renderer *r, renderer_queries *q, int slot, int i)
+{
+    r->gl->EndQuery(GL_TIME_ELAPSED);
+    q->pending[slot] |= 1 << i;
+}
+
+/* ---- create / destroy ------------------------------------------------------------- */
+
+renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
+{
+    if (!desc->gl || !desc->scene || desc->scene->triangle_count == 0) {
+        snprintf(err, errlen, "renderer: needs a GL function table and a loaded scene");
+        return NULL;
+    }
+    renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "renderer: out of memory");
+        return NULL;
+    }
+    r->gl = desc->gl;
+    r->scene = desc->scene;
+    r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
+    const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
+    int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
+                                   strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
+    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
+        upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
+        renderer_lpv_init(r, desc, software, err, errlen)) {
+        renderer_destroy(r);
+        return NULL;
+    }
+    queries_init(r, &r->frame_queries);
+    queries_init(r, &r->eye_queries);
+    GLenum e = r->gl->GetError();
+    if (e != GL_NO_ERROR) {
+        snprintf(err, errlen, "renderer: GL error 0x%x while creating resources", (unsigned)e);
+        renderer_destroy(r);
+        return NULL;
+    }
+    return r;
+}
+
+void renderer_destroy(renderer *r)
+{
+    if (!r)
+        return;
+    const gl_functions *gl = r->gl;
+    renderer_lpv_free(r);
+    free_eye_targets(r);
+    GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
+    for (int i = 0; i < 4; i++)
+        if (progs[i])
+            gl->DeleteProgram(progs[i]);
+    GLuint tex[] = {r->rsm_position, r->rsm_normal, r->rsm_flux, r->rsm_depth};
+    for (int i = 0; i < 4; i++)
+        if (tex[i])
+            gl->DeleteTextures(1, &tex[i]);
+    if (r->rsm_fbo[0])
+        gl->DeleteFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
+    if (r->textures && r->scene->texture_count)
+        gl->DeleteTextures((GLsizei)r->scene->texture_count, r->textures);
+    if (r->vbo)
+        gl->DeleteBuffers(1, &r->vbo);
+    if (r->vao)
+        gl->DeleteVertexArrays(1, &r->vao);
+    if (r->empty_vao)
+        gl->DeleteVertexArrays(1, &r->empty_vao);
+    for (int i = 0; i < RENDERER_QUERY_RING; i++) {
+        if (r->frame_queries.id[i][0])
+            gl->DeleteQueries(4, r->frame_queries.id[i]);
+        if (r->eye_queries.id[i][0])
+            gl->DeleteQueries(4, r->eye_queries.id[i]);
+    }
+    free(r->textures);
+    free(r->ranges);
+    free(r);
+}
+
+/* ---- frame pass ------------------------------------------------------------------- */
+
+static void render_rsms(renderer *r, const frame_params *p)
+{
+    const gl_functions *gl = r->gl;
+    GLuint prog = r->prog_rsm;
+    float far_plane = 0;
+    for (int a = 0; a < 3; a++) {
+        float e = r->scene->bounds_max[a] - r->scene->bounds_min[a];
+        far_plane += e * e;
+    }
+    r->rsm_lights = 0;
+    gl->UseProgram(prog);
+    gl->Viewport(0, 0, r->rsm_size, r->rsm_size);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
+        const frame_light *l = &p->lights[i];
+        if (!l->enabled || !(l->intensity > 0))
+            continue;
+        int layer = r->rsm_lights++;
+        r->rsm_layer_of[layer] = i;
+        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
+        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
+        float target[3], view[16], proj[16];
+        for (int a = 0; a < 3; a++)
+            target[a] = l->position[a] + l->direction[a];
+        float dist = 0;
+        for (int a = 0; a < 3; a++) {
+            float c = 0.5f * (r->scene->bounds_min[a] + r->scene->bounds_max[a]) - l->position[a];
+            dist += c * c;
+        }
+        float fp = sqrtf(far_plane) + sqrtf(dist) + 1.0f;
+        offaxis_look_at(l->position, target, 2.0f * outer, 1.0f, 0.05f, fp, view, proj);
+        mat4_mul(proj, view, r->light_view_projection[layer]);
+        r->rsm_tan_half_fov[layer] = tanf(outer);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
+        const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+        for (int b = 0; b < 3; b++)
+            gl->ClearBufferfv(GL_COLOR, b, zero);
+        gl->ClearBufferfv(GL_DEPTH, 0, &one);
+        gl->UniformMatrix4fv(loc(r, prog, "u_view_projection"), 1, GL_FALSE,
+                             r->light_view_projection[layer]);
+        gl->Uniform3fv(loc(r, prog, "u_light_position"), 1, l->position);
+        gl->Uniform3fv(loc(r, prog, "u_light_direction"), 1, l->direction);
+        float radiance[3] = {l->color[0] * l->intensity, l->color[1] * l->intensity,
+                             l->color[2] * l->intensity};
+        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), 1, radiance);
+        gl->Uniform1f(loc(r, prog, "u_cos_outer"), cosf(outer));
+        gl->Uniform1f(loc(r, prog, "u_cos_inner"), cosf(inner));
+        gl->Uniform1f(loc(r, prog, "u_tan_half_fov"), r->rsm_tan_half_fov[layer]);
+        gl->Uniform1f(loc(r, prog, "u_size"), (float)r->rsm_size);
+        gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
+        draw_scene(r, prog);
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+uint64_t renderer_frame_pass(renderer *r, const frame_params *p)
+{
+    double t0 = now_ms();
+    int slot = queries_begin_frame(r, &r->frame_queries, 1);
+    query_begin(r, &r->frame_queries, slot, Q_RSM);
+    render_rsms(r, p);
+    query_end(r, &r->frame_queries, slot, Q_RSM);
+    uint64_t checksum = renderer_lpv_frame(r, p);
+    r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
+    r->timings.frame_host_ms = now_ms() - t0;
+    return checksum;
+}
+
+/* ---- eye pass --------------------------------------------------------------------- */
+
+static void read_rgb_float(renderer *r, GLenum attachment, float *out)
+{
+    const gl_functions *gl = r->gl;
+    int w = r->eye_w, h = r->eye_h;
+    gl->ReadBuffer(attachment);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, out);
+    /* GL reads bottom row first; flip to top row first in place. */
+    size_t row = (size_t)w * 3;
+    for (int y = 0; y < h / 2; y++)
+        for (size_t i = 0; i < row; i++) {
+            float t = out[y * row + i];
+            out[y * row + i] = out[(size_t)(h - 1 - y) * row + i];
+            out[(size_t)(h - 1 - y) * row + i] = t;
+        }
+}
+
+int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
+                      int want_linear, renderer_image *out)
+{
+    const gl_functions *gl = r->gl;
+    if (view->width <= 0 || view->height <= 0) {
+        snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
+                 view->width, view->height);
+        return -1;
+    }
+    if (eye_targets(r, view->width, view->height))
+        return -1;
+    double t0 = now_ms();
+    int w = view->width, h = view->height;
+    int slot = queries_begin_frame(r, &r->eye_queries, 3);
+    float vp[16];
+    mat4_mul(view->projection, view->view, vp);
+
+    /* G-buffer */
+    query_begin(r, &r->eye_queries, slot, Q_GBUFFER);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->gbuffer_fbo);
+    gl->Viewport(0, 0, w, h);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+    for (int b = 0; b < 4; b++)
+        gl->ClearBufferfv(GL_COLOR, b, zero);
+    gl->ClearBufferfv(GL_DEPTH, 0, &one);
+    gl->UseProgram(r->prog_gbuffer);
+    gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
+    gl->Uniform3fv(loc(r, r->prog_gbuffer, "u_eye"), 1, view->eye_position);
+    draw_scene(r, r->prog_gbuffer);
+    gl->Disable(GL_DEPTH_TEST);
+    query_end(r, &r->eye_queries, slot, Q_GBUFFER);
+
+    /* Shading */
+    query_begin(r, &r->eye_queries, slot, Q_SHADE);
+    GLuint prog = r->prog_shade;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
+    gl->UseProgram(prog);
+    const GLuint gtex[4] = {r->g_position, r->g_normal, r->g_albedo, r->g_emissive};
+    const char *gname[4] = {"u_position", "u_normal", "u_albedo", "u_emissive"};
+    for (int i = 0; i < 4; i++) {
+        gl->ActiveTexture(GL_TEXTURE0 + i);
+        gl->BindTexture(GL_TEXTURE_2D, gtex[i]);
+        gl->Uniform1i(loc(r, prog, gname[i]), i);
+    }
+    gl->ActiveTexture(GL_TEXTURE4);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
+    gl->Uniform1i(loc(r, prog, "u_shadow"), 4);
+    GLuint lpv[3];
+    renderer_lpv_textures(r, lpv);
+    const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
+    for (int c = 0; c < 3; c++) {
+        gl->ActiveTexture(GL_TEXTURE5 + c);
+        gl->BindTexture(GL_TEXTURE_3D, lpv[c]);
+        gl->Uniform1i(loc(r, prog, lname[c]), 5 + c);
+    }
+    gl->Uniform1i(loc(r, prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
+    gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
+    gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
+    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale);
+    gl->Uniform3f(loc(r, prog, "u_lpv_size"), (float)r->lattice.n[0], (float)r->lattice.n[1],
+                  (float)r->lattice.n[2]);
+    float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];
+    float cos_outer[FRAME_MAX_LIGHTS], cos_inner[FRAME_MAX_LIGHTS];
+    for (int k = 0; k < r->rsm_lights; k++) {
+        const frame_light *l = &p->lights[r->rsm_layer_of[k]];
+        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
+        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
+        memcpy(lpos[k], l->position, sizeof lpos[k]);
+        memcpy(ldir[k], l->direction, sizeof ldir[k]);
+        for (int c = 0; c < 3; c++)
+            lrad[k][c] = l->color[c] * l->intensity;
+        cos_outer[k] = cosf(outer);
+        cos_inner[k] = cosf(inner);
+    }
+    int nl = r->rsm_lights;
+    gl->Uniform1i(loc(r, prog, "u_light_count"), nl);
+    if (nl > 0) {
+        gl->Uniform3fv(loc(r, prog, "u_light_position"), nl, lpos[0]);
+        gl->Uniform3fv(loc(r, prog, "u_light_direction"), nl, ldir[0]);
+        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), nl, lrad[0]);
+        gl->Uniform1fv(loc(r, prog, "u_cos_outer"), nl, cos_outer);
+        gl->Uniform1fv(loc(r, prog, "u_cos_inner"), nl, cos_inner);
+        gl->UniformMatrix4fv(loc(r, prog, "u_light_view_projection"), nl, GL_FALSE,
+                             r->light_view_projection[0]);
+    }
+    gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
+    gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
+    gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);
+    gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);
+    gl->BindVertexArray(r->empty_vao);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    query_end(r, &r->eye_queries, slot, Q_SHADE);
+
+    /* Final: tone map and gamma */
+    query_begin(r, &r->eye_queries, slot, Q_FINAL);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
+    gl->UseProgram(r->prog_final);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, r->s_final);
+    gl->Uniform1i(loc(r, r->prog_final, "u_hdr"), 0);
+    float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
+    gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"),
+                  frame_params_e2e_gamma(p->environment) / display);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    gl->BindVertexArray(0);
+    query_end(r, &r->eye_queries, slot, Q_FINAL);
+
+    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, r->rgba);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            memcpy(r->rgb + ((size_t)y * w + x) * 3, r->rgba + ((size_t)(h - 1 - y) * w + x) * 4, 3);
+    out->width = w;
+    out->height = h;
+    out->rgb = r->rgb;
+    out->final = out->direct = out->indirect = NULL;
+    if (want_linear) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
+        for (int i = 0; i < 3; i++)
+            read_rgb_float(r, GL_COLOR_ATTACHMENT0 + i, r->linear[i]);
+        out->final = r->linear[0];
+        out->direct = r->linear[1];
+        out->indirect = r->linear[2];
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
+    r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
+    r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
+    r->timings.eye_host_ms = now_ms() - t0;
+    GLenum e = gl->GetError();
+    if (e != GL_NO_ERROR) {
+        snprintf(r->error, sizeof r->error, "renderer: GL error 0x%x in the eye pass", (unsigned)e);
+        return -1;
+    }
+    return 0;
+}
+
+void renderer_present(renderer *r, int width, int height)
+{
+    const gl_functions *gl = r->gl;
+    if (!r->final_fbo)
+        return;
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->final_fbo);
+    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl->BlitFramebuffer(0, 0, r->eye_w, r->eye_h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                        GL_LINEAR);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+const char *renderer_last_error(const renderer *r)
+{
+    return r->error;
+}
+
+void renderer_get_timings(const renderer *r, renderer_timings *out)
+{
+    *out = r->timings;
+}
+
+renderer_lpv_backend renderer_get_lpv_backend(const renderer *r) { return r->backend; }
+const lattice_desc *renderer_get_lattice(const renderer *r) { return &r->lattice; }

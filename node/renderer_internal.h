@@ -1,0 +1,103 @@
+/* renderer_internal: state shared by renderer.c (GL passes) and renderer_lpv.c (the LPV
+ * backends). Not for other modules. */
+#ifndef CAVELIGHT_RENDERER_INTERNAL_H
+#define CAVELIGHT_RENDERER_INTERNAL_H
+
+#include <stddef.h>
+
+#include "ilpv.h"
+#include "lpv_inject.h"
+#include "lpv_transfer.h"
+#include "renderer.h"
+#include "workpool.h"
+
+enum { RENDERER_QUERY_RING = 4 };
+
+/* GL timer queries read a few frames later, never waited for (paper 4.6). */
+typedef struct renderer_queries {
+    GLuint id[RENDERER_QUERY_RING][4];
+    int pending[RENDERER_QUERY_RING];
+    int next;
+    long dropped;            /* implausible readings thrown away */
+    double ms[4];            /* latest results that arrived */
+} renderer_queries;
+
+typedef struct renderer_draw_range {
+    uint32_t material;
+    GLint first;
+    GLsizei count;
+} renderer_draw_range;
+
+struct renderer {
+    const gl_functions *gl;
+    const scene *scene;
+    GLuint vao, vbo, empty_vao;
+    renderer_draw_range *ranges;
+    int range_count;
+    GLuint *textures;
+
+    GLuint prog_gbuffer, prog_rsm, prog_shade, prog_final;
+
+    int rsm_size;
+    GLuint rsm_fbo[FRAME_MAX_LIGHTS];
+    GLuint rsm_position, rsm_normal, rsm_flux, rsm_depth;
+    float light_view_projection[FRAME_MAX_LIGHTS][16];
+    float rsm_tan_half_fov[FRAME_MAX_LIGHTS];
+    int rsm_lights;          /* lights rendered in the last frame pass */
+    int rsm_layer_of[FRAME_MAX_LIGHTS];
+
+    int eye_w, eye_h;
+    GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
+    GLuint shade_fbo, s_final, s_direct, s_indirect;
+    GLuint final_fbo, f_color;
+    uint8_t *rgba, *rgb;
+    float *linear[3];
+
+    /* LPV */
+    renderer_lpv_backend backend;
+    int clamp_negative;
+    int gl_tiles;            /* GL propagation through shared-memory tiles */
+    float indirect_scale;
+    lattice_desc lattice;
+    lpv_transfer transfer;
+    lpv_volume geometry;
+    ilpv cpu;
+    workpool *pool;
+    lpv_vpl *vpls;
+    size_t vpl_capacity;
+    lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
+    size_t emitter_count;
+    double emitter_energy;
+    float *rsm_read[3];      /* position, normal, flux of all RSM layers */
+    float *upload;           /* 4 floats per cell, one colour at a time */
+    GLuint lpv_tex[3];       /* what the shading samples (CPU backend) */
+    uint32_t reset_epoch;
+    int frames;
+    lpv_inject_stats inject_stats;
+
+    /* GL compute backend */
+    GLuint prog_merge, prog_propagate;
+    GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
+    int gl_current, gl_have_history;
+    double gl_previous_energy;
+    lpv_volume gl_result;
+
+    renderer_queries frame_queries, eye_queries;
+    renderer_timings timings;
+    char error[256];         /* why the last eye pass failed */
+};
+
+/* renderer.c */
+GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
+                        const char *defines, const char *comp_body, char *err, size_t errlen);
+GLuint renderer_texture3d(renderer *r, const int n[3]);
+
+/* renderer_lpv.c */
+int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err, size_t errlen);
+void renderer_lpv_free(renderer *r);
+/* After the RSMs are rendered: VPLs -> injection -> merge + propagation. */
+uint64_t renderer_lpv_frame(renderer *r, const frame_params *p);
+/* The three textures (R, G, B SH) the shading pass samples. */
+void renderer_lpv_textures(const renderer *r, GLuint out[3]);
+
+#endif

@@ -1,0 +1,430 @@
+/* renderer_lpv: the frame pass after the RSMs. RSM texels become VPLs (host, in texel
+ * order, so the injection is deterministic), are injected with the CPU core, then merged
+ * and propagated either by the CPU ILPV core or by GL compute shaders.
+ *
+ * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
+ * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
+ * Phi/pi and the lattice holds radiant intensity (W/sr) per cell, whose energy <L|1> is
+ * Phi. The shading divides by the cell area to get radiance (docs/node.md). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "lpv_geometry.h"
+#include "renderer_internal.h"
+
+static const double PI = 3.14159265358979323846;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* One VPL per emissive triangle (paper 3.3.5): centroid, face normal on the side of the
+ * vertex normals, flux pi * L_e * area (passed as L_e * area, see the units above). */
+static int build_emitters(renderer *r)
+{
+    const scene *s = r->scene;
+    size_t n = 0;
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *e = s->materials[s->triangle_material[t]].emissive;
+        n += e[0] > 0 || e[1] > 0 || e[2] > 0;
+    }
+    r->emitters = n ? malloc(n * sizeof *r->emitters) : NULL;
+    if (n && !r->emitters)
+        return -1;
+    r->emitter_count = 0;
+    r->emitter_energy = 0;
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *e = s->materials[s->triangle_material[t]].emissive;
+        if (!(e[0] > 0 || e[1] > 0 || e[2] > 0))
+            continue;
+        const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
+        float a[3], b[3], f[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = p[3 + k] - p[k];
+            b[k] = p[6 + k] - p[k];
+        }
+        f[0] = a[1] * b[2] - a[2] * b[1];
+        f[1] = a[2] * b[0] - a[0] * b[2];
+        f[2] = a[0] * b[1] - a[1] * b[0];
+        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (!(len > 0))
+            continue;
+        float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
+                     f[2] * (vn[2] + vn[5] + vn[8]);
+        float area = 0.5f * len, sign = side < 0 ? -1.0f : 1.0f;
+        lpv_vpl *v = &r->emitters[r->emitter_count++];
+        for (int k = 0; k < 3; k++) {
+            v->position[k] = (p[k] + p[3 + k] + p[6 + k]) / 3.0f;
+            v->normal[k] = sign * f[k] / len;
+            v->flux[k] = e[k] * area;
+        }
+        r->emitter_energy += PI * area * (e[0] + e[1] + e[2]) / 3.0;
+    }
+    return 0;
+}
+
+static void gather_body(const lpv_transfer *t, char *out, size_t n)
+{
+    size_t used = 0;
+    for (int j = 0; j < LPV_NEIGHBOURS && used < n; j++)
+        used += (size_t)snprintf(out + used, n - used,
+                                 "    gather(here, ivec3(%d, %d, %d), vec4(%.9g, %.9g, %.9g, %.9g), "
+                                 "%.9g, ar, ag, ab);\n",
+                                 lpv_transfer_offsets[j][0], lpv_transfer_offsets[j][1],
+                                 lpv_transfer_offsets[j][2], t->gamma[j][0], t->gamma[j][1],
+                                 t->gamma[j][2], t->gamma[j][3], t->outscatter[j]);
+}
+
+/* Host SoA volume <-> three RGBA textures (one per colour, 4 SH coefficients each). */
+static void upload_volume(renderer *r, const lpv_volume *v, const GLuint tex[3])
+{
+    const gl_functions *gl = r->gl;
+    for (int c = 0; c < 3; c++) {
+        for (size_t i = 0; i < v->cells; i++)
+            for (int s = 0; s < 4; s++)
+                r->upload[4 * i + s] = v->ch[4 * c + s][i];
+        gl->BindTexture(GL_TEXTURE_3D, tex[c]);
+        gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl->TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, v->n[0], v->n[1], v->n[2], GL_RGBA,
+                          GL_FLOAT, r->upload);
+    }
+}
+
+static void download_volume(renderer *r, const GLuint tex[3], lpv_volume *v)
+{
+    const gl_functions *gl = r->gl;
+    for (int c = 0; c < 3; c++) {
+        gl->BindTexture(GL_TEXTURE_3D, tex[c]);
+        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl->GetTexImage(GL_TEXTURE_3D, 0, GL_RGBA, GL_FLOAT, r->upload);
+        for (size_t i = 0; i < v->cells; i++)
+            for (int s = 0; s < 4; s++)
+                v->ch[4 * c + s][i] = r->upload[4 * i + s];
+    }
+}
+
+static int init_gl_backend(renderer *r, int software, const renderer_desc *desc, char *err,
+                           size_t errlen)
+{
+    char body[8192];
+    gather_body(&r->transfer, body, sizeof body);
+    r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
+                                                            : desc->lpv_gl_tiles == RENDERER_TILES_ON;
+    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
+                                         r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
+                                         err, errlen);
+    r->prog_merge = r->prog_propagate
+                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
+                        : 0;
+    if (!r->prog_merge)
+        return -1;
+    if (lpv_volume_init(&r->gl_result, r->lattice.n, LPV_LIGHT_CHANNELS) != 0) {
+        snprintf(err, errlen, "renderer: out of memory for the LPV readback");
+        return -1;
+    }
+    for (int c = 0; c < 3; c++) {
+        r->gl_injected[c] = renderer_texture3d(r, r->lattice.n);
+        r->gl_volume[0][c] = renderer_texture3d(r, r->lattice.n);
+        r->gl_volume[1][c] = renderer_texture3d(r, r->lattice.n);
+    }
+    /* Defined contents everywhere: the zeroed readback volume. */
+    upload_volume(r, &r->gl_result, r->gl_volume[0]);
+    upload_volume(r, &r->gl_result, r->gl_volume[1]);
+    r->gl_geometry = renderer_texture3d(r, r->lattice.n);
+    for (size_t i = 0; i < r->geometry.cells; i++)
+        for (int s = 0; s < 4; s++)
+            r->upload[4 * i + s] = r->geometry.ch[s][i];
+    r->gl->BindTexture(GL_TEXTURE_3D, r->gl_geometry);
+    r->gl->TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, r->lattice.n[0], r->lattice.n[1],
+                         r->lattice.n[2], GL_RGBA, GL_FLOAT, r->upload);
+    return 0;
+}
+
+/* The ILPV keeps the lattice's energy equal to one frame's injected flux, i.e. light that
+ * lives for one propagation step; in a room it lives for the mean free path 4V/A
+ * (V volume, A surface area) before it hits a surface, d_mean * cell per step. The ratio
+ * is how much brighter the steady indirect light is than the lattice says. */
+static float auto_indirect_scale(const renderer *r)
+{
+    const scene *s = r->scene;
+    double volume = 1, area = 0, cell = r->lattice.cell;
+    for (int a = 0; a < 3; a++)
+        volume *= fmax(s->bounds_max[a] - s->bounds_min[a], cell);
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *p = s->positions + 9 * t;
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = p[3 + k] - p[k];
+            e2[k] = p[6 + k] - p[k];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+    }
+    int longest = r->lattice.n[0];
+    for (int a = 1; a < 3; a++)
+        longest = r->lattice.n[a] > longest ? r->lattice.n[a] : longest;
+    double k = area > 0 ? 4.0 * volume / (area * LPV_MEAN_NEIGHBOUR_DISTANCE * cell) : 1.0;
+    return (float)fmin(fmax(k, 1.0), (double)longest);
+}
+
+int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err,
+                      size_t errlen)
+{
+    const scene *s = r->scene;
+    r->backend = desc->lpv_backend != RENDERER_LPV_AUTO
+                     ? desc->lpv_backend
+                     : (software ? RENDERER_LPV_CPU : RENDERER_LPV_GL);
+    r->clamp_negative = desc->lpv_clamp_negative;
+    lattice_fit_desc fit = {
+        .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
+        .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
+        .max_axis_cells = desc->lattice_cells,
+        .margin_cells = -1.0f,
+    };
+    char why[160];
+    if (lattice_fit(&fit, &r->lattice, why, sizeof why) != 0) {
+        snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
+        return -1;
+    }
+    lpv_transfer_desc td = {0};
+    if (lpv_transfer_compute(&td, &r->transfer) != 0) {
+        snprintf(err, errlen, "renderer: LPV transfer vectors could not be computed");
+        return -1;
+    }
+    /* Static scene: the blocking lattice is built once, here. */
+    if (lpv_volume_init(&r->geometry, r->lattice.n, LPV_GEOMETRY_CHANNELS) != 0 ||
+        ilpv_init(&r->cpu, &r->lattice) != 0 || build_emitters(r) != 0) {
+        snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d lattice",
+                 r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
+        return -1;
+    }
+    lpv_geometry_add_triangles(&r->geometry, &r->lattice, s->positions, 3 * s->triangle_count,
+                               NULL, s->triangle_count, NULL);
+    r->indirect_scale = desc->indirect_scale > 0 ? desc->indirect_scale : auto_indirect_scale(r);
+    size_t cells = lattice_cell_count(&r->lattice);
+    size_t texels = (size_t)r->rsm_size * r->rsm_size;
+    r->upload = malloc(cells * 4 * sizeof(float));
+    for (int i = 0; i < 3; i++)
+        r->rsm_read[i] = malloc(texels * 4 * sizeof(float));
+    r->vpl_capacity = FRAME_MAX_LIGHTS * texels + r->emitter_count;
+    r->vpls = malloc(r->vpl_capacity * sizeof *r->vpls);
+    r->pool = workpool_create(desc->threads);
+    if (!r->upload || !r->rsm_read[0] || !r->rsm_read[1] || !r->rsm_read[2] || !r->vpls ||
+        !r->pool) {
+        snprintf(err, errlen, "renderer: out of memory for RSM readback and VPLs");
+        return -1;
+    }
+    if (r->backend == RENDERER_LPV_GL)
+        return init_gl_backend(r, software, desc, err, errlen);
+    for (int c = 0; c < 3; c++)
+        r->lpv_tex[c] = renderer_texture3d(r, r->lattice.n);
+    return 0;
+}
+
+void renderer_lpv_free(renderer *r)
+{
+    const gl_functions *gl = r->gl;
+    for (int c = 0; c < 3; c++) {
+        GLuint t[4] = {r->lpv_tex[c], r->gl_injected[c], r->gl_volume[0][c], r->gl_volume[1][c]};
+        for (int i = 0; i < 4; i++)
+            if (t[i])
+                gl->DeleteTextures(1, &t[i]);
+    }
+    if (r->gl_geometry)
+        gl->DeleteTextures(1, &r->gl_geometry);
+    if (r->prog_merge)
+        gl->DeleteProgram(r->prog_merge);
+    if (r->prog_propagate)
+        gl->DeleteProgram(r->prog_propagate);
+    if (r->pool)
+        workpool_destroy(r->pool);
+    if (r->gl_result.cells)
+        lpv_volume_free(&r->gl_result);
+    if (r->cpu.injected.cells)
+        ilpv_free(&r->cpu);
+    if (r->geometry.cells)
+        lpv_volume_free(&r->geometry);
+    free(r->emitters);
+    free(r->vpls);
+    free(r->upload);
+    for (int i = 0; i < 3; i++)
+        free(r->rsm_read[i]);
+}
+
+void renderer_lpv_textures(const renderer *r, GLuint out[3])
+{
+    for (int c = 0; c < 3; c++)
+        out[c] = r->backend == RENDERER_LPV_GL ? r->gl_volume[r->gl_current][c] : r->lpv_tex[c];
+}
+
+/* RSM texels of every rendered light, in layer then texel order, plus the emitters. */
+static size_t collect_vpls(renderer *r)
+{
+    const gl_functions *gl = r->gl;
+    int size = r->rsm_size;
+    size_t texels = (size_t)size * size, n = 0;
+    for (int layer = 0; layer < r->rsm_lights; layer++) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
+        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+        for (int b = 0; b < 3; b++) {
+            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
+            gl->ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, r->rsm_read[b]);
+        }
+        const float *pos = r->rsm_read[0], *nrm = r->rsm_read[1], *flux = r->rsm_read[2];
+        for (size_t i = 0; i < texels; i++) {
+            const float *f = flux + 4 * i;
+            if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
+                continue;
+            lpv_vpl *v = &r->vpls[n++];
+            for (int k = 0; k < 3; k++) {
+                v->position[k] = pos[4 * i + k];
+                v->normal[k] = nrm[4 * i + k];
+                v->flux[k] = f[k] * (float)(1.0 / PI);
+            }
+        }
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
+    return n + r->emitter_count;
+}
+
+/* Emitted energy for the incremental merge, from the lights' parameters (paper 3.4). */
+static double emitted_energy(const renderer *r, const frame_params *p)
+{
+    double e = r->emitter_energy;
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
+        const frame_light *l = &p->lights[i];
+        if (!l->enabled || !(l->intensity > 0))
+            continue;
+        double outer = fmin(fmax(l->outer_angle, 0.01), 1.45);
+        e += l->intensity * (l->color[0] + l->color[1] + l->color[2]) / 3.0 * 2.0 * PI *
+             (1.0 - cos(outer));
+    }
+    return e;
+}
+
+static void dispatch(renderer *r)
+{
+    const gl_functions *gl = r->gl;
+    const int *n = r->lattice.n;
+    gl->DispatchCompute((GLuint)(n[0] + 3) / 4, (GLuint)(n[1] + 3) / 4, (GLuint)(n[2] + 3) / 4);
+    gl->MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                      GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+static void bind_images(renderer *r, const GLuint *tex, int count, int first, GLenum access)
+{
+    for (int i = 0; i < count; i++)
+        r->gl->BindImageTexture((GLuint)(first + i), tex[i], 0, GL_TRUE, 0, access, GL_RGBA32F);
+}
+
+/* The same merge and steps as ilpv_frame(), on the GPU. */
+static void gl_frame(renderer *r, const frame_params *p, double energy)
+{
+    const gl_functions *gl = r->gl;
+    upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
+    /* Exactly ilpv_frame()'s factors. */
+    double lambda = p->lambda_incr;
+    if (!(lambda > 0.0) || !r->gl_have_history || !(r->gl_previous_energy > 0.0) ||
+        !isfinite(energy))
+        lambda = 0.0;
+    if (lambda >= 1.0)
+        lambda = 0.999;
+    float a = lambda > 0.0 ? (float)(energy / r->gl_previous_energy * lambda) : 0.0f;
+    float b = (float)(1.0 - lambda);
+    const int *n = r->lattice.n;
+
+    int dst = 1 - r->gl_current;
+    gl->UseProgram(r->prog_merge);
+    bind_images(r, r->gl_volume[r->gl_current], 3, 0, GL_READ_ONLY);
+    bind_images(r, r->gl_injected, 3, 3, GL_READ_ONLY);
+    bind_images(r, r->gl_volume[dst], 3, 6, GL_WRITE_ONLY);
+    gl->Uniform3i(gl->GetUniformLocation(r->prog_merge, "u_size"), n[0], n[1], n[2]);
+    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_a"), a);
+    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_b"), b);
+    dispatch(r);
+    r->gl_current = dst;
+
+    float la = lpv_transfer_step_probability(p->absorption, r->lattice.cell);
+    float ls = lpv_transfer_step_probability(p->scattering, r->lattice.cell);
+    float lt = la + ls < 1.0f ? la + ls : 1.0f;
+    GLuint prog = r->prog_propagate;
+    gl->UseProgram(prog);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_clamp_negative"), r->clamp_negative);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), 1.0f - lt);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_scatter"), ls);
+    bind_images(r, &r->gl_geometry, 1, 6, GL_READ_ONLY);
+    for (int step = 0; step < p->lpv_steps; step++) {
+        dst = 1 - r->gl_current;
+        gl->Uniform1i(gl->GetUniformLocation(prog, "u_use_blocking"), step > 0);
+        bind_images(r, r->gl_volume[r->gl_current], 3, 0, GL_READ_ONLY);
+        bind_images(r, r->gl_volume[dst], 3, 3, GL_WRITE_ONLY);
+        dispatch(r);
+        r->gl_current = dst;
+    }
+    r->gl_have_history = 1;
+    r->gl_previous_energy = isfinite(energy) && energy > 0.0 ? energy : 0.0;
+    download_volume(r, r->gl_volume[r->gl_current], &r->gl_result);
+}
+
+uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
+{
+    if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
+        ilpv_reset(&r->cpu);
+        r->gl_have_history = 0;
+        r->reset_epoch = p->reset_epoch;
+    }
+    double t0 = now_ms();
+    size_t count = collect_vpls(r);
+    ilpv_begin_frame(&r->cpu);
+    memset(&r->inject_stats, 0, sizeof r->inject_stats);
+    lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, r->vpls, count, &r->inject_stats);
+    double t1 = now_ms();
+    double energy = emitted_energy(r, p);
+    uint64_t checksum;
+    if (r->backend == RENDERER_LPV_GL) {
+        gl_frame(r, p, energy);
+        checksum = lpv_volume_checksum(&r->gl_result);
+    } else {
+        ilpv_frame_desc fd = {
+            .steps = p->lpv_steps,
+            .lambda_incr = p->lambda_incr,
+            .emitted_energy = energy,
+            .propagate = {
+                .transfer = &r->transfer,
+                .geometry = &r->geometry,
+                .use_blocking = 1,
+                .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
+                .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell),
+                .clamp_negative = r->clamp_negative,
+                .pool = r->pool,
+            },
+        };
+        ilpv_frame(&r->cpu, &fd);
+        const lpv_volume *result = ilpv_result(&r->cpu);
+        checksum = lpv_volume_checksum(result);
+        upload_volume(r, result, r->lpv_tex);
+    }
+    r->timings.inject_ms = t1 - t0;
+    r->timings.propagate_ms = now_ms() - t1;
+    r->frames++;
+    return checksum;
+}
+
+const lpv_volume *renderer_get_lpv(const renderer *r)
+{
+    return r->backend == RENDERER_LPV_GL ? &r->gl_result : ilpv_result(&r->cpu);
+}
+
+float renderer_get_indirect_scale(const renderer *r)
+{
+    return r->indirect_scale;
+}

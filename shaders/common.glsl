@@ -1,0 +1,25 @@
+// Shared by every cavelight shader (prepended after the #version line by the renderer).
+const float PI = 3.14159265358979;
+const float SH_C0 = 0.886226925452758;  // sqrt(pi) / 2
+const float SH_C1 = 1.023326707946488;  // sqrt(pi / 3)
+const int MAX_LIGHTS = 8;
+
+// Clamped-cosine lobe around unit n in 2-band SH (paper 3.3.1, same signs as the CPU core).
+vec4 sh_cosine_lobe(vec3 n)
+{
+    return vec4(SH_C0, -SH_C1 * n.y, SH_C1 * n.z, -SH_C1 * n.x);
+}
+
+// Direct3D-style spot cone: 1 inside the inner angle, 0 outside the outer, linear between.
+float spot_factor(vec3 to_surface, vec3 axis, float cos_outer, float cos_inner)
+{
+    float c = dot(to_surface, axis);
+    return clamp((c - cos_outer) / max(cos_inner - cos_outer, 1e-4), 0.0, 1.0);
+}
+
+// Share of light surviving distance r through a medium with per-metre absorption
+// probability sigma (same law as the LPV's absorption).
+float transmittance(float sigma, float r)
+{
+    return sigma > 0.0 ? pow(1.0 - min(sigma, 0.999999), r) : 1.0;
+}

@@ -1,0 +1,100 @@
+/* Helpers shared by the GL tests: a context, the default room, a renderer, images. */
+#ifndef CAVELIGHT_GL_TESTUTIL_H
+#define CAVELIGHT_GL_TESTUTIL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "frame_params.h"
+#include "glctx.h"
+#include "offaxis.h"
+#include "renderer.h"
+#include "scene.h"
+
+typedef struct gltest {
+    glctx *ctx;
+    scene scene;
+    renderer *r;
+    frame_params params;
+} gltest;
+
+/* Small sizes: llvmpipe is slow. Returns 0 or prints why and returns -1. */
+static inline int gltest_open_tiles(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
+                                    int threads, renderer_tiles tiles)
+{
+    char err[512];
+    memset(t, 0, sizeof *t);
+    glctx_desc gd = {.backend = backend};
+    if (!(t->ctx = glctx_create(&gd, err, sizeof err)) ||
+        scene_load("default", &t->scene, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .lpv_backend = lpv,
+                        .rsm_size = 64, .lattice_cells = 20, .threads = threads,
+                        .lpv_gl_tiles = tiles};
+    if (!(t->r = renderer_create(&rd, err, sizeof err))) {
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    frame_params_default(&t->params);
+    frame_params_lights_from_scene(&t->params, &t->scene);
+    return 0;
+}
+
+static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
+                              int threads)
+{
+    return gltest_open_tiles(t, backend, lpv, threads, RENDERER_TILES_AUTO);
+}
+
+static inline void gltest_close(gltest *t)
+{
+    renderer_destroy(t->r);
+    glctx_destroy(t->ctx);
+    scene_free(&t->scene);
+}
+
+static inline void gltest_look_at(renderer_view *v, const float pos[3], const float target[3],
+                                  float yfov, int w, int h)
+{
+    v->width = w;
+    v->height = h;
+    memcpy(v->eye_position, pos, 3 * sizeof(float));
+    offaxis_look_at(pos, target, yfov, (float)w / (float)h, 0.05f, 50.0f, v->view, v->projection);
+}
+
+/* World point -> pixel (x right, y down, top row 0). */
+static inline void gltest_project(const renderer_view *v, const float p[3], float px[2])
+{
+    float e[4], c[4];
+    for (int r = 0; r < 4; r++)
+        e[r] = v->view[r] * p[0] + v->view[4 + r] * p[1] + v->view[8 + r] * p[2] + v->view[12 + r];
+    for (int r = 0; r < 4; r++)
+        c[r] = v->projection[r] * e[0] + v->projection[4 + r] * e[1] +
+               v->projection[8 + r] * e[2] + v->projection[12 + r] * e[3];
+    px[0] = (c[0] / c[3] * 0.5f + 0.5f) * v->width;
+    px[1] = (0.5f - c[1] / c[3] * 0.5f) * v->height;
+}
+
+/* Mean of a linear image over a square window around a pixel. */
+static inline void gltest_window_mean(const float *img, int w, int h, int cx, int cy, int half,
+                                      double out[3])
+{
+    out[0] = out[1] = out[2] = 0;
+    int n = 0;
+    for (int y = cy - half; y <= cy + half; y++)
+        for (int x = cx - half; x <= cx + half; x++) {
+            if (x < 0 || y < 0 || x >= w || y >= h)
+                continue;
+            for (int c = 0; c < 3; c++)
+                out[c] += img[((size_t)y * w + x) * 3 + c];
+            n++;
+        }
+    for (int c = 0; c < 3; c++)
+        out[c] /= n > 0 ? n : 1;
+}
+
+#endif

@@ -1,0 +1,38 @@
+/* Small helpers shared by the LPV unit tests (header only, each test is one program). */
+#ifndef CAVELIGHT_LPV_TESTUTIL_H
+#define CAVELIGHT_LPV_TESTUTIL_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "lpv_volume.h"
+
+/* Deterministic [0, 1) numbers for test data. */
+static inline float testutil_rand(uint64_t *s)
+{
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return (float)((*s * 0x2545f4914f6cdd1dull) >> 40) * (1.0f / 16777216.0f);
+}
+
+/* Largest |a - b| over all channels, divided by the largest |b|. */
+static inline double testutil_rel_diff(const lpv_volume *a, const lpv_volume *b)
+{
+    double diff = 0.0, scale = 0.0;
+    for (int c = 0; c < a->channels; c++)
+        for (size_t i = 0; i < a->cells; i++) {
+            diff = fmax(diff, fabs((double)a->ch[c][i] - b->ch[c][i]));
+            scale = fmax(scale, fabs(b->ch[c][i]));
+        }
+    return scale > 0.0 ? diff / scale : diff;
+}
+
+static inline double testutil_energy(const lpv_volume *v)
+{
+    double e[3];
+    lpv_volume_energy(v, e);
+    return e[0] + e[1] + e[2];
+}
+
+#endif
