@@ -4,7 +4,6 @@
 #include <stddef.h>
 #include <string.h>
 
-
 /* One kernel, written against a tiny 8-lane vector layer: AVX2+FMA intrinsics when the
  * build targets them, plain C with fmaf otherwise. Both layers perform the same IEEE
  * operations in the same order (fused multiply-adds, max/min with the x86 NaN rule), so
@@ -255,8 +254,10 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
             jb.g[j][s] = t->gamma[j][s];
             jb.a[j][s] = (float)((1.0 - lt) * t->gamma[j][s]);
         }
-        /* g_j l_s <S|1> / <G_j|1> = (g_j l_s / G_j0) S_0 */
-        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls / t->gamma[j][0]);
+        /* g_j l_s <S|1> / <G_j|1> = (g_j l_s / G_j0) S_0; a vector without energy can
+         * carry no scattered light. */
+        double scatter = t->gamma[j][0] != 0.0f ? t->outscatter[j] * ls / t->gamma[j][0] : 0.0;
+        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + scatter);
     }
     workpool_run(desc->pool, (src->n[2] + Z_TILE - 1) / Z_TILE, tile, &jb);
 }

@@ -256,6 +256,43 @@ static void test_wall_blocks_light(void **state)
     lpv_volume_free(&geo);
 }
 
+/* LPV-MATH.md: a lattice whose cells all hold the same L maps, away from the borders, to
+ * the same DC and a direction shrunk by the diagonal of sum_j G_j G_j^T's lower block. */
+static void test_uniform_lattice_keeps_dc_and_shrinks_direction(void **state)
+{
+    (void)state;
+    int n[3] = {7, 6, 5};
+    lpv_volume a, b;
+    assert_int_equal(lpv_volume_init(&a, n, LPV_LIGHT_CHANNELS), 0);
+    assert_int_equal(lpv_volume_init(&b, n, LPV_LIGHT_CHANNELS), 0);
+    const float L[4] = {1.0f, 0.3f, -0.5f, 0.2f};
+    for (int c = 0; c < 12; c++)
+        for (size_t i = 0; i < a.cells; i++)
+            a.ch[c][i] = L[c % 4] * (1.0f + c / 4);
+    double m[4][4] = {{0}};
+    for (int j = 0; j < LPV_NEIGHBOURS; j++)
+        for (int k = 0; k < 4; k++)
+            for (int l = 0; l < 4; l++)
+                m[k][l] += (double)tr.gamma[j][k] * tr.gamma[j][l];
+    lpv_propagate_step(&(lpv_propagate_desc){.transfer = &tr}, &a, &b);
+    size_t centre = 3 + 7 * (3 + 6 * 2);
+    for (int c = 0; c < 3; c++) {
+        assert_true(fabs(b.ch[4 * c][centre] - a.ch[4 * c][centre]) < 1e-5 * a.ch[4 * c][centre]);
+        for (int k = 1; k < 4; k++) {
+            double expect = 0.0;
+            for (int l = 0; l < 4; l++)
+                expect += m[k][l] * a.ch[4 * c + l][centre];
+            assert_true(fabs(b.ch[4 * c + k][centre] - expect) < 1e-5 * (1.0 + c));
+            /* Uniform shrink by about 0.4, up to the sampling noise of the vectors. */
+            double uniform = m[1][1] * a.ch[4 * c + k][centre];
+            assert_true(fabs(b.ch[4 * c + k][centre] - uniform) < 0.01 * (1.0 + c));
+            assert_in_range((long)(m[k][k] * 1000), 380, 460);
+        }
+    }
+    lpv_volume_free(&a);
+    lpv_volume_free(&b);
+}
+
 static void test_bad_arguments_leave_destination_alone(void **state)
 {
     (void)state;
@@ -294,6 +331,7 @@ int main(void)
         cmocka_unit_test(test_energy_per_step),
         cmocka_unit_test(test_thousand_steps_stay_finite_and_bounded),
         cmocka_unit_test(test_wall_blocks_light),
+        cmocka_unit_test(test_uniform_lattice_keeps_dc_and_shrinks_direction),
         cmocka_unit_test(test_bad_arguments_leave_destination_alone),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
