@@ -12,6 +12,7 @@ static const struct {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
     {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
                            "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
+    {"input", bench_input, "input [--iterations N]"},
 };
 
 int main(int argc, char **argv)

@@ -1,0 +1,169 @@
+/* input_desk: keyboard and mouse stand-in for head tracker and wand (GLFW window). */
+#include "input_desk.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <GLFW/glfw3.h>
+
+void input_desk_step(input_desk_state *ds, const input_desk_controls *c, double dt,
+                     input_source_state *st, double now)
+{
+    if (!ds->started) {
+        ds->head[0] = 0.0f;
+        ds->head[1] = 1.7f;
+        ds->head[2] = 0.0f;
+        ds->reach = 0.4f;
+        ds->started = 1;
+    }
+    const float speed = 1.0f, d = (float)dt * speed;
+    ds->head[2] += d * (float)(c->back - c->forward);
+    ds->head[0] += d * (float)(c->right - c->left);
+    ds->head[1] += d * (float)(c->up - c->down);
+    ds->head[1] = ds->head[1] < 0.5f ? 0.5f : ds->head[1] > 2.5f ? 2.5f : ds->head[1];
+    ds->reach += 0.05f * c->scroll;
+    ds->reach = ds->reach < 0.1f ? 0.1f : ds->reach > 1.0f ? 1.0f : ds->reach;
+
+    input_pose head = {.valid = 1, .time = now,
+                       .position = {ds->head[0], ds->head[1], ds->head[2]},
+                       .rotation = {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    /* Wand: yaw about Y then pitch about X; it points along its -Z. */
+    float yaw = (0.5f - c->cursor[0]) * 3.14159265f, pitch = (0.5f - c->cursor[1]) * 1.5707963f;
+    float cy = cosf(yaw), sy = sinf(yaw), cp = cosf(pitch), sp = sinf(pitch);
+    /* R = Ry(yaw) * Rx(pitch), column-major */
+    const float r[9] = {cy, 0, -sy, sy * sp, cp, cy * sp, sy * cp, -sp, cy * cp};
+    float fwd[3] = {-r[6], -r[7], -r[8]};
+    /* held 0.25 m below the eyes, reach metres along the horizontal pointing direction */
+    float hl = sqrtf(fwd[0] * fwd[0] + fwd[2] * fwd[2]);
+    float hx = hl > 1e-4f ? fwd[0] / hl : 0.0f, hz = hl > 1e-4f ? fwd[2] / hl : -1.0f;
+    input_pose wand = {.valid = 1, .time = now,
+                       .position = {ds->head[0] + ds->reach * hx, ds->head[1] - 0.25f,
+                                    ds->head[2] + ds->reach * hz}};
+    memcpy(wand.rotation, r, sizeof r);
+    if (!st->head.valid || memcmp(st->head.position, head.position, sizeof head.position))
+        st->head = head;
+    if (!st->wand.valid || memcmp(st->wand.position, wand.position, sizeof wand.position) ||
+        memcmp(st->wand.rotation, wand.rotation, sizeof wand.rotation))
+        st->wand = wand;
+    input_source_set_buttons(st, c->buttons, now);
+    input_source_set_axes(st, c->axes, 2, now);
+}
+
+typedef struct desk_source {
+    input_source base;
+    GLFWwindow *win;
+    input_desk_state ds;
+    input_desk_controls c;
+    double last;
+    int closed;
+} desk_source;
+
+static void on_scroll(GLFWwindow *w, double dx, double dy)
+{
+    desk_source *d = glfwGetWindowUserPointer(w);
+    d->c.scroll += (float)dy;
+}
+
+static int key(GLFWwindow *w, int k) { return glfwGetKey(w, k) == GLFW_PRESS; }
+
+static int desk_poll(input_source *s, double now, char *err, size_t errlen)
+{
+    desk_source *d = (desk_source *)s;
+    if (d->closed)
+        return 0;
+    glfwPollEvents();
+    GLFWwindow *w = d->win;
+    if (glfwWindowShouldClose(w)) {
+        d->closed = 1;
+        input_source_set_buttons(&s->st, 0, now);
+        snprintf(err, errlen, "input %s: desk simulator window closed; its input stops", s->name);
+        return -1;
+    }
+    input_desk_controls *c = &d->c;
+    c->forward = key(w, GLFW_KEY_W);
+    c->back = key(w, GLFW_KEY_S);
+    c->left = key(w, GLFW_KEY_A);
+    c->right = key(w, GLFW_KEY_D);
+    c->up = key(w, GLFW_KEY_PAGE_UP);
+    c->down = key(w, GLFW_KEY_PAGE_DOWN);
+    double x, y;
+    int ww, wh;
+    glfwGetCursorPos(w, &x, &y);
+    glfwGetWindowSize(w, &ww, &wh);
+    c->cursor[0] = ww > 0 ? (float)fmin(fmax(x / ww, 0.0), 1.0) : 0.5f;
+    c->cursor[1] = wh > 0 ? (float)fmin(fmax(y / wh, 0.0), 1.0) : 0.5f;
+    uint32_t b = 0;
+    if (key(w, GLFW_KEY_1) || glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+        b |= 1u << INPUT_BUTTON_L;
+    if (key(w, GLFW_KEY_2) || glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+        b |= 1u << INPUT_BUTTON_M;
+    if (key(w, GLFW_KEY_3) || key(w, GLFW_KEY_TAB))
+        b |= 1u << INPUT_BUTTON_R;
+    if (key(w, GLFW_KEY_4) || glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+        b |= 1u << INPUT_BUTTON_C;
+    if (key(w, GLFW_KEY_5))
+        b |= 1u << INPUT_BUTTON_AUX;
+    c->buttons = b;
+    c->axes[0] = (float)(key(w, GLFW_KEY_RIGHT) - key(w, GLFW_KEY_LEFT));
+    c->axes[1] = (float)(key(w, GLFW_KEY_UP) - key(w, GLFW_KEY_DOWN));
+    double dt = d->last > 0 ? now - d->last : 0.0;
+    d->last = now;
+    input_desk_step(&d->ds, c, dt, &s->st, now);
+    c->scroll = 0.0f;
+    return 0;
+}
+
+static void desk_close(input_source *s)
+{
+    desk_source *d = (desk_source *)s;
+    if (d->win) {
+        glfwDestroyWindow(d->win);
+        glfwTerminate();
+    }
+    free(d);
+}
+
+input_source *input_desk_open(const input_desk_desc *desc, char *err, size_t errlen)
+{
+    desk_source *d = calloc(1, sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "input: out of memory for the desk simulator");
+        return NULL;
+    }
+    snprintf(d->base.name, sizeof d->base.name, "%s", desc->name ? desc->name : "desk");
+    d->base.cave_space = 1;
+    d->base.poll = desk_poll;
+    d->base.close = desk_close;
+    if (!glfwInit()) {
+        const char *why = NULL;
+        glfwGetError(&why);
+        snprintf(err, errlen, "input %s: cannot open the desk simulator window: %s (needs a "
+                 "display; run under X or Xvfb)", d->base.name, why ? why : "GLFW init failed");
+        free(d);
+        return NULL;
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API); /* input only: no GL context needed */
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    d->win = glfwCreateWindow(desc->width > 0 ? desc->width : 360,
+                              desc->height > 0 ? desc->height : 240,
+                              "cavelight desk: WASD head, mouse wand, 1-5 buttons", NULL, NULL);
+    if (!d->win) {
+        const char *why = NULL;
+        glfwGetError(&why);
+        snprintf(err, errlen, "input %s: cannot create the desk simulator window: %s",
+                 d->base.name, why ? why : "unknown GLFW error");
+        glfwTerminate();
+        free(d);
+        return NULL;
+    }
+    glfwSetWindowUserPointer(d->win, d);
+    glfwSetScrollCallback(d->win, on_scroll);
+    d->c.cursor[0] = d->c.cursor[1] = 0.5f;
+    return &d->base;
+}
+
+void *input_desk_window(input_source *s)
+{
+    return ((desk_source *)s)->win;
+}

@@ -1,0 +1,95 @@
+/* input_source: helpers shared by the input sources, and pose maths. */
+#include "input_source.h"
+
+#include <math.h>
+#include <string.h>
+
+void input_source_set_buttons(input_source_state *st, uint32_t held, double t)
+{
+    uint32_t down = held & ~st->buttons;
+    if (held != st->buttons)
+        st->buttons_time = t;
+    st->pressed |= down;
+    st->buttons = held;
+}
+
+void input_source_set_axes(input_source_state *st, const float *axes, int count, double t)
+{
+    int changed = 0;
+    for (int i = 0; i < INPUT_AXIS_COUNT; i++) {
+        float v = i < count ? axes[i] : 0.0f;
+        if (isnan(v))
+            v = 0.0f;
+        v = v < -1.0f ? -1.0f : v > 1.0f ? 1.0f : v;
+        if (v != st->axes[i]) {
+            st->axes[i] = v;
+            changed = 1;
+        }
+    }
+    if (changed)
+        st->axes_time = t;
+}
+
+uint32_t input_map_buttons(const input_map *m, uint32_t raw)
+{
+    if (!m->set)
+        return raw & ((1u << INPUT_BUTTON_COUNT) - 1u);
+    uint32_t out = 0;
+    for (int i = 0; i < INPUT_MAP_SIZE; i++)
+        if ((raw >> i) & 1u && m->to[i] >= 0 && m->to[i] < INPUT_BUTTON_COUNT)
+            out |= 1u << m->to[i];
+    return out;
+}
+
+void input_map_axes(const input_map *m, const float *raw, int count, float out[INPUT_AXIS_COUNT])
+{
+    for (int i = 0; i < INPUT_AXIS_COUNT; i++)
+        out[i] = 0.0f;
+    for (int i = 0; i < count && i < INPUT_MAP_SIZE; i++) {
+        int to = m->set ? m->to[i] : i;
+        if (to >= 0 && to < INPUT_AXIS_COUNT)
+            out[to] = raw[i];
+    }
+}
+
+void input_pose_to_mat4(const input_pose *p, float out[16])
+{
+    for (int c = 0; c < 3; c++) {
+        for (int r = 0; r < 3; r++)
+            out[c * 4 + r] = p->rotation[c * 3 + r];
+        out[c * 4 + 3] = 0.0f;
+    }
+    for (int r = 0; r < 3; r++)
+        out[12 + r] = p->position[r];
+    out[15] = 1.0f;
+}
+
+static int is_zero16(const float m[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (m[i] != 0.0f)
+            return 0;
+    return 1;
+}
+
+void input_pose_transform(input_pose *p, const float m[16])
+{
+    if (is_zero16(m))
+        return;
+    float pos[3], rot[9];
+    for (int r = 0; r < 3; r++) {
+        pos[r] = m[12 + r];
+        for (int k = 0; k < 3; k++)
+            pos[r] += m[k * 4 + r] * p->position[k];
+    }
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++) {
+            float s = 0.0f;
+            for (int k = 0; k < 3; k++)
+                s += m[k * 4 + r] * p->rotation[c * 3 + k];
+            rot[c * 3 + r] = s;
+        }
+    memcpy(p->position, pos, sizeof pos);
+    memcpy(p->rotation, rot, sizeof rot);
+}
+

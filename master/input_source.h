@@ -1,0 +1,54 @@
+/* input_source: what every input source implements, and helpers they share.
+ *
+ * A source keeps its own input_source_state (poses, held buttons, press edges, axes, each
+ * with the input clock time of its last change). input_poll() calls poll() on every
+ * source, then merges their states (see input.h) and clears each source's press edges.
+ * A source never blocks in poll(): it reads what has arrived and returns. */
+#ifndef CAVELIGHT_INPUT_SOURCE_H
+#define CAVELIGHT_INPUT_SOURCE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "input.h"
+
+enum { INPUT_MAP_SIZE = 32 };
+
+typedef struct input_source_state {
+    input_pose head;
+    input_pose wand;
+    uint32_t buttons;          /* logical buttons held */
+    uint32_t pressed;          /* logical press edges since the last merge */
+    double buttons_time;
+    float axes[INPUT_AXIS_COUNT];
+    double axes_time;          /* 0 = never moved */
+} input_source_state;
+
+struct input_source {
+    char name[64];             /* from the config, for messages */
+    int cave_space;            /* poses already in CAVE space (no tracker transform) */
+    int stepped;               /* stepped playback: drives the input clock */
+    int finished;              /* stepped playback ran out */
+    double step_time;          /* stepped playback: clock of the current step */
+    double step_dt;
+    input_source_state st;
+    /* now: input clock, seconds. Returns 0, or -1 with a one-line reason in err. */
+    int (*poll)(input_source *s, double now, char *err, size_t errlen);
+    void (*close)(input_source *s);
+};
+
+/* Sets the held buttons at time t and records press edges. */
+void input_source_set_buttons(input_source_state *st, uint32_t held, double t);
+/* Sets axis values at time t (NaN and out-of-range values are clamped to [-1, 1], NaN to 0). */
+void input_source_set_axes(input_source_state *st, const float *axes, int count, double t);
+
+/* Raw-to-logical maps: map[raw] = logical index, or -1 to ignore. An all-zero map (the
+ * zero-initialised default) means identity. */
+typedef struct input_map {
+    int8_t to[INPUT_MAP_SIZE];
+    int set;                   /* 0: identity */
+} input_map;
+uint32_t input_map_buttons(const input_map *m, uint32_t raw);
+/* Maps raw axes (count values) to logical axes; unmapped logical axes are 0. */
+void input_map_axes(const input_map *m, const float *raw, int count, float out[INPUT_AXIS_COUNT]);
+
+#endif
