@@ -14,6 +14,7 @@
 #include "image.h"
 #include "offaxis.h"
 #include "renderer.h"
+#include "renderer_hud.h"
 #include "scene.h"
 
 typedef struct node_options {
@@ -36,6 +37,8 @@ typedef struct node_options {
     int steps;
     float lambda, absorption, scattering, display_gamma, exposure;
     frame_environment env;
+    int hud_layout, have_wand; /* HUD (docs/node.md): layout, wand position */
+    float wand[3];
 } node_options;
 
 static void usage(FILE *f)
@@ -52,7 +55,10 @@ static void usage(FILE *f)
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
         "  --absorption S --scattering S --clamp-negative\n"
         "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
-        "  --env dark|dim|office --display-gamma G --exposure E\n");
+        "  --env dark|dim|office --display-gamma G --exposure E\n"
+        "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
+        "                               settings) at a wand pointing along -Z (default: in\n"
+        "                               front of the first eye)\n");
 }
 
 static int parse_floats(const char *s, float *out, int n)
@@ -89,7 +95,7 @@ static int parse_options(int argc, char **argv, node_options *o)
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
         .fov_deg = -1, .eye_separation = 0.065f, .steps = -1, .lambda = -1,
         .absorption = 0, .scattering = 0, .display_gamma = 2.2f, .exposure = 1,
-        .env = FRAME_ENV_DIM,
+        .env = FRAME_ENV_DIM, .hud_layout = -1,
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -120,6 +126,8 @@ static int parse_options(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
         else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
+        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &o->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
+        else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
         else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
         else if (strcmp(a, "--eyes") == 0) {
             o->stereo = strcmp(v, "stereo") == 0;
@@ -331,6 +339,11 @@ static int standalone_main(const node_options *o)
     fp.environment = o->env;
     fp.display_gamma = o->display_gamma;
     fp.exposure = o->exposure;
+    fp.hud_layout = o->hud_layout;
+    if (o->have_wand)
+        memcpy(fp.wand + 12, o->wand, sizeof o->wand);
+    else
+        renderer_hud_wand_in_front(eyes[0].view.view, fp.wand);
 
     const lattice_desc *lat = renderer_get_lattice(r);
     const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";

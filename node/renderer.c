@@ -299,6 +299,8 @@ static int eye_targets(renderer *r, int w, int h)
     gl->GenFramebuffers(1, &r->final_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->f_color, 0);
+    /* The scene's depth, so the HUD drawn into the final image is occluded by it. */
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->g_depth, 0);
     gl->DrawBuffers(1, draw_buffers);
     bad |= fbo_complete(r, "final", err, sizeof err);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -497,7 +499,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen)) {
+        renderer_lpv_init(r, desc, software, err, errlen) || renderer_hud_init(r, err, errlen)) {
         renderer_destroy(r);
         return NULL;
     }
@@ -518,6 +520,7 @@ void renderer_destroy(renderer *r)
         return;
     const gl_functions *gl = r->gl;
     renderer_lpv_free(r);
+    renderer_hud_free(r);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
     for (int i = 0; i < 4; i++)
@@ -741,10 +744,12 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     gl->BindTexture(GL_TEXTURE_2D, r->s_final);
     gl->Uniform1i(loc(r, r->prog_final, "u_hdr"), 0);
     float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
-    gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"),
-                  frame_params_e2e_gamma(p->environment) / display);
+    float encoding = frame_params_e2e_gamma(p->environment) / display;
+    gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"), encoding);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
+    /* The HUD after tone mapping, in world space with this eye's view and projection. */
+    renderer_hud_draw(r, p, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
