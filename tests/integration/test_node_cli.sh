@@ -46,6 +46,16 @@ for eye in left right; do
     [ -s "$out/stereo/frame0000_${eye}.png" ] || fail "missing $eye PNG"
 done
 
+# The HUD: --hud draws it (in front of the camera, or at --wand); without it, nothing.
+small=(--standalone --frames 1 --width 96 --height 72 --rsm 64 --lattice 16)
+"$node" "${small[@]}" --out "$out/nohud" > /dev/null || fail "run without HUD failed"
+"$node" "${small[@]}" --hud 0 --out "$out/hud" > /dev/null || fail "--hud 0 failed"
+"$node" "${small[@]}" --hud 2 --wand 0.9,1.4,0.5 --out "$out/hudwand" > /dev/null \
+    || fail "--hud 2 --wand failed"
+for d in hud hudwand; do
+    cmp -s "$out/nohud/frame0000_mono.png" "$out/$d/frame0000_mono.png" && fail "$d: no HUD drawn"
+done
+
 # Errors: non-zero exit and exactly one line naming the culprit.
 one_line_error() { # expected-substring command...
     local want=$1; shift
@@ -59,4 +69,5 @@ one_line_error "missing.glb" "$node" --standalone --scene "$out/missing.glb"
 one_line_error "unknown format" "$node" --standalone --scene "$out/scene.obj"
 one_line_error "GLFW" env -u DISPLAY -u WAYLAND_DISPLAY "$node" --standalone --gl glfw
 one_line_error "--gl" "$node" --standalone --gl vulkan
+one_line_error "--hud" "$node" --standalone --hud 3
 echo "node CLI: all checks passed"
