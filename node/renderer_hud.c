@@ -147,7 +147,7 @@ static void build_box(mesh_builder *b)
 /* Apex at the origin, axis +Z, base disc of radius 1 at z = 1. */
 static void build_cone(mesh_builder *b)
 {
-    const float apex[3] = {0, 0, 0}, centre[3] = {0, 0, 1}, down[3] = {0, 0, 1};
+    const float apex[3] = {0, 0, 0}, centre[3] = {0, 0, 1}, out[3] = {0, 0, 1};
     const float k = 1.0f / sqrtf(2.0f); /* slant normal of a 45-degree unit cone */
     for (int i = 0; i < SEGMENTS; i++) {
         float a0 = 2.0f * PI * i / SEGMENTS, a1 = 2.0f * PI * (i + 1) / SEGMENTS;
@@ -156,7 +156,7 @@ static void build_cone(mesh_builder *b)
         float am = 0.5f * (a0 + a1);
         float nm[3] = {k * cosf(am), k * sinf(am), -k};
         triangle(b, apex, nm, p0, n0, p1, n1);
-        triangle(b, centre, down, p1, down, p0, down);
+        triangle(b, centre, out, p1, out, p0, out);
     }
 }
 
