@@ -70,8 +70,8 @@ void ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
 {
     double lambda = desc->lambda_incr;
     if (!(lambda > 0.0) || !s->have_history || !(s->previous_energy > 0.0) ||
-        !isfinite(desc->emitted_energy))
-        lambda = 0.0;
+        !(desc->emitted_energy >= 0.0) || !isfinite(desc->emitted_energy))
+        lambda = 0.0; /* also for a negative or NaN energy: no scale can be trusted */
     if (lambda >= 1.0) /* 1 would freeze the history and ignore the lights */
         lambda = 0.999;
     merge_job m;

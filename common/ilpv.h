@@ -5,7 +5,8 @@
  * history. Per frame: clear and fill the injection volume (ilpv_injection()), then
  * ilpv_frame() merges L = a * history + (1 - lambda) * injected with
  * a = (E_now / E_prev) * lambda, and propagates `steps` steps (blocking off in the first).
- * lambda is forced to 0 on the first frame, after ilpv_reset() and when E_prev is 0. */
+ * lambda is forced to 0 on the first frame, after ilpv_reset(), when E_prev is 0 and when
+ * E_now is negative or not finite. */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
 

@@ -4,9 +4,10 @@
 
 #include "sh.h"
 
-/* Largest subdivision per edge: caps the samples of one triangle at 2048^2 (a triangle
- * that large is sampled more coarsely than half a cell). */
-enum { MAX_SUBDIVISION = 2048 };
+/* Sub-triangle edges are at most a quarter cell: at least about 16 samples in a fully
+ * covered cell keep its total weight within some 15% of the exact coverage. The
+ * subdivision per edge is capped at 2048 (a triangle that large is sampled coarser). */
+enum { SAMPLES_PER_CELL_EDGE = 4, MAX_SUBDIVISION = 2048 };
 
 /* A fully covered cell should block (about) fully: <B|Gamma_j> = 1 for light heading
  * straight into a cell-filling plane. With Gamma ~ kappa SH_cos and
@@ -59,13 +60,14 @@ void lpv_geometry_add_triangles(lpv_volume *geometry, const lattice_desc *lat,
          * into a surface is stopped; closed meshes have both orientations. */
         float into[3] = {(float)-cr[0], (float)-cr[1], (float)-cr[2]}, lobe[4];
         sh_cosine_lobe(into, lobe);
-        /* Regular subdivision into m^2 congruent sub-triangles whose edges are at most half
-         * a cell: every cell the triangle covers by at least a cell-sized patch holds the
-         * centroid of a sub-triangle. One sample per sub-triangle, weighted by its area. */
+        /* Regular subdivision into m^2 congruent sub-triangles with edges of at most a quarter
+         * cell: every cell whose centre lies within a quarter cell of the triangle (above
+         * its interior) holds the centroid of a sub-triangle, so a triangle larger than a
+         * cell leaves no holes. One sample per sub-triangle, weighted by its area. */
         double longest = fmax(sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]),
                               fmax(sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]),
                                    sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2])));
-        double md = ceil(longest / (0.5 * lat->cell));
+        double md = ceil(longest * SAMPLES_PER_CELL_EDGE / lat->cell);
         int m = md < 1.0 ? 1 : md > MAX_SUBDIVISION ? MAX_SUBDIVISION : (int)md;
         double cell2 = (double)lat->cell * lat->cell;
         float w = (float)(0.5 * twice_area / ((double)m * m) / cell2 * GEOMETRY_WEIGHT);

@@ -1,10 +1,12 @@
 /* lpv_geometry: the blocking (geometry) lattice from triangles, paper Algorithm 1.
  *
- * Each triangle is sampled uniformly with a sample count that grows with its area over
- * the cell's cross-section, so no cell a triangle crosses is left without a sample,
- * however large the triangle. Each sample adds its normal's clamped-cosine lobe, weighted
- * so that a fully covered cell blocks fully; the blocking of a transfer is later
- * clamp(<B|Gamma_j>, 0, 1). Deterministic: fixed seed, triangles in order. */
+ * Each triangle is sampled uniformly: it is cut into m^2 congruent sub-triangles with edges
+ * of at most a quarter cell (m grows with the triangle's size over the cell) and sampled at
+ * their centroids, so no cell a triangle crosses is left without a sample, however large
+ * the triangle. Each sample adds the clamped-cosine lobe around -normal (the direction into
+ * the front face), weighted by its area so that a cell fully covered by a plane blocks
+ * (about) fully; the blocking of a transfer is later clamp(<B|Gamma_j>, 0, 1). Deterministic:
+ * no randomness, triangles in order. See docs/lpv.md. */
 #ifndef CAVELIGHT_LPV_GEOMETRY_H
 #define CAVELIGHT_LPV_GEOMETRY_H
 

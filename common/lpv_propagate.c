@@ -4,8 +4,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "sh.h"
-
 /* One kernel, written against a tiny 8-lane vector layer: AVX2+FMA intrinsics when the
  * build targets them, plain C with fmaf otherwise. Both layers perform the same IEEE
  * operations in the same order (fused multiply-adds, max/min with the x86 NaN rule), so
@@ -70,7 +68,7 @@ static inline void vf_store(float *p, vf a, int n) { memcpy(p, a.v, (size_t)(n <
 
 #define ALWAYS_INLINE inline __attribute__((always_inline))
 
-enum { CHUNK = 128 }; /* cells of a row whose blocking weights are held at once */
+enum { XC = 32 }; /* cells of a row handled at once (a multiple of 8) */
 
 typedef struct job {
     const lpv_volume *src;
@@ -90,126 +88,142 @@ typedef struct row_ctx {
     int nx;
 } row_ctx;
 
-/* w_j = 1 - clamp(<B[c - o_j] | G_j>, 0, 1) for the cells [cx, cx + cn) of the row. Lanes
- * past a row's ends read neighbouring cells or the guard; they multiply zero light. */
-static void blocking_chunk(const job *jb, const row_ctx *r, int cx, int cn,
-                           float w[LPV_NEIGHBOURS][CHUNK])
+/* XC destination cells from x0, in two passes over a small buffer that stays in L1.
+ * Pass 1 computes every factor p[j][c] = (1 - b_j) A_j . S_c(x - o_j): short independent
+ * chains, each coefficient broadcast once for the whole chunk. Pass 2 sums
+ * dst[c][k] += p[j][c] G_jk over the 26 neighbours in their fixed order with twelve
+ * accumulators (3 colours x 4 SH) in registers. Keeping the two apart avoids one long
+ * dependency chain per neighbour that the out-of-order window could not hide.
+ * Lanes whose source lies beyond the row (x = -1 for dx = +1, x = nx for dx = -1) get
+ * p = 0; lanes past the row's end are computed from whatever lies there (a neighbouring
+ * row or the zero guard) and never stored. */
+static ALWAYS_INLINE void chunk(const job *jb, const row_ctx *r, int x0, int edge,
+                                int blocking, int clamp)
 {
-    const lpv_volume *geo = jb->geometry;
-    const vf one = vf_set1(1.0f), zero = vf_zero();
+    enum { NV = XC / 8 };
+    _Alignas(32) float P[LPV_NEIGHBOURS][3][XC];
+    const int nx = r->nx, nv = ((nx - x0 < XC ? nx - x0 : XC) + 7) / 8;
+    const vf zero = vf_zero(), one = vf_set1(1.0f);
+    float *const *s = jb->src->ch;
+    vmask mask[3][NV]; /* [dx + 1][v]: lanes whose source x = x0 + 8 v + l - dx is in the row */
+    if (edge)
+        for (int d = 0; d < 3; d++)
+            for (int v = 0; v < NV; v++)
+                mask[d][v] = vmask_range(d - 1 - (x0 + 8 * v), nx - (x0 + 8 * v) + d - 1);
+    /* Pass 1 always fills all NV vectors: loads past the row read following rows or the
+     * volume's guard, and those lanes are never stored. */
     for (int j = 0; j < LPV_NEIGHBOURS; j++) {
         if (!r->valid[j])
             continue;
-        vf g0 = vf_set1(jb->g[j][0]), g1 = vf_set1(jb->g[j][1]);
-        vf g2 = vf_set1(jb->g[j][2]), g3 = vf_set1(jb->g[j][3]);
-        for (int x = 0; x < cn; x += 8) {
-            ptrdiff_t o = r->off[j] + cx + x;
-            vf b = vf_mul(g0, vf_load(geo->ch[0] + o));
-            b = vf_fma(g1, vf_load(geo->ch[1] + o), b);
-            b = vf_fma(g2, vf_load(geo->ch[2] + o), b);
-            b = vf_fma(g3, vf_load(geo->ch[3] + o), b);
-            b = vf_min(vf_max(b, zero), one);
-            vf out = vf_sub(one, b);
-            vf_store(&w[j][x], out, 8);
+        const ptrdiff_t o = r->off[j] + x0;
+        vf wv[NV];
+        if (blocking) {
+            float *const *b = jb->geometry->ch;
+            const vf g0 = vf_set1(jb->g[j][0]), g1 = vf_set1(jb->g[j][1]);
+            const vf g2 = vf_set1(jb->g[j][2]), g3 = vf_set1(jb->g[j][3]);
+            for (int v = 0; v < NV; v++) {
+                vf t = vf_mul(g0, vf_load(b[0] + o + 8 * v));
+                t = vf_fma(g1, vf_load(b[1] + o + 8 * v), t);
+                t = vf_fma(g2, vf_load(b[2] + o + 8 * v), t);
+                t = vf_fma(g3, vf_load(b[3] + o + 8 * v), t);
+                wv[v] = vf_sub(one, vf_min(vf_max(t, zero), one));
+            }
+        }
+        const vf a0 = vf_set1(jb->a[j][0]), a1 = vf_set1(jb->a[j][1]);
+        const vf a2 = vf_set1(jb->a[j][2]), a3 = vf_set1(jb->a[j][3]);
+        for (int c = 0; c < 3; c++) {
+            for (int v = 0; v < NV; v++) {
+                const ptrdiff_t ov = o + 8 * v;
+                vf p = vf_mul(a0, vf_load(s[4 * c] + ov));
+                p = vf_fma(a1, vf_load(s[4 * c + 1] + ov), p);
+                p = vf_fma(a2, vf_load(s[4 * c + 2] + ov), p);
+                p = vf_fma(a3, vf_load(s[4 * c + 3] + ov), p);
+                if (edge)
+                    p = vf_and(p, mask[lpv_transfer_offsets[j][0] + 1][v]);
+                if (clamp)
+                    p = vf_max(p, zero);
+                if (blocking)
+                    p = vf_mul(p, wv[v]);
+                vf_store(&P[j][c][8 * v], p, 8);
+            }
         }
     }
-}
-
-/* Eight destination cells starting at x0: per colour, four accumulators summed over the
- * 26 neighbours in their fixed order. edge: the block touches a row end, so loads are
- * masked to the row. */
-static ALWAYS_INLINE void block(const job *jb, const row_ctx *r, int x0,
-                                const float w[LPV_NEIGHBOURS][CHUNK], int wx, int edge,
-                                int blocking, int clamp)
-{
-    vmask mask[3];
-    if (edge)
-        for (int d = 0; d < 3; d++) /* source x = x0 + l - dx must lie in [0, nx) */
-            mask[d] = vmask_range(d - 1 - x0, r->nx - x0 + d - 1);
-    const vf zero = vf_zero();
-    for (int c = 0; c < 3; c++) {
-        const float *s0 = jb->src->ch[4 * c], *s1 = jb->src->ch[4 * c + 1];
-        const float *s2 = jb->src->ch[4 * c + 2], *s3 = jb->src->ch[4 * c + 3];
-        vf acc0 = zero, acc1 = zero, acc2 = zero, acc3 = zero;
+    for (int v = 0; v < nv; v++) {
+        vf acc[12];
+        for (int k = 0; k < 12; k++)
+            acc[k] = zero;
         for (int j = 0; j < LPV_NEIGHBOURS; j++) {
             if (!r->valid[j])
                 continue;
-            ptrdiff_t o = r->off[j] + x0;
-            vf v0 = vf_load(s0 + o), v1 = vf_load(s1 + o);
-            vf v2 = vf_load(s2 + o), v3 = vf_load(s3 + o);
-            if (edge) {
-                vmask m = mask[lpv_transfer_offsets[j][0] + 1];
-                v0 = vf_and(v0, m);
-                v1 = vf_and(v1, m);
-                v2 = vf_and(v2, m);
-                v3 = vf_and(v3, m);
+            const vf pr = vf_load(&P[j][0][8 * v]), pg = vf_load(&P[j][1][8 * v]);
+            const vf pb = vf_load(&P[j][2][8 * v]);
+            for (int k = 0; k < 4; k++) {
+                const vf g = vf_set1(jb->g[j][k]);
+                acc[k] = vf_fma(pr, g, acc[k]);
+                acc[4 + k] = vf_fma(pg, g, acc[4 + k]);
+                acc[8 + k] = vf_fma(pb, g, acc[8 + k]);
             }
-            vf p = vf_mul(vf_set1(jb->a[j][0]), v0);
-            p = vf_fma(vf_set1(jb->a[j][1]), v1, p);
-            p = vf_fma(vf_set1(jb->a[j][2]), v2, p);
-            p = vf_fma(vf_set1(jb->a[j][3]), v3, p);
-            if (clamp)
-                p = vf_max(p, zero);
-            if (blocking)
-                p = vf_mul(p, vf_load(&w[j][wx]));
-            acc0 = vf_fma(p, vf_set1(jb->g[j][0]), acc0);
-            acc1 = vf_fma(p, vf_set1(jb->g[j][1]), acc1);
-            acc2 = vf_fma(p, vf_set1(jb->g[j][2]), acc2);
-            acc3 = vf_fma(p, vf_set1(jb->g[j][3]), acc3);
         }
-        int n = r->nx - x0;
-        size_t d = r->row + (size_t)x0;
-        vf_store(jb->dst->ch[4 * c] + d, acc0, n);
-        vf_store(jb->dst->ch[4 * c + 1] + d, acc1, n);
-        vf_store(jb->dst->ch[4 * c + 2] + d, acc2, n);
-        vf_store(jb->dst->ch[4 * c + 3] + d, acc3, n);
+        const int xb = x0 + 8 * v;
+        const size_t d = r->row + (size_t)xb;
+        for (int k = 0; k < 12; k++)
+            vf_store(jb->dst->ch[k] + d, acc[k], nx - xb);
     }
 }
 
-/* The row loop, specialized on the two settings so the inner loop has no branches on them. */
-static ALWAYS_INLINE void row_blocks(const job *jb, const row_ctx *r, int blocking, int clamp)
+static void row_setup(const job *jb, int y, int z, row_ctx *r)
 {
-    _Alignas(32) float w[LPV_NEIGHBOURS][CHUNK];
-    int nx = r->nx;
-    for (int cx = 0; cx < nx; cx += CHUNK) {
-        int cn = nx - cx < CHUNK ? nx - cx : CHUNK;
-        if (blocking)
-            blocking_chunk(jb, r, cx, cn, w);
-        for (int x0 = cx; x0 < cx + cn; x0 += 8) {
-            if (x0 == 0 || x0 + 8 >= nx)
-                block(jb, r, x0, w, x0 - cx, 1, blocking, clamp);
-            else
-                block(jb, r, x0, w, x0 - cx, 0, blocking, clamp);
+    const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
+    r->nx = nx;
+    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
+        const int *o = lpv_transfer_offsets[j];
+        int sy = y - o[1], sz = z - o[2];
+        r->valid[j] = sy >= 0 && sy < ny && sz >= 0 && sz < nz;
+        r->off[j] = ((ptrdiff_t)sz * ny + sy) * nx - o[0];
+    }
+    r->row = ((size_t)z * ny + y) * nx;
+}
+
+/* A tile of Z_TILE slices, visited y-major, then chunk by chunk along x, then z: the
+ * destination chunks at (x0, y, z) and (x0, y, z + 1) share 6 of their 9 source rows, so
+ * those are still in L1, and a source row comes back for y + 1 while still in L2. */
+enum { Z_TILE = 8 };
+
+static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking, int clamp)
+{
+    const int nx = jb->src->n[0], ny = jb->src->n[1];
+    row_ctx r[Z_TILE];
+    for (int y = 0; y < ny; y++) {
+        for (int z = z0; z < z1; z++)
+            row_setup(jb, y, z, &r[z - z0]);
+        for (int x0 = 0; x0 < nx; x0 += XC) {
+            int edge = x0 == 0 || x0 + XC >= nx;
+            for (int z = z0; z < z1; z++) {
+                if (edge)
+                    chunk(jb, &r[z - z0], x0, 1, blocking, clamp);
+                else
+                    chunk(jb, &r[z - z0], x0, 0, blocking, clamp);
+            }
         }
     }
 }
 
-/* One z slice: the work item of the pool. Every cell's sum is the same whatever thread
- * runs it. */
-static void slice(void *ctx, int z)
+/* One tile: the work item of the pool. Every cell's sum is the same whatever thread runs
+ * it and in whatever order the cells are visited. */
+static void tile(void *ctx, int item)
 {
     const job *jb = ctx;
-    const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
-    row_ctx r;
-    r.nx = nx;
-    for (int y = 0; y < ny; y++) {
-        for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-            const int *o = lpv_transfer_offsets[j];
-            int sy = y - o[1], sz = z - o[2];
-            r.valid[j] = sy >= 0 && sy < ny && sz >= 0 && sz < nz;
-            r.off[j] = ((ptrdiff_t)sz * ny + sy) * nx - o[0];
-        }
-        r.row = ((size_t)z * ny + y) * nx;
-        int blocking = jb->geometry != NULL;
-        if (blocking && jb->clamp)
-            row_blocks(jb, &r, 1, 1);
-        else if (blocking)
-            row_blocks(jb, &r, 1, 0);
-        else if (jb->clamp)
-            row_blocks(jb, &r, 0, 1);
-        else
-            row_blocks(jb, &r, 0, 0);
-    }
+    const int nz = jb->src->n[2];
+    int z0 = item * Z_TILE, z1 = z0 + Z_TILE < nz ? z0 + Z_TILE : nz;
+    int blocking = jb->geometry != NULL;
+    if (blocking && jb->clamp)
+        tile_rows(jb, z0, z1, 1, 1);
+    else if (blocking)
+        tile_rows(jb, z0, z1, 1, 0);
+    else if (jb->clamp)
+        tile_rows(jb, z0, z1, 0, 1);
+    else
+        tile_rows(jb, z0, z1, 0, 0);
 }
 
 static float unit_clamp(float x)
@@ -240,9 +254,12 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
             jb.g[j][s] = t->gamma[j][s];
             jb.a[j][s] = (float)((1.0 - lt) * t->gamma[j][s]);
         }
-        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + t->outscatter[j] * ls * SH_ENERGY);
+        /* g_j l_s <S|1> / <G_j|1> = (g_j l_s / G_j0) S_0; a vector without energy can
+         * carry no scattered light. */
+        double scatter = t->gamma[j][0] != 0.0f ? t->outscatter[j] * ls / t->gamma[j][0] : 0.0;
+        jb.a[j][0] = (float)((1.0 - lt) * t->gamma[j][0] + scatter);
     }
-    workpool_run(desc->pool, src->n[2], slice, &jb);
+    workpool_run(desc->pool, (src->n[2] + Z_TILE - 1) / Z_TILE, tile, &jb);
 }
 
 double lpv_propagate_flops(size_t cells, int use_blocking)

@@ -5,8 +5,8 @@
  * used by every propagation path. Gamma_j is kappa times the mean clamped-cosine lobe
  * towards sample points drawn uniformly in neighbour cell j (rejection sampling against
  * a visibility cone, see the .c), with a fixed seed: identical on every machine.
- * kappa is found by golden-section search so that one unblocked, unabsorbed step
- * conserves energy. */
+ * Neighbours j and 25 - j are antipodal and get mirrored vectors. kappa is found by
+ * golden-section search so that one unblocked, unabsorbed step conserves energy. */
 #ifndef CAVELIGHT_LPV_TRANSFER_H
 #define CAVELIGHT_LPV_TRANSFER_H
 

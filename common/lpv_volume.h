@@ -4,8 +4,8 @@
  * channel = 4*c + s); a geometry (blocking) volume has 4. Each channel is a float array
  * of nx*ny*nz values in lattice order, 64-byte aligned, so that the propagation's inner
  * loops run along x with aligned vector loads. Each channel has LPV_VOLUME_GUARD zero
- * floats before and after it (never written), so that a vector load one cell past either
- * end stays in bounds. The caller owns the struct; init allocates, free releases,
+ * floats before and after it (never written), so that vector loads a few cells past
+ * either end stay in bounds. The caller owns the struct; init allocates, free releases,
  * nothing else allocates. */
 #ifndef CAVELIGHT_LPV_VOLUME_H
 #define CAVELIGHT_LPV_VOLUME_H
@@ -15,7 +15,7 @@
 #include "lattice.h"
 
 enum { LPV_LIGHT_CHANNELS = 12, LPV_GEOMETRY_CHANNELS = 4, LPV_MAX_CHANNELS = 12,
-       LPV_VOLUME_GUARD = 16 };
+       LPV_VOLUME_GUARD = 64 };
 
 typedef struct lpv_volume {
     int n[3];

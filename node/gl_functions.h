@@ -51,6 +51,7 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first,
     X(PFNGLFRAMEBUFFERTEXTUREPROC, FramebufferTexture) \
     X(PFNGLFRAMEBUFFERTEXTURELAYERPROC, FramebufferTextureLayer) \
     X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus) \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer) \
     X(PFNGLGENBUFFERSPROC, GenBuffers) \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers) \
     X(PFNGLBINDBUFFERPROC, BindBuffer) \

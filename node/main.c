@@ -14,6 +14,7 @@
 #include "image.h"
 #include "offaxis.h"
 #include "renderer.h"
+#include "renderer_hud.h"
 #include "scene.h"
 
 typedef struct node_options {
@@ -21,6 +22,7 @@ typedef struct node_options {
     glctx_backend gl;
     const char *scene;
     renderer_lpv_backend lpv;
+    renderer_tiles tiles;
     int rsm, lattice, threads, clamp_negative;
     int frames, width, height;
     const char *out;
@@ -35,6 +37,8 @@ typedef struct node_options {
     int steps;
     float lambda, absorption, scattering, display_gamma, exposure;
     frame_environment env;
+    int hud_layout, have_wand; /* HUD (docs/node.md): layout, wand position */
+    float wand[3];
 } node_options;
 
 static void usage(FILE *f)
@@ -50,7 +54,11 @@ static void usage(FILE *f)
         "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
         "  --absorption S --scattering S --clamp-negative\n"
-        "  --env dark|dim|office --display-gamma G --exposure E\n");
+        "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
+        "  --env dark|dim|office --display-gamma G --exposure E\n"
+        "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
+        "                               settings) at a wand pointing along -Z (default: in\n"
+        "                               front of the first eye)\n");
 }
 
 static int parse_floats(const char *s, float *out, int n)
@@ -87,7 +95,7 @@ static int parse_options(int argc, char **argv, node_options *o)
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
         .fov_deg = -1, .eye_separation = 0.065f, .steps = -1, .lambda = -1,
         .absorption = 0, .scattering = 0, .display_gamma = 2.2f, .exposure = 1,
-        .env = FRAME_ENV_DIM,
+        .env = FRAME_ENV_DIM, .hud_layout = -1,
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -118,6 +126,8 @@ static int parse_options(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
         else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
+        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &o->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
+        else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
         else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
         else if (strcmp(a, "--eyes") == 0) {
             o->stereo = strcmp(v, "stereo") == 0;
@@ -126,6 +136,11 @@ static int parse_options(int argc, char **argv, node_options *o)
             if (strcmp(v, "auto") == 0) o->lpv = RENDERER_LPV_AUTO;
             else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
             else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
+            else bad = 1;
+        } else if (strcmp(a, "--gl-tiles") == 0) {
+            if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
+            else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
+            else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
             else bad = 1;
         } else if (strcmp(a, "--env") == 0) {
             if (strcmp(v, "dark") == 0) o->env = FRAME_ENV_DARK;
@@ -305,6 +320,7 @@ static int standalone_main(const node_options *o)
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lpv_gl_tiles = o->tiles,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
@@ -323,6 +339,11 @@ static int standalone_main(const node_options *o)
     fp.environment = o->env;
     fp.display_gamma = o->display_gamma;
     fp.exposure = o->exposure;
+    fp.hud_layout = o->hud_layout;
+    if (o->have_wand)
+        memcpy(fp.wand + 12, o->wand, sizeof o->wand);
+    else
+        renderer_hud_wand_in_front(eyes[0].view.view, fp.wand);
 
     const lattice_desc *lat = renderer_get_lattice(r);
     const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
@@ -347,8 +368,8 @@ static int standalone_main(const node_options *o)
     static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
                                           "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms"};
     double *samples = calloc((size_t)o->frames * M_COUNT, sizeof *samples);
-    int rc = samples ? 0 : 1;
-    for (int f = 0; f < o->frames && rc == 0; f++) {
+    int rc = samples ? 0 : 1, frames_done_early = 0, frames_run = 0;
+    for (int f = 0; f < o->frames && rc == 0 && !frames_done_early; f++) {
         fp.version = (uint64_t)f;
         fp.time = f / 60.0;
         uint64_t checksum = renderer_frame_pass(r, &fp);
@@ -363,8 +384,8 @@ static int standalone_main(const node_options *o)
         for (int e = 0; e < eye_count && rc == 0; e++) {
             renderer_image img;
             if (renderer_eye_pass(r, &fp, &eyes[e].view, o->pfm, &img) != 0) {
-                fprintf(stderr, "cavelight-node: eye pass failed (frame %d, eye %s)\n", f,
-                        eyes[e].name);
+                fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
+                        renderer_last_error(r));
                 rc = 1;
                 break;
             }
@@ -377,6 +398,12 @@ static int standalone_main(const node_options *o)
             eye_sum[2] += te.final_ms;
             eye_sum[3] += te.eye_host_ms;
         }
+        /* A window shows the first eye; closing it ends the run. */
+        if (rc == 0 && o->gl == GLCTX_GLFW) {
+            renderer_present(r, o->width, o->height);
+            if (!glctx_swap(ctx))
+                frames_done_early = 1;
+        }
         double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
                                 eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
         for (int m = 0; m < M_COUNT; m++) {
@@ -384,6 +411,7 @@ static int standalone_main(const node_options *o)
             samples[(size_t)m * o->frames + f] = vals[m];
         }
         cJSON_AddItemToArray(frames, jf);
+        frames_run++;
         printf("frame %d: lpv %s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
                "eyes %.2f ms\n", f, hex, t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms,
                eye_sum[3]);
@@ -393,7 +421,7 @@ static int standalone_main(const node_options *o)
         cJSON *med = cJSON_AddObjectToObject(report, "median");
         double m[M_COUNT];
         for (int k = 0; k < M_COUNT; k++) {
-            m[k] = median(samples + (size_t)k * o->frames, o->frames);
+            m[k] = median(samples + (size_t)k * o->frames, frames_run);
             cJSON_AddNumberToObject(med, mnames[k], m[k]);
         }
         double total = m[M_FRAME] + m[M_EYE];

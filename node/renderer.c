@@ -58,9 +58,10 @@ static char *read_text(const char *name, char *err, size_t errlen)
     return s;
 }
 
-/* Source = version + common.glsl + file, with "// @BODY@" in the file replaced by body. */
-static GLuint compile(renderer *r, GLenum type, const char *name, const char *body,
-                      char *err, size_t errlen)
+/* Source = version + defines + common.glsl + file, with "// @BODY@" in the file replaced
+ * by body. defines and body may be NULL. */
+static GLuint compile(renderer *r, GLenum type, const char *name, const char *defines,
+                      const char *body, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
     char *common = read_text("common.glsl", err, errlen);
@@ -70,10 +71,12 @@ static GLuint compile(renderer *r, GLenum type, const char *name, const char *bo
         return 0;
     }
     const char *marker = body ? strstr(text, "// @BODY@") : NULL;
-    const char *parts[6];
-    GLint lengths[6];
+    const char *parts[7];
+    GLint lengths[7];
     int count = 0;
     parts[count] = "#version 430 core\n";
+    lengths[count++] = -1;
+    parts[count] = defines ? defines : "";
     lengths[count++] = -1;
     parts[count] = common;
     lengths[count++] = -1;
@@ -109,18 +112,18 @@ static GLuint compile(renderer *r, GLenum type, const char *name, const char *bo
 }
 
 GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *comp_body, char *err, size_t errlen)
+                        const char *defines, const char *comp_body, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
     GLuint shaders[2] = {0, 0};
     int n = 0;
     if (comp) {
-        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, comp_body, err, errlen)))
+        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, defines, comp_body, err, errlen)))
             return 0;
     } else {
-        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, NULL, err, errlen)))
+        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, defines, NULL, err, errlen)))
             return 0;
-        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, NULL, err, errlen))) {
+        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, defines, NULL, err, errlen))) {
             gl->DeleteShader(shaders[0]);
             return 0;
         }
@@ -265,7 +268,7 @@ static int eye_targets(renderer *r, int w, int h)
         return 0;
     const gl_functions *gl = r->gl;
     free_eye_targets(r);
-    char err[160];
+    char err[160] = "out of memory for the eye targets";
     r->g_position = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
     r->g_normal = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
     r->g_albedo = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
@@ -296,6 +299,8 @@ static int eye_targets(renderer *r, int w, int h)
     gl->GenFramebuffers(1, &r->final_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->f_color, 0);
+    /* The scene's depth, so the HUD drawn into the final image is occluded by it. */
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->g_depth, 0);
     gl->DrawBuffers(1, draw_buffers);
     bad |= fbo_complete(r, "final", err, sizeof err);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -305,8 +310,7 @@ static int eye_targets(renderer *r, int w, int h)
     for (int i = 0; i < 3; i++)
         r->linear[i] = malloc((size_t)w * h * 3 * sizeof(float));
     if (bad || !r->rgba || !r->rgb || !r->linear[0] || !r->linear[1] || !r->linear[2]) {
-        if (bad)
-            fprintf(stderr, "renderer: %s\n", err);
+        snprintf(r->error, sizeof r->error, "renderer: %s (%dx%d)", err, w, h);
         free_eye_targets(r);
         return -1;
     }
@@ -444,12 +448,14 @@ static int queries_begin_frame(renderer *r, renderer_queries *q, int used)
                 continue;
             GLuint64 ns = 0;
             gl->GetQueryObjectui64v(q->id[slot][i], GL_QUERY_RESULT, &ns);
-            /* llvmpipe times the very first query of a context from an undefined start
-             * (hundreds of seconds): the first set of results is dropped. */
-            if (q->warm)
+            /* llvmpipe now and then times a query from an undefined start (hundreds of
+             * seconds, seen on the first query of a context and after compute work): a
+             * pass longer than 10 s is such a reading, dropped and counted. */
+            if (ns < 10000000000ull)
                 q->ms[i] = (double)ns * 1e-6;
+            else
+                q->dropped++;
         }
-        q->warm = 1;
         q->pending[slot] = 0;
     }
     int slot = q->next;
@@ -488,12 +494,12 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
-    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, err, errlen)) ||
-        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, err, errlen)) ||
+    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen)) {
+        renderer_lpv_init(r, desc, software, err, errlen) || renderer_hud_init(r, err, errlen)) {
         renderer_destroy(r);
         return NULL;
     }
@@ -514,6 +520,7 @@ void renderer_destroy(renderer *r)
         return;
     const gl_functions *gl = r->gl;
     renderer_lpv_free(r);
+    renderer_hud_free(r);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
     for (int i = 0; i < 4; i++)
@@ -638,7 +645,12 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
                       int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
-    if (view->width <= 0 || view->height <= 0 || eye_targets(r, view->width, view->height))
+    if (view->width <= 0 || view->height <= 0) {
+        snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
+                 view->width, view->height);
+        return -1;
+    }
+    if (eye_targets(r, view->width, view->height))
         return -1;
     double t0 = now_ms();
     int w = view->width, h = view->height;
@@ -732,10 +744,12 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     gl->BindTexture(GL_TEXTURE_2D, r->s_final);
     gl->Uniform1i(loc(r, r->prog_final, "u_hdr"), 0);
     float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
-    gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"),
-                  frame_params_e2e_gamma(p->environment) / display);
+    float encoding = frame_params_e2e_gamma(p->environment) / display;
+    gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"), encoding);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
+    /* The HUD after tone mapping, in world space with this eye's view and projection. */
+    renderer_hud_draw(r, p, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -763,10 +777,28 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     r->timings.eye_host_ms = now_ms() - t0;
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR) {
-        fprintf(stderr, "renderer: GL error 0x%x in the eye pass\n", (unsigned)e);
+        snprintf(r->error, sizeof r->error, "renderer: GL error 0x%x in the eye pass", (unsigned)e);
         return -1;
     }
     return 0;
+}
+
+void renderer_present(renderer *r, int width, int height)
+{
+    const gl_functions *gl = r->gl;
+    if (!r->final_fbo)
+        return;
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->final_fbo);
+    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl->BlitFramebuffer(0, 0, r->eye_w, r->eye_h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                        GL_LINEAR);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+const char *renderer_last_error(const renderer *r)
+{
+    return r->error;
 }
 
 void renderer_get_timings(const renderer *r, renderer_timings *out)

@@ -25,6 +25,12 @@ typedef enum renderer_lpv_backend {
     RENDERER_LPV_GL,
 } renderer_lpv_backend;
 
+typedef enum renderer_tiles {
+    RENDERER_TILES_AUTO = 0, /* shared-memory tiles on a GPU, plain image loads on llvmpipe */
+    RENDERER_TILES_ON,
+    RENDERER_TILES_OFF,
+} renderer_tiles;
+
 typedef struct renderer_desc {
     const gl_functions *gl; /* the current context's table (glctx_gl()) */
     const scene *scene;
@@ -33,6 +39,7 @@ typedef struct renderer_desc {
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
     int threads;         /* CPU propagation threads, 0 = all cores */
     int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
+    renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */
     float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
                                mean free path (docs/node.md) */
 } renderer_desc;
@@ -66,6 +73,11 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
 int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
                       int want_linear, renderer_image *out);
 void renderer_get_timings(const renderer *r, renderer_timings *out);
+/* One line: why the last renderer_eye_pass() returned -1. */
+const char *renderer_last_error(const renderer *r);
+/* Copies the last eye pass's final image into the default framebuffer (a window),
+ * scaled to width x height; for the GLFW backend before glctx_swap(). */
+void renderer_present(renderer *r, int width, int height);
 /* The resolved LPV backend (never AUTO), its lattice, and the propagated light after the
  * last frame pass (12 channels, host memory; read back from GL with the GL backend). */
 renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);

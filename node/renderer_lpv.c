@@ -74,7 +74,7 @@ static void gather_body(const lpv_transfer *t, char *out, size_t n)
     size_t used = 0;
     for (int j = 0; j < LPV_NEIGHBOURS && used < n; j++)
         used += (size_t)snprintf(out + used, n - used,
-                                 "    gather(c, ivec3(%d, %d, %d), vec4(%.9g, %.9g, %.9g, %.9g), "
+                                 "    gather(here, ivec3(%d, %d, %d), vec4(%.9g, %.9g, %.9g, %.9g), "
                                  "%.9g, ar, ag, ab);\n",
                                  lpv_transfer_offsets[j][0], lpv_transfer_offsets[j][1],
                                  lpv_transfer_offsets[j][2], t->gamma[j][0], t->gamma[j][1],
@@ -109,13 +109,18 @@ static void download_volume(renderer *r, const GLuint tex[3], lpv_volume *v)
     }
 }
 
-static int init_gl_backend(renderer *r, char *err, size_t errlen)
+static int init_gl_backend(renderer *r, int software, const renderer_desc *desc, char *err,
+                           size_t errlen)
 {
     char body[8192];
     gather_body(&r->transfer, body, sizeof body);
-    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp", body, err, errlen);
+    r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
+                                                            : desc->lpv_gl_tiles == RENDERER_TILES_ON;
+    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
+                                         r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
+                                         err, errlen);
     r->prog_merge = r->prog_propagate
-                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, err, errlen)
+                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
                         : 0;
     if (!r->prog_merge)
         return -1;
@@ -217,7 +222,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
         return -1;
     }
     if (r->backend == RENDERER_LPV_GL)
-        return init_gl_backend(r, err, errlen);
+        return init_gl_backend(r, software, desc, err, errlen);
     for (int c = 0; c < 3; c++)
         r->lpv_tex[c] = renderer_texture3d(r, r->lattice.n);
     return 0;

@@ -11,6 +11,8 @@ static const struct {
 } benches[] = {
     {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
     {"cluster", bench_cluster, "cluster --nodes N [--frames F] [--transport tcp|ipc]"},
+    {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
+                           "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
     {"input", bench_input, "input [--iterations N]"},
 };
 

@@ -21,8 +21,8 @@ typedef struct gltest {
 } gltest;
 
 /* Small sizes: llvmpipe is slow. Returns 0 or prints why and returns -1. */
-static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
-                              int threads)
+static inline int gltest_open_tiles(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
+                                    int threads, renderer_tiles tiles)
 {
     char err[512];
     memset(t, 0, sizeof *t);
@@ -33,7 +33,8 @@ static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_bac
         return -1;
     }
     renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .lpv_backend = lpv,
-                        .rsm_size = 64, .lattice_cells = 20, .threads = threads};
+                        .rsm_size = 64, .lattice_cells = 20, .threads = threads,
+                        .lpv_gl_tiles = tiles};
     if (!(t->r = renderer_create(&rd, err, sizeof err))) {
         fprintf(stderr, "%s\n", err);
         return -1;
@@ -41,6 +42,12 @@ static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_bac
     frame_params_default(&t->params);
     frame_params_lights_from_scene(&t->params, &t->scene);
     return 0;
+}
+
+static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
+                              int threads)
+{
+    return gltest_open_tiles(t, backend, lpv, threads, RENDERER_TILES_AUTO);
 }
 
 static inline void gltest_close(gltest *t)

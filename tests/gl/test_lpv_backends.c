@@ -22,14 +22,14 @@ static void run_frames(gltest *t, int frames, uint64_t *checksum)
     }
 }
 
-static void test_gl_matches_cpu(void **state)
+/* Both variants of the shader: plain image loads and shared-memory tiles. */
+static void gl_matches_cpu(renderer_tiles tiles)
 {
-    (void)state;
     gltest cpu, gpu;
     uint64_t c_cpu, c_gpu;
     assert_int_equal(gltest_open(&cpu, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
     run_frames(&cpu, 4, &c_cpu);
-    assert_int_equal(gltest_open(&gpu, GLCTX_EGL, RENDERER_LPV_GL, 0), 0);
+    assert_int_equal(gltest_open_tiles(&gpu, GLCTX_EGL, RENDERER_LPV_GL, 0, tiles), 0);
     assert_int_equal(renderer_get_lpv_backend(gpu.r), RENDERER_LPV_GL);
     run_frames(&gpu, 4, &c_gpu);
     const lpv_volume *a = renderer_get_lpv(cpu.r), *b = renderer_get_lpv(gpu.r);
@@ -56,6 +56,18 @@ static void test_gl_matches_cpu(void **state)
     gltest_close(&cpu);
 }
 
+static void test_gl_images_match_cpu(void **state)
+{
+    (void)state;
+    gl_matches_cpu(RENDERER_TILES_OFF);
+}
+
+static void test_gl_tiles_match_cpu(void **state)
+{
+    (void)state;
+    gl_matches_cpu(RENDERER_TILES_ON);
+}
+
 static void test_cpu_bit_identical_across_threads(void **state)
 {
     (void)state;
@@ -74,7 +86,8 @@ static void test_cpu_bit_identical_across_threads(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_gl_matches_cpu),
+        cmocka_unit_test(test_gl_images_match_cpu),
+        cmocka_unit_test(test_gl_tiles_match_cpu),
         cmocka_unit_test(test_cpu_bit_identical_across_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

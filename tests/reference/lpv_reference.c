@@ -36,8 +36,10 @@ void lpv_reference_step(const lpv_reference_desc *desc, const lpv_volume *src, l
                         float L[4];
                         for (int s = 0; s < 4; s++)
                             L[s] = src->ch[4 * col + s][c];
+                        float energy = (float)SH_ENERGY * L[0], g_energy = (float)SH_ENERGY * g[0];
+                        float scattered = g_energy != 0.0f ? t->outscatter[j] * ls * energy / g_energy : 0.0f;
                         float flux = (1.0f - lt) * (L[0] * g[0] + L[1] * g[1] + L[2] * g[2] + L[3] * g[3]) +
-                                     t->outscatter[j] * ls * (float)SH_ENERGY * L[0];
+                                     scattered;
                         flux *= 1.0f - b;
                         if (desc->clamp_negative && flux < 0.0f)
                             flux = 0.0f;

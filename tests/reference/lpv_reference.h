@@ -1,7 +1,7 @@
 /* lpv_reference: a plain scalar propagation step, straight from eq. 2.4 in scatter form.
  *
  * Every source cell sends, to each of its 26 neighbours inside the lattice,
- *   (1 - b) ((1 - l_t) <L|G_j> + g_j l_s <L|1>) G_j
+ *   (1 - b) ((1 - l_t) <L|G_j> + g_j l_s <L|1> / <G_j|1>) G_j
  * with b = clamp(<B|G_j>, 0, 1) of the source cell. Shares only the transfer vectors with
  * the fast path; used to check it and as the speed baseline. Not for production. */
 #ifndef CAVELIGHT_LPV_REFERENCE_H

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "image.h"
 #include "scene.h"
 
 #define TMP CAVELIGHT_BINARY_DIR "/test_scene_"
@@ -109,6 +110,51 @@ static void test_gltf_transform_material_light(void **state)
     scene_free(&s);
 }
 
+/* A base colour texture (a PNG beside the file): decoded to RGBA8 and linked from the
+ * material, uvs imported. */
+static void test_gltf_texture(void **state)
+{
+    (void)state;
+    write_triangle_bin();
+    const uint8_t rgb[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 10, 20, 30};
+    char err[512] = "";
+    assert_int_equal(image_write_png(TMP "tex.png", 2, 2, rgb, err, sizeof err), 0);
+    const float uv[6] = {0, 0, 1, 0, 0, 1};
+    FILE *f = fopen(TMP "tri.bin", "ab");
+    assert_non_null(f);
+    assert_int_equal(fwrite(uv, sizeof uv, 1, f), 1);
+    fclose(f);
+    const char *text =
+        "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+        "\"nodes\":[{\"mesh\":0}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"material\":0}]}],"
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+        "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"test_scene_tex.png\"}],"
+        "\"buffers\":[{\"uri\":\"test_scene_tri.bin\",\"byteLength\":96}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":72,\"byteLength\":24}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+        "{\"bufferView\":1,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}]}";
+    write_file(TMP "tex.gltf", text, strlen(text));
+    scene s;
+    int rc = scene_load(TMP "tex.gltf", &s, err, sizeof err);
+    if (rc)
+        fprintf(stderr, "%s\n", err);
+    assert_int_equal(rc, 0);
+    assert_int_equal(s.texture_count, 1);
+    const scene_material *m = &s.materials[s.triangle_material[0]];
+    assert_int_equal(m->base_color_texture, 0);
+    assert_true(m->base_color[0] == 1.0f && m->base_color[3] == 1.0f);
+    const scene_texture *t = &s.textures[0];
+    assert_int_equal(t->width, 2);
+    assert_int_equal(t->height, 2);
+    const uint8_t want[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 10, 20, 30, 255};
+    assert_memory_equal(t->rgba, want, sizeof want);
+    assert_true(s.uvs[2] == 1.0f && s.uvs[5] == 1.0f);
+    /* No normals in the file: the face normal, +z for this winding. */
+    assert_true(fabsf(s.normals[2] - 1.0f) < 1e-6f);
+    scene_free(&s);
+}
+
 static void expect_rejected(const char *path, const char *needle)
 {
     scene s;
@@ -147,6 +193,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_room),
         cmocka_unit_test(test_gltf_transform_material_light),
+        cmocka_unit_test(test_gltf_texture),
         cmocka_unit_test(test_bad_files_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

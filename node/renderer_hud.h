@@ -1,0 +1,35 @@
+/* renderer_hud: where the wand-referenced HUD (common/hud.h) sits in the world.
+ *
+ * The HUD is a small panel in the wand's frame (the wand points along its -Z, +X is its
+ * right, +Y its up), RENDERER_HUD_DISTANCE in front of the wand's origin and facing the
+ * user behind it: the three layout indicators (arrow, cone, torus; top to bottom) on the
+ * left, the bars A, S, I, P (top to bottom) on the right, each growing along the wand's
+ * +X from its start by value * RENDERER_HUD_BAR_LENGTH, with its letter between. The
+ * spot's own cone is drawn in addition at the spot's real pose, opened by its outer angle.
+ * The renderer draws this in world space with each eye's view and projection, so it
+ * appears at the right stereo depth on every screen; renderer_hud_layout() gives the same
+ * positions to callers (tests, picking). */
+#ifndef CAVELIGHT_RENDERER_HUD_H
+#define CAVELIGHT_RENDERER_HUD_H
+
+#include "hud.h"
+
+#define RENDERER_HUD_DISTANCE 0.12f   /* panel in front of the wand origin, metres */
+#define RENDERER_HUD_BAR_LENGTH 0.12f /* a bar at value 1 */
+#define RENDERER_HUD_SPOT_CONE 0.08f  /* length of the cone drawn at the spot */
+
+typedef struct renderer_hud_places {
+    float indicator[HUD_INDICATOR_COUNT][3]; /* world centre of each indicator */
+    float bar_start[HUD_BAR_COUNT][3];       /* world point where each bar starts */
+    float bar_axis[3];                       /* unit world direction the bars grow in */
+    float panel_corner[8][3];                /* world box around everything near the wand */
+} renderer_hud_places;
+
+void renderer_hud_layout(const hud *h, renderer_hud_places *out);
+
+/* A wand pose (CAVE = world when navigation is identity) that puts the HUD panel on a
+ * view's axis, 0.42 m ahead of the eye, the wand pointing where the view looks. view is
+ * world-to-eye and rigid (as offaxis_look_at() and offaxis_screen() give). */
+void renderer_hud_wand_in_front(const float view[16], float wand[16]);
+
+#endif
