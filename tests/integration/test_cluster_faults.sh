@@ -48,11 +48,12 @@ for n in a b; do
   "$build/cavelight-node" --cluster "$tmp/c3.json" --name $n --master "$ep" --render none 2> "$tmp/n2-$n.log" &
   pids+=($!)
 done
-sleep 2
+for _ in $(seq 100); do grep -q "joined master" "$tmp/n2-a.log" 2>/dev/null && break; sleep 0.1; done
+grep -q "joined master" "$tmp/n2-a.log" || { cat "$tmp/m2.log" "$tmp/n2-a.log"; fail "node a did not join the second master"; }
 kill -TERM $m2; wait $m2 || true
 sleep 4   # master_ms is 3 s in the test config
 # Either the BYE arrived ("ended the session") or, if it was lost, silence did ("master lost").
-grep -Eq "master ended the session; waiting|master lost" "$tmp/n2-a.log" || { cat "$tmp/n2-a.log"; fail "node a did not report the master gone"; }
+grep -Eq "master ended the session; waiting|master lost" "$tmp/n2-a.log" || { cat "$tmp/m2.log" "$tmp/n2-a.log"; fail "node a did not report the master gone"; }
 "$build/cavelight-master" --config "$tmp/c3.json" --bind "$ep" --frames 20 --wait-ms 3000 --report "$tmp/r3.json" 2> "$tmp/m3.log" \
   || { cat "$tmp/m3.log" "$tmp/n2-a.log"; fail "second master failed"; }
 [ "$(json 'r["nodes_live_min"]' "$tmp/r3.json")" = 2 ] || fail "nodes did not reconnect to the new master"
