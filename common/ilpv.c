@@ -1,5 +1,7 @@
 #include "ilpv.h"
 
+#include "fpmode.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -53,6 +55,7 @@ typedef struct merge_job {
 static void merge_slice(void *ctx, int z)
 {
     const merge_job *m = ctx;
+    fpmode mode = fpmode_enter();
     size_t plane = (size_t)m->out->n[0] * m->out->n[1], lo = (size_t)z * plane;
     for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
         const float *h = m->history->ch[c] + lo, *in = m->injected->ch[c] + lo;
@@ -64,6 +67,7 @@ static void merge_slice(void *ctx, int z)
             for (size_t i = 0; i < plane; i++)
                 o[i] = m->b * in[i];
     }
+    fpmode_leave(mode);
 }
 
 void ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)

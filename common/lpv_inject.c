@@ -1,5 +1,7 @@
 #include "lpv_inject.h"
 
+#include "fpmode.h"
+
 #include <math.h>
 
 #include "sh.h"
@@ -13,6 +15,7 @@ void lpv_inject_vpls(lpv_volume *light, const lattice_desc *lat, const lpv_vpl *
                      size_t count, lpv_inject_stats *stats)
 {
     lpv_inject_stats st = {0};
+    fpmode mode = fpmode_enter();
     int usable = light && light->channels == LPV_LIGHT_CHANNELS && lat &&
                  lat->n[0] == light->n[0] && lat->n[1] == light->n[1] && lat->n[2] == light->n[2];
     for (size_t i = 0; i < count; i++) {
@@ -41,6 +44,7 @@ void lpv_inject_vpls(lpv_volume *light, const lattice_desc *lat, const lpv_vpl *
                 light->ch[4 * c + s][idx] += v->flux[c] * lobe[s];
         st.injected++;
     }
+    fpmode_leave(mode);
     if (stats) {
         stats->injected += st.injected;
         stats->outside += st.outside;

@@ -1,5 +1,7 @@
 #include "lpv_propagate.h"
 
+#include "fpmode.h"
+
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -213,6 +215,7 @@ static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking,
 static void tile(void *ctx, int item)
 {
     const job *jb = ctx;
+    fpmode mode = fpmode_enter();
     const int nz = jb->src->n[2];
     int z0 = item * Z_TILE, z1 = z0 + Z_TILE < nz ? z0 + Z_TILE : nz;
     int blocking = jb->geometry != NULL;
@@ -224,6 +227,7 @@ static void tile(void *ctx, int item)
         tile_rows(jb, z0, z1, 0, 1);
     else
         tile_rows(jb, z0, z1, 0, 0);
+    fpmode_leave(mode);
 }
 
 static float unit_clamp(float x)

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <xmmintrin.h>
 
 #include "lpv_geometry.h"
 #include "lpv_inject.h"
@@ -122,6 +123,46 @@ static void test_bit_identical_for_any_thread_count(void **state)
     lpv_volume_free(&a);
     lpv_volume_free(&b);
     lpv_volume_free(&first);
+}
+
+/* A GL driver may leave the calling thread flushing denormals while the pool's workers
+ * do not (llvmpipe does). Light near the denormal range must still give the same bits
+ * whatever mode the caller is in and however many threads share the work. */
+static void test_caller_fp_mode_does_not_matter(void **state)
+{
+    (void)state;
+    int n[3] = {24, 9, 17};
+    lpv_volume init, a, b;
+    assert_int_equal(lpv_volume_init(&init, n, LPV_LIGHT_CHANNELS), 0);
+    assert_int_equal(lpv_volume_init(&a, n, LPV_LIGHT_CHANNELS), 0);
+    assert_int_equal(lpv_volume_init(&b, n, LPV_LIGHT_CHANNELS), 0);
+    fill_random(&init, NULL, 11);
+    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++)
+        for (size_t i = 0; i < init.cells; i++)
+            init.ch[c][i] *= 1e-36f; /* a few steps of products land below 1.2e-38 */
+    uint64_t sums[3];
+    const int threads[] = {1, 2, 2};
+    const int caller_flushes[] = {0, 0, 1};
+    for (int t = 0; t < 3; t++) {
+        workpool *pool = workpool_create(threads[t]);
+        assert_non_null(pool);
+        unsigned saved = _mm_getcsr();
+        if (caller_flushes[t])
+            _mm_setcsr(saved | 0x8040); /* flush-to-zero and denormals-are-zero */
+        lpv_volume_copy(&a, &init);
+        for (int step = 0; step < 4; step++) {
+            lpv_propagate_desc pd = {.transfer = &tr, .pool = pool};
+            lpv_propagate_step(&pd, step % 2 ? &b : &a, step % 2 ? &a : &b);
+        }
+        _mm_setcsr(saved);
+        sums[t] = lpv_volume_checksum(&a);
+        workpool_destroy(pool);
+    }
+    assert_true(sums[0] == sums[1]);
+    assert_true(sums[0] == sums[2]);
+    lpv_volume_free(&init);
+    lpv_volume_free(&a);
+    lpv_volume_free(&b);
 }
 
 static void inject_centre(lpv_volume *v, const lattice_desc *lat, uint64_t seed)
@@ -328,6 +369,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fast_path_matches_reference),
         cmocka_unit_test(test_bit_identical_for_any_thread_count),
+        cmocka_unit_test(test_caller_fp_mode_does_not_matter),
         cmocka_unit_test(test_energy_per_step),
         cmocka_unit_test(test_thousand_steps_stay_finite_and_bounded),
         cmocka_unit_test(test_wall_blocks_light),
