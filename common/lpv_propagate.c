@@ -70,7 +70,15 @@ static inline void vf_store(float *p, vf a, int n) { memcpy(p, a.v, (size_t)(n <
 
 #define ALWAYS_INLINE inline __attribute__((always_inline))
 
-enum { XC = 32 }; /* cells of a row handled at once (a multiple of 8) */
+/* Destination cells of a row segment (a multiple of 8). A factor row holds the source
+ * cells x0 - 8 .. x0 + XS + 15 of its segment: the vector either side of the segment is
+ * computed (inner segments of long rows) or zero (source outside the row). */
+enum { XS = 64, PW = XS + 24 };
+/* The 26 neighbours in 3 groups, one per source z slab (lpv_transfer_offsets is z-major).
+ * The partial sums of a destination row go through dst between groups, which changes no
+ * rounding. */
+static const int group_end[4] = {0, 9, 17, 26};
+enum { GROUP_MAX = 9 };
 
 typedef struct job {
     const lpv_volume *src;
@@ -83,131 +91,159 @@ typedef struct job {
     float g[LPV_NEIGHBOURS][4];
 } job;
 
-typedef struct row_ctx {
-    ptrdiff_t off[LPV_NEIGHBOURS]; /* source index of x = 0 in the row, minus dx */
-    int valid[LPV_NEIGHBOURS];     /* source row inside the lattice */
-    size_t row;                    /* destination index of x = 0 */
-    int nx;
-} row_ctx;
-
-/* XC destination cells from x0, in two passes over a small buffer that stays in L1.
- * Pass 1 computes every factor p[j][c] = (1 - b_j) A_j . S_c(x - o_j): short independent
- * chains, each coefficient broadcast once for the whole chunk. Pass 2 sums
- * dst[c][k] += p[j][c] G_jk over the 26 neighbours in their fixed order with twelve
- * accumulators (3 colours x 4 SH) in registers. Keeping the two apart avoids one long
- * dependency chain per neighbour that the out-of-order window could not hide.
- * Lanes whose source lies beyond the row (x = -1 for dx = +1, x = nx for dx = -1) get
- * p = 0; lanes past the row's end are computed from whatever lies there (a neighbouring
- * row or the zero guard) and never stored. */
-static ALWAYS_INLINE void chunk(const job *jb, const row_ctx *r, int x0, int edge,
-                                int blocking, int clamp)
+static inline vf vf_load_n(const float *p, int n) /* first n lanes, 0 < n; others 0 */
 {
-    enum { NV = XC / 8 };
-    _Alignas(32) float P[LPV_NEIGHBOURS][3][XC];
-    const int nx = r->nx, nv = ((nx - x0 < XC ? nx - x0 : XC) + 7) / 8;
-    const vf zero = vf_zero(), one = vf_set1(1.0f);
-    float *const *s = jb->src->ch;
-    vmask mask[3][NV]; /* [dx + 1][v]: lanes whose source x = x0 + 8 v + l - dx is in the row */
-    if (edge)
-        for (int d = 0; d < 3; d++)
-            for (int v = 0; v < NV; v++)
-                mask[d][v] = vmask_range(d - 1 - (x0 + 8 * v), nx - (x0 + 8 * v) + d - 1);
-    /* Pass 1 always fills all NV vectors: loads past the row read following rows or the
-     * volume's guard, and those lanes are never stored. */
-    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-        if (!r->valid[j])
-            continue;
-        const ptrdiff_t o = r->off[j] + x0;
-        vf wv[NV];
-        if (blocking) {
-            float *const *b = jb->geometry->ch;
-            const vf g0 = vf_set1(jb->g[j][0]), g1 = vf_set1(jb->g[j][1]);
-            const vf g2 = vf_set1(jb->g[j][2]), g3 = vf_set1(jb->g[j][3]);
-            for (int v = 0; v < NV; v++) {
-                vf t = vf_mul(g0, vf_load(b[0] + o + 8 * v));
-                t = vf_fma(g1, vf_load(b[1] + o + 8 * v), t);
-                t = vf_fma(g2, vf_load(b[2] + o + 8 * v), t);
-                t = vf_fma(g3, vf_load(b[3] + o + 8 * v), t);
-                wv[v] = vf_sub(one, vf_min(vf_max(t, zero), one));
-            }
-        }
-        const vf a0 = vf_set1(jb->a[j][0]), a1 = vf_set1(jb->a[j][1]);
-        const vf a2 = vf_set1(jb->a[j][2]), a3 = vf_set1(jb->a[j][3]);
-        for (int c = 0; c < 3; c++) {
-            for (int v = 0; v < NV; v++) {
-                const ptrdiff_t ov = o + 8 * v;
-                vf p = vf_mul(a0, vf_load(s[4 * c] + ov));
-                p = vf_fma(a1, vf_load(s[4 * c + 1] + ov), p);
-                p = vf_fma(a2, vf_load(s[4 * c + 2] + ov), p);
-                p = vf_fma(a3, vf_load(s[4 * c + 3] + ov), p);
-                if (edge)
-                    p = vf_and(p, mask[lpv_transfer_offsets[j][0] + 1][v]);
-                if (clamp)
-                    p = vf_max(p, zero);
-                if (blocking)
-                    p = vf_mul(p, wv[v]);
-                vf_store(&P[j][c][8 * v], p, 8);
-            }
-        }
-    }
-    for (int v = 0; v < nv; v++) {
-        vf acc[12];
-        for (int k = 0; k < 12; k++)
-            acc[k] = zero;
-        for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-            if (!r->valid[j])
-                continue;
-            const vf pr = vf_load(&P[j][0][8 * v]), pg = vf_load(&P[j][1][8 * v]);
-            const vf pb = vf_load(&P[j][2][8 * v]);
-            for (int k = 0; k < 4; k++) {
-                const vf g = vf_set1(jb->g[j][k]);
-                acc[k] = vf_fma(pr, g, acc[k]);
-                acc[4 + k] = vf_fma(pg, g, acc[4 + k]);
-                acc[8 + k] = vf_fma(pb, g, acc[8 + k]);
-            }
-        }
-        const int xb = x0 + 8 * v;
-        const size_t d = r->row + (size_t)xb;
-        for (int k = 0; k < 12; k++)
-            vf_store(jb->dst->ch[k] + d, acc[k], nx - xb);
-    }
+#if defined(__AVX2__) && defined(__FMA__)
+    if (n >= 8)
+        return _mm256_loadu_ps(p);
+    return _mm256_maskload_ps(p, _mm256_castps_si256(vmask_range(0, n)));
+#else
+    vf r = vf_zero();
+    memcpy(r.v, p, (size_t)(n < 8 ? n : 8) * sizeof(float));
+    return r;
+#endif
 }
 
-static void row_setup(const job *jb, int y, int z, row_ctx *r)
-{
-    const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
-    r->nx = nx;
-    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-        const int *o = lpv_transfer_offsets[j];
-        int sy = y - o[1], sz = z - o[2];
-        r->valid[j] = sy >= 0 && sy < ny && sz >= 0 && sz < nz;
-        r->off[j] = ((ptrdiff_t)sz * ny + sy) * nx - o[0];
-    }
-    r->row = ((size_t)z * ny + y) * nx;
-}
-
-/* A tile of Z_TILE slices, visited y-major, then chunk by chunk along x, then z: the
- * destination chunks at (x0, y, z) and (x0, y, z + 1) share 6 of their 9 source rows, so
- * those are still in L1, and a source row comes back for y + 1 while still in L2. */
-enum { Z_TILE = 8 };
-
-static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking, int clamp)
+/* dst cells x0 .. x0 + XS - 1 of row (y, z), clipped to the row, set to 0: the first group
+ * of a row on the lattice's last z slab has no source slab. */
+static void zero_row(const job *jb, int y, int z, int x0)
 {
     const int nx = jb->src->n[0], ny = jb->src->n[1];
-    row_ctx r[Z_TILE];
-    for (int y = 0; y < ny; y++) {
-        for (int z = z0; z < z1; z++)
-            row_setup(jb, y, z, &r[z - z0]);
-        for (int x0 = 0; x0 < nx; x0 += XC) {
-            int edge = x0 == 0 || x0 + XC >= nx;
-            for (int z = z0; z < z1; z++) {
-                if (edge)
-                    chunk(jb, &r[z - z0], x0, 1, blocking, clamp);
-                else
-                    chunk(jb, &r[z - z0], x0, 0, blocking, clamp);
-            }
+    const int len = nx - x0 < XS ? nx - x0 : XS;
+    const size_t row = ((size_t)z * ny + y) * nx + (size_t)x0;
+    for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
+        memset(jb->dst->ch[k] + row, 0, (size_t)len * sizeof(float));
+}
+
+/* Pass 1 for neighbour j: the factors p[c] = (1 - b_j) A_j . S_c of the source cells
+ * xa .. xb - 1 (multiples of 8) of the source row starting at index so, into P[c] at
+ * x - x0 + 8. Aligned loads, each coefficient broadcast once per row. Lanes at or past
+ * nx are set to 0 (no light from beyond the row); so is the guard vector of a row end. */
+static ALWAYS_INLINE void factors(const job *jb, int j, ptrdiff_t so, int x0, int xa, int xb,
+                                  int nx, float (*P)[PW], int blocking, int clamp)
+{
+    const vf zero = vf_zero(), one = vf_set1(1.0f);
+    float *const *s = jb->src->ch;
+    const vf a0 = vf_set1(jb->a[j][0]), a1 = vf_set1(jb->a[j][1]);
+    const vf a2 = vf_set1(jb->a[j][2]), a3 = vf_set1(jb->a[j][3]);
+    vf g0 = zero, g1 = zero, g2 = zero, g3 = zero;
+    if (blocking) {
+        g0 = vf_set1(jb->g[j][0]);
+        g1 = vf_set1(jb->g[j][1]);
+        g2 = vf_set1(jb->g[j][2]);
+        g3 = vf_set1(jb->g[j][3]);
+    }
+    for (int x = xa; x < xb; x += 8) {
+        const ptrdiff_t o = so + x;
+        vf w = one;
+        if (blocking) {
+            float *const *b = jb->geometry->ch;
+            vf t = vf_mul(g0, vf_load(b[0] + o));
+            t = vf_fma(g1, vf_load(b[1] + o), t);
+            t = vf_fma(g2, vf_load(b[2] + o), t);
+            t = vf_fma(g3, vf_load(b[3] + o), t);
+            w = vf_sub(one, vf_min(vf_max(t, zero), one));
+        }
+        for (int c = 0; c < 3; c++) {
+            vf p = vf_mul(a0, vf_load(s[4 * c] + o));
+            p = vf_fma(a1, vf_load(s[4 * c + 1] + o), p);
+            p = vf_fma(a2, vf_load(s[4 * c + 2] + o), p);
+            p = vf_fma(a3, vf_load(s[4 * c + 3] + o), p);
+            if (clamp)
+                p = vf_max(p, zero);
+            if (blocking)
+                p = vf_mul(p, w);
+            vf_store(&P[c][x - x0 + 8], p, 8);
         }
     }
+    const int nxv = (nx + 7) & ~7;
+    if (xb == nxv) {
+        if (nx < nxv) {
+            const vmask m = vmask_range(0, nx - (nxv - 8));
+            for (int c = 0; c < 3; c++)
+                vf_store(&P[c][nxv - 8 - x0 + 8], vf_and(vf_load(&P[c][nxv - 8 - x0 + 8]), m), 8);
+        }
+        for (int c = 0; c < 3; c++)
+            vf_store(&P[c][nxv - x0 + 8], zero, 8);
+    }
+    if (x0 == 0)
+        for (int c = 0; c < 3; c++)
+            vf_store(&P[c][0], zero, 8);
+}
+
+/* One group of neighbours (those of one source z slab sz, which must lie in the lattice)
+ * for destination row (y, z), cells x0 .. x0 + XS - 1 clipped to the row: pass 1 for each
+ * neighbour whose source row exists, then pass 2 adds the group to the row, starting from
+ * zero for the first group (gi = 0) and from the row's partial sums otherwise. */
+static ALWAYS_INLINE void group(const job *jb, int y, int z, int gi, int x0, int blocking,
+                                int clamp)
+{
+    _Alignas(64) float P[GROUP_MAX][3][PW];
+    const int nx = jb->src->n[0], ny = jb->src->n[1];
+    const int len = nx - x0 < XS ? nx - x0 : XS, nv = (len + 7) / 8;
+    const int nxv = (nx + 7) & ~7;
+    const int xa = x0 == 0 ? 0 : x0 - 8;
+    const int xb = x0 + XS + 8 < nxv ? x0 + XS + 8 : nxv;
+    const size_t row = ((size_t)z * ny + y) * nx + (size_t)x0;
+    const float *prow[GROUP_MAX];
+    int js[GROUP_MAX], count = 0;
+    for (int j = group_end[gi]; j < group_end[gi + 1]; j++) {
+        const int *o = lpv_transfer_offsets[j];
+        const int sy = y - o[1], sz = z - o[2];
+        if (sy < 0 || sy >= ny)
+            continue;
+        factors(jb, j, ((ptrdiff_t)sz * ny + sy) * nx, x0, xa, xb, nx, P[count], blocking, clamp);
+        /* destination x reads source x - o_x, at buffer index x - x0 + 8 - o_x */
+        prow[count] = &P[count][0][8 - o[0]];
+        js[count++] = j;
+    }
+    if (gi > 0 && count == 0)
+        return;
+    float *const *d = jb->dst->ch;
+    for (int v = 0; v < nv; v++) {
+        const int n = len - 8 * v;
+        vf acc[12];
+        for (int k = 0; k < 12; k++)
+            acc[k] = gi == 0 ? vf_zero() : vf_load_n(d[k] + row + 8 * v, n);
+        for (int e = 0; e < count; e++) {
+            const float *p = prow[e] + 8 * v;
+            const float *g = jb->g[js[e]];
+            const vf pr = vf_load(p), pg = vf_load(p + PW), pb = vf_load(p + 2 * PW);
+            for (int k = 0; k < 4; k++) {
+                const vf gk = vf_set1(g[k]);
+                acc[k] = vf_fma(pr, gk, acc[k]);
+                acc[4 + k] = vf_fma(pg, gk, acc[4 + k]);
+                acc[8 + k] = vf_fma(pb, gk, acc[8 + k]);
+            }
+        }
+        for (int k = 0; k < 12; k++)
+            vf_store(d[k] + row + 8 * v, acc[k], n);
+    }
+}
+
+enum { Z_TILE = 8 };
+
+/* Destination rows z0 .. z1 - 1 of the tile, row y by row y. For each y and segment, the
+ * source slabs are swept from z1 down to z0 - 1: the three source rows (y - 1 .. y + 1, sz)
+ * serve group 0 of destination row sz - 1 (its first), group 1 of sz and group 2 of
+ * sz + 1 (its last) while they are in L1, so a source row is brought into L1 three times
+ * per step (once per destination y) instead of nine. The tile's source rows for three
+ * consecutive y (30 rows, 120 KB at nx = 64) stay in L2. */
+static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking, int clamp)
+{
+    const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
+    for (int y = 0; y < ny; y++)
+        for (int x0 = 0; x0 < nx; x0 += XS)
+            for (int sz = z1; sz >= z0 - 1; sz--)
+                for (int gi = 0; gi < 3; gi++) {
+                    const int z = sz + gi - 1;
+                    if (z < z0 || z >= z1)
+                        continue;
+                    if (sz >= 0 && sz < nz)
+                        group(jb, y, z, gi, x0, blocking, clamp);
+                    else if (gi == 0)
+                        zero_row(jb, y, z, x0);
+                }
 }
 
 /* One tile: the work item of the pool. Every cell's sum is the same whatever thread runs
