@@ -252,6 +252,12 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     return m;
 }
 
+static int no_live_node(cluster_master *m, void *arg)
+{
+    (void)arg;
+    return live_count(m) == 0;
+}
+
 void cluster_master_destroy(cluster_master *m)
 {
     if (!m)
@@ -260,7 +266,12 @@ void cluster_master_destroy(cluster_master *m)
         for (int i = 0; m->cfg && i < m->cfg->node_count; i++)
             if (m->peers[i].s.state != CLUSTER_PEER_ABSENT)
                 send_bye(m, i, WIRE_BYE_SHUTDOWN);
-        /* Let the BYEs leave: linger briefly (a dead peer cannot hold the close longer). */
+        /* ZeroMQ may drop what is still queued when the socket closes, linger or not (seen
+         * here under load: the last SWAP and the BYE never reached a node). Live nodes
+         * answer the BYE with theirs, so wait for that, briefly, before closing. */
+        m->quiet = 1;
+        if (m->cfg)
+            pump(m, now_ms() + 1000, no_live_node, NULL);
         int linger = 200;
         zmq_setsockopt(m->sock, ZMQ_LINGER, &linger, sizeof linger);
         zmq_close(m->sock);

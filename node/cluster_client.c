@@ -306,6 +306,9 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                 zmq_msg_close(&msg);
                 return ev->type;
             } else {
+                /* Acknowledge, so that the master knows its last messages arrived. */
+                wire_msg ack = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
+                send_msg(c, &ack);
                 c->state = STATE_LOST;
                 ev->type = CLUSTER_EVENT_SHUTDOWN;
                 zmq_msg_close(&msg);

@@ -16,7 +16,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 run() { # frames dir
   mkdir -p "$out/$2"
-  local args=(--config "$root/configs/clusters/desktop-local.json" --spawn-local --quiet
+  local args=(--config "$root/configs/clusters/desktop-local.json" --bind 'tcp://127.0.0.1:*' --spawn-local --quiet
               --input "$root/configs/input/demo-session.txt" --output png --out "$out/$2")
   [ "$1" -gt 0 ] && args+=(--frames "$1")
   "$master" "${args[@]}" > "$out/$2.log" 2>&1 || { cat "$out/$2.log"; exit 1; }
