@@ -4,8 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <zmq.h>
+
+#include "clock.h"
 
 typedef struct peer {
     cluster_peer_stats s;
@@ -28,13 +29,6 @@ struct cluster_master {
     uint8_t buf[WIRE_MAX_MESSAGE];
     uint8_t params_buf[PARAMS_ENCODED_MAX];
 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 /* Problems caused by peers are logged, but only the first few of each kind and then one
  * per 1000, so a flood cannot fill the disk. */
@@ -165,7 +159,7 @@ static int handle_one(cluster_master *m)
         goto done;
     }
     peer *p = &m->peers[node];
-    p->last_heard = now_ms();
+    p->last_heard = clock_now_ms();
     switch (msg.type) {
     case WIRE_HELLO:
         join(m, node, &msg);
@@ -203,11 +197,11 @@ static void pump(cluster_master *m, double deadline, int (*done)(cluster_master 
     for (;;) {
         /* The deadline holds even under a flood of messages. */
         while (handle_one(m))
-            if ((done && done(m, arg)) || now_ms() >= deadline)
+            if ((done && done(m, arg)) || clock_now_ms() >= deadline)
                 return;
         if (done && done(m, arg))
             return;
-        double left = deadline - now_ms();
+        double left = deadline - clock_now_ms();
         if (left <= 0)
             return;
         zmq_pollitem_t item = {.socket = m->sock, .events = ZMQ_POLLIN};
@@ -271,7 +265,7 @@ void cluster_master_destroy(cluster_master *m)
          * answer the BYE with theirs, so wait for that, briefly, before closing. */
         m->quiet = 1;
         if (m->cfg)
-            pump(m, now_ms() + 1000, no_live_node, NULL);
+            pump(m, clock_now_ms() + 1000, no_live_node, NULL);
         int linger = 200;
         zmq_setsockopt(m->sock, ZMQ_LINGER, &linger, sizeof linger);
         zmq_close(m->sock);
@@ -294,10 +288,10 @@ static int enough_live(cluster_master *m, void *arg)
 
 int cluster_master_wait_nodes(cluster_master *m, int count, int timeout_ms)
 {
-    double deadline = now_ms() + timeout_ms;
+    double deadline = clock_now_ms() + timeout_ms;
     wait_arg a = {count};
-    while (!enough_live(m, &a) && now_ms() < deadline) {
-        double step = now_ms() + m->cfg->heartbeat_ms;
+    while (!enough_live(m, &a) && clock_now_ms() < deadline) {
+        double step = clock_now_ms() + m->cfg->heartbeat_ms;
         pump(m, step < deadline ? step : deadline, enough_live, &a);
         /* Tell waiting nodes the master is alive. */
         for (int i = 0; i < m->cfg->node_count; i++)
@@ -321,7 +315,7 @@ static int all_ready(cluster_master *m, void *arg)
 int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
 {
     memset(out, 0, sizeof *out);
-    double t0 = now_ms();
+    double t0 = clock_now_ms();
     pump(m, t0, NULL, NULL); /* joins and leaves that arrived since the last frame */
     if (live_count(m) == 0)
         return -1;
@@ -349,7 +343,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
             msg.params = m->params_buf;
             msg.params_len = params_encode_delta(&m->params, p->s.version, m->params_buf, sizeof m->params_buf);
         }
-        p->frame_sent = now_ms();
+        p->frame_sent = clock_now_ms();
         if (send_to(m, i, &msg) == 0) {
             p->in_barrier = 1;
             out->live++;
@@ -357,9 +351,9 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
                 out->frame_bytes = wire_encode(&msg, m->buf, sizeof m->buf);
         }
     }
-    double tb = now_ms();
+    double tb = clock_now_ms();
     pump(m, tb + m->barrier_timeout_ms, all_ready, NULL);
-    out->barrier_ms = now_ms() - tb;
+    out->barrier_ms = clock_now_ms() - tb;
 
     uint64_t first = 0;
     int have_first = 0;
@@ -400,7 +394,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         if (m->peers[i].in_barrier && m->peers[i].ready)
             send_to(m, i, &swap);
     m->st.frames++;
-    out->round_trip_ms = now_ms() - t0;
+    out->round_trip_ms = clock_now_ms() - t0;
     return 0;
 }
 

@@ -7,8 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "input_desk.h"
 #include "input_dtrack.h"
 #include "input_playback.h"
@@ -22,20 +22,13 @@ struct input {
     input_source *src[INPUT_MAX_SOURCES];
     int count;
     float tracker_to_cave[16];
-    struct timespec t0;
+    double t0_ms; /* clock_now_ms() at creation */
     int polled;
     double last_time;
     input_playback_recorder *rec;
 };
 
 /* ---- the input handle ---- */
-
-static double clock_since(const struct timespec *t0)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
-}
 
 input *input_create(const input_desc *desc, char *err, size_t errlen)
 {
@@ -45,7 +38,7 @@ input *input_create(const input_desc *desc, char *err, size_t errlen)
         return NULL;
     }
     memcpy(in->tracker_to_cave, desc->tracker_to_cave, sizeof in->tracker_to_cave);
-    clock_gettime(CLOCK_MONOTONIC, &in->t0);
+    in->t0_ms = clock_now_ms();
     if (desc->record_path) {
         in->rec = input_playback_record_open(desc->record_path, err, errlen);
         if (!in->rec) {
@@ -83,7 +76,7 @@ static void take_pose(input_pose *best, const input_pose *p, const float xf[16],
 
 int input_poll(input *in, input_state *out, char *err, size_t errlen)
 {
-    double now = clock_since(&in->t0);
+    double now = (clock_now_ms() - in->t0_ms) / 1000.0;
     int rc = 0;
     char e[256];
     for (int i = 0; i < in->count; i++) {

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "cluster_master.h"
 #include "input.h"
 #include "interaction.h"
@@ -26,13 +27,6 @@ static void on_signal(int sig)
 {
     (void)sig;
     stop_requested = 1;
-}
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 static void usage(void)
@@ -272,7 +266,7 @@ static int write_report(const char *path, const cluster_config *cfg, cluster_mas
 
 static void sleep_until(double t)
 {
-    double left = t - now_ms();
+    double left = t - clock_now_ms();
     if (left <= 0)
         return;
     struct timespec ts = {(time_t)(left / 1000), (long)(fmod(left, 1000.0) * 1e6)};
@@ -371,7 +365,7 @@ int main(int argc, char **argv)
     int exit_code = 0;
     /* Wait in short steps so that SIGTERM is honoured while nodes are still missing. */
     int live = 0;
-    for (double until = now_ms() + o.wait_ms; !stop_requested && now_ms() < until && live < cfg.node_count;)
+    for (double until = clock_now_ms() + o.wait_ms; !stop_requested && clock_now_ms() < until && live < cfg.node_count;)
         live = cluster_master_wait_nodes(m, cfg.node_count, 200);
     if (live < cfg.node_count)
         fprintf(stderr, "cavelight-master: %d of %d nodes joined within %d ms; going on with them\n", live,
@@ -396,7 +390,7 @@ int main(int argc, char **argv)
         }
         interaction_init(&ia, &(interaction_desc){0});
     }
-    double start = now_ms();
+    double start = clock_now_ms();
     uint64_t last_version = 0;
     for (int frame = 0; (o.frames == 0 || frame < o.frames) && !stop_requested; frame++) {
         params_store *store = cluster_master_params(m);
@@ -412,7 +406,7 @@ int main(int argc, char **argv)
             params_set_from_frame(store, &fp);
             params_set_i32(store, PARAMS_LPV_RESOLUTION, interaction_pipeline(&ia) ? 64 : 0);
         } else {
-            double t = o.dt > 0 ? frame * o.dt : (now_ms() - start) / 1000.0;
+            double t = o.dt > 0 ? frame * o.dt : (clock_now_ms() - start) / 1000.0;
             script_apply(&sc, t, store);
         }
         cluster_frame_result r;
@@ -431,7 +425,7 @@ int main(int argc, char **argv)
         if (o.fps > 0)
             sleep_until(start + (frame + 1) * 1000.0 / o.fps);
     }
-    double wall = (now_ms() - start) / 1000.0;
+    double wall = (clock_now_ms() - start) / 1000.0;
 
     /* What a joining node receives: one SNAPSHOT message. */
     static uint8_t snap[PARAMS_ENCODED_MAX], snap_msg[WIRE_MAX_MESSAGE];
@@ -447,7 +441,7 @@ int main(int argc, char **argv)
     cluster_master_destroy(m); /* BYE: spawned nodes leave by themselves */
     if (children.count) {
         for (int waited = 0; spawn_reap(&children) > 0 && waited < 10000; waited += 20)
-            sleep_until(now_ms() + 20);
+            sleep_until(clock_now_ms() + 20);
         spawn_stop_all(&children, 3000);
         for (int i = 0; i < children.count; i++) {
             int s = children.status[i];

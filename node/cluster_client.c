@@ -4,8 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <zmq.h>
+
+#include "clock.h"
 
 typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
 
@@ -23,13 +24,6 @@ struct cluster_client {
     uint8_t buf[WIRE_MAX_MESSAGE];
 };
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 static int send_msg(cluster_client *c, wire_msg *msg)
 {
     snprintf(msg->name, sizeof msg->name, "%s", c->name);
@@ -40,7 +34,7 @@ static int send_msg(cluster_client *c, wire_msg *msg)
     if (zmq_send(c->sock, c->buf, len, ZMQ_DONTWAIT) < 0)
         return -1;
     c->st.bytes_sent += len;
-    c->last_sent = now_ms();
+    c->last_sent = clock_now_ms();
     return 0;
 }
 
@@ -49,7 +43,7 @@ static void send_hello(cluster_client *c)
     wire_msg m = {.type = WIRE_HELLO, .config_hash = c->cfg->hash, .version = c->params.version};
     /* Not yet connected (ZMQ_IMMEDIATE): the next housekeeping round tries again. */
     if (send_msg(c, &m) == 0)
-        c->last_hello = now_ms();
+        c->last_hello = clock_now_ms();
 }
 
 static int open_socket(cluster_client *c, char *err, size_t errlen)
@@ -76,7 +70,7 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         c->sock = NULL;
         return -1;
     }
-    c->opened = now_ms();
+    c->opened = clock_now_ms();
     return 0;
 }
 
@@ -119,7 +113,7 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
         return NULL;
     }
     c->state = STATE_HELLO;
-    c->last_heard = now_ms();
+    c->last_heard = clock_now_ms();
     send_hello(c);
     return c;
 }
@@ -170,17 +164,17 @@ static void housekeeping(cluster_client *c, double now)
 static void ask_snapshot(cluster_client *c)
 {
     c->state = c->state == STATE_LOST ? STATE_LOST : STATE_HELLO;
-    if (now_ms() - c->last_hello >= 100)
+    if (clock_now_ms() - c->last_hello >= 100)
         send_hello(c);
 }
 
 cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
 {
     memset(ev, 0, sizeof *ev);
-    double deadline = now_ms() + timeout_ms;
+    double deadline = clock_now_ms() + timeout_ms;
     int pending = 0; /* a FRAME applied and not yet overtaken */
     for (;;) {
-        double now = now_ms();
+        double now = clock_now_ms();
         housekeeping(c, now);
         zmq_msg_t msg;
         zmq_msg_init(&msg);
@@ -228,11 +222,11 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                     break;
             }
             zmq_msg_close(&msg);
-            if (!pending && now_ms() >= deadline)
+            if (!pending && clock_now_ms() >= deadline)
                 return CLUSTER_EVENT_NONE;
             continue;
         }
-        c->last_heard = now_ms();
+        c->last_heard = clock_now_ms();
         if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE)
             ask_snapshot(c); /* the master is back: resync */
         switch (m.type) {
@@ -268,14 +262,14 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                 pending = 0;
                 break;
             }
-            double t0 = now_ms();
+            double t0 = clock_now_ms();
             if (params_apply(&c->params, m.version, m.params, m.params_len) != 0) {
                 c->st.malformed++;
                 ask_snapshot(c);
                 pending = 0;
                 break;
             }
-            ev->apply_ms += now_ms() - t0;
+            ev->apply_ms += clock_now_ms() - t0;
             if (pending)
                 c->st.skipped++;
             c->st.frames++;
@@ -319,7 +313,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             break;
         }
         zmq_msg_close(&msg);
-        if (!pending && now_ms() >= deadline)
+        if (!pending && clock_now_ms() >= deadline)
             return CLUSTER_EVENT_NONE; /* a flood cannot hold the caller past its timeout */
     }
 }

@@ -3,18 +3,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "cluster_client.h"
 #include "cluster_view.h"
 #include "params.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
@@ -48,7 +41,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
         case CLUSTER_EVENT_FRAME: {
-            double t0 = now_ms();
+            double t0 = clock_now_ms();
             const params_store *ps = cluster_client_params(client);
             frame_params f;
             params_to_frame(ps, &f);
@@ -62,7 +55,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             if (d->fault_checksum_from && ev.version >= d->fault_checksum_from)
                 checksum ^= 0x5a5a5a5a5a5a5a5aull;
             timings[WIRE_TIMING_APPLY] = (float)ev.apply_ms;
-            timings[WIRE_TIMING_TOTAL] = (float)(ev.apply_ms + now_ms() - t0);
+            timings[WIRE_TIMING_TOTAL] = (float)(ev.apply_ms + clock_now_ms() - t0);
             cluster_client_ready(client, ev.version, checksum, timings);
             pending_swap = ev.version;
             st.frames++;

@@ -5,19 +5,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "offaxis.h"
 #include "renderer_internal.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 static void mat4_mul(const float a[16], const float b[16], float out[16])
 {
@@ -611,14 +604,14 @@ static void render_rsms(renderer *r, const frame_params *p)
 
 uint64_t renderer_frame_pass(renderer *r, const frame_params *p)
 {
-    double t0 = now_ms();
+    double t0 = clock_now_ms();
     int slot = queries_begin_frame(r, &r->frame_queries, 1);
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     render_rsms(r, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
     uint64_t checksum = renderer_lpv_frame(r, p);
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
-    r->timings.frame_host_ms = now_ms() - t0;
+    r->timings.frame_host_ms = clock_now_ms() - t0;
     return checksum;
 }
 
@@ -652,7 +645,7 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     }
     if (eye_targets(r, view->width, view->height))
         return -1;
-    double t0 = now_ms();
+    double t0 = clock_now_ms();
     int w = view->width, h = view->height;
     int slot = queries_begin_frame(r, &r->eye_queries, 3);
     float vp[16];
@@ -774,7 +767,7 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
     r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
     r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
     r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
-    r->timings.eye_host_ms = now_ms() - t0;
+    r->timings.eye_host_ms = clock_now_ms() - t0;
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR) {
         snprintf(r->error, sizeof r->error, "renderer: GL error 0x%x in the eye pass", (unsigned)e);

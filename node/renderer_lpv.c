@@ -10,19 +10,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "lpv_geometry.h"
 #include "renderer_internal.h"
 
 static const double PI = 3.14159265358979323846;
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 /* One VPL per emissive triangle (paper 3.3.5): centroid, face normal on the side of the
  * vertex normals, flux pi * L_e * area (passed as L_e * area, see the units above). */
@@ -382,12 +375,12 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
         r->gl_have_history = 0;
         r->reset_epoch = p->reset_epoch;
     }
-    double t0 = now_ms();
+    double t0 = clock_now_ms();
     size_t count = collect_vpls(r);
     ilpv_begin_frame(&r->cpu);
     memset(&r->inject_stats, 0, sizeof r->inject_stats);
     lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, r->vpls, count, &r->inject_stats);
-    double t1 = now_ms();
+    double t1 = clock_now_ms();
     double energy = emitted_energy(r, p);
     uint64_t checksum;
     if (r->backend == RENDERER_LPV_GL) {
@@ -414,7 +407,7 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
         upload_volume(r, result, r->lpv_tex);
     }
     r->timings.inject_ms = t1 - t0;
-    r->timings.propagate_ms = now_ms() - t1;
+    r->timings.propagate_ms = clock_now_ms() - t1;
     r->frames++;
     return checksum;
 }

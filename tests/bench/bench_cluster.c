@@ -15,21 +15,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "bench.h"
 
 #if defined(CAVELIGHT_HAVE_MASTER) && defined(CAVELIGHT_HAVE_NODE)
+#include "clock.h"
 #include "cluster_master.h"
 #include "cluster_node.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -110,11 +103,11 @@ static int tcp_ping_pong(int bytes, int rounds, double *median, double *p99)
     memset(buf, 1, sizeof buf);
     double *rt = malloc(sizeof *rt * (size_t)rounds);
     for (int i = 0; i < rounds + 100; i++) {
-        double t0 = now_ms();
+        double t0 = clock_now_ms();
         if (write(fd, buf, (size_t)bytes) != bytes || read_full(fd, buf, bytes))
             return -1;
         if (i >= 100)
-            rt[i - 100] = now_ms() - t0;
+            rt[i - 100] = clock_now_ms() - t0;
     }
     close(fd);
     pthread_join(t, NULL);

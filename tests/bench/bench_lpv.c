@@ -5,9 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
+#include "clock.h"
 #include "lattice.h"
 #include "lpv_geometry.h"
 #include "lpv_inject.h"
@@ -22,13 +22,6 @@
 #endif
 
 enum { MIN_REPEATS = 20, PEAK_ITERATIONS = 20000000 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -81,9 +74,9 @@ static double peak_gflops(workpool *pool, int threads)
 #endif
     double t[5];
     for (int r = 0; r < 5; r++) {
-        double t0 = now_s();
+        double t0 = clock_now_ms() * 1e-3;
         workpool_run(pool, threads, peak_item, NULL);
-        t[r] = now_s() - t0;
+        t[r] = clock_now_ms() * 1e-3 - t0;
     }
     return flops_per_thread * threads / median(t, 5) * 1e-9;
 }
@@ -181,7 +174,7 @@ int bench_lpv(int argc, char **argv)
     for (int rep = -1; rep < repeats; rep++) { /* rep -1 warms the caches up */
         lpv_volume_copy(&a, &inj);
         lpv_volume *s = &a, *d = &b;
-        double t0 = now_s();
+        double t0 = clock_now_ms() * 1e-3;
         for (int k = 0; k < steps; k++) {
             pd.use_blocking = k > 0;
             lpv_propagate_step(&pd, s, d);
@@ -190,7 +183,7 @@ int bench_lpv(int argc, char **argv)
             d = t;
         }
         if (rep >= 0)
-            times[rep] = now_s() - t0;
+            times[rep] = clock_now_ms() * 1e-3 - t0;
     }
     const lpv_volume *fast = steps % 2 ? &b : &a;
     size_t cells = lattice_cell_count(&lat);
@@ -204,7 +197,7 @@ int bench_lpv(int argc, char **argv)
     for (int rep = 0; rep < naive_repeats; rep++) {
         lpv_volume_copy(&ref_a, &inj);
         lpv_volume *s = &ref_a, *d = &ref_b;
-        double t0 = now_s();
+        double t0 = clock_now_ms() * 1e-3;
         for (int k = 0; k < steps; k++) {
             rd.use_blocking = k > 0;
             lpv_reference_step(&rd, s, d);
@@ -212,7 +205,7 @@ int bench_lpv(int argc, char **argv)
             s = d;
             d = t;
         }
-        naive_times[rep] = now_s() - t0;
+        naive_times[rep] = clock_now_ms() * 1e-3 - t0;
     }
     const lpv_volume *ref = steps % 2 ? &ref_b : &ref_a;
     double naive_s = median(naive_times, naive_repeats);
