@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "mat4.h"
+
 static void grey(float c[3], float v) { c[0] = c[1] = c[2] = v; }
 
 static float clamp01(float x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
@@ -13,13 +15,7 @@ void hud_describe(const frame_params *p, int lattice_cells, hud *out)
     out->visible = p->hud_layout >= 0;
     out->active_layout = p->hud_layout;
     /* wand_world = navigation * wand */
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0;
-            for (int k = 0; k < 4; k++)
-                s += p->navigation[k * 4 + r] * p->wand[c * 4 + k];
-            out->wand_world[c * 4 + r] = s;
-        }
+    mat4_mul(p->navigation, p->wand, out->wand_world);
     for (int i = 0; i < HUD_INDICATOR_COUNT; i++) {
         hud_indicator *ind = &out->indicators[i];
         ind->shape = (hud_shape)i;

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "mat4.h"
+
 static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
 void interaction_init(interaction *ia, const interaction_desc *desc)
@@ -88,25 +90,6 @@ void interaction_rgb_to_hsv(const float rgb[3], float *h, float *s, float *v)
 }
 
 /* ---- small column-major helpers ---- */
-
-static void mul4(const float a[16], const float b[16], float out[16])
-{
-    float t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0;
-            for (int k = 0; k < 4; k++)
-                s += a[k * 4 + r] * b[c * 4 + k];
-            t[c * 4 + r] = s;
-        }
-    memcpy(out, t, sizeof t);
-}
-
-static void transform_point(const float m[16], const float p[3], float out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
 
 static void transform_dir(const float m[16], const float d[3], float out[3])
 {
@@ -196,7 +179,7 @@ static void navigation_update(interaction *ia, const input_state *in, double dt,
         /* T(pivot) * Ry(a) * T(-pivot) */
         float r[16] = {c, 0, -s, 0, 0, 1, 0, 0, s, 0, c, 0,
                        pv[0] - (c * pv[0] + s * pv[2]), 0, pv[2] - (-s * pv[0] + c * pv[2]), 1};
-        mul4(ia->drag_navigation, r, p->navigation);
+        mat4_mul(ia->drag_navigation, r, p->navigation);
     } else {
         ia->dragging = 0;
     }
@@ -225,7 +208,7 @@ static void lighting_update(interaction *ia, const input_state *in, double dt, f
     if ((in->buttons & (1u << INPUT_BUTTON_C)) && in->wand.valid) {
         float f[3];
         wand_forward(&in->wand, f);
-        transform_point(p->navigation, in->wand.position, l->position);
+        mat4_transform_point(p->navigation, in->wand.position, l->position);
         transform_dir(p->navigation, f, l->direction);
         normalize3(l->direction);
     }

@@ -10,6 +10,7 @@
 #include "cluster_window.h"
 #include "glctx.h"
 #include "image.h"
+#include "mat4.h"
 #include "offaxis.h"
 #include "scene.h"
 
@@ -59,12 +60,6 @@ const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye)
     return side < 0 ? "left" : side > 0 ? "right" : "mono";
 }
 
-static void transform_point(const float m[16], const float p[3], float out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
-
 int cluster_view_compute(const cluster_config *cfg, int screen, int side, const frame_params *f,
                          int width, int height, float far_plane, renderer_view *out)
 {
@@ -73,17 +68,17 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     /* Eye in CAVE space: head pose times the head-to-eye offset, then along the head's
      * right axis (the pose's first column). */
     float mid[3], right[3], eye_cave[3];
-    transform_point(f->head, o->head_to_eye, mid);
+    mat4_transform_point(f->head, o->head_to_eye, mid);
     float len = sqrtf(f->head[0] * f->head[0] + f->head[1] * f->head[1] + f->head[2] * f->head[2]);
     for (int i = 0; i < 3; i++)
         right[i] = len > 0 ? f->head[i] / len : (i == 0);
     for (int i = 0; i < 3; i++)
         eye_cave[i] = mid[i] + side * 0.5f * o->eye_separation * right[i];
     offaxis_screen_desc d = {.near_plane = 0.05f, .far_plane = far_plane};
-    transform_point(f->navigation, s->bottom_left, d.bottom_left);
-    transform_point(f->navigation, s->bottom_right, d.bottom_right);
-    transform_point(f->navigation, s->top_left, d.top_left);
-    transform_point(f->navigation, eye_cave, d.eye);
+    mat4_transform_point(f->navigation, s->bottom_left, d.bottom_left);
+    mat4_transform_point(f->navigation, s->bottom_right, d.bottom_right);
+    mat4_transform_point(f->navigation, s->top_left, d.top_left);
+    mat4_transform_point(f->navigation, eye_cave, d.eye);
     memset(out, 0, sizeof *out);
     out->width = width;
     out->height = height;

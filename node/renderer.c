@@ -7,21 +7,11 @@
 #include <string.h>
 
 #include "clock.h"
+#include "mat4.h"
 #include "offaxis.h"
 #include "renderer_internal.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
-
-static void mat4_mul(const float a[16], const float b[16], float out[16])
-{
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0;
-            for (int k = 0; k < 4; k++)
-                s += a[k * 4 + r] * b[c * 4 + k];
-            out[c * 4 + r] = s;
-        }
-}
 
 /* ---- shaders ---------------------------------------------------------------------- */
 

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mat4.h"
 #include "renderer_hud.h"
 #include "renderer_internal.h"
 
@@ -23,23 +24,6 @@ enum { SEGMENTS = 24, TORUS_RINGS = 8 };
 static const float PI = 3.14159265f;
 
 /* ---- small maths -------------------------------------------------------------------- */
-
-static void mat4_mul(const float a[16], const float b[16], float out[16])
-{
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float s = 0;
-            for (int k = 0; k < 4; k++)
-                s += a[k * 4 + r] * b[c * 4 + k];
-            out[c * 4 + r] = s;
-        }
-}
-
-static void transform_point(const float m[16], const float p[3], float out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
 
 static void normalize3(float v[3])
 {
@@ -68,16 +52,16 @@ void renderer_hud_layout(const hud *h, renderer_hud_places *out)
     const float *w = h->wand_world;
     const float z = -RENDERER_HUD_DISTANCE;
     for (int i = 0; i < HUD_INDICATOR_COUNT; i++)
-        transform_point(w, (const float[3]){INDICATOR_X, INDICATOR_Y[i], z}, out->indicator[i]);
+        mat4_transform_point(w, (const float[3]){INDICATOR_X, INDICATOR_Y[i], z}, out->indicator[i]);
     for (int i = 0; i < HUD_BAR_COUNT; i++)
-        transform_point(w, (const float[3]){BAR_X, BAR_Y[i], z}, out->bar_start[i]);
+        mat4_transform_point(w, (const float[3]){BAR_X, BAR_Y[i], z}, out->bar_start[i]);
     for (int r = 0; r < 3; r++)
         out->bar_axis[r] = w[r];
     normalize3(out->bar_axis);
     for (int k = 0; k < 8; k++) {
         const float p[3] = {k & 1 ? PANEL_MAX[0] : PANEL_MIN[0], k & 2 ? PANEL_MAX[1] : PANEL_MIN[1],
                             k & 4 ? PANEL_MAX[2] : PANEL_MIN[2]};
-        transform_point(w, p, out->panel_corner[k]);
+        mat4_transform_point(w, p, out->panel_corner[k]);
     }
 }
 

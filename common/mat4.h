@@ -1,0 +1,16 @@
+/* mat4: the few 4x4 matrix operations the renderer, HUD and interaction share.
+ *
+ * Matrices are float[16], column-major (element (row r, column c) at [c * 4 + r]), as GL
+ * and the wire format expect. Plain scalar loops on purpose: cglm's SIMD paths need
+ * 16/32-byte aligned mat4 storage (our matrices live unaligned in structs and messages)
+ * and may fuse multiply-adds, which would change results between builds. */
+#ifndef CAVELIGHT_MAT4_H
+#define CAVELIGHT_MAT4_H
+
+/* out = a * b; out may alias a or b. */
+void mat4_mul(const float a[16], const float b[16], float out[16]);
+
+/* out = the affine point p transformed by m (w = 1, no division). */
+void mat4_transform_point(const float m[16], const float p[3], float out[3]);
+
+#endif
