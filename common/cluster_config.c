@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "textfile.h"
 #include "wire.h"
 
 typedef struct parse_ctx {
@@ -428,19 +429,14 @@ done:
 
 int cluster_config_load(const char *path, cluster_config *out, char *err, size_t errlen)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "cluster config %s: cannot open: check the path", path);
-        return -1;
-    }
     enum { MAX_FILE = 1 << 20 };
-    char *text = malloc(MAX_FILE);
-    size_t len = text ? fread(text, 1, MAX_FILE, f) : 0;
-    int too_big = text && len == MAX_FILE;
-    fclose(f);
-    if (!text || too_big) {
+    char why[128];
+    size_t len = 0;
+    char *text = textfile_read(path, &len, why, sizeof why);
+    if (!text || len >= MAX_FILE) {
         free(text);
-        snprintf(err, errlen, "cluster config %s: %s", path, text ? "larger than 1 MiB" : "out of memory");
+        snprintf(err, errlen, "cluster config %s: %s", path,
+                 text ? "larger than 1 MiB" : why);
         return -1;
     }
     int rc = cluster_config_parse(text, len, path, out, err, errlen);

@@ -2,7 +2,6 @@
 #include "input.h"
 
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +14,7 @@
 #include "input_source.h"
 #include "input_usb.h"
 #include "input_vrpn.h"
+#include "textfile.h"
 
 enum { INPUT_MAX_SOURCES = 16 };
 
@@ -368,28 +368,6 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
     return NULL;
 }
 
-static char *read_text(const char *path, char *err, size_t errlen)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "input: cannot open %s: %s", path, strerror(errno));
-        return NULL;
-    }
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) {
-        snprintf(err, errlen, "input: cannot read %s", path);
-        free(s);
-        fclose(f);
-        return NULL;
-    }
-    s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 input *input_open(const input_desc *desc, char *err, size_t errlen)
 {
     if (!desc->path) {
@@ -408,9 +386,12 @@ input *input_open(const input_desc *desc, char *err, size_t errlen)
         }
         return in;
     }
-    char *text = read_text(desc->path, err, errlen);
-    if (!text)
+    char why[128];
+    char *text = textfile_read(desc->path, NULL, why, sizeof why);
+    if (!text) {
+        snprintf(err, errlen, "input config %s: %s", desc->path, why);
         return NULL;
+    }
     cJSON *root = cJSON_Parse(text);
     free(text);
     if (!root || !cJSON_IsObject(root)) {

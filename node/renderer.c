@@ -1,6 +1,5 @@
 /* renderer: GL passes of the render node (RSM, G-buffer, shading, final) and the frame /
  * eye pass orchestration. The LPV backends live in renderer_lpv.c. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +9,7 @@
 #include "mat4.h"
 #include "offaxis.h"
 #include "renderer_internal.h"
+#include "textfile.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
 
@@ -20,24 +20,11 @@ static char *read_text(const char *name, char *err, size_t errlen)
     const char *dir = getenv("CAVELIGHT_SHADERS");
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir && *dir ? dir : CAVELIGHT_SHADER_DIR, name);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "shader %s: cannot open (%s; set CAVELIGHT_SHADERS to the "
-                 "shaders/ folder)", path, strerror(errno));
-        return NULL;
-    }
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        fclose(f);
-        snprintf(err, errlen, "shader %s: cannot read", path);
-        return NULL;
-    }
-    s[n] = '\0';
-    fclose(f);
+    char why[128];
+    char *s = textfile_read(path, NULL, why, sizeof why);
+    if (!s)
+        snprintf(err, errlen, "shader %s: %s; set CAVELIGHT_SHADERS to the shaders/ folder",
+                 path, why);
     return s;
 }
 

@@ -1,0 +1,67 @@
+/* textfile: whole-file reads, NUL termination and one-line errors without the path. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "textfile.h"
+
+static void test_reads_whole_file(void **state)
+{
+    char path[] = "/tmp/cavelight_textfile_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    const char data[] = "line one\nwith\0nul\n"; /* sizeof includes a final NUL too */
+    assert_int_equal(write(fd, data, sizeof data - 1), (ssize_t)(sizeof data - 1));
+    close(fd);
+    size_t len = 0;
+    char err[128] = "";
+    char *s = textfile_read(path, &len, err, sizeof err);
+    unlink(path);
+    assert_non_null(s);
+    assert_int_equal(len, sizeof data - 1);
+    assert_memory_equal(s, data, sizeof data); /* content plus the added NUL */
+    free(s);
+}
+
+static void test_empty_file(void **state)
+{
+    char path[] = "/tmp/cavelight_textfile_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    size_t len = 99;
+    char err[128];
+    char *s = textfile_read(path, &len, err, sizeof err);
+    unlink(path);
+    assert_non_null(s);
+    assert_int_equal(len, 0);
+    assert_int_equal(s[0], '\0');
+    free(s);
+}
+
+static void test_errors(void **state)
+{
+    char err[128] = "";
+    assert_null(textfile_read("/nonexistent/cavelight.json", NULL, err, sizeof err));
+    assert_non_null(strstr(err, "cannot open"));
+    assert_null(strstr(err, "/nonexistent")); /* the caller adds the path */
+    err[0] = '\0';
+    assert_null(textfile_read("/tmp", NULL, err, sizeof err));
+    assert_string_equal(err, "cannot read (not a regular file)");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_reads_whole_file),
+        cmocka_unit_test(test_empty_file),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
