@@ -182,6 +182,31 @@ static int ends_with(const char *s, const char *suffix)
     return 1;
 }
 
+float scene_far_plane(const scene *s)
+{
+    float extent = 0;
+    for (int a = 0; a < 3; a++)
+        extent += (s->bounds_max[a] - s->bounds_min[a]) * (s->bounds_max[a] - s->bounds_min[a]);
+    return 4.0f * sqrtf(extent) + 10.0f;
+}
+
+void scene_default_view(const scene *s, float position[3], float target[3])
+{
+    if (s->camera.valid) {
+        memcpy(position, s->camera.position, sizeof s->camera.position);
+        memcpy(target, s->camera.target, sizeof s->camera.target);
+        return;
+    }
+    float size = 0;
+    for (int a = 0; a < 3; a++) {
+        target[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
+        size = fmaxf(size, s->bounds_max[a] - s->bounds_min[a]);
+    }
+    position[0] = target[0];
+    position[1] = target[1] + 0.3f * size;
+    position[2] = target[2] + 1.5f * size;
+}
+
 int scene_load(const char *path, scene *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);

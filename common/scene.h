@@ -77,6 +77,14 @@ int scene_add_light(scene *s, const scene_light *l);
 /* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
 int scene_finish(scene *s, char *err, size_t errlen);
 
+/* Far clip distance that keeps the whole scene visible from in or near its bounds:
+ * 4 x the bounds' diagonal + 10 m. Needs scene_finish(). */
+float scene_far_plane(const scene *s);
+/* Where to look from when nothing else says: the scene's own camera if it has one, else
+ * from in front of the bounds' centre (+0.3 x the largest extent up, +1.5 x towards +z),
+ * looking at the centre. Needs scene_finish(). */
+void scene_default_view(const scene *s, float position[3], float target[3]);
+
 /* Built-in room: 4 x 3 x 4 m, red left wall, green right wall, white rest, two boxes,
  * a small emissive panel and one spotlight. Needs no files. */
 int scene_default_build(scene *s, char *err, size_t errlen);

@@ -217,10 +217,7 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     if (scene_load(scene_path, &v->sc, err, errlen) != 0)
         goto fail;
     v->scene_loaded = 1;
-    float extent = 0;
-    for (int a = 0; a < 3; a++)
-        extent += (v->sc.bounds_max[a] - v->sc.bounds_min[a]) * (v->sc.bounds_max[a] - v->sc.bounds_min[a]);
-    v->far_plane = 4.0f * sqrtf(extent) + 10.0f;
+    v->far_plane = scene_far_plane(&v->sc);
     if (v->output == CLUSTER_OUTPUT_WINDOW) {
         if (open_windows(v, err, errlen) != 0)
             goto fail;

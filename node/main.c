@@ -208,10 +208,7 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
         memcpy(pos[0], head, sizeof head);
         eyes[0].name = "mono";
     }
-    float extent = 0;
-    for (int a = 0; a < 3; a++)
-        extent += (s->bounds_max[a] - s->bounds_min[a]) * (s->bounds_max[a] - s->bounds_min[a]);
-    float far_plane = 4.0f * sqrtf(extent) + 10.0f;
+    float far_plane = scene_far_plane(s);
     for (int e = 0; e < *count; e++) {
         renderer_view *v = &eyes[e].view;
         v->width = o->width;
@@ -285,22 +282,12 @@ static int standalone_main(const node_options *o)
         return 1;
     }
     node_options opt = *o;
-    if (!opt.have_position || !opt.have_target) {
-        float centre[3], size = 0;
-        for (int a = 0; a < 3; a++) {
-            centre[a] = 0.5f * (sc.bounds_min[a] + sc.bounds_max[a]);
-            size = fmaxf(size, sc.bounds_max[a] - sc.bounds_min[a]);
-        }
-        if (!opt.have_position) {
-            if (sc.camera.valid)
-                memcpy(opt.position, sc.camera.position, 12);
-            else
-                for (int a = 0; a < 3; a++)
-                    opt.position[a] = centre[a] + (a == 2 ? 1.5f * size : a == 1 ? 0.3f * size : 0);
-        }
-        if (!opt.have_target)
-            memcpy(opt.target, sc.camera.valid ? sc.camera.target : centre, 12);
-    }
+    float view_position[3], view_target[3];
+    scene_default_view(&sc, view_position, view_target);
+    if (!opt.have_position)
+        memcpy(opt.position, view_position, sizeof view_position);
+    if (!opt.have_target)
+        memcpy(opt.target, view_target, sizeof view_target);
     if (opt.fov_deg <= 0)
         opt.fov_deg = sc.camera.valid ? sc.camera.yfov * 180.0f / 3.14159265f : 60.0f;
     eye_setup eyes[2];

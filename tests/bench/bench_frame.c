@@ -101,15 +101,12 @@ int bench_frame(int argc, char **argv)
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc);
     renderer_view v = {.width = width, .height = height};
-    float centre[3], size = 0;
+    float eye[3], target[3], size = 0;
+    scene_default_view(&sc, eye, target);
     for (int a = 0; a < 3; a++) {
-        centre[a] = 0.5f * (sc.bounds_min[a] + sc.bounds_max[a]);
         float e = sc.bounds_max[a] - sc.bounds_min[a];
         size = e > size ? e : size;
     }
-    float pos[3] = {centre[0], centre[1] + 0.3f * size, centre[2] + 1.5f * size};
-    const float *eye = sc.camera.valid ? sc.camera.position : pos;
-    const float *target = sc.camera.valid ? sc.camera.target : centre;
     memcpy(v.eye_position, eye, sizeof v.eye_position);
     offaxis_look_at(eye, target, sc.camera.valid ? sc.camera.yfov : 1.0f,
                     (float)width / (float)height, 0.02f, 10.0f * size + 10.0f, v.view,

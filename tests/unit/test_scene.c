@@ -165,6 +165,29 @@ static void expect_rejected(const char *path, const char *needle)
     assert_int_equal(s.triangle_count, 0);
 }
 
+/* Far plane and fallback view from the bounds; the scene's own camera wins. */
+static void test_far_plane_and_default_view(void **state)
+{
+    scene s;
+    memset(&s, 0, sizeof s);
+    const float lo[3] = {-1, 0, -2}, hi[3] = {1, 3, 2}; /* extents 2 x 3 x 4 */
+    assert_true(scene_add_material(&s, &(scene_material){.base_color = {1, 1, 1, 1},
+                                                         .base_color_texture = -1}) == 0);
+    assert_true(scene_add_box(&s, lo, hi, 1, 0) >= 0);
+    char err[128];
+    assert_int_equal(scene_finish(&s, err, sizeof err), 0);
+    assert_true(fabsf(scene_far_plane(&s) - (4.0f * sqrtf(29.0f) + 10.0f)) < 1e-4f);
+    float pos[3], target[3];
+    scene_default_view(&s, pos, target);
+    assert_true(target[0] == 0 && target[1] == 1.5f && target[2] == 0);
+    assert_true(pos[0] == 0 && fabsf(pos[1] - 2.7f) < 1e-6f && pos[2] == 6.0f);
+    s.camera = (scene_camera){.valid = 1, .position = {5, 6, 7}, .target = {1, 2, 3}};
+    scene_default_view(&s, pos, target);
+    assert_true(pos[0] == 5 && pos[1] == 6 && pos[2] == 7);
+    assert_true(target[0] == 1 && target[1] == 2 && target[2] == 3);
+    scene_free(&s);
+}
+
 static void test_bad_files_rejected(void **state)
 {
     (void)state;
@@ -194,6 +217,7 @@ int main(void)
         cmocka_unit_test(test_default_room),
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),
+        cmocka_unit_test(test_far_plane_and_default_view),
         cmocka_unit_test(test_bad_files_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
