@@ -15,7 +15,7 @@ c = json.load(open(sys.argv[1]))
 c["nodes"][0].update({"screens": ["front-l", "front-r"], "output": "window", "stereo": sys.argv[3]})
 json.dump(c, open(sys.argv[2], "w"))
 PY
-  xvfb-run -a -s "-screen 0 640x480x24" "$build/cavelight-master" --config "$tmp/$mode.json" \
+  xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 640x480x24" "$build/cavelight-master" --config "$tmp/$mode.json" \
     --bind 'tcp://127.0.0.1:*' --spawn-local --frames 4 --report "$tmp/$mode-r.json" \
     --node-args "$small_render" 2> "$tmp/$mode.log" || { cat "$tmp/$mode.log"; fail "$mode: cluster failed"; }
   [ "$(json 'r["per_node"][0]["frames_ready"]' "$tmp/$mode-r.json")" = 4 ] || { cat "$tmp/$mode.log"; fail "$mode: not 4 frames"; }

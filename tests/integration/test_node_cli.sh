@@ -26,7 +26,7 @@ cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/osmesa
 
 # A GLFW window on a virtual X display, where xvfb-run exists: same LPV as EGL.
 if command -v xvfb-run > /dev/null; then
-    xvfb-run -a -s "-screen 0 640x480x24" "$node" --standalone --gl glfw --frames 2 \
+    xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 640x480x24" "$node" --standalone --gl glfw --frames 2 \
         --width 320 --height 240 --out "$out/glfw" > /dev/null || fail "--gl glfw exited non-zero"
     [ -s "$out/glfw/frame0001_mono.png" ] || fail "GLFW run wrote no PNG"
     cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/glfw/report.json") \
