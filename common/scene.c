@@ -213,11 +213,13 @@ int scene_load(const char *path, scene *out, char *err, size_t errlen)
     int rc;
     if (strcmp(path, "default") == 0) {
         rc = scene_default_build(out, err, errlen);
+    } else if (strcmp(path, "corridor") == 0) {
+        rc = scene_corridor_build(out, err, errlen);
     } else if (ends_with(path, ".gltf") || ends_with(path, ".glb")) {
         rc = gltf_import(path, out, err, errlen);
     } else {
-        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, or "
-                 "\"default\")", path);
+        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, "
+                 "\"default\" or \"corridor\")", path);
         return -1;
     }
     if (rc == 0) {

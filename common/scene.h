@@ -60,7 +60,7 @@ typedef struct scene {
     float bounds_min[3], bounds_max[3]; /* valid after scene_finish() */
 } scene;
 
-/* "default" or a .gltf/.glb path. Returns 0, or -1 with one line in err (and *out empty). */
+/* "default", "corridor" or a .gltf/.glb path. Returns 0, or -1 with one line in err (and *out empty). */
 int scene_load(const char *path, scene *out, char *err, size_t errlen);
 void scene_free(scene *s);
 
@@ -88,6 +88,9 @@ void scene_default_view(const scene *s, float position[3], float target[3]);
 /* Built-in room: 4 x 3 x 4 m, red left wall, green right wall, white rest, two boxes,
  * a small emissive panel and one spotlight. Needs no files. */
 int scene_default_build(scene *s, char *err, size_t errlen);
+/* Built-in corridor: 12 x 2.6 x 2.4 m, a spot at the near end, pillars, the far end lit
+ * only indirectly (scene_corridor.c). */
+int scene_corridor_build(scene *s, char *err, size_t errlen);
 /* glTF 2.0 via tinygltf (gltf_import.cpp). */
 int gltf_import(const char *path, scene *out, char *err, size_t errlen);
 

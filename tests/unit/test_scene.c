@@ -22,6 +22,26 @@ static void write_file(const char *path, const void *data, size_t n)
     fclose(f);
 }
 
+/* The corridor is long and thin: a lattice fitted to it is a small share of a cube. */
+static void test_corridor(void **state)
+{
+    (void)state;
+    scene s;
+    char err[256];
+    assert_int_equal(scene_load("corridor", &s, err, sizeof err), 0);
+    assert_int_equal(s.light_count, 1);
+    assert_true(s.camera.valid);
+    const float lo[3] = {0, 0, -1.2f}, hi[3] = {12, 2.6f, 1.2f};
+    for (int a = 0; a < 3; a++) {
+        assert_true(fabsf(s.bounds_min[a] - lo[a]) < 1e-6f);
+        assert_true(fabsf(s.bounds_max[a] - hi[a]) < 1e-6f);
+    }
+    /* The spot sits inside and points down the corridor's near end. */
+    assert_true(s.lights[0].position[0] < 1 && s.lights[0].direction[1] < -0.5f);
+    assert_true(s.lights[0].direction[0] > 0.2f);
+    scene_free(&s);
+}
+
 static void test_default_room(void **state)
 {
     (void)state;
@@ -215,6 +235,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_room),
+        cmocka_unit_test(test_corridor),
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),
         cmocka_unit_test(test_far_plane_and_default_view),
