@@ -46,7 +46,7 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: cavelight-node --standalone [options]\n"
         "  --gl egl|osmesa|glfw         GL context (default egl)\n"
-        "  --scene FILE|default         glTF 2.0 (.gltf/.glb) or the built-in room\n"
+        "  --scene FILE|default|corridor  glTF 2.0 (.gltf/.glb) or a built-in scene\n"
         "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
         "  --pfm                        also write linear final/direct/indirect PFMs\n"
         "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
