@@ -75,3 +75,33 @@ int image_read_pfm(const char *path, int *width, int *height, float **rgb,
     *rgb = p;
     return 0;
 }
+
+int image_read_png(const char *path, int *width, int *height, uint8_t **rgb,
+                   char *err, size_t errlen)
+{
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&img, path)) {
+        snprintf(err, errlen, "PNG %s: cannot read (%s)", path, img.message);
+        return -1;
+    }
+    img.format = PNG_FORMAT_RGB;
+    /* Zeroed: with no background colour libpng composites alpha onto the buffer. */
+    uint8_t *p = calloc(PNG_IMAGE_SIZE(img), 1);
+    if (!p) {
+        png_image_free(&img);
+        snprintf(err, errlen, "PNG %s: out of memory for %ux%u pixels", path, img.width,
+                 img.height);
+        return -1;
+    }
+    if (!png_image_finish_read(&img, NULL, p, 0, NULL)) {
+        free(p);
+        snprintf(err, errlen, "PNG %s: cannot decode (%s)", path, img.message);
+        return -1;
+    }
+    *width = (int)img.width;
+    *height = (int)img.height;
+    *rgb = p;
+    return 0;
+}

@@ -17,4 +17,10 @@ int image_write_pfm(const char *path, int width, int height, const float *rgb,
 int image_read_pfm(const char *path, int *width, int *height, float **rgb,
                    char *err, size_t errlen);
 
+/* 8-bit sRGB-encoded RGB as libpng's simplified API gives it: an 8-bit sRGB file comes back
+ * byte for byte; grey is expanded, alpha is composited on black, other gammas and 16-bit
+ * files are converted. Allocates *rgb (free() it). Returns 0 or -1 with a reason. */
+int image_read_png(const char *path, int *width, int *height, uint8_t **rgb,
+                   char *err, size_t errlen);
+
 #endif

@@ -1,0 +1,204 @@
+/* cavelight-compare: error metrics of one image against a reference, as one JSON line.
+ *
+ * PFM files are linear radiance; PNG files are display images, read as 8-bit values / 255
+ * with no linearisation (compare PNGs only with PNGs). Exit 0, or 2 with one line on
+ * stderr naming the file or argument at fault. */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image.h"
+#include "image_metrics.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: cavelight-compare IMAGE REFERENCE [--mask-background] "
+               "[--ssim-range L] [--crop x,y,w,h]\n"
+               "  IMAGE, REFERENCE  PFM (linear) or PNG (8-bit display values / 255, "
+               "not linearised)\n"
+               "  --mask-background count only pixels where the reference is not 0 in "
+               "all channels\n"
+               "  --ssim-range L    SSIM dynamic range (default: max reference luminance)\n"
+               "  --crop x,y,w,h    compare only this rectangle (top-left origin)\n"
+               "Prints one JSON object with the metrics of common/image_metrics.h.\n");
+}
+
+/* Reads a PFM or PNG (told apart by their magic bytes) into linear-layout floats. */
+static int read_image(const char *role, const char *path, int *w, int *h, float **rgb)
+{
+    char err[512];
+    unsigned char magic[2] = {0};
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "cavelight-compare: %s %s: cannot open (%s)\n", role, path,
+                strerror(errno));
+        return -1;
+    }
+    size_t got = fread(magic, 1, 2, f);
+    fclose(f);
+    if (got == 2 && magic[0] == 'P' && magic[1] == 'F') {
+        if (image_read_pfm(path, w, h, rgb, err, sizeof err) == 0)
+            return 0;
+    } else if (got == 2 && magic[0] == 0x89 && magic[1] == 'P') {
+        uint8_t *bytes = NULL;
+        if (image_read_png(path, w, h, &bytes, err, sizeof err) == 0) {
+            size_t n = (size_t)*w * *h * 3;
+            *rgb = malloc(n * sizeof **rgb);
+            if (*rgb)
+                for (size_t i = 0; i < n; i++)
+                    (*rgb)[i] = bytes[i] / 255.0f;
+            free(bytes);
+            if (*rgb)
+                return 0;
+            snprintf(err, sizeof err, "%s: out of memory", path);
+        }
+    } else {
+        snprintf(err, sizeof err, "%s: neither a PFM nor a PNG file", path);
+    }
+    fprintf(stderr, "cavelight-compare: %s %s\n", role, err);
+    return -1;
+}
+
+/* Copies the rectangle (x, y, cw, ch) of a w-wide image into a new buffer. */
+static float *crop_image(const float *rgb, int w, int x, int y, int cw, int ch)
+{
+    float *out = malloc((size_t)cw * ch * 3 * sizeof *out);
+    if (out)
+        for (int r = 0; r < ch; r++)
+            memcpy(out + (size_t)r * cw * 3, rgb + ((size_t)(y + r) * w + x) * 3,
+                   (size_t)cw * 3 * sizeof *out);
+    return out;
+}
+
+int main(int argc, char **argv)
+{
+    const char *paths[2] = {NULL, NULL};
+    int npaths = 0, mask_background = 0, crop[4] = {0, 0, 0, 0}, cropping = 0;
+    image_metrics_desc desc = {0};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        char extra;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--mask-background") == 0) {
+            mask_background = 1;
+        } else if (strcmp(a, "--ssim-range") == 0 && i + 1 < argc) {
+            if (sscanf(argv[++i], "%lf%c", &desc.ssim_range, &extra) != 1 ||
+                !(desc.ssim_range > 0)) {
+                fprintf(stderr, "cavelight-compare: --ssim-range '%s': give a positive "
+                                "number\n", argv[i]);
+                return 2;
+            }
+        } else if (strcmp(a, "--crop") == 0 && i + 1 < argc) {
+            if (sscanf(argv[++i], "%d,%d,%d,%d%c", &crop[0], &crop[1], &crop[2], &crop[3],
+                       &extra) != 4 || crop[0] < 0 || crop[1] < 0 || crop[2] <= 0 ||
+                crop[3] <= 0) {
+                fprintf(stderr, "cavelight-compare: --crop '%s': give x,y,w,h with x,y >= 0 "
+                                "and w,h > 0\n", argv[i]);
+                return 2;
+            }
+            cropping = 1;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "cavelight-compare: unknown or incomplete option '%s' (see "
+                            "--help)\n", a);
+            return 2;
+        } else if (npaths < 2) {
+            paths[npaths++] = a;
+        } else {
+            fprintf(stderr, "cavelight-compare: extra argument '%s': give IMAGE and "
+                            "REFERENCE only\n", a);
+            return 2;
+        }
+    }
+    if (npaths != 2) {
+        usage(stderr);
+        return 2;
+    }
+
+    int w[2], h[2];
+    float *rgb[2] = {NULL, NULL};
+    uint8_t *mask = NULL;
+    int rc = 2;
+    if (read_image("image", paths[0], &w[0], &h[0], &rgb[0]) != 0 ||
+        read_image("reference", paths[1], &w[1], &h[1], &rgb[1]) != 0)
+        goto done;
+    if (w[0] != w[1] || h[0] != h[1]) {
+        fprintf(stderr, "cavelight-compare: size mismatch: image %s is %dx%d but reference "
+                        "%s is %dx%d; render both at the same size\n",
+                paths[0], w[0], h[0], paths[1], w[1], h[1]);
+        goto done;
+    }
+    int width = w[0], height = h[0];
+    if (cropping) {
+        if (crop[0] + crop[2] > width || crop[1] + crop[3] > height) {
+            fprintf(stderr, "cavelight-compare: --crop %d,%d,%d,%d does not fit in the "
+                            "%dx%d images\n", crop[0], crop[1], crop[2], crop[3], width,
+                    height);
+            goto done;
+        }
+        for (int k = 0; k < 2; k++) {
+            float *c = crop_image(rgb[k], width, crop[0], crop[1], crop[2], crop[3]);
+            if (!c) {
+                fprintf(stderr, "cavelight-compare: out of memory cropping %s\n", paths[k]);
+                goto done;
+            }
+            free(rgb[k]);
+            rgb[k] = c;
+        }
+        width = crop[2];
+        height = crop[3];
+    }
+    size_t n = (size_t)width * height;
+    if (mask_background) {
+        /* The rasterizer writes exactly 0 where no geometry is. */
+        mask = malloc(n);
+        if (!mask) {
+            fprintf(stderr, "cavelight-compare: out of memory for the mask\n");
+            goto done;
+        }
+        const float *r = rgb[1];
+        for (size_t i = 0; i < n; i++)
+            mask[i] = r[i * 3] != 0 || r[i * 3 + 1] != 0 || r[i * 3 + 2] != 0;
+        desc.mask = mask;
+    }
+
+    image_metrics m;
+    if (image_metrics_compare(rgb[0], rgb[1], width, height, &desc, &m) != 0) {
+        fprintf(stderr, "cavelight-compare: no pixel to compare in %s against %s (%zu with "
+                        "NaN/inf%s)\n", paths[0], paths[1], m.nonfinite,
+                mask_background ? ", the rest background" : "");
+        goto done;
+    }
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "image", paths[0]);
+    cJSON_AddStringToObject(o, "reference", paths[1]);
+    cJSON_AddNumberToObject(o, "width", width);
+    cJSON_AddNumberToObject(o, "height", height);
+    cJSON_AddNumberToObject(o, "pixels", (double)m.pixels);
+    cJSON_AddNumberToObject(o, "nonfinite", (double)m.nonfinite);
+    cJSON_AddNumberToObject(o, "mae", m.mae);
+    cJSON_AddNumberToObject(o, "rmse_rel", m.rmse_rel);
+    cJSON_AddNumberToObject(o, "relmse", m.relmse);
+    cJSON_AddNumberToObject(o, "ssim", m.ssim);
+    cJSON_AddNumberToObject(o, "mean", m.mean);
+    cJSON_AddNumberToObject(o, "reference_mean", m.reference_mean);
+    cJSON_AddNumberToObject(o, "best_scale", m.best_scale);
+    cJSON_AddNumberToObject(o, "mae_scaled", m.mae_scaled);
+    char *text = cJSON_PrintUnformatted(o);
+    if (text) {
+        printf("%s\n", text);
+        rc = 0;
+    } else {
+        fprintf(stderr, "cavelight-compare: out of memory printing JSON\n");
+    }
+    cJSON_free(text);
+    cJSON_Delete(o);
+done:
+    free(rgb[0]);
+    free(rgb[1]);
+    free(mask);
+    return rc;
+}
