@@ -1,0 +1,398 @@
+/* reference_sample: one row of the path-traced reference (reference.h for the model).
+ *
+ * Per pixel: one primary ray through the pixel centre gives the visible point x0 and its
+ * exact direct light (no sampling). Each of `samples` paths then adds
+ *   - emitter -> x0 by area sampling of the emissive triangles (indirect1 and indirect);
+ *   - for k = 1..max_bounces: a cosine-weighted ray to x_k, the spots' light reflected
+ *     there by next-event estimation (k = 1 goes to indirect1 too) and the emitters' by
+ *     area sampling. Rays that hit an emitter add nothing for its emission: emitted light
+ *     comes from area sampling only, so it is never counted twice. */
+#include <math.h>
+#include <string.h>
+
+#include "reference_internal.h"
+
+static const float PI_F = 3.14159265358979f;
+
+/* PCG32 (O'Neill), seeded per pixel through splitmix64. */
+typedef struct rng {
+    uint64_t state;
+} rng;
+
+static uint64_t splitmix64(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+static float rng_next(rng *r)
+{
+    uint64_t old = r->state;
+    r->state = old * 6364136223846793005ull + 1442695040888963407ull;
+    uint32_t xs = (uint32_t)(((old >> 18) ^ old) >> 27);
+    uint32_t rot = (uint32_t)(old >> 59);
+    uint32_t v = (xs >> rot) | (xs << ((32 - rot) & 31));
+    return (float)(v >> 8) * (1.0f / 16777216.0f); /* [0, 1) */
+}
+
+typedef struct hit {
+    float p[3], n[3], ng[3]; /* point, shading and geometric normals on the seen side */
+    float albedo[3];
+    uint32_t tri;
+} hit;
+
+static float dot3(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalize3(float v[3])
+{
+    float len = sqrtf(dot3(v, v));
+    if (len > 0)
+        for (int i = 0; i < 3; i++)
+            v[i] /= len;
+}
+
+static float transmittance(float sigma, float r)
+{
+    return sigma > 0 ? powf(1.0f - fminf(sigma, 0.999999f), r) : 1.0f;
+}
+
+/* Bilinear, wrap repeat, texel centres at half-integers, as GL samples level 0. */
+static void texture_sample(const reference *ref, int t, const float uv[2], float out[3])
+{
+    const scene_texture *tex = &ref->scene->textures[t];
+    const float *img = ref->texture_linear[t];
+    float x = uv[0] * tex->width - 0.5f, y = uv[1] * tex->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y);
+    float ax = x - fx, ay = y - fy;
+    long x0 = (long)fx, y0 = (long)fy;
+    for (int c = 0; c < 3; c++)
+        out[c] = 0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            long xi = (x0 + i) % tex->width, yi = (y0 + j) % tex->height;
+            xi += xi < 0 ? tex->width : 0;
+            yi += yi < 0 ? tex->height : 0;
+            float w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
+            const float *px = img + 3 * ((size_t)yi * tex->width + (size_t)xi);
+            for (int c = 0; c < 3; c++)
+                out[c] += w * px[c];
+        }
+}
+
+/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
+static void hit_fill(const reference *ref, const struct RTCHit *eh, const float toward[3], hit *h)
+{
+    const scene *s = ref->scene;
+    uint32_t t = eh->primID;
+    float b0 = 1.0f - eh->u - eh->v, b1 = eh->u, b2 = eh->v;
+    const float *p = s->positions + 9 * (size_t)t, *n = s->normals + 9 * (size_t)t;
+    const float *uv = s->uvs + 6 * (size_t)t;
+    for (int i = 0; i < 3; i++) {
+        h->p[i] = b0 * p[i] + b1 * p[3 + i] + b2 * p[6 + i];
+        h->n[i] = b0 * n[i] + b1 * n[3 + i] + b2 * n[6 + i];
+        h->ng[i] = ref->face_normal[3 * t + i];
+    }
+    normalize3(h->n);
+    if (dot3(h->n, toward) < 0)
+        for (int i = 0; i < 3; i++)
+            h->n[i] = -h->n[i];
+    if (dot3(h->ng, toward) < 0)
+        for (int i = 0; i < 3; i++)
+            h->ng[i] = -h->ng[i];
+    const scene_material *m = &s->materials[s->triangle_material[t]];
+    for (int i = 0; i < 3; i++)
+        h->albedo[i] = m->base_color[i];
+    if (m->base_color_texture >= 0 && (size_t)m->base_color_texture < s->texture_count) {
+        float tuv[2] = {b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5]};
+        float texel[3];
+        texture_sample(ref, m->base_color_texture, tuv, texel);
+        for (int i = 0; i < 3; i++)
+            h->albedo[i] *= texel[i];
+    }
+    h->tri = t;
+}
+
+/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
+static void offset_origin(const hit *h, float o[3])
+{
+    float scale = 1e-4f * (1.0f + fmaxf(fabsf(h->p[0]), fmaxf(fabsf(h->p[1]), fabsf(h->p[2]))));
+    for (int i = 0; i < 3; i++)
+        o[i] = h->p[i] + h->ng[i] * scale;
+}
+
+static int trace(const reference_job *job, const float o[3], const float d[3], float tfar,
+                 struct RTCRayHit *rh, uint64_t *rays)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    *rh = (struct RTCRayHit){
+        .ray = {.org_x = o[0], .org_y = o[1], .org_z = o[2], .tnear = 0, .dir_x = d[0],
+                .dir_y = d[1], .dir_z = d[2], .tfar = tfar, .mask = 0xffffffffu},
+        .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .primID = RTC_INVALID_GEOMETRY_ID},
+    };
+    rtcIntersect1(job->ref->rt, &ctx, rh);
+    (*rays)++;
+    return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+/* 1 when nothing lies between o and o + d * dist (d unit), leaving a little at the end. */
+static int visible(const reference_job *job, const float o[3], const float d[3], float dist,
+                   uint64_t *rays)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRay ray = {.org_x = o[0], .org_y = o[1], .org_z = o[2], .tnear = 0,
+                         .dir_x = d[0], .dir_y = d[1], .dir_z = d[2],
+                         .tfar = dist * (1.0f - 1e-4f), .mask = 0xffffffffu};
+    rtcOccluded1(job->ref->rt, &ctx, &ray);
+    (*rays)++;
+    return ray.tfar >= 0; /* Embree sets tfar to -inf on a hit */
+}
+
+/* Spot light arriving at h from light i: irradiance E (on the shading normal) and the unit
+ * direction to the light. 0 when the spot does not reach h. As shade.frag, without PCF. */
+static int spot_irradiance(const reference_job *job, int i, const hit *h, float e[3],
+                           float l[3], uint64_t *rays)
+{
+    const reference_spot *s = &job->spots[i];
+    float to[3];
+    for (int k = 0; k < 3; k++)
+        to[k] = s->position[k] - h->p[k];
+    float r2 = dot3(to, to), r = sqrtf(r2);
+    if (!(r > 0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        l[k] = to[k] / r;
+    float cos_i = dot3(h->n, l);
+    if (cos_i <= 0 || dot3(h->ng, l) <= 0)
+        return 0;
+    float c = -dot3(l, s->direction);
+    float spot = fminf(fmaxf((c - s->cos_outer) / fmaxf(s->cos_inner - s->cos_outer, 1e-4f), 0), 1);
+    if (spot <= 0)
+        return 0;
+    float o[3];
+    offset_origin(h, o);
+    float od[3];
+    for (int k = 0; k < 3; k++)
+        od[k] = s->position[k] - o[k];
+    float dist = sqrtf(dot3(od, od));
+    for (int k = 0; k < 3; k++)
+        od[k] /= dist;
+    if (!visible(job, o, od, dist, rays))
+        return 0;
+    float f = spot * cos_i / fmaxf(r2, 0.01f) * transmittance(job->absorption, r);
+    for (int k = 0; k < 3; k++)
+        e[k] = s->radiance[k] * f;
+    return 1;
+}
+
+/* Irradiance at h from all spots (Lambertian vertices). */
+static void spots_irradiance(const reference_job *job, const hit *h, float e[3], uint64_t *rays)
+{
+    e[0] = e[1] = e[2] = 0;
+    for (int i = 0; i < job->spot_count; i++) {
+        float ei[3], l[3];
+        if (spot_irradiance(job, i, h, ei, l, rays))
+            for (int k = 0; k < 3; k++)
+                e[k] += ei[k];
+    }
+}
+
+/* One-sample estimate of the irradiance at h from the emissive triangles (their front
+ * side only, as the LPV's emitter VPLs): a triangle picked by power, a uniform point. */
+static void emitters_irradiance(const reference_job *job, const hit *h, rng *g, float e[3],
+                                uint64_t *rays)
+{
+    const reference *ref = job->ref;
+    e[0] = e[1] = e[2] = 0;
+    if (ref->emitter_count == 0)
+        return;
+    double u = (double)rng_next(g) * ref->emitter_power;
+    size_t lo = 0, hi = ref->emitter_count - 1;
+    while (lo < hi) { /* first cdf entry above u */
+        size_t mid = (lo + hi) / 2;
+        if (ref->emitter_cdf[mid] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    uint32_t t = ref->emitter_triangle[lo];
+    double pick = (ref->emitter_cdf[lo] - (lo ? ref->emitter_cdf[lo - 1] : 0)) / ref->emitter_power;
+    const scene *s = ref->scene;
+    const float *p = s->positions + 9 * (size_t)t;
+    float r1 = sqrtf(rng_next(g)), r2 = rng_next(g);
+    float b0 = 1 - r1, b1 = r1 * (1 - r2), b2 = r1 * r2;
+    float y[3], e1[3], e2[3], cr[3];
+    for (int k = 0; k < 3; k++) {
+        y[k] = b0 * p[k] + b1 * p[3 + k] + b2 * p[6 + k];
+        e1[k] = p[3 + k] - p[k];
+        e2[k] = p[6 + k] - p[k];
+    }
+    cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    float area = 0.5f * sqrtf(dot3(cr, cr));
+    float o[3], d[3];
+    offset_origin(h, o);
+    for (int k = 0; k < 3; k++)
+        d[k] = y[k] - o[k];
+    float dist2 = dot3(d, d), dist = sqrtf(dist2);
+    if (!(dist > 0) || !(area > 0))
+        return;
+    for (int k = 0; k < 3; k++)
+        d[k] /= dist;
+    float cos_x = dot3(h->n, d), cos_e = -dot3(ref->emitter_front + 3 * lo, d);
+    if (cos_x <= 0 || cos_e <= 0 || dot3(h->ng, d) <= 0)
+        return;
+    if (!visible(job, o, d, dist, rays))
+        return;
+    const float *le = s->materials[s->triangle_material[t]].emissive;
+    float f = (float)((double)cos_x * cos_e / dist2 * area / pick) *
+              transmittance(job->absorption, dist);
+    for (int k = 0; k < 3; k++)
+        e[k] = le[k] * f;
+}
+
+/* Cosine-weighted direction around n (Frisvad's orthonormal basis). */
+static void cosine_direction(const float n[3], rng *g, float d[3])
+{
+    float r1 = rng_next(g), r2 = rng_next(g);
+    float r = sqrtf(r1), phi = 2 * PI_F * r2;
+    float x = r * cosf(phi), y = r * sinf(phi), z = sqrtf(fmaxf(0, 1 - r1));
+    float sign = n[2] >= 0 ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
+    float t[3] = {1 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+    float bt[3] = {b, sign + n[1] * n[1] * a, -n[1]};
+    for (int k = 0; k < 3; k++)
+        d[k] = x * t[k] + y * bt[k] + z * n[k];
+    normalize3(d);
+}
+
+/* Exact direct light at the visible point: emission + Blinn-Phong of every spot. */
+static void shade_direct(const reference_job *job, const hit *h, float out[3], uint64_t *rays)
+{
+    const scene_material *m = &job->ref->scene->materials[job->ref->scene->triangle_material[h->tri]];
+    float v[3];
+    for (int k = 0; k < 3; k++) {
+        out[k] = m->emissive[k];
+        v[k] = job->eye[k] - h->p[k];
+    }
+    normalize3(v);
+    float alpha = m->roughness * m->roughness;
+    float mexp = 2.0f / fmaxf(alpha * alpha, 1e-3f) - 2.0f;
+    for (int i = 0; i < job->spot_count; i++) {
+        float e[3], l[3], hv[3];
+        if (!spot_irradiance(job, i, h, e, l, rays))
+            continue;
+        for (int k = 0; k < 3; k++)
+            hv[k] = l[k] + v[k];
+        normalize3(hv);
+        float spec = (mexp + 8) / (8 * PI_F) * 0.04f * powf(fmaxf(dot3(h->n, hv), 0), mexp);
+        for (int k = 0; k < 3; k++)
+            out[k] += (h->albedo[k] / PI_F + spec) * e[k];
+    }
+}
+
+/* One path from the visible point; adds to the one-bounce and many-bounce sums. */
+static void sample_path(const reference_job *job, const hit *x0, rng *g, double acc1[3],
+                        double acc[3], uint64_t *rays)
+{
+    float e[3];
+    emitters_irradiance(job, x0, g, e, rays);
+    for (int k = 0; k < 3; k++) {
+        float c = x0->albedo[k] / PI_F * e[k];
+        acc1[k] += c;
+        acc[k] += c;
+    }
+    float beta[3] = {x0->albedo[0], x0->albedo[1], x0->albedo[2]}; /* f cos / pdf */
+    hit cur = *x0;
+    for (int bounce = 1; bounce <= job->max_bounces; bounce++) {
+        float d[3], o[3];
+        cosine_direction(cur.n, g, d);
+        if (dot3(d, cur.ng) <= 0)
+            break; /* below the true surface (smooth normals): no light that way */
+        offset_origin(&cur, o);
+        struct RTCRayHit rh;
+        if (!trace(job, o, d, INFINITY, &rh, rays))
+            break;
+        float back[3] = {-d[0], -d[1], -d[2]};
+        hit next;
+        hit_fill(job->ref, &rh.hit, back, &next);
+        float tr = transmittance(job->absorption, rh.ray.tfar);
+        for (int k = 0; k < 3; k++)
+            beta[k] *= tr;
+        float es[3], ee[3];
+        spots_irradiance(job, &next, es, rays);
+        emitters_irradiance(job, &next, g, ee, rays);
+        for (int k = 0; k < 3; k++) {
+            float f = beta[k] * next.albedo[k] / PI_F;
+            if (bounce == 1)
+                acc1[k] += f * es[k];
+            acc[k] += f * (es[k] + ee[k]);
+            beta[k] *= next.albedo[k];
+        }
+        if (bounce >= 2) { /* Russian roulette, unbiased: survivors carry 1/q */
+            float q = fminf(0.95f, fmaxf(beta[0], fmaxf(beta[1], beta[2])));
+            if (!(rng_next(g) < q))
+                break;
+            for (int k = 0; k < 3; k++)
+                beta[k] /= q;
+        }
+        cur = next;
+    }
+}
+
+void reference_sample_row(void *ctx, int row)
+{
+    reference_job *job = ctx;
+    uint64_t rays = 0;
+    for (int x = 0; x < job->width; x++) {
+        size_t pix = (size_t)row * job->width + x;
+        float *dst[3] = {job->direct + 3 * pix, job->indirect1 + 3 * pix, job->indirect + 3 * pix};
+        for (int i = 0; i < 3; i++)
+            dst[i][0] = dst[i][1] = dst[i][2] = 0;
+        /* Pixel centre -> clip space at the near and far planes -> world. */
+        double ndc[2] = {2.0 * (x + 0.5) / job->width - 1.0, 1.0 - 2.0 * (row + 0.5) / job->height};
+        double w[2][3];
+        for (int z = 0; z < 2; z++) {
+            double c[4] = {ndc[0], ndc[1], z ? 1.0 : -1.0, 1.0}, q[4];
+            for (int r = 0; r < 4; r++)
+                q[r] = job->inv_view_projection[r] * c[0] + job->inv_view_projection[4 + r] * c[1] +
+                       job->inv_view_projection[8 + r] * c[2] + job->inv_view_projection[12 + r] * c[3];
+            for (int k = 0; k < 3; k++)
+                w[z][k] = q[k] / q[3];
+        }
+        float o[3], d[3];
+        for (int k = 0; k < 3; k++) {
+            o[k] = (float)w[0][k];
+            d[k] = (float)(w[1][k] - w[0][k]);
+        }
+        float len = sqrtf(dot3(d, d));
+        if (!(len > 0) || !isfinite(len))
+            continue;
+        for (int k = 0; k < 3; k++)
+            d[k] /= len;
+        struct RTCRayHit rh;
+        if (!trace(job, o, d, len, &rh, &rays))
+            continue;
+        hit x0;
+        float toward_eye[3] = {-d[0], -d[1], -d[2]};
+        hit_fill(job->ref, &rh.hit, toward_eye, &x0);
+        shade_direct(job, &x0, dst[0], &rays);
+        rng g = {splitmix64(job->seed ^ splitmix64(pix))};
+        double acc1[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+        for (int s = 0; s < job->samples; s++)
+            sample_path(job, &x0, &g, acc1, acc, &rays);
+        for (int k = 0; k < 3; k++) {
+            dst[0][k] *= job->exposure;
+            dst[1][k] = (float)(acc1[k] / job->samples) * job->exposure;
+            dst[2][k] = (float)(acc[k] / job->samples) * job->exposure;
+        }
+    }
+    job->row_rays[row] = rays;
+}
