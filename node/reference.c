@@ -29,7 +29,10 @@ static int build_tables(reference *ref)
     ref->emitter_triangle = malloc(s->triangle_count * sizeof *ref->emitter_triangle);
     ref->emitter_front = malloc(s->triangle_count * 3 * sizeof *ref->emitter_front);
     ref->emitter_cdf = malloc(s->triangle_count * sizeof *ref->emitter_cdf);
-    if (!ref->face_normal || !ref->emitter_triangle || !ref->emitter_front || !ref->emitter_cdf)
+    ref->emitter_of = malloc(s->triangle_count * sizeof *ref->emitter_of);
+    ref->emitter_area_pdf = malloc(s->triangle_count * sizeof *ref->emitter_area_pdf);
+    if (!ref->face_normal || !ref->emitter_triangle || !ref->emitter_front ||
+        !ref->emitter_cdf || !ref->emitter_of || !ref->emitter_area_pdf)
         return -1;
     for (size_t t = 0; t < s->triangle_count; t++) {
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
@@ -44,6 +47,7 @@ static int build_tables(reference *ref)
         float *n = ref->face_normal + 3 * t;
         for (int k = 0; k < 3; k++) /* degenerate triangles: Embree never reports a hit */
             n[k] = len > 0 ? f[k] / len : 0;
+        ref->emitter_of[t] = -1;
         const float *e = s->materials[s->triangle_material[t]].emissive;
         double power = 0.5 * len * (e[0] + e[1] + e[2]) / 3.0;
         if (!(power > 0))
@@ -51,12 +55,16 @@ static int build_tables(reference *ref)
         /* The side of the vertex normals, as the rasterizer's emitter VPLs. */
         float side = n[0] * nsum[0] + n[1] * nsum[1] + n[2] * nsum[2] < 0 ? -1.0f : 1.0f;
         size_t i = ref->emitter_count++;
+        ref->emitter_of[t] = (int32_t)i;
         ref->emitter_triangle[i] = (uint32_t)t;
+        ref->emitter_area_pdf[i] = (float)(power / (0.5 * len)); /* / total power below */
         for (int k = 0; k < 3; k++)
             ref->emitter_front[3 * i + k] = side * n[k];
         ref->emitter_power += power;
         ref->emitter_cdf[i] = ref->emitter_power;
     }
+    for (size_t i = 0; i < ref->emitter_count; i++)
+        ref->emitter_area_pdf[i] = (float)(ref->emitter_area_pdf[i] / ref->emitter_power);
     ref->texture_linear = calloc(s->texture_count ? s->texture_count : 1, sizeof *ref->texture_linear);
     if (!ref->texture_linear)
         return -1;
@@ -167,6 +175,8 @@ void reference_destroy(reference *ref)
     free(ref->emitter_triangle);
     free(ref->emitter_front);
     free(ref->emitter_cdf);
+    free(ref->emitter_of);
+    free(ref->emitter_area_pdf);
     free(ref);
 }
 

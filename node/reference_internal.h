@@ -21,6 +21,8 @@ struct reference {
     float *emitter_front;     /* 3 per emitter: the side the emitter lights (vertex normals') */
     double *emitter_cdf;      /* running sums of power, last = emitter_power */
     double emitter_power;
+    int32_t *emitter_of;      /* per triangle: its emitter index, or -1 */
+    float *emitter_area_pdf;  /* per emitter: probability of picking it / its area */
 };
 
 typedef struct reference_spot {

@@ -2,11 +2,14 @@
  *
  * Per pixel: one primary ray through the pixel centre gives the visible point x0 and its
  * exact direct light (no sampling). Each of `samples` paths then adds
- *   - emitter -> x0 by area sampling of the emissive triangles (indirect1 and indirect);
+ *   - emitter -> x0 (indirect1 and indirect);
  *   - for k = 1..max_bounces: a cosine-weighted ray to x_k, the spots' light reflected
- *     there by next-event estimation (k = 1 goes to indirect1 too) and the emitters' by
- *     area sampling. Rays that hit an emitter add nothing for its emission: emitted light
- *     comes from area sampling only, so it is never counted twice. */
+ *     there by next-event estimation (k = 1 goes to indirect1 too), and emitter -> x_k.
+ * Emitter -> x_k light combines two strategies with the power heuristic (multiple
+ * importance sampling): area sampling of the emissive triangles, and the cosine-weighted
+ * ray from x_k hitting an emitter. Area sampling alone has unbounded variance where an
+ * emitter meets a surface (1/d^2 at corners); the weights remove it and count each path
+ * once. At the last vertex no ray leaves, so area sampling there takes full weight. */
 #include <math.h>
 #include <string.h>
 
@@ -203,10 +206,16 @@ static void spots_irradiance(const reference_job *job, const hit *h, float e[3],
     }
 }
 
+static float power_heuristic(float a, float b)
+{
+    return a * a / (a * a + b * b);
+}
+
 /* One-sample estimate of the irradiance at h from the emissive triangles (their front
- * side only, as the LPV's emitter VPLs): a triangle picked by power, a uniform point. */
-static void emitters_irradiance(const reference_job *job, const hit *h, rng *g, float e[3],
-                                uint64_t *rays)
+ * side only, as the LPV's emitter VPLs): a triangle picked by power, a uniform point.
+ * mis: a cosine-weighted ray also leaves h, so weight against it. */
+static void emitters_irradiance(const reference_job *job, const hit *h, int mis, rng *g,
+                                float e[3], uint64_t *rays)
 {
     const reference *ref = job->ref;
     e[0] = e[1] = e[2] = 0;
@@ -222,7 +231,6 @@ static void emitters_irradiance(const reference_job *job, const hit *h, rng *g, 
             lo = mid + 1;
     }
     uint32_t t = ref->emitter_triangle[lo];
-    double pick = (ref->emitter_cdf[lo] - (lo ? ref->emitter_cdf[lo - 1] : 0)) / ref->emitter_power;
     const scene *s = ref->scene;
     const float *p = s->positions + 9 * (size_t)t;
     float r1 = sqrtf(rng_next(g)), r2 = rng_next(g);
@@ -236,7 +244,7 @@ static void emitters_irradiance(const reference_job *job, const hit *h, rng *g, 
     cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
     cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
     cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    float area = 0.5f * sqrtf(dot3(cr, cr));
+    float area = 0.5f * sqrtf(dot3(cr, cr)); /* > 0 for every listed emitter */
     float o[3], d[3];
     offset_origin(h, o);
     for (int k = 0; k < 3; k++)
@@ -252,10 +260,25 @@ static void emitters_irradiance(const reference_job *job, const hit *h, rng *g, 
     if (!visible(job, o, d, dist, rays))
         return;
     const float *le = s->materials[s->triangle_material[t]].emissive;
-    float f = (float)((double)cos_x * cos_e / dist2 * area / pick) *
-              transmittance(job->absorption, dist);
+    float area_pdf = ref->emitter_area_pdf[lo];
+    float w = mis ? power_heuristic(area_pdf * dist2 / cos_e, cos_x / PI_F) : 1.0f;
+    float f = cos_x * cos_e / dist2 / area_pdf * w * transmittance(job->absorption, dist);
     for (int k = 0; k < 3; k++)
         e[k] = le[k] * f;
+}
+
+/* MIS weight of a cosine-weighted ray from `from` (direction d, length t) that hit the
+ * front of an emitter; 0 for anything else. */
+static float emitter_hit_weight(const reference *ref, const hit *from, const float d[3],
+                                float t, uint32_t tri)
+{
+    int32_t i = ref->emitter_of[tri];
+    if (i < 0)
+        return 0;
+    float cos_e = -dot3(ref->emitter_front + 3 * i, d);
+    if (cos_e <= 0)
+        return 0;
+    return power_heuristic(dot3(from->n, d) / PI_F, ref->emitter_area_pdf[i] * t * t / cos_e);
 }
 
 /* Cosine-weighted direction around n (Frisvad's orthonormal basis). */
@@ -303,7 +326,7 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
                         double acc[3], uint64_t *rays)
 {
     float e[3];
-    emitters_irradiance(job, x0, g, e, rays);
+    emitters_irradiance(job, x0, 1, g, e, rays);
     for (int k = 0; k < 3; k++) {
         float c = x0->albedo[k] / PI_F * e[k];
         acc1[k] += c;
@@ -324,16 +347,18 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         hit next;
         hit_fill(job->ref, &rh.hit, back, &next);
         float tr = transmittance(job->absorption, rh.ray.tfar);
-        for (int k = 0; k < 3; k++)
-            beta[k] *= tr;
+        float we = emitter_hit_weight(job->ref, &cur, d, rh.ray.tfar, next.tri);
+        const float *le = job->ref->scene->materials[job->ref->scene->triangle_material[next.tri]].emissive;
         float es[3], ee[3];
         spots_irradiance(job, &next, es, rays);
-        emitters_irradiance(job, &next, g, ee, rays);
+        emitters_irradiance(job, &next, bounce < job->max_bounces, g, ee, rays);
         for (int k = 0; k < 3; k++) {
+            beta[k] *= tr;
+            float emitted = beta[k] * le[k] * we; /* emitter -> x_(k-1) */
             float f = beta[k] * next.albedo[k] / PI_F;
             if (bounce == 1)
-                acc1[k] += f * es[k];
-            acc[k] += f * (es[k] + ee[k]);
+                acc1[k] += f * es[k] + emitted;
+            acc[k] += f * (es[k] + ee[k]) + emitted;
             beta[k] *= next.albedo[k];
         }
         if (bounce >= 2) { /* Russian roulette, unbiased: survivors carry 1/q */

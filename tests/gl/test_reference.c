@@ -30,8 +30,8 @@ static double image_mad(const float *a, const float *b, int w, int h)
 
 /* The rasterizer's direct image (3x3 PCF shadows) against the reference's (exact shadow
  * rays), default room from its camera. Pixels next to a strong change in either image
- * (shadow, cone and geometry edges) are left out. Measured here: mean |difference| 0.2% of
- * the mean on 91% of the pixels (edges excluded), 2.4% over all pixels. */
+ * (shadow, cone and geometry edges) are left out. Measured on llvmpipe: mean |difference|
+ * 0.12% of the mean on the 75% of the pixels away from edges, 0.49% over all pixels. */
 static void test_direct_matches_rasterizer(void **state)
 {
     (void)state;
@@ -83,8 +83,8 @@ static void test_direct_matches_rasterizer(void **state)
     printf("direct: mean %.4f, |raster - reference| %.3f%% of it on %.0f%% of the pixels "
            "(%.3f%% over all)\n", mean, 100 * rel, 100.0 * kept / (W * H), 100 * rel_all);
     assert_true(kept > (size_t)W * H / 2);
-    assert_true(rel < 0.01);
-    assert_true(rel_all < 0.05);
+    assert_true(rel < 0.005);
+    assert_true(rel_all < 0.02);
     reference_images_free(&out);
     reference_destroy(ref);
     gltest_close(&t);
@@ -92,7 +92,8 @@ static void test_direct_matches_rasterizer(void **state)
 
 /* Closed box of albedo a whose inner faces all emit L: radiance L a^k arrives after k
  * reflections. Seen from inside: direct = L, indirect1 = a L (emitters -> visible point),
- * indirect = L (a + ... + a^(B+1)) with B bounces. */
+ * indirect = L (a + ... + a^(B+1)) with B bounces. Measured at 256 paths per pixel:
+ * -0.06% and +0.4%; without the MIS weights the emitter light would count twice. */
 static void test_furnace_box(void **state)
 {
     (void)state;
