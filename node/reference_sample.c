@@ -21,53 +21,12 @@
 
 #include "reference_internal.h"
 
-static const float PI_F = 3.14159265358979f;
-
-/* PCG32 (O'Neill), seeded per pixel through splitmix64. */
-typedef struct rng {
-    uint64_t state;
-} rng;
-
 static uint64_t splitmix64(uint64_t x)
 {
     x += 0x9e3779b97f4a7c15ull;
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
     return x ^ (x >> 31);
-}
-
-static float rng_next(rng *r)
-{
-    uint64_t old = r->state;
-    r->state = old * 6364136223846793005ull + 1442695040888963407ull;
-    uint32_t xs = (uint32_t)(((old >> 18) ^ old) >> 27);
-    uint32_t rot = (uint32_t)(old >> 59);
-    uint32_t v = (xs >> rot) | (xs << ((32 - rot) & 31));
-    return (float)(v >> 8) * (1.0f / 16777216.0f); /* [0, 1) */
-}
-
-typedef struct hit {
-    float p[3], n[3], ng[3]; /* point, shading and geometric normals on the seen side */
-    float albedo[3];
-    uint32_t tri;
-} hit;
-
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void normalize3(float v[3])
-{
-    float len = sqrtf(dot3(v, v));
-    if (len > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= len;
-}
-
-static float transmittance(float sigma, float r)
-{
-    return sigma > 0 ? powf(1.0f - fminf(sigma, 0.999999f), r) : 1.0f;
 }
 
 /* Bilinear, wrap repeat, texel centres at half-integers, as GL samples level 0. */
@@ -94,7 +53,8 @@ static void texture_sample(const reference *ref, int t, const float uv[2], float
 }
 
 /* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
-static void hit_fill(const reference *ref, const struct RTCHit *eh, const float toward[3], hit *h)
+void reference_sample_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
+                          hit *h)
 {
     const scene *s = ref->scene;
     uint32_t t = eh->primID;
@@ -127,15 +87,15 @@ static void hit_fill(const reference *ref, const struct RTCHit *eh, const float 
 }
 
 /* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
-static void offset_origin(const hit *h, float o[3])
+void reference_sample_offset(const hit *h, float o[3])
 {
     float scale = 1e-4f * (1.0f + fmaxf(fabsf(h->p[0]), fmaxf(fabsf(h->p[1]), fabsf(h->p[2]))));
     for (int i = 0; i < 3; i++)
         o[i] = h->p[i] + h->ng[i] * scale;
 }
 
-static int trace(const reference_job *job, const float o[3], const float d[3], float tfar,
-                 struct RTCRayHit *rh, uint64_t *rays)
+int reference_sample_trace(const reference_job *job, const float o[3], const float d[3],
+                           float tfar, struct RTCRayHit *rh, uint64_t *rays)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -150,8 +110,8 @@ static int trace(const reference_job *job, const float o[3], const float d[3], f
 }
 
 /* 1 when nothing lies between o and o + d * dist (d unit), leaving a little at the end. */
-static int visible(const reference_job *job, const float o[3], const float d[3], float dist,
-                   uint64_t *rays)
+int reference_sample_visible(const reference_job *job, const float o[3], const float d[3],
+                             float dist, uint64_t *rays)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -161,158 +121,6 @@ static int visible(const reference_job *job, const float o[3], const float d[3],
     rtcOccluded1(job->ref->rt, &ctx, &ray);
     (*rays)++;
     return ray.tfar >= 0; /* Embree sets tfar to -inf on a hit */
-}
-
-/* Spot light arriving at h from light i: irradiance E (on the shading normal) and the unit
- * direction to the light. 0 when the spot does not reach h. As shade.frag, without PCF. */
-static int spot_irradiance(const reference_job *job, int i, const hit *h, float e[3],
-                           float l[3], uint64_t *rays)
-{
-    const reference_spot *s = &job->spots[i];
-    float to[3];
-    for (int k = 0; k < 3; k++)
-        to[k] = s->position[k] - h->p[k];
-    float r2 = dot3(to, to), r = sqrtf(r2);
-    if (!(r > 0))
-        return 0;
-    for (int k = 0; k < 3; k++)
-        l[k] = to[k] / r;
-    float cos_i = dot3(h->n, l);
-    if (cos_i <= 0 || dot3(h->ng, l) <= 0)
-        return 0;
-    float c = -dot3(l, s->direction);
-    float spot = fminf(fmaxf((c - s->cos_outer) / fmaxf(s->cos_inner - s->cos_outer, 1e-4f), 0), 1);
-    if (spot <= 0)
-        return 0;
-    float o[3];
-    offset_origin(h, o);
-    float od[3];
-    for (int k = 0; k < 3; k++)
-        od[k] = s->position[k] - o[k];
-    float dist = sqrtf(dot3(od, od));
-    for (int k = 0; k < 3; k++)
-        od[k] /= dist;
-    if (!visible(job, o, od, dist, rays))
-        return 0;
-    float f = spot * cos_i / fmaxf(r2, 0.01f) * transmittance(job->absorption, r);
-    for (int k = 0; k < 3; k++)
-        e[k] = s->radiance[k] * f;
-    return 1;
-}
-
-static float power_heuristic(float a, float b)
-{
-    return a * a / (a * a + b * b);
-}
-
-/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone. */
-static float spot_area_pdf(const reference_job *job, int i, const hit *h, const float l[3])
-{
-    const reference_spot *s = &job->spots[i];
-    float to[3];
-    for (int k = 0; k < 3; k++)
-        to[k] = s->position[k] - h->p[k];
-    return dot3(h->n, l) / dot3(to, to) / (2 * PI_F * (1 - s->cos_outer));
-}
-
-/* Irradiance at h from all spots (Lambertian vertices). cosine_pdf > 0: h was reached from
- * the visible point by a cosine ray of that area density, weighted against the spot
- * strategy (spot_connect); 0: no other strategy, full weight. */
-static void spots_irradiance(const reference_job *job, const hit *h, float cosine_pdf,
-                             float e[3], uint64_t *rays)
-{
-    e[0] = e[1] = e[2] = 0;
-    for (int i = 0; i < job->spot_count; i++) {
-        float ei[3], l[3];
-        if (!spot_irradiance(job, i, h, ei, l, rays))
-            continue;
-        float w = cosine_pdf > 0 ? power_heuristic(cosine_pdf, spot_area_pdf(job, i, h, l)) : 1;
-        for (int k = 0; k < 3; k++)
-            e[k] += ei[k] * w;
-    }
-}
-
-/* One-sample estimate of the irradiance at h from the emissive triangles (their front
- * side only, as the LPV's emitter VPLs): a triangle picked by power, a uniform point.
- * mis: a cosine-weighted ray also leaves h, so weight against it. */
-static void emitters_irradiance(const reference_job *job, const hit *h, int mis, rng *g,
-                                float e[3], uint64_t *rays)
-{
-    const reference *ref = job->ref;
-    e[0] = e[1] = e[2] = 0;
-    if (ref->emitter_count == 0)
-        return;
-    double u = (double)rng_next(g) * ref->emitter_power;
-    size_t lo = 0, hi = ref->emitter_count - 1;
-    while (lo < hi) { /* first cdf entry above u */
-        size_t mid = (lo + hi) / 2;
-        if (ref->emitter_cdf[mid] > u)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    uint32_t t = ref->emitter_triangle[lo];
-    const scene *s = ref->scene;
-    const float *p = s->positions + 9 * (size_t)t;
-    float r1 = sqrtf(rng_next(g)), r2 = rng_next(g);
-    float b0 = 1 - r1, b1 = r1 * (1 - r2), b2 = r1 * r2;
-    float y[3], e1[3], e2[3], cr[3];
-    for (int k = 0; k < 3; k++) {
-        y[k] = b0 * p[k] + b1 * p[3 + k] + b2 * p[6 + k];
-        e1[k] = p[3 + k] - p[k];
-        e2[k] = p[6 + k] - p[k];
-    }
-    cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    float area = 0.5f * sqrtf(dot3(cr, cr)); /* > 0 for every listed emitter */
-    float o[3], d[3];
-    offset_origin(h, o);
-    for (int k = 0; k < 3; k++)
-        d[k] = y[k] - o[k];
-    float dist2 = dot3(d, d), dist = sqrtf(dist2);
-    if (!(dist > 0) || !(area > 0))
-        return;
-    for (int k = 0; k < 3; k++)
-        d[k] /= dist;
-    float cos_x = dot3(h->n, d), cos_e = -dot3(ref->emitter_front + 3 * lo, d);
-    if (cos_x <= 0 || cos_e <= 0 || dot3(h->ng, d) <= 0)
-        return;
-    if (!visible(job, o, d, dist, rays))
-        return;
-    const float *le = s->materials[s->triangle_material[t]].emissive;
-    float area_pdf = ref->emitter_area_pdf[lo];
-    float w = mis ? power_heuristic(area_pdf * dist2 / cos_e, cos_x / PI_F) : 1.0f;
-    float f = cos_x * cos_e / dist2 / area_pdf * w * transmittance(job->absorption, dist);
-    for (int k = 0; k < 3; k++)
-        e[k] = le[k] * f;
-}
-
-/* MIS weight of a cosine-weighted ray from `from` (direction d, length t) that hit the
- * front of an emitter; 0 for anything else. */
-static float emitter_hit_weight(const reference *ref, const hit *from, const float d[3],
-                                float t, uint32_t tri)
-{
-    int32_t i = ref->emitter_of[tri];
-    if (i < 0)
-        return 0;
-    float cos_e = -dot3(ref->emitter_front + 3 * i, d);
-    if (cos_e <= 0)
-        return 0;
-    return power_heuristic(dot3(from->n, d) / PI_F, ref->emitter_area_pdf[i] * t * t / cos_e);
-}
-
-/* Orthonormal basis around unit n (Frisvad). */
-static void basis(const float n[3], float t[3], float bt[3])
-{
-    float sign = n[2] >= 0 ? 1.0f : -1.0f;
-    float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
-    t[0] = 1 + sign * n[0] * n[0] * a;
-    t[1] = sign * b;
-    t[2] = -sign * n[0];
-    bt[0] = b;
-    bt[1] = sign + n[1] * n[1] * a;
-    bt[2] = -n[1];
 }
 
 /* Cosine-weighted direction around n. */
@@ -326,52 +134,6 @@ static void cosine_direction(const float n[3], rng *g, float d[3])
     for (int k = 0; k < 3; k++)
         d[k] = x * t[k] + y * bt[k] + z * n[k];
     normalize3(d);
-}
-
-/* Spot strategy for spot i -> y -> x0: a direction uniform in the outer cone, its first
- * hit y lit as spot_irradiance says, connected to x0. Adds the radiance it brings to x0
- * (times x0's albedo / pi) to out, weighted against the cosine strategy. */
-static void spot_connect(const reference_job *job, int i, const hit *x0, rng *g, float out[3],
-                         uint64_t *rays)
-{
-    const reference_spot *s = &job->spots[i];
-    float axis[3] = {s->direction[0], s->direction[1], s->direction[2]}, t[3], bt[3], w[3];
-    normalize3(axis);
-    basis(axis, t, bt);
-    float c = 1 - rng_next(g) * (1 - s->cos_outer), phi = 2 * PI_F * rng_next(g);
-    float sn = sqrtf(fmaxf(0, 1 - c * c));
-    for (int k = 0; k < 3; k++)
-        w[k] = sn * cosf(phi) * t[k] + sn * sinf(phi) * bt[k] + c * axis[k];
-    normalize3(w);
-    struct RTCRayHit rh;
-    if (!trace(job, s->position, w, INFINITY, &rh, rays))
-        return;
-    hit y;
-    float back[3] = {-w[0], -w[1], -w[2]};
-    hit_fill(job->ref, &rh.hit, back, &y);
-    float e[3], l[3];
-    if (!spot_irradiance(job, i, &y, e, l, rays))
-        return;
-    float oy[3], ox[3], d[3];
-    offset_origin(&y, oy);
-    offset_origin(x0, ox);
-    for (int k = 0; k < 3; k++)
-        d[k] = ox[k] - oy[k];
-    float d2 = dot3(d, d), dist = sqrtf(d2);
-    if (!(dist > 0))
-        return;
-    for (int k = 0; k < 3; k++)
-        d[k] /= dist;
-    float cos_y = dot3(y.n, d), cos_x = -dot3(x0->n, d);
-    if (cos_y <= 0 || cos_x <= 0 || dot3(y.ng, d) <= 0 || -dot3(x0->ng, d) <= 0)
-        return;
-    if (!visible(job, oy, d, dist, rays))
-        return;
-    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * cos_y / d2;
-    float f = cos_y * cos_x / d2 * transmittance(job->absorption, dist) / pdf_spot *
-              power_heuristic(pdf_spot, pdf_cos);
-    for (int k = 0; k < 3; k++)
-        out[k] += x0->albedo[k] / PI_F * y.albedo[k] / PI_F * e[k] * f;
 }
 
 /* Exact direct light at the visible point: emission + Blinn-Phong of every spot. */
@@ -388,7 +150,7 @@ static void shade_direct(const reference_job *job, const hit *h, float out[3], u
     float mexp = 2.0f / fmaxf(alpha * alpha, 1e-3f) - 2.0f;
     for (int i = 0; i < job->spot_count; i++) {
         float e[3], l[3], hv[3];
-        if (!spot_irradiance(job, i, h, e, l, rays))
+        if (!reference_light_spot(job, i, h, e, l, rays))
             continue;
         for (int k = 0; k < 3; k++)
             hv[k] = l[k] + v[k];
@@ -412,9 +174,9 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
     for (int k = 0;; k++) {
         int more = k < job->max_bounces; /* a cosine ray leaves x_k */
         float e[3], c[3] = {0, 0, 0};
-        emitters_irradiance(job, &cur, more, g, e, rays);
+        reference_light_emitters(job, &cur, more, g, e, rays);
         for (int i = 0; more && k == 0 && i < job->spot_count; i++)
-            spot_connect(job, i, &cur, g, c, rays);
+            reference_light_spot_connect(job, i, &cur, g, c, rays);
         for (int j = 0; j < 3; j++) {
             float v = arrive[j] * (c[j] + cur.albedo[j] / PI_F * e[j]);
             acc1[j] += k == 0 ? v : 0;
@@ -436,19 +198,19 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         cosine_direction(cur.n, g, d);
         if (dot3(d, cur.ng) <= 0)
             break; /* below the true surface (smooth normals): no light that way */
-        offset_origin(&cur, o);
+        reference_sample_offset(&cur, o);
         struct RTCRayHit rh;
-        if (!trace(job, o, d, INFINITY, &rh, rays))
+        if (!reference_sample_trace(job, o, d, INFINITY, &rh, rays))
             break;
         float back[3] = {-d[0], -d[1], -d[2]}, t = rh.ray.tfar;
         hit next;
-        hit_fill(job->ref, &rh.hit, back, &next);
+        reference_sample_hit(job->ref, &rh.hit, back, &next);
         float tr = transmittance(job->absorption, t);
-        float we = emitter_hit_weight(job->ref, &cur, d, t, next.tri);
+        float we = reference_light_emitter_hit_weight(job->ref, &cur, d, t, next.tri);
         const float *le = s->materials[s->triangle_material[next.tri]].emissive;
         float cosine_pdf = k == 0 ? dot3(cur.n, d) / PI_F * dot3(next.n, back) / (t * t) : 0;
         float es[3];
-        spots_irradiance(job, &next, cosine_pdf, es, rays);
+        reference_light_spots(job, &next, cosine_pdf, es, rays);
         for (int j = 0; j < 3; j++) {
             arrive[j] = beta[j] * tr;
             /* emitter -> x_k and spot -> x_(k+1) -> x_k */
@@ -491,11 +253,11 @@ void reference_sample_row(void *ctx, int row)
         for (int k = 0; k < 3; k++)
             d[k] /= len;
         struct RTCRayHit rh;
-        if (!trace(job, o, d, len, &rh, &rays))
+        if (!reference_sample_trace(job, o, d, len, &rh, &rays))
             continue;
         hit x0;
         float toward_eye[3] = {-d[0], -d[1], -d[2]};
-        hit_fill(job->ref, &rh.hit, toward_eye, &x0);
+        reference_sample_hit(job->ref, &rh.hit, toward_eye, &x0);
         shade_direct(job, &x0, dst[0], &rays);
         rng g = {splitmix64(job->seed ^ splitmix64(pix))};
         double acc1[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
