@@ -154,6 +154,14 @@ int reference_cli_run(const reference_cli_desc *d)
         cJSON_AddNumberToObject(report, "threads", d->threads);
         cJSON_AddNumberToObject(report, "absorption", d->params->absorption);
         cJSON_AddNumberToObject(report, "exposure", d->params->exposure);
+        cJSON_AddNumberToObject(report, "display_gamma", d->params->display_gamma);
+        cJSON_AddNumberToObject(report, "e2e_gamma", frame_params_e2e_gamma(d->params->environment));
+        cJSON_AddItemToObject(report, "eye_position",
+                              cJSON_CreateFloatArray(d->view->eye_position, 3));
+        int spots = 0;
+        for (int i = 0; i < d->params->light_count && i < FRAME_MAX_LIGHTS; i++)
+            spots += d->params->lights[i].enabled && d->params->lights[i].intensity > 0;
+        cJSON_AddNumberToObject(report, "spots", spots);
         double hms[2] = {half[0].render_ms, half[1].render_ms};
         cJSON_AddItemToObject(report, "half_render_ms", cJSON_CreateDoubleArray(hms, 2));
         cJSON_AddNumberToObject(report, "render_ms", ms);
