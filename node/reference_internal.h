@@ -117,9 +117,10 @@ int reference_sample_visible(const reference_job *job, const float o[3], const f
 
 /* reference_light.c: light arriving at a vertex (docs/reference.md, "Sampling"). */
 /* Spot i at h: irradiance on the shading normal and the unit direction to the light; 0
- * when it does not reach h. As shade.frag, with an exact shadow ray instead of PCF. */
-int reference_light_spot(const reference_job *job, int i, const hit *h, float e[3], float l[3],
-                         uint64_t *rays);
+ * when it does not reach h. As shade.frag, with an exact shadow ray (shadow = 1) instead
+ * of PCF; shadow = 0 when h is known to see the light. */
+int reference_light_spot(const reference_job *job, int i, const hit *h, int shadow, float e[3],
+                         float l[3], uint64_t *rays);
 /* All spots at h; cosine_pdf > 0 weights against the spot strategy (see the .c). */
 void reference_light_spots(const reference_job *job, const hit *h, float cosine_pdf, float e[3],
                            uint64_t *rays);

@@ -7,8 +7,8 @@
 
 /* Spot light arriving at h from light i: irradiance E (on the shading normal) and the unit
  * direction to the light. 0 when the spot does not reach h. As shade.frag, without PCF. */
-int reference_light_spot(const reference_job *job, int i, const hit *h, float e[3], float l[3],
-                         uint64_t *rays)
+int reference_light_spot(const reference_job *job, int i, const hit *h, int shadow, float e[3],
+                         float l[3], uint64_t *rays)
 {
     const reference_spot *s = &job->spots[i];
     float to[3];
@@ -26,16 +26,17 @@ int reference_light_spot(const reference_job *job, int i, const hit *h, float e[
     float spot = fminf(fmaxf((c - s->cos_outer) / fmaxf(s->cos_inner - s->cos_outer, 1e-4f), 0), 1);
     if (spot <= 0)
         return 0;
-    float o[3];
-    reference_sample_offset(h, o);
-    float od[3];
-    for (int k = 0; k < 3; k++)
-        od[k] = s->position[k] - o[k];
-    float dist = sqrtf(dot3(od, od));
-    for (int k = 0; k < 3; k++)
-        od[k] /= dist;
-    if (!reference_sample_visible(job, o, od, dist, rays))
-        return 0;
+    if (shadow) {
+        float o[3], od[3];
+        reference_sample_offset(h, o);
+        for (int k = 0; k < 3; k++)
+            od[k] = s->position[k] - o[k];
+        float dist = sqrtf(dot3(od, od));
+        for (int k = 0; k < 3; k++)
+            od[k] /= dist;
+        if (!reference_sample_visible(job, o, od, dist, rays))
+            return 0;
+    }
     float f = spot * cos_i / fmaxf(r2, 0.01f) * transmittance(job->absorption, r);
     for (int k = 0; k < 3; k++)
         e[k] = s->radiance[k] * f;
@@ -47,14 +48,15 @@ static float power_heuristic(float a, float b)
     return a * a / (a * a + b * b);
 }
 
-/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone. */
+/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone.
+ * Densities in area measure take the geometric normal's cosine (the true surface). */
 static float spot_area_pdf(const reference_job *job, int i, const hit *h, const float l[3])
 {
     const reference_spot *s = &job->spots[i];
     float to[3];
     for (int k = 0; k < 3; k++)
         to[k] = s->position[k] - h->p[k];
-    return dot3(h->n, l) / dot3(to, to) / (2 * PI_F * (1 - s->cos_outer));
+    return dot3(h->ng, l) / dot3(to, to) / (2 * PI_F * (1 - s->cos_outer));
 }
 
 /* Irradiance at h from all spots (Lambertian vertices). cosine_pdf > 0: h was reached from
@@ -66,7 +68,7 @@ void reference_light_spots(const reference_job *job, const hit *h, float cosine_
     e[0] = e[1] = e[2] = 0;
     for (int i = 0; i < job->spot_count; i++) {
         float ei[3], l[3];
-        if (!reference_light_spot(job, i, h, ei, l, rays))
+        if (!reference_light_spot(job, i, h, 1, ei, l, rays))
             continue;
         float w = cosine_pdf > 0 ? power_heuristic(cosine_pdf, spot_area_pdf(job, i, h, l)) : 1;
         for (int k = 0; k < 3; k++)
@@ -166,7 +168,7 @@ void reference_light_spot_connect(const reference_job *job, int i, const hit *x0
     float back[3] = {-w[0], -w[1], -w[2]};
     reference_sample_hit(job->ref, &rh.hit, back, &y);
     float e[3], l[3];
-    if (!reference_light_spot(job, i, &y, e, l, rays))
+    if (!reference_light_spot(job, i, &y, 0, e, l, rays)) /* y is the spot's first hit */
         return;
     float oy[3], ox[3], d[3];
     reference_sample_offset(&y, oy);
@@ -183,7 +185,7 @@ void reference_light_spot_connect(const reference_job *job, int i, const hit *x0
         return;
     if (!reference_sample_visible(job, oy, d, dist, rays))
         return;
-    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * cos_y / d2;
+    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * dot3(y.ng, d) / d2;
     float f = cos_y * cos_x / d2 * transmittance(job->absorption, dist) / pdf_spot *
               power_heuristic(pdf_spot, pdf_cos);
     for (int k = 0; k < 3; k++)

@@ -150,7 +150,7 @@ static void shade_direct(const reference_job *job, const hit *h, float out[3], u
     float mexp = 2.0f / fmaxf(alpha * alpha, 1e-3f) - 2.0f;
     for (int i = 0; i < job->spot_count; i++) {
         float e[3], l[3], hv[3];
-        if (!reference_light_spot(job, i, h, e, l, rays))
+        if (!reference_light_spot(job, i, h, 1, e, l, rays))
             continue;
         for (int k = 0; k < 3; k++)
             hv[k] = l[k] + v[k];
@@ -208,7 +208,7 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         float tr = transmittance(job->absorption, t);
         float we = reference_light_emitter_hit_weight(job->ref, &cur, d, t, next.tri);
         const float *le = s->materials[s->triangle_material[next.tri]].emissive;
-        float cosine_pdf = k == 0 ? dot3(cur.n, d) / PI_F * dot3(next.n, back) / (t * t) : 0;
+        float cosine_pdf = k == 0 ? dot3(cur.n, d) / PI_F * dot3(next.ng, back) / (t * t) : 0;
         float es[3];
         reference_light_spots(job, &next, cosine_pdf, es, rays);
         for (int j = 0; j < 3; j++) {
