@@ -13,6 +13,7 @@
 #include "glctx.h"
 #include "image.h"
 #include "offaxis.h"
+#include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
 #include "scene.h"
@@ -39,6 +40,9 @@ typedef struct node_options {
     frame_environment env;
     int hud_layout, have_wand; /* HUD (docs/node.md): layout, wand position */
     float wand[3];
+    /* --renderer reference: the path tracer (docs/reference.md) instead of GL */
+    int reference, samples, bounces;
+    unsigned long long seed;
 } node_options;
 
 static void usage(FILE *f)
@@ -58,7 +62,11 @@ static void usage(FILE *f)
         "  --env dark|dim|office --display-gamma G --exposure E\n"
         "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
         "                               settings) at a wand pointing along -Z (default: in\n"
-        "                               front of the first eye)\n");
+        "                               front of the first eye)\n"
+        "  --renderer raster|reference  GL rasterizer + LPV (default), or the Embree path\n"
+        "                               tracer (mono, writes reference_*.pfm/png/json)\n"
+        "  --samples N --bounces B --seed S   reference: paths per pixel per half image\n"
+        "                               (default 64), reflections (8), seed (1; halves S, S+1)\n");
 }
 
 static int parse_floats(const char *s, float *out, int n)
@@ -95,7 +103,7 @@ static int parse_options(int argc, char **argv, node_options *o)
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
         .fov_deg = -1, .eye_separation = 0.065f, .steps = -1, .lambda = -1,
         .absorption = 0, .scattering = 0, .display_gamma = 2.2f, .exposure = 1,
-        .env = FRAME_ENV_DIM, .hud_layout = -1,
+        .env = FRAME_ENV_DIM, .hud_layout = -1, .seed = 1,
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -128,7 +136,17 @@ static int parse_options(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
         else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &o->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
         else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
-        else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
+        else if (strcmp(a, "--samples") == 0) bad = parse_int(v, &o->samples, 1, 1 << 20);
+        else if (strcmp(a, "--bounces") == 0) bad = parse_int(v, &o->bounces, 1, 1000);
+        else if (strcmp(a, "--seed") == 0) {
+            char *end;
+            errno = 0;
+            o->seed = strtoull(v, &end, 10);
+            bad = end == v || *end || errno || v[0] == '-';
+        } else if (strcmp(a, "--renderer") == 0) {
+            o->reference = strcmp(v, "reference") == 0;
+            bad = !o->reference && strcmp(v, "raster") != 0;
+        } else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
         else if (strcmp(a, "--eyes") == 0) {
             o->stereo = strcmp(v, "stereo") == 0;
             bad = !o->stereo && strcmp(v, "mono") != 0;
@@ -160,6 +178,10 @@ static int parse_options(int argc, char **argv, node_options *o)
     }
     if (o->have_screen != o->have_eye) {
         fprintf(stderr, "cavelight-node: --screen and --eye go together\n");
+        return -1;
+    }
+    if (o->reference && o->stereo) {
+        fprintf(stderr, "cavelight-node: --renderer reference renders one eye: use --eyes mono\n");
         return -1;
     }
     return 0;
@@ -296,6 +318,30 @@ static int standalone_main(const node_options *o)
         scene_free(&sc);
         return 1;
     }
+    frame_params fp;
+    frame_params_default(&fp);
+    frame_params_lights_from_scene(&fp, &sc);
+    if (o->steps >= 0) fp.lpv_steps = o->steps;
+    if (o->lambda >= 0) fp.lambda_incr = o->lambda;
+    fp.absorption = o->absorption;
+    fp.scattering = o->scattering;
+    fp.environment = o->env;
+    fp.display_gamma = o->display_gamma;
+    fp.exposure = o->exposure;
+    fp.hud_layout = o->hud_layout;
+    if (o->have_wand)
+        memcpy(fp.wand + 12, o->wand, sizeof o->wand);
+    else
+        renderer_hud_wand_in_front(eyes[0].view.view, fp.wand);
+    if (o->reference) {
+        reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
+                                 .view = &eyes[0].view, .threads = o->threads,
+                                 .samples = o->samples, .bounces = o->bounces,
+                                 .seed = o->seed, .out = o->out};
+        int rc = reference_cli_run(&rd);
+        scene_free(&sc);
+        return rc;
+    }
     glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
                      .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
     glctx *ctx = glctx_create(&gd, err, sizeof err);
@@ -316,21 +362,6 @@ static int standalone_main(const node_options *o)
         scene_free(&sc);
         return 1;
     }
-    frame_params fp;
-    frame_params_default(&fp);
-    frame_params_lights_from_scene(&fp, &sc);
-    if (o->steps >= 0) fp.lpv_steps = o->steps;
-    if (o->lambda >= 0) fp.lambda_incr = o->lambda;
-    fp.absorption = o->absorption;
-    fp.scattering = o->scattering;
-    fp.environment = o->env;
-    fp.display_gamma = o->display_gamma;
-    fp.exposure = o->exposure;
-    fp.hud_layout = o->hud_layout;
-    if (o->have_wand)
-        memcpy(fp.wand + 12, o->wand, sizeof o->wand);
-    else
-        renderer_hud_wand_in_front(eyes[0].view.view, fp.wand);
 
     const lattice_desc *lat = renderer_get_lattice(r);
     const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";

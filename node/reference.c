@@ -1,0 +1,329 @@
+/* reference: the Embree scene, the per-render setup and the row-parallel run
+ * (reference_sample.c traces the paths). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clock.h"
+#include "reference_internal.h"
+
+static void cross3(const float a[3], const float b[3], float out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static float srgb_to_linear(int c)
+{
+    float v = (float)c / 255.0f;
+    return v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Geometric normals, and the emissive triangles with their lit side and power. */
+static int build_tables(reference *ref)
+{
+    const scene *s = ref->scene;
+    ref->face_normal = malloc(s->triangle_count * 3 * sizeof *ref->face_normal);
+    ref->emitter_triangle = malloc(s->triangle_count * sizeof *ref->emitter_triangle);
+    ref->emitter_front = malloc(s->triangle_count * 3 * sizeof *ref->emitter_front);
+    ref->emitter_cdf = malloc(s->triangle_count * sizeof *ref->emitter_cdf);
+    ref->emitter_of = malloc(s->triangle_count * sizeof *ref->emitter_of);
+    ref->emitter_area_pdf = malloc(s->triangle_count * sizeof *ref->emitter_area_pdf);
+    if (!ref->face_normal || !ref->emitter_triangle || !ref->emitter_front ||
+        !ref->emitter_cdf || !ref->emitter_of || !ref->emitter_area_pdf)
+        return -1;
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
+        float a[3], b[3], f[3], nsum[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = p[3 + k] - p[k];
+            b[k] = p[6 + k] - p[k];
+            nsum[k] = vn[k] + vn[3 + k] + vn[6 + k];
+        }
+        cross3(a, b, f);
+        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        float *n = ref->face_normal + 3 * t;
+        for (int k = 0; k < 3; k++) /* degenerate triangles: Embree never reports a hit */
+            n[k] = len > 0 ? f[k] / len : 0;
+        ref->emitter_of[t] = -1;
+        const float *e = s->materials[s->triangle_material[t]].emissive;
+        double power = 0.5 * len * (e[0] + e[1] + e[2]) / 3.0;
+        if (!(power > 0))
+            continue;
+        /* The side of the vertex normals, as the rasterizer's emitter VPLs. */
+        float side = n[0] * nsum[0] + n[1] * nsum[1] + n[2] * nsum[2] < 0 ? -1.0f : 1.0f;
+        size_t i = ref->emitter_count++;
+        ref->emitter_of[t] = (int32_t)i;
+        ref->emitter_triangle[i] = (uint32_t)t;
+        ref->emitter_area_pdf[i] = (float)(power / (0.5 * len)); /* / total power below */
+        for (int k = 0; k < 3; k++)
+            ref->emitter_front[3 * i + k] = side * n[k];
+        ref->emitter_power += power;
+        ref->emitter_cdf[i] = ref->emitter_power;
+    }
+    for (size_t i = 0; i < ref->emitter_count; i++)
+        ref->emitter_area_pdf[i] = (float)(ref->emitter_area_pdf[i] / ref->emitter_power);
+    ref->texture_linear = calloc(s->texture_count ? s->texture_count : 1, sizeof *ref->texture_linear);
+    if (!ref->texture_linear)
+        return -1;
+    float lut[256];
+    for (int c = 0; c < 256; c++)
+        lut[c] = srgb_to_linear(c);
+    for (size_t i = 0; i < s->texture_count; i++) {
+        const scene_texture *t = &s->textures[i];
+        size_t n = (size_t)t->width * (size_t)t->height;
+        float *img = malloc((n ? n : 1) * 3 * sizeof *img);
+        if (!img)
+            return -1;
+        for (size_t j = 0; j < n; j++)
+            for (int c = 0; c < 3; c++)
+                img[3 * j + c] = lut[t->rgba[4 * j + c]];
+        ref->texture_linear[i] = img;
+    }
+    return 0;
+}
+
+static int build_embree(reference *ref, int threads, char *err, size_t errlen)
+{
+    const scene *s = ref->scene;
+    char config[64] = "";
+    if (threads > 0)
+        snprintf(config, sizeof config, "threads=%d", threads);
+    ref->device = rtcNewDevice(config);
+    if (!ref->device) {
+        snprintf(err, errlen, "reference: Embree device creation failed (error %d): check "
+                 "that libembree3 is installed", (int)rtcGetDeviceError(NULL));
+        return -1;
+    }
+    ref->rt = rtcNewScene(ref->device);
+    rtcSetSceneFlags(ref->rt, RTC_SCENE_FLAG_ROBUST); /* no leaks along shared edges */
+    rtcSetSceneBuildQuality(ref->rt, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(ref->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    size_t nv = 3 * s->triangle_count;
+    float *v = g ? rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                           3 * sizeof(float), nv) : NULL;
+    unsigned *ix = g ? rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                               3 * sizeof(unsigned), s->triangle_count) : NULL;
+    if (!v || !ix) {
+        if (g)
+            rtcReleaseGeometry(g);
+        snprintf(err, errlen, "reference: Embree could not allocate %zu triangles (error %d)",
+                 s->triangle_count, (int)rtcGetDeviceError(ref->device));
+        return -1;
+    }
+    memcpy(v, s->positions, nv * 3 * sizeof(float));
+    for (size_t i = 0; i < nv; i++)
+        ix[i] = (unsigned)i;
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(ref->rt, g); /* geometry id 0; primID = scene triangle index */
+    rtcReleaseGeometry(g);
+    rtcCommitScene(ref->rt);
+    enum RTCError e = rtcGetDeviceError(ref->device);
+    if (e != RTC_ERROR_NONE) {
+        snprintf(err, errlen, "reference: Embree scene build failed (error %d)", (int)e);
+        return -1;
+    }
+    return 0;
+}
+
+reference *reference_create(const scene *s, int threads, char *err, size_t errlen)
+{
+    if (!s || s->triangle_count == 0 || s->material_count == 0) {
+        snprintf(err, errlen, "reference: the scene has no triangles or materials (load it first)");
+        return NULL;
+    }
+    reference *ref = calloc(1, sizeof *ref);
+    if (!ref) {
+        snprintf(err, errlen, "reference: out of memory");
+        return NULL;
+    }
+    ref->scene = s;
+    if (build_tables(ref) != 0) {
+        snprintf(err, errlen, "reference: out of memory for %zu triangles", s->triangle_count);
+        reference_destroy(ref);
+        return NULL;
+    }
+    if (build_embree(ref, threads, err, errlen) != 0) {
+        reference_destroy(ref);
+        return NULL;
+    }
+    if (!(ref->pool = workpool_create(threads))) {
+        snprintf(err, errlen, "reference: cannot start %d threads", threads);
+        reference_destroy(ref);
+        return NULL;
+    }
+    return ref;
+}
+
+void reference_destroy(reference *ref)
+{
+    if (!ref)
+        return;
+    if (ref->pool)
+        workpool_destroy(ref->pool);
+    if (ref->rt)
+        rtcReleaseScene(ref->rt);
+    if (ref->device)
+        rtcReleaseDevice(ref->device);
+    if (ref->texture_linear)
+        for (size_t i = 0; i < ref->scene->texture_count; i++)
+            free(ref->texture_linear[i]);
+    free(ref->texture_linear);
+    free(ref->face_normal);
+    free(ref->emitter_triangle);
+    free(ref->emitter_front);
+    free(ref->emitter_cdf);
+    free(ref->emitter_of);
+    free(ref->emitter_area_pdf);
+    free(ref);
+}
+
+/* Gauss-Jordan with partial pivoting on a column-major 4x4; -1 when singular. */
+static int invert4(const double m[16], double out[16])
+{
+    double a[4][8];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            a[r][c] = m[c * 4 + r];
+            a[r][4 + c] = r == c;
+        }
+    for (int c = 0; c < 4; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 4; r++)
+            if (fabs(a[r][c]) > fabs(a[piv][c]))
+                piv = r;
+        if (!(fabs(a[piv][c]) > 1e-300))
+            return -1;
+        for (int k = 0; k < 8; k++) {
+            double t = a[c][k];
+            a[c][k] = a[piv][k];
+            a[piv][k] = t;
+        }
+        double inv = 1.0 / a[c][c];
+        for (int k = 0; k < 8; k++)
+            a[c][k] *= inv;
+        for (int r = 0; r < 4; r++)
+            if (r != c) {
+                double f = a[r][c];
+                for (int k = 0; k < 8; k++)
+                    a[r][k] -= f * a[c][k];
+            }
+    }
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            out[c * 4 + r] = a[r][4 + c];
+    return 0;
+}
+
+static int all_finite(const float *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+/* Lights as renderer.c hands them to shade.frag: enabled with intensity > 0, angles clamped. */
+static int setup_job(reference_job *job, const reference_render_desc *d, char *err, size_t errlen)
+{
+    const frame_params *p = d->params;
+    const renderer_view *v = d->view;
+    if (v->width <= 0 || v->height <= 0 || v->width > 16384 || v->height > 16384) {
+        snprintf(err, errlen, "reference: view size %dx%d is out of range (1..16384)", v->width,
+                 v->height);
+        return -1;
+    }
+    if (!isfinite(p->absorption) || !all_finite(v->eye_position, 3)) {
+        snprintf(err, errlen, "reference: absorption or eye position is not finite");
+        return -1;
+    }
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
+        const frame_light *l = &p->lights[i];
+        if (!l->enabled)
+            continue;
+        if (!all_finite(l->position, 3) || !all_finite(l->direction, 3) ||
+            !all_finite(l->color, 3) || !isfinite(l->intensity) || !isfinite(l->outer_angle) ||
+            !isfinite(l->inner_angle)) {
+            snprintf(err, errlen, "reference: light %d has a non-finite position, direction, "
+                     "colour, intensity or angle: fix or disable it", i);
+            return -1;
+        }
+        if (!(l->intensity > 0))
+            continue;
+        reference_spot *s = &job->spots[job->spot_count++];
+        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
+        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
+        memcpy(s->position, l->position, sizeof s->position);
+        memcpy(s->direction, l->direction, sizeof s->direction);
+        for (int c = 0; c < 3; c++)
+            s->radiance[c] = l->color[c] * l->intensity;
+        s->cos_outer = cosf(outer);
+        s->cos_inner = cosf(inner);
+    }
+    double vp[16];
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double sum = 0;
+            for (int k = 0; k < 4; k++)
+                sum += (double)v->projection[k * 4 + r] * v->view[c * 4 + k];
+            vp[c * 4 + r] = sum;
+        }
+    if (invert4(vp, job->inv_view_projection) != 0) {
+        snprintf(err, errlen, "reference: the view-projection matrix is singular (degenerate camera)");
+        return -1;
+    }
+    job->absorption = p->absorption;
+    job->exposure = p->exposure > 0 ? p->exposure : 1.0f;
+    memcpy(job->eye, v->eye_position, sizeof job->eye);
+    job->width = v->width;
+    job->height = v->height;
+    job->samples = d->samples > 0 ? d->samples : 64;
+    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : 8;
+    job->seed = d->seed;
+    return 0;
+}
+
+int reference_render(reference *ref, const reference_render_desc *d, reference_images *out,
+                     char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    if (!ref || !d || !d->params || !d->view) {
+        snprintf(err, errlen, "reference: render needs a reference, params and a view");
+        return -1;
+    }
+    double t0 = clock_now_ms();
+    reference_job job = {.ref = ref};
+    if (setup_job(&job, d, err, errlen) != 0)
+        return -1;
+    size_t n = (size_t)job.width * (size_t)job.height * 3;
+    out->width = job.width;
+    out->height = job.height;
+    out->direct = job.direct = malloc(n * sizeof(float));
+    out->indirect1 = job.indirect1 = malloc(n * sizeof(float));
+    out->indirect = job.indirect = malloc(n * sizeof(float));
+    job.row_rays = calloc((size_t)job.height, sizeof *job.row_rays);
+    if (!job.direct || !job.indirect1 || !job.indirect || !job.row_rays) {
+        free(job.row_rays);
+        reference_images_free(out);
+        snprintf(err, errlen, "reference: out of memory for a %dx%d image", job.width, job.height);
+        return -1;
+    }
+    workpool_run(ref->pool, job.height, reference_sample_row, &job);
+    for (int y = 0; y < job.height; y++)
+        out->rays += job.row_rays[y];
+    free(job.row_rays);
+    out->render_ms = clock_now_ms() - t0;
+    return 0;
+}
+
+void reference_images_free(reference_images *img)
+{
+    if (!img)
+        return;
+    free(img->direct);
+    free(img->indirect1);
+    free(img->indirect);
+    img->direct = img->indirect1 = img->indirect = NULL;
+}

@@ -1,0 +1,60 @@
+/* reference: a CPU path tracer (Embree 3) that renders the rasterizer's scene, lights,
+ * materials and cameras as ground truth for the LPV (docs/reference.md).
+ *
+ * It uses the rasterizer's light model exactly: primary rays through pixel centres,
+ * two-sided surfaces shaded on the side the ray sees, normalized Blinn-Phong for the spots
+ * at the camera vertex (exact shadow rays instead of PCF), Lambertian everywhere else,
+ * emitters one-sided when they light other surfaces (as the LPV's emitter VPLs), the same
+ * spot cone, 1/max(r^2, 0.01) falloff and absorption transmittance on every segment.
+ * Scattering in the medium is not modelled.
+ *
+ *   direct     emitted radiance of the visible surface + every spot, exact (no noise)
+ *   indirect1  spot -> one Lambertian surface -> visible point, plus emitter -> visible
+ *              point (the LPV injects emitters as VPLs): what the LPV models
+ *   indirect   every path with at least one reflection before the visible point, up to
+ *              max_bounces reflections (Russian roulette after the second); a superset of
+ *              indirect1. Both indirect images shade the visible point with albedo/pi.
+ * All three are multiplied by params->exposure, as the rasterizer's are.
+ *
+ * Deterministic: every pixel draws from its own generator seeded by (seed, pixel), so the
+ * images depend on the seed only, never on the thread count or scheduling. */
+#ifndef CAVELIGHT_REFERENCE_H
+#define CAVELIGHT_REFERENCE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "frame_params.h"
+#include "renderer.h"
+#include "scene.h"
+
+typedef struct reference reference; /* Embree device + committed scene, built once */
+
+/* The scene must outlive the reference. threads: 0 = all cores. NULL + one line in err. */
+reference *reference_create(const scene *s, int threads, char *err, size_t errlen);
+void reference_destroy(reference *ref);
+
+typedef struct reference_render_desc {
+    const frame_params *params; /* lights, absorption, exposure: as the rasterizer gets them */
+    const renderer_view *view;  /* view, projection, eye_position, width, height */
+    int samples;                /* paths per pixel, 0 = 64 */
+    int max_bounces;            /* reflections before the visible point, 0 = 8 */
+    uint64_t seed;
+} reference_render_desc;
+
+typedef struct reference_images {
+    int width, height;
+    float *direct;    /* linear RGB, top row first, same layout as renderer_image.direct */
+    float *indirect1; /* one diffuse bounce: what the LPV models */
+    float *indirect;  /* many bounces */
+    double render_ms; /* wall time of reference_render() */
+    uint64_t rays;    /* rays traced (intersection + shadow) */
+} reference_images;
+
+/* Allocates out's images (free with reference_images_free). 0, or -1 with one line in err
+ * (empty view, singular view-projection, non-finite light or absorption, out of memory). */
+int reference_render(reference *ref, const reference_render_desc *d, reference_images *out,
+                     char *err, size_t errlen);
+void reference_images_free(reference_images *img);
+
+#endif

@@ -1,0 +1,194 @@
+/* reference_light: the light arriving at a path vertex from the spots and the emitters,
+ * and the multiple-importance weights between the strategies (reference_sample.c has the
+ * overview). */
+#include <math.h>
+
+#include "reference_internal.h"
+
+/* Spot light arriving at h from light i: irradiance E (on the shading normal) and the unit
+ * direction to the light. 0 when the spot does not reach h. As shade.frag, without PCF. */
+int reference_light_spot(const reference_job *job, int i, const hit *h, int shadow, float e[3],
+                         float l[3], uint64_t *rays)
+{
+    const reference_spot *s = &job->spots[i];
+    float to[3];
+    for (int k = 0; k < 3; k++)
+        to[k] = s->position[k] - h->p[k];
+    float r2 = dot3(to, to), r = sqrtf(r2);
+    if (!(r > 0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        l[k] = to[k] / r;
+    float cos_i = dot3(h->n, l);
+    if (cos_i <= 0 || dot3(h->ng, l) <= 0)
+        return 0;
+    float c = -dot3(l, s->direction);
+    float spot = fminf(fmaxf((c - s->cos_outer) / fmaxf(s->cos_inner - s->cos_outer, 1e-4f), 0), 1);
+    if (spot <= 0)
+        return 0;
+    if (shadow) {
+        float o[3], od[3];
+        reference_sample_offset(h, o);
+        for (int k = 0; k < 3; k++)
+            od[k] = s->position[k] - o[k];
+        float dist = sqrtf(dot3(od, od));
+        for (int k = 0; k < 3; k++)
+            od[k] /= dist;
+        if (!reference_sample_visible(job, o, od, dist, rays))
+            return 0;
+    }
+    float f = spot * cos_i / fmaxf(r2, 0.01f) * transmittance(job->absorption, r);
+    for (int k = 0; k < 3; k++)
+        e[k] = s->radiance[k] * f;
+    return 1;
+}
+
+static float power_heuristic(float a, float b)
+{
+    return a * a / (a * a + b * b);
+}
+
+/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone.
+ * Densities in area measure take the geometric normal's cosine (the true surface). */
+static float spot_area_pdf(const reference_job *job, int i, const hit *h, const float l[3])
+{
+    const reference_spot *s = &job->spots[i];
+    float to[3];
+    for (int k = 0; k < 3; k++)
+        to[k] = s->position[k] - h->p[k];
+    return dot3(h->ng, l) / dot3(to, to) / (2 * PI_F * (1 - s->cos_outer));
+}
+
+/* Irradiance at h from all spots (Lambertian vertices). cosine_pdf > 0: h was reached from
+ * the visible point by a cosine ray of that area density, weighted against the spot
+ * strategy (spot_connect); 0: no other strategy, full weight. */
+void reference_light_spots(const reference_job *job, const hit *h, float cosine_pdf, float e[3],
+                           uint64_t *rays)
+{
+    e[0] = e[1] = e[2] = 0;
+    for (int i = 0; i < job->spot_count; i++) {
+        float ei[3], l[3];
+        if (!reference_light_spot(job, i, h, 1, ei, l, rays))
+            continue;
+        float w = cosine_pdf > 0 ? power_heuristic(cosine_pdf, spot_area_pdf(job, i, h, l)) : 1;
+        for (int k = 0; k < 3; k++)
+            e[k] += ei[k] * w;
+    }
+}
+
+/* One-sample estimate of the irradiance at h from the emissive triangles (their front
+ * side only, as the LPV's emitter VPLs): a triangle picked by power, a uniform point.
+ * mis: a cosine-weighted ray also leaves h, so weight against it. */
+void reference_light_emitters(const reference_job *job, const hit *h, int mis, rng *g,
+                              float e[3], uint64_t *rays)
+{
+    const reference *ref = job->ref;
+    e[0] = e[1] = e[2] = 0;
+    if (ref->emitter_count == 0)
+        return;
+    double u = (double)rng_next(g) * ref->emitter_power;
+    size_t lo = 0, hi = ref->emitter_count - 1;
+    while (lo < hi) { /* first cdf entry above u */
+        size_t mid = (lo + hi) / 2;
+        if (ref->emitter_cdf[mid] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    uint32_t t = ref->emitter_triangle[lo];
+    const scene *s = ref->scene;
+    const float *p = s->positions + 9 * (size_t)t;
+    float r1 = sqrtf(rng_next(g)), r2 = rng_next(g);
+    float b0 = 1 - r1, b1 = r1 * (1 - r2), b2 = r1 * r2;
+    float y[3], e1[3], e2[3], cr[3];
+    for (int k = 0; k < 3; k++) {
+        y[k] = b0 * p[k] + b1 * p[3 + k] + b2 * p[6 + k];
+        e1[k] = p[3 + k] - p[k];
+        e2[k] = p[6 + k] - p[k];
+    }
+    cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    float area = 0.5f * sqrtf(dot3(cr, cr)); /* > 0 for every listed emitter */
+    float o[3], d[3];
+    reference_sample_offset(h, o);
+    for (int k = 0; k < 3; k++)
+        d[k] = y[k] - o[k];
+    float dist2 = dot3(d, d), dist = sqrtf(dist2);
+    if (!(dist > 0) || !(area > 0))
+        return;
+    for (int k = 0; k < 3; k++)
+        d[k] /= dist;
+    float cos_x = dot3(h->n, d), cos_e = -dot3(ref->emitter_front + 3 * lo, d);
+    if (cos_x <= 0 || cos_e <= 0 || dot3(h->ng, d) <= 0)
+        return;
+    if (!reference_sample_visible(job, o, d, dist, rays))
+        return;
+    const float *le = s->materials[s->triangle_material[t]].emissive;
+    float area_pdf = ref->emitter_area_pdf[lo];
+    float w = mis ? power_heuristic(area_pdf * dist2 / cos_e, cos_x / PI_F) : 1.0f;
+    float f = cos_x * cos_e / dist2 / area_pdf * w * transmittance(job->absorption, dist);
+    for (int k = 0; k < 3; k++)
+        e[k] = le[k] * f;
+}
+
+/* MIS weight of a cosine-weighted ray from `from` (direction d, length t) that hit the
+ * front of an emitter; 0 for anything else. */
+float reference_light_emitter_hit_weight(const reference *ref, const hit *from, const float d[3],
+                                         float t, uint32_t tri)
+{
+    int32_t i = ref->emitter_of[tri];
+    if (i < 0)
+        return 0;
+    float cos_e = -dot3(ref->emitter_front + 3 * i, d);
+    if (cos_e <= 0)
+        return 0;
+    return power_heuristic(dot3(from->n, d) / PI_F, ref->emitter_area_pdf[i] * t * t / cos_e);
+}
+
+/* Spot strategy for spot i -> y -> x0: a direction uniform in the outer cone, its first
+ * hit y lit as spot_irradiance says, connected to x0. Adds the radiance it brings to x0
+ * (times x0's albedo / pi) to out, weighted against the cosine strategy. */
+void reference_light_spot_connect(const reference_job *job, int i, const hit *x0, rng *g,
+                                  float out[3], uint64_t *rays)
+{
+    const reference_spot *s = &job->spots[i];
+    float axis[3] = {s->direction[0], s->direction[1], s->direction[2]}, t[3], bt[3], w[3];
+    normalize3(axis);
+    basis(axis, t, bt);
+    float c = 1 - rng_next(g) * (1 - s->cos_outer), phi = 2 * PI_F * rng_next(g);
+    float sn = sqrtf(fmaxf(0, 1 - c * c));
+    for (int k = 0; k < 3; k++)
+        w[k] = sn * cosf(phi) * t[k] + sn * sinf(phi) * bt[k] + c * axis[k];
+    normalize3(w);
+    struct RTCRayHit rh;
+    if (!reference_sample_trace(job, s->position, w, INFINITY, &rh, rays))
+        return;
+    hit y;
+    float back[3] = {-w[0], -w[1], -w[2]};
+    reference_sample_hit(job->ref, &rh.hit, back, &y);
+    float e[3], l[3];
+    if (!reference_light_spot(job, i, &y, 0, e, l, rays)) /* y is the spot's first hit */
+        return;
+    float oy[3], ox[3], d[3];
+    reference_sample_offset(&y, oy);
+    reference_sample_offset(x0, ox);
+    for (int k = 0; k < 3; k++)
+        d[k] = ox[k] - oy[k];
+    float d2 = dot3(d, d), dist = sqrtf(d2);
+    if (!(dist > 0))
+        return;
+    for (int k = 0; k < 3; k++)
+        d[k] /= dist;
+    float cos_y = dot3(y.n, d), cos_x = -dot3(x0->n, d);
+    if (cos_y <= 0 || cos_x <= 0 || dot3(y.ng, d) <= 0 || -dot3(x0->ng, d) <= 0)
+        return;
+    if (!reference_sample_visible(job, oy, d, dist, rays))
+        return;
+    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * dot3(y.ng, d) / d2;
+    float f = cos_y * cos_x / d2 * transmittance(job->absorption, dist) / pdf_spot *
+              power_heuristic(pdf_spot, pdf_cos);
+    for (int k = 0; k < 3; k++)
+        out[k] += x0->albedo[k] / PI_F * y.albedo[k] / PI_F * e[k] * f;
+}
+
