@@ -16,7 +16,7 @@ int lpv_converge_init(lpv_converge *c, const int n[3], double threshold)
         lpv_converge_free(c);
         return -1;
     }
-    c->threshold = threshold == 0.0 ? LPV_CONVERGE_DEFAULT_THRESHOLD_E6 * 1e-6 : threshold;
+    c->threshold = threshold == 0.0 ? LPV_CONVERGE_DEFAULT_THRESHOLD : threshold;
     c->residual = INFINITY;
     return 0;
 }

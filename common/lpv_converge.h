@@ -16,7 +16,7 @@
 #include "lpv_volume.h"
 #include "workpool.h"
 
-enum { LPV_CONVERGE_DEFAULT_THRESHOLD_E6 = 100 }; /* 1e-4 */
+#define LPV_CONVERGE_DEFAULT_THRESHOLD 1e-4
 
 typedef struct lpv_converge {
     double threshold;     /* resolved: > 0 skips below it, < 0 never skips */
