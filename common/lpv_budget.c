@@ -13,23 +13,24 @@ int lpv_budget_choose(const lpv_budget_desc *d, lpv_budget_choice *out)
     int finest = -1, coarsest = -1;
     for (int i = 0; i < d->count; i++) {
         const lpv_budget_candidate *c = &d->candidates[i];
-        if (!(c->step_ms > 0) || !isfinite(c->step_ms))
+        if (!(c->step_ms > 0) || !isfinite(c->step_ms) || !(c->fixed_ms >= 0) ||
+            !isfinite(c->fixed_ms))
             return -1;
         if (coarsest < 0 || c->cells < d->candidates[coarsest].cells)
             coarsest = i;
-        if (min_steps * c->step_ms <= d->budget_ms &&
+        if (c->fixed_ms + min_steps * c->step_ms <= d->budget_ms &&
             (finest < 0 || c->cells > d->candidates[finest].cells))
             finest = i;
     }
     int pick = finest >= 0 ? finest : coarsest;
     const lpv_budget_candidate *c = &d->candidates[pick];
-    double fit = floor(d->budget_ms / c->step_ms);
+    double fit = floor((d->budget_ms - c->fixed_ms) / c->step_ms);
     int steps = fit > max_steps ? max_steps : fit < 1 ? 1 : (int)fit;
     *out = (lpv_budget_choice){
         .index = pick,
         .axis_cells = c->axis_cells,
         .steps = steps,
-        .predicted_ms = steps * c->step_ms,
+        .predicted_ms = c->fixed_ms + steps * c->step_ms,
         .fits = finest >= 0,
     };
     return 0;

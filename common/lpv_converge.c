@@ -60,6 +60,12 @@ int lpv_converge_begin(lpv_converge *c, const frame_params *p)
     return c->skipped;
 }
 
+void lpv_converge_forget(lpv_converge *c)
+{
+    c->have_previous = 0;
+    c->residual = INFINITY;
+}
+
 typedef struct residual_job {
     const lpv_volume *cur;
     lpv_volume *prev;

@@ -38,6 +38,9 @@ int lpv_converge_inputs_equal(const frame_params *a, const frame_params *b);
 /* Before a frame: decides whether it is skipped (counted and remembered in `skipped`) and
  * records p as the last inputs. */
 int lpv_converge_begin(lpv_converge *c, const frame_params *p);
+/* The last result is gone (overwritten): the next frame is computed, and so is the one
+ * after it (no residual until then). */
+void lpv_converge_forget(lpv_converge *c);
 /* After a computed frame: the residual against the previous result; result becomes the
  * previous one. */
 double lpv_converge_end(lpv_converge *c, const lpv_volume *result, workpool *pool);

@@ -531,7 +531,11 @@ double renderer_measure_step_ms(renderer *r, int steps)
             lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
         }
     }
-    return steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
+    double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
+    ilpv_reset(&r->cpu);
+    r->gl_have_history = 0;
+    lpv_converge_forget(&r->converge);
+    return ms;
 }
 
 float renderer_get_indirect_scale(const renderer *r)

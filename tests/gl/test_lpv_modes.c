@@ -228,6 +228,37 @@ static void test_nan_or_changing_input_never_skips(void **state)
     gltest_close(&t);
 }
 
+/* Measuring the step cost leaves the renderer as if it had just been created: no history
+ * (lambda 0.8: the next frame equals a fresh renderer's first) and no skipping on stale
+ * volumes (lambda 0: converged before, computed again after, same result). */
+static void test_measure_then_render(void **state)
+{
+    (void)state;
+    for (int backend = RENDERER_LPV_CPU; backend <= RENDERER_LPV_GL; backend++) {
+        gltest a, b;
+        open_with(&a, (renderer_lpv_backend)backend, RENDERER_LPV_INCREMENTAL, 0);
+        open_with(&b, (renderer_lpv_backend)backend, RENDERER_LPV_INCREMENTAL, 0);
+        a.params.lambda_incr = b.params.lambda_incr = 0.8f;
+        uint64_t ca, cb;
+        run(&a, 4, &ca, NULL);
+        double ms = renderer_measure_step_ms(a.r, 2);
+        printf("backend %d: %.3g ms per step\n", backend, ms);
+        assert_true(ms > 0);
+        assert_int_equal(run(&a, 1, &ca, NULL), 0);
+        run(&b, 1, &cb, NULL);
+        assert_true(ca == cb);
+
+        a.params.lambda_incr = 0; /* the same result as the last frame, the first after reset */
+        assert_int_equal(run(&a, 4, &ca, NULL), 3);
+        renderer_measure_step_ms(a.r, 1);
+        assert_int_equal(run(&a, 2, &cb, NULL), 0);
+        assert_true(ca == cb);
+        assert_int_equal(run(&a, 1, &cb, NULL), 1);
+        gltest_close(&b);
+        gltest_close(&a);
+    }
+}
+
 static void test_gl_backend_skips(void **state)
 {
     (void)state;
@@ -252,6 +283,7 @@ int main(void)
         cmocka_unit_test(test_static_lambda0_skips_exactly),
         cmocka_unit_test(test_lambda09_converges_then_skips),
         cmocka_unit_test(test_nan_or_changing_input_never_skips),
+        cmocka_unit_test(test_measure_then_render),
         cmocka_unit_test(test_gl_backend_skips),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -13,8 +13,8 @@
 
 /* Cost per step proportional to the cells of a 2:1:2 room, as the node fits it. */
 static const lpv_budget_candidate table[] = {
-    {48, 48 * 24 * 48, 5.5296}, {16, 16 * 8 * 16, 0.2048},  {64, 64 * 32 * 64, 13.1072},
-    {24, 24 * 12 * 24, 0.6912}, {32, 32 * 16 * 32, 1.6384},
+    {48, 48 * 24 * 48, 5.5296, 0}, {16, 16 * 8 * 16, 0.2048, 0}, {64, 64 * 32 * 64, 13.1072, 0},
+    {24, 24 * 12 * 24, 0.6912, 0}, {32, 32 * 16 * 32, 1.6384, 0},
 };
 
 static lpv_budget_choice choose(double budget, int min_steps, int max_steps)
@@ -23,7 +23,7 @@ static lpv_budget_choice choose(double budget, int min_steps, int max_steps)
                          .min_steps = min_steps, .max_steps = max_steps};
     lpv_budget_choice c;
     assert_int_equal(lpv_budget_choose(&d, &c), 0);
-    assert_true(fabs(c.predicted_ms - c.steps * table[c.index].step_ms) < 1e-12);
+    assert_true(fabs(c.predicted_ms - c.steps * table[c.index].step_ms) < 1e-12); /* fixed 0 */
     assert_int_equal(c.axis_cells, table[c.index].axis_cells);
     return c;
 }
@@ -61,6 +61,25 @@ static void test_rule(void **state)
     assert_int_equal(c.steps, 16);
 }
 
+/* The per-frame cost counts against the budget before the steps do. */
+static void test_fixed_cost(void **state)
+{
+    (void)state;
+    lpv_budget_candidate t[2] = {{16, 3072, 0.2, 0.5}, {32, 24576, 1.6, 4.0}};
+    lpv_budget_desc d = {.budget_ms = 10.0, .candidates = t, .count = 2};
+    lpv_budget_choice c;
+    assert_int_equal(lpv_budget_choose(&d, &c), 0); /* 32: 4 + 4 * 1.6 > 10 */
+    assert_int_equal(c.axis_cells, 16);
+    assert_int_equal(c.steps, 8);
+    assert_true(fabs(c.predicted_ms - 2.1) < 1e-12);
+    d.budget_ms = 10.5;
+    assert_int_equal(lpv_budget_choose(&d, &c), 0);
+    assert_int_equal(c.axis_cells, 32);
+    assert_int_equal(c.steps, 4);
+    t[0].fixed_ms = -1;
+    assert_int_equal(lpv_budget_choose(&d, &c), -1);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -72,7 +91,7 @@ static void test_refused(void **state)
     assert_int_equal(lpv_budget_choose(&d, &c), -1);
     d.budget_ms = 0;
     assert_int_equal(lpv_budget_choose(&d, &c), -1);
-    lpv_budget_candidate bad[2] = {{16, 100, 1.0}, {32, 800, NAN}};
+    lpv_budget_candidate bad[2] = {{16, 100, 1.0, 0}, {32, 800, NAN, 0}};
     d = (lpv_budget_desc){.budget_ms = 10, .candidates = bad, .count = 2};
     assert_int_equal(lpv_budget_choose(&d, &c), -1);
     assert_int_equal(c.steps, -7);
@@ -99,6 +118,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rule),
+        cmocka_unit_test(test_fixed_cost),
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_fit),
     };

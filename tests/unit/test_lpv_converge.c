@@ -147,6 +147,14 @@ static void test_skip_rule(void **state)
     for (int f = 0; f < 4; f++)
         assert_int_equal(frame(&c, &p, &v, 1.7f), 0);
     assert_int_equal(c.frames_skipped, 3);
+    /* After the result was overwritten, two frames are computed before skipping again. */
+    p.scattering = 0;
+    assert_int_equal(frame(&c, &p, &v, 1.7f), 0);
+    assert_int_equal(frame(&c, &p, &v, 1.7f), 1); /* the NaN frames measured residual 0 */
+    lpv_converge_forget(&c);
+    assert_int_equal(frame(&c, &p, &v, 1.7f), 0);
+    assert_int_equal(frame(&c, &p, &v, 1.7f), 0);
+    assert_int_equal(frame(&c, &p, &v, 1.7f), 1);
     lpv_converge_free(&c);
 
     assert_int_equal(lpv_converge_init(&c, n, -1.0), 0); /* never skip */
