@@ -24,7 +24,8 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
         cluster_view_desc vd = {.config = d->config, .node = node,
                                 .output = d->output >= 0 ? (cluster_output)d->output : d->config->nodes[node].output,
                                 .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
-                                .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size};
+                                .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size,
+                                .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold};
         view = cluster_view_create(&vd, err, errlen);
         if (!view)
             return 1;
@@ -132,7 +133,8 @@ static void usage(void)
     fprintf(stderr,
             "usage: cavelight-node --cluster FILE --name NODE [--master ENDPOINT] [--render gl|none]\n"
             "         [--output window|headless|png] [--out DIR] [--scene FILE] [--lpv-threads N]\n"
-            "         [--lattice CELLS] [--rsm SIZE]\n"
+            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic]\n"
+            "         [--converge-threshold R]\n"
             "         [--exit-with-master] [--quiet]\n");
 }
 
@@ -160,6 +162,11 @@ int cluster_node_main(int argc, char **argv)
             d.lattice_cells = atoi(v);
         else if (strcmp(a, "--rsm") == 0 && v)
             d.rsm_size = atoi(v);
+        else if (strcmp(a, "--converge-threshold") == 0 && v)
+            d.converge_threshold = atof(v);
+        else if (strcmp(a, "--lpv-mode") == 0 && v && (strcmp(v, "incremental") == 0 ||
+                                                      strcmp(v, "classic") == 0))
+            d.lpv_mode = strcmp(v, "classic") == 0 ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL;
         else if (strcmp(a, "--fault-checksum-from") == 0 && v)
             d.fault_checksum_from = strtoull(v, NULL, 10);
         else if (strcmp(a, "--render") == 0 && v) {

@@ -30,6 +30,8 @@ typedef struct cluster_node_desc {
     const char *scene;          /* NULL = config scene or the built-in default */
     int lpv_threads;            /* CPU LPV threads, 0 = all cores */
     int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
+    int lpv_mode;               /* renderer_lpv_mode; every node must use the same */
+    double converge_threshold;  /* renderer_desc.converge_threshold; the same on every node */
     int exit_with_master;       /* 1: leave when the master ends the session */
     int quiet;
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */

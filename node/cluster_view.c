@@ -24,7 +24,8 @@ struct cluster_view {
     int node;
     cluster_output output;
     char out_dir[1024];
-    int lpv_threads, rsm_size, lattice_desc, lattice_now;
+    int lpv_threads, rsm_size, lattice_desc, lattice_now, lpv_mode;
+    double converge_threshold;
     scene sc;
     int scene_loaded;
     glctx *ctx;          /* headless context, or the first window's */
@@ -182,7 +183,9 @@ static int present_window(cluster_view *v, char *err, size_t errlen)
 static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
 {
     renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
-                        .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads};
+                        .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads,
+                        .lpv_mode = (renderer_lpv_mode)v->lpv_mode,
+                        .converge_threshold = v->converge_threshold};
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
         return -1;
@@ -205,6 +208,8 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->output = desc->output;
     v->lpv_threads = desc->lpv_threads;
     v->rsm_size = desc->rsm_size;
+    v->lpv_mode = desc->lpv_mode;
+    v->converge_threshold = desc->converge_threshold;
     v->lattice_desc = desc->lattice_cells;
     snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : ".");
     const cluster_node *n = &v->cfg->nodes[v->node];

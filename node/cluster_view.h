@@ -32,6 +32,8 @@ typedef struct cluster_view_desc {
     int lpv_threads;          /* 0 = all cores */
     int lattice_cells;        /* 0 = renderer default (overridden by the lpv_resolution key) */
     int rsm_size;             /* 0 = renderer default */
+    int lpv_mode;             /* renderer_lpv_mode */
+    double converge_threshold;/* renderer_desc.converge_threshold */
 } cluster_view_desc;
 
 enum { CLUSTER_VIEW_MAX_EYES = 2 };

@@ -12,6 +12,8 @@
 #include "frame_params.h"
 #include "glctx.h"
 #include "image.h"
+#include "lattice.h"
+#include "lpv_budget.h"
 #include "offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
@@ -24,6 +26,9 @@ typedef struct node_options {
     const char *scene;
     renderer_lpv_backend lpv;
     renderer_tiles tiles;
+    renderer_lpv_mode mode;
+    float converge_threshold; /* 0 = renderer default, negative = never skip */
+    float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
     int rsm, lattice, threads, clamp_negative;
     int frames, width, height;
     const char *out;
@@ -59,6 +64,12 @@ static void usage(FILE *f)
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
         "  --absorption S --scattering S --clamp-negative\n"
         "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
+        "  --lpv-mode incremental|classic   ILPV (default) or classic LPV accumulation\n"
+        "  --converge-threshold R       skip the frame pass once the LPV residual is below R\n"
+        "                               and nothing changed (0 = 1e-4, negative = never)\n"
+        "  --budget-ms X                choose --lattice and --steps so that the LPV work\n"
+        "                               (inject + propagate) takes about X ms per frame on\n"
+        "                               this machine (standalone only)\n"
         "  --env dark|dim|office --display-gamma G --exposure E\n"
         "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
         "                               settings) at a wand pointing along -Z (default: in\n"
@@ -125,6 +136,8 @@ static int parse_options(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
         else if (strcmp(a, "--steps") == 0) bad = parse_int(v, &o->steps, 0, 1000);
         else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &o->lambda, 1) || o->lambda < 0 || o->lambda >= 1;
+        else if (strcmp(a, "--converge-threshold") == 0) bad = parse_floats(v, &o->converge_threshold, 1);
+        else if (strcmp(a, "--budget-ms") == 0) bad = parse_floats(v, &o->budget_ms, 1) || o->budget_ms <= 0;
         else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &o->absorption, 1);
         else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &o->scattering, 1);
         else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &o->display_gamma, 1) || o->display_gamma <= 0;
@@ -155,6 +168,10 @@ static int parse_options(int argc, char **argv, node_options *o)
             else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
             else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
             else bad = 1;
+        } else if (strcmp(a, "--lpv-mode") == 0) {
+            if (strcmp(v, "incremental") == 0) o->mode = RENDERER_LPV_INCREMENTAL;
+            else if (strcmp(v, "classic") == 0) o->mode = RENDERER_LPV_CLASSIC;
+            else bad = 1;
         } else if (strcmp(a, "--gl-tiles") == 0) {
             if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
             else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
@@ -175,6 +192,11 @@ static int parse_options(int argc, char **argv, node_options *o)
             return -1;
         }
         i += takes;
+    }
+    if (o->budget_ms > 0 && (o->lattice > 0 || o->steps >= 0)) {
+        fprintf(stderr, "cavelight-node: --budget-ms chooses --lattice and --steps: give "
+                "either the budget or those two\n");
+        return -1;
     }
     if (o->have_screen != o->have_eye) {
         fprintf(stderr, "cavelight-node: --screen and --eye go together\n");
@@ -290,6 +312,100 @@ static int write_images(const node_options *o, int frame, const char *eye,
     return 0;
 }
 
+/* Measures, on the smallest and largest candidate lattice with this context and backend,
+ * one propagation step and the LPV's other work per frame (injection, merge, upload,
+ * checksum: a frame with 0 steps), fits both as a + b * cells, and picks by
+ * lpv_budget_choose(). */
+static int choose_budget(const node_options *o, const renderer_desc *base, const scene *sc,
+                         const frame_params *fp, lpv_budget_choice *choice, cJSON *report)
+{
+    static const int axis[] = {16, 24, 32, 48, 64};
+    enum { N = sizeof axis / sizeof axis[0] };
+    lpv_budget_candidate cand[N];
+    char err[512];
+    for (int i = 0; i < N; i++) {
+        lattice_fit_desc fit = {
+            .bounds_min = {sc->bounds_min[0], sc->bounds_min[1], sc->bounds_min[2]},
+            .bounds_max = {sc->bounds_max[0], sc->bounds_max[1], sc->bounds_max[2]},
+            .max_axis_cells = axis[i], .margin_cells = -1.0f,
+        };
+        lattice_desc lat;
+        if (lattice_fit(&fit, &lat, err, sizeof err) != 0) {
+            fprintf(stderr, "cavelight-node: --budget-ms: no %d-cell lattice: %s\n", axis[i], err);
+            return -1;
+        }
+        cand[i] = (lpv_budget_candidate){.axis_cells = axis[i], .cells = lattice_cell_count(&lat)};
+    }
+    size_t cells[2];
+    double ms[2], fixed[2];
+    for (int k = 0; k < 2; k++) {
+        renderer_desc rd = *base;
+        rd.lattice_cells = axis[k ? N - 1 : 0];
+        rd.converge_threshold = -1;
+        renderer *r = renderer_create(&rd, err, sizeof err);
+        if (!r) {
+            fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+            return -1;
+        }
+        cells[k] = lattice_cell_count(renderer_get_lattice(r));
+        /* The fastest of three tries: other processes only ever add time. */
+        ms[k] = fixed[k] = INFINITY;
+        frame_params none = *fp;
+        none.lpv_steps = 0;
+        renderer_frame_pass(r, &none); /* the first frame pays for first touches */
+        for (int i = 0; i < 3; i++) {
+            ms[k] = fmin(ms[k], renderer_measure_step_ms(r, 3));
+            renderer_frame_pass(r, &none);
+            renderer_timings t;
+            renderer_get_timings(r, &t);
+            fixed[k] = fmin(fixed[k], t.inject_ms + t.propagate_ms);
+        }
+        renderer_destroy(r);
+    }
+    double a, b, fa, fb;
+    if (lpv_budget_fit(cells, ms, 2, &a, &b) != 0 || lpv_budget_fit(cells, fixed, 2, &fa, &fb) != 0) {
+        fprintf(stderr, "cavelight-node: --budget-ms: step costs %.3g and %.3g ms give no cost "
+                "model; give --lattice and --steps\n", ms[0], ms[1]);
+        return -1;
+    }
+    for (int i = 0; i < N; i++) {
+        cand[i].step_ms = lpv_budget_predict(a, b, cand[i].cells);
+        cand[i].fixed_ms = lpv_budget_predict(fa, fb, cand[i].cells);
+    }
+    int classic = o->mode == RENDERER_LPV_CLASSIC;
+    lpv_budget_desc bd = {.budget_ms = o->budget_ms, .candidates = cand, .count = N,
+                          .min_steps = classic ? 8 : 4, .max_steps = classic ? 16 : 8};
+    if (lpv_budget_choose(&bd, choice) != 0) {
+        fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
+        return -1;
+    }
+    printf("cavelight-node: budget %.3g ms: lattice %d, %d steps, predicted %.3g ms per frame%s "
+           "(measured per step %.3g ms at %zu cells, %.3g at %zu; per frame besides the steps "
+           "%.3g and %.3g)\n", o->budget_ms, choice->axis_cells, choice->steps,
+           choice->predicted_ms, choice->fits ? "" : ", over budget even at the coarsest lattice",
+           ms[0], cells[0], ms[1], cells[1], fixed[0], fixed[1]);
+    cJSON *jb = cJSON_AddObjectToObject(report, "budget");
+    cJSON_AddNumberToObject(jb, "budget_ms", o->budget_ms);
+    cJSON_AddNumberToObject(jb, "lattice_cells", choice->axis_cells);
+    cJSON_AddNumberToObject(jb, "steps", choice->steps);
+    cJSON_AddNumberToObject(jb, "predicted_ms", choice->predicted_ms);
+    cJSON_AddBoolToObject(jb, "fits", choice->fits);
+    cJSON_AddNumberToObject(jb, "fit_a_ms", a);
+    cJSON_AddNumberToObject(jb, "fit_b_ms_per_cell", b);
+    cJSON_AddNumberToObject(jb, "fixed_fit_a_ms", fa);
+    cJSON_AddNumberToObject(jb, "fixed_fit_b_ms_per_cell", fb);
+    cJSON *jc = cJSON_AddArrayToObject(jb, "candidates");
+    for (int i = 0; i < N; i++) {
+        cJSON *c = cJSON_CreateObject();
+        cJSON_AddNumberToObject(c, "axis_cells", cand[i].axis_cells);
+        cJSON_AddNumberToObject(c, "cells", (double)cand[i].cells);
+        cJSON_AddNumberToObject(c, "step_ms", cand[i].step_ms);
+        cJSON_AddNumberToObject(c, "fixed_ms", cand[i].fixed_ms);
+        cJSON_AddItemToArray(jc, c);
+    }
+    return 0;
+}
+
 static int standalone_main(const node_options *o)
 {
     char err[512];
@@ -353,11 +469,24 @@ static int standalone_main(const node_options *o)
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
-        .lpv_gl_tiles = o->tiles,
+        .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
     };
+    cJSON *report = cJSON_CreateObject();
+    if (o->budget_ms > 0) {
+        lpv_budget_choice budget;
+        if (choose_budget(o, &rd, &sc, &fp, &budget, report) != 0) {
+            cJSON_Delete(report);
+            glctx_destroy(ctx);
+            scene_free(&sc);
+            return 1;
+        }
+        rd.lattice_cells = budget.axis_cells;
+        fp.lpv_steps = budget.steps;
+    }
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "cavelight-node: %s\n", err);
+        cJSON_Delete(report);
         glctx_destroy(ctx);
         scene_free(&sc);
         return 1;
@@ -369,12 +498,19 @@ static int standalone_main(const node_options *o)
            glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc.triangle_count, lat->n[0],
            lat->n[1], lat->n[2], backend);
 
-    cJSON *report = cJSON_CreateObject();
     cJSON_AddStringToObject(report, "scene", o->scene);
     cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
     cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
     cJSON_AddStringToObject(report, "lpv_backend", backend);
     cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
+    /* The lattice follows the scene's shape: what that saves against a cube. */
+    int longest = lat->n[0] > lat->n[1] ? lat->n[0] : lat->n[1];
+    longest = longest > lat->n[2] ? longest : lat->n[2];
+    cJSON_AddNumberToObject(report, "cells", (double)lattice_cell_count(lat));
+    cJSON_AddNumberToObject(report, "cube_cells", (double)longest * longest * longest);
+    cJSON_AddStringToObject(report, "lpv_mode",
+                            renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
+                                                                             : "incremental");
     cJSON_AddNumberToObject(report, "triangles", (double)sc.triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
     cJSON_AddNumberToObject(report, "height", o->height);
@@ -398,6 +534,13 @@ static int standalone_main(const node_options *o)
         snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
         cJSON_AddNumberToObject(jf, "frame", f);
         cJSON_AddStringToObject(jf, "lpv_checksum", hex);
+        renderer_lpv_stats ls;
+        renderer_get_lpv_stats(r, &ls);
+        cJSON_AddBoolToObject(jf, "skipped", ls.skipped_this_frame);
+        if (isfinite(ls.last_residual)) /* +Inf before two computed frames: JSON null */
+            cJSON_AddNumberToObject(jf, "residual", ls.last_residual);
+        else
+            cJSON_AddNullToObject(jf, "residual");
         double eye_sum[4] = {0, 0, 0, 0};
         for (int e = 0; e < eye_count && rc == 0; e++) {
             renderer_image img;
@@ -430,9 +573,9 @@ static int standalone_main(const node_options *o)
         }
         cJSON_AddItemToArray(frames, jf);
         frames_run++;
-        printf("frame %d: lpv %s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
-               "eyes %.2f ms\n", f, hex, t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms,
-               eye_sum[3]);
+        printf("frame %d: lpv %s%s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
+               "eyes %.2f ms\n", f, hex, ls.skipped_this_frame ? " (skipped, converged)" : "",
+               t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms, eye_sum[3]);
     }
     if (rc == 0) {
         /* GPU timer results arrive a few frames late: the first frames report 0 there. */
@@ -442,6 +585,9 @@ static int standalone_main(const node_options *o)
             m[k] = median(samples + (size_t)k * o->frames, frames_run);
             cJSON_AddNumberToObject(med, mnames[k], m[k]);
         }
+        renderer_lpv_stats ls;
+        renderer_get_lpv_stats(r, &ls);
+        cJSON_AddNumberToObject(report, "frames_skipped", (double)ls.frames_skipped);
         double total = m[M_FRAME] + m[M_EYE];
         cJSON_AddNumberToObject(report, "lpv_share",
                                 total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);

@@ -1,8 +1,11 @@
 /* renderer: the render node's work on the current GL context.
  *
  *   renderer_frame_pass()  once per frame, view independent: RSM per spotlight -> VPLs ->
- *                          injection -> ILPV merge and propagation. Returns the LPV
- *                          checksum the master compares across nodes.
+ *                          injection -> ILPV merge and propagation (or classic LPV
+ *                          accumulation). Returns the LPV checksum the master compares
+ *                          across nodes. Skips all of that and returns the last checksum
+ *                          when the LPV's inputs are unchanged and it has converged
+ *                          (lpv_converge.h).
  *   renderer_eye_pass()    per (screen, eye): G-buffer -> direct + indirect shading ->
  *                          tone map + gamma -> 8-bit RGB (and optional linear floats).
  *
@@ -31,6 +34,11 @@ typedef enum renderer_tiles {
     RENDERER_TILES_OFF,
 } renderer_tiles;
 
+typedef enum renderer_lpv_mode {
+    RENDERER_LPV_INCREMENTAL = 0, /* ILPV (ilpv.h): history merge, light accumulates over frames */
+    RENDERER_LPV_CLASSIC,         /* classic LPV (lpv_classic.h): sum of this frame's steps */
+} renderer_lpv_mode;
+
 typedef struct renderer_desc {
     const gl_functions *gl; /* the current context's table (glctx_gl()) */
     const scene *scene;
@@ -41,7 +49,10 @@ typedef struct renderer_desc {
     int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
     renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */
     float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
-                               mean free path (docs/node.md) */
+                               mean free path (docs/node.md); classic mode: 1 */
+    renderer_lpv_mode lpv_mode;
+    double converge_threshold; /* skip the frame pass below this residual with unchanged
+                                  inputs; 0 = 1e-4, negative = never skip */
 } renderer_desc;
 
 typedef struct renderer_view {
@@ -65,6 +76,13 @@ typedef struct renderer_timings {
     double frame_host_ms, eye_host_ms;
 } renderer_timings;
 
+typedef struct renderer_lpv_stats {
+    long frames_skipped;      /* frame passes skipped since creation */
+    double last_residual;     /* relative L1 change of the last computed frame's result,
+                                 +Inf before two computed frames */
+    int skipped_this_frame;   /* the last frame pass was skipped */
+} renderer_lpv_stats;
+
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
@@ -84,5 +102,12 @@ renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);
 const lattice_desc *renderer_get_lattice(const renderer *r);
 const lpv_volume *renderer_get_lpv(const renderer *r);
 float renderer_get_indirect_scale(const renderer *r);
+renderer_lpv_mode renderer_get_lpv_mode(const renderer *r);
+void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out);
+/* Milliseconds per propagation step on this backend and lattice (blocking on), timed over
+ * `steps` steps after one untimed step; GL work is finished before the clock stops. It
+ * overwrites the light volumes: the next frame pass starts without history and is never
+ * skipped; show no eye pass before it. */
+double renderer_measure_step_ms(renderer *r, int steps);
 
 #endif

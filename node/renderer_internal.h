@@ -6,6 +6,8 @@
 #include <stddef.h>
 
 #include "ilpv.h"
+#include "lpv_classic.h"
+#include "lpv_converge.h"
 #include "lpv_inject.h"
 #include "lpv_transfer.h"
 #include "renderer.h"
@@ -63,7 +65,11 @@ struct renderer {
     lattice_desc lattice;
     lpv_transfer transfer;
     lpv_volume geometry;
-    ilpv cpu;
+    ilpv cpu;                /* incremental mode; its injection volume serves both modes */
+    renderer_lpv_mode mode;
+    lpv_classic classic;     /* classic mode, CPU backend */
+    lpv_converge converge;
+    uint64_t checksum;       /* of the last computed result */
     workpool *pool;
     lpv_vpl *vpls;
     size_t vpl_capacity;
@@ -78,8 +84,9 @@ struct renderer {
     lpv_inject_stats inject_stats;
 
     /* GL compute backend */
-    GLuint prog_merge, prog_propagate;
+    GLuint prog_merge, prog_propagate, prog_accumulate;
     GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
+    GLuint gl_accum[3];      /* classic mode: the sum of the steps */
     int gl_current, gl_have_history;
     double gl_previous_energy;
     lpv_volume gl_result;
@@ -103,6 +110,8 @@ GLuint renderer_texture3d(renderer *r, const int n[3]);
 /* renderer_lpv.c */
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err, size_t errlen);
 void renderer_lpv_free(renderer *r);
+/* Before the RSMs: 1 if this frame reuses the last LPV result (stats updated). */
+int renderer_lpv_skip(renderer *r, const frame_params *p);
 /* After the RSMs are rendered: VPLs -> injection -> merge + propagation. */
 uint64_t renderer_lpv_frame(renderer *r, const frame_params *p);
 /* The three textures (R, G, B SH) the shading pass samples. */

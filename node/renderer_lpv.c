@@ -5,7 +5,13 @@
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
  * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
  * Phi/pi and the lattice holds radiant intensity (W/sr) per cell, whose energy <L|1> is
- * Phi. The shading divides by the cell area to get radiance (docs/node.md). */
+ * Phi. The shading divides by the cell area to get radiance (docs/node.md).
+ *
+ * Classic mode (lpv_classic.h) uses the same injection and propagation; the GL backend adds
+ * each step into three accumulation textures (shaders/accumulate.comp). In both modes a
+ * frame whose inputs are unchanged and whose result has converged is skipped
+ * (lpv_converge.h); the residual is computed on the host from the result the checksum is
+ * taken of, so every node decides alike. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,7 +121,10 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
     r->prog_merge = r->prog_propagate
                         ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
                         : 0;
-    if (!r->prog_merge)
+    if (r->prog_merge && r->mode == RENDERER_LPV_CLASSIC)
+        r->prog_accumulate = renderer_program(r, NULL, NULL, "accumulate.comp", NULL, NULL, err,
+                                              errlen);
+    if (!r->prog_merge || (r->mode == RENDERER_LPV_CLASSIC && !r->prog_accumulate))
         return -1;
     if (lpv_volume_init(&r->gl_result, r->lattice.n, LPV_LIGHT_CHANNELS) != 0) {
         snprintf(err, errlen, "renderer: out of memory for the LPV readback");
@@ -125,10 +134,14 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
         r->gl_injected[c] = renderer_texture3d(r, r->lattice.n);
         r->gl_volume[0][c] = renderer_texture3d(r, r->lattice.n);
         r->gl_volume[1][c] = renderer_texture3d(r, r->lattice.n);
+        if (r->mode == RENDERER_LPV_CLASSIC)
+            r->gl_accum[c] = renderer_texture3d(r, r->lattice.n);
     }
     /* Defined contents everywhere: the zeroed readback volume. */
     upload_volume(r, &r->gl_result, r->gl_volume[0]);
     upload_volume(r, &r->gl_result, r->gl_volume[1]);
+    if (r->mode == RENDERER_LPV_CLASSIC)
+        upload_volume(r, &r->gl_result, r->gl_accum);
     r->gl_geometry = renderer_texture3d(r, r->lattice.n);
     for (size_t i = 0; i < r->geometry.cells; i++)
         for (int s = 0; s < 4; s++)
@@ -175,6 +188,8 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
                      ? desc->lpv_backend
                      : (software ? RENDERER_LPV_CPU : RENDERER_LPV_GL);
     r->clamp_negative = desc->lpv_clamp_negative;
+    r->mode = desc->lpv_mode == RENDERER_LPV_CLASSIC ? RENDERER_LPV_CLASSIC
+                                                      : RENDERER_LPV_INCREMENTAL;
     lattice_fit_desc fit = {
         .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
         .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
@@ -193,14 +208,20 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     }
     /* Static scene: the blocking lattice is built once, here. */
     if (lpv_volume_init(&r->geometry, r->lattice.n, LPV_GEOMETRY_CHANNELS) != 0 ||
-        ilpv_init(&r->cpu, &r->lattice) != 0 || build_emitters(r) != 0) {
+        ilpv_init(&r->cpu, &r->lattice) != 0 || build_emitters(r) != 0 ||
+        lpv_converge_init(&r->converge, r->lattice.n, desc->converge_threshold) != 0 ||
+        (r->mode == RENDERER_LPV_CLASSIC && r->backend == RENDERER_LPV_CPU &&
+         lpv_classic_init(&r->classic, &r->lattice) != 0)) {
         snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d lattice",
                  r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
         return -1;
     }
     lpv_geometry_add_triangles(&r->geometry, &r->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
-    r->indirect_scale = desc->indirect_scale > 0 ? desc->indirect_scale : auto_indirect_scale(r);
+    /* Classic mode sums the light over its life in steps already (docs/lpv.md). */
+    r->indirect_scale = desc->indirect_scale > 0       ? desc->indirect_scale
+                        : r->mode == RENDERER_LPV_CLASSIC ? 1.0f
+                                                          : auto_indirect_scale(r);
     size_t cells = lattice_cell_count(&r->lattice);
     size_t texels = (size_t)r->rsm_size * r->rsm_size;
     r->upload = malloc(cells * 4 * sizeof(float));
@@ -225,8 +246,9 @@ void renderer_lpv_free(renderer *r)
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
-        GLuint t[4] = {r->lpv_tex[c], r->gl_injected[c], r->gl_volume[0][c], r->gl_volume[1][c]};
-        for (int i = 0; i < 4; i++)
+        GLuint t[5] = {r->lpv_tex[c], r->gl_injected[c], r->gl_volume[0][c], r->gl_volume[1][c],
+                       r->gl_accum[c]};
+        for (int i = 0; i < 5; i++)
             if (t[i])
                 gl->DeleteTextures(1, &t[i]);
     }
@@ -236,12 +258,18 @@ void renderer_lpv_free(renderer *r)
         gl->DeleteProgram(r->prog_merge);
     if (r->prog_propagate)
         gl->DeleteProgram(r->prog_propagate);
+    if (r->prog_accumulate)
+        gl->DeleteProgram(r->prog_accumulate);
     if (r->pool)
         workpool_destroy(r->pool);
     if (r->gl_result.cells)
         lpv_volume_free(&r->gl_result);
     if (r->cpu.injected.cells)
         ilpv_free(&r->cpu);
+    if (r->classic.accum.cells)
+        lpv_classic_free(&r->classic);
+    if (r->converge.previous.cells)
+        lpv_converge_free(&r->converge);
     if (r->geometry.cells)
         lpv_volume_free(&r->geometry);
     free(r->emitters);
@@ -254,7 +282,9 @@ void renderer_lpv_free(renderer *r)
 void renderer_lpv_textures(const renderer *r, GLuint out[3])
 {
     for (int c = 0; c < 3; c++)
-        out[c] = r->backend == RENDERER_LPV_GL ? r->gl_volume[r->gl_current][c] : r->lpv_tex[c];
+        out[c] = r->backend != RENDERER_LPV_GL       ? r->lpv_tex[c]
+                 : r->mode == RENDERER_LPV_CLASSIC ? r->gl_accum[c]
+                                                   : r->gl_volume[r->gl_current][c];
 }
 
 /* RSM texels of every rendered light, in layer then texel order, plus the emitters. */
@@ -318,6 +348,60 @@ static void bind_images(renderer *r, const GLuint *tex, int count, int first, GL
         r->gl->BindImageTexture((GLuint)(first + i), tex[i], 0, GL_TRUE, 0, access, GL_RGBA32F);
 }
 
+/* Binds the propagation program and its per-frame uniforms and the geometry image. */
+static void use_propagate(renderer *r, float absorption, float scattering)
+{
+    const gl_functions *gl = r->gl;
+    const int *n = r->lattice.n;
+    float la = lpv_transfer_step_probability(absorption, r->lattice.cell);
+    float ls = lpv_transfer_step_probability(scattering, r->lattice.cell);
+    float lt = la + ls < 1.0f ? la + ls : 1.0f;
+    GLuint prog = r->prog_propagate;
+    gl->UseProgram(prog);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_clamp_negative"), r->clamp_negative);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), 1.0f - lt);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_scatter"), ls);
+    bind_images(r, &r->gl_geometry, 1, 6, GL_READ_ONLY);
+}
+
+/* One step src -> dst with the bound propagation program. */
+static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], int use_blocking)
+{
+    r->gl->Uniform1i(r->gl->GetUniformLocation(r->prog_propagate, "u_use_blocking"), use_blocking);
+    bind_images(r, src, 3, 0, GL_READ_ONLY);
+    bind_images(r, dst, 3, 3, GL_WRITE_ONLY);
+    dispatch(r);
+}
+
+/* lpv_classic_frame() on the GPU: the steps start from the injection, each one is added
+ * into gl_accum (the first replaces it; 0 steps leave it zero). */
+static void gl_classic_frame(renderer *r, const frame_params *p)
+{
+    const gl_functions *gl = r->gl;
+    const int *n = r->lattice.n;
+    upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
+    const GLuint *src = r->gl_injected;
+    int steps = p->lpv_steps;
+    for (int step = 0; step < steps || (step == 0 && steps == 0); step++) {
+        const GLuint *dst = r->gl_volume[step & 1];
+        if (steps > 0) {
+            use_propagate(r, p->absorption, p->scattering);
+            gl_step(r, src, dst, step > 0);
+        }
+        GLuint prog = r->prog_accumulate;
+        gl->UseProgram(prog);
+        gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
+        gl->Uniform1i(gl->GetUniformLocation(prog, "u_first"), step == 0);
+        gl->Uniform1f(gl->GetUniformLocation(prog, "u_weight"), steps > 0 ? 1.0f : 0.0f);
+        bind_images(r, r->gl_accum, 3, 0, GL_READ_WRITE);
+        bind_images(r, steps > 0 ? dst : r->gl_injected, 3, 3, GL_READ_ONLY);
+        dispatch(r);
+        src = dst;
+    }
+    download_volume(r, r->gl_accum, &r->gl_result);
+}
+
 /* The same merge and steps as ilpv_frame(), on the GPU. */
 static void gl_frame(renderer *r, const frame_params *p, double energy)
 {
@@ -345,22 +429,10 @@ static void gl_frame(renderer *r, const frame_params *p, double energy)
     dispatch(r);
     r->gl_current = dst;
 
-    float la = lpv_transfer_step_probability(p->absorption, r->lattice.cell);
-    float ls = lpv_transfer_step_probability(p->scattering, r->lattice.cell);
-    float lt = la + ls < 1.0f ? la + ls : 1.0f;
-    GLuint prog = r->prog_propagate;
-    gl->UseProgram(prog);
-    gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_clamp_negative"), r->clamp_negative);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), 1.0f - lt);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_scatter"), ls);
-    bind_images(r, &r->gl_geometry, 1, 6, GL_READ_ONLY);
+    use_propagate(r, p->absorption, p->scattering);
     for (int step = 0; step < p->lpv_steps; step++) {
         dst = 1 - r->gl_current;
-        gl->Uniform1i(gl->GetUniformLocation(prog, "u_use_blocking"), step > 0);
-        bind_images(r, r->gl_volume[r->gl_current], 3, 0, GL_READ_ONLY);
-        bind_images(r, r->gl_volume[dst], 3, 3, GL_WRITE_ONLY);
-        dispatch(r);
+        gl_step(r, r->gl_volume[r->gl_current], r->gl_volume[dst], step > 0);
         r->gl_current = dst;
     }
     r->gl_have_history = 1;
@@ -382,39 +454,88 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
     lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, r->vpls, count, &r->inject_stats);
     double t1 = clock_now_ms();
     double energy = emitted_energy(r, p);
-    uint64_t checksum;
-    if (r->backend == RENDERER_LPV_GL) {
+    lpv_propagate_desc pd = {
+        .transfer = &r->transfer,
+        .geometry = &r->geometry,
+        .use_blocking = 1,
+        .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
+        .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell),
+        .clamp_negative = r->clamp_negative,
+        .pool = r->pool,
+    };
+    if (r->backend == RENDERER_LPV_GL && r->mode == RENDERER_LPV_CLASSIC)
+        gl_classic_frame(r, p);
+    else if (r->backend == RENDERER_LPV_GL)
         gl_frame(r, p, energy);
-        checksum = lpv_volume_checksum(&r->gl_result);
-    } else {
-        ilpv_frame_desc fd = {
-            .steps = p->lpv_steps,
-            .lambda_incr = p->lambda_incr,
-            .emitted_energy = energy,
-            .propagate = {
-                .transfer = &r->transfer,
-                .geometry = &r->geometry,
-                .use_blocking = 1,
-                .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
-                .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell),
-                .clamp_negative = r->clamp_negative,
-                .pool = r->pool,
-            },
-        };
-        ilpv_frame(&r->cpu, &fd);
-        const lpv_volume *result = ilpv_result(&r->cpu);
-        checksum = lpv_volume_checksum(result);
+    else if (r->mode == RENDERER_LPV_CLASSIC)
+        lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), p->lpv_steps, &pd);
+    else
+        ilpv_frame(&r->cpu, &(ilpv_frame_desc){.steps = p->lpv_steps,
+                                               .lambda_incr = p->lambda_incr,
+                                               .emitted_energy = energy,
+                                               .propagate = pd});
+    const lpv_volume *result = renderer_get_lpv(r);
+    r->checksum = lpv_volume_checksum(result);
+    if (r->backend != RENDERER_LPV_GL)
         upload_volume(r, result, r->lpv_tex);
-    }
+    lpv_converge_end(&r->converge, result, r->pool);
     r->timings.inject_ms = t1 - t0;
     r->timings.propagate_ms = clock_now_ms() - t1;
     r->frames++;
-    return checksum;
+    return r->checksum;
+}
+
+int renderer_lpv_skip(renderer *r, const frame_params *p)
+{
+    return lpv_converge_begin(&r->converge, p);
 }
 
 const lpv_volume *renderer_get_lpv(const renderer *r)
 {
-    return r->backend == RENDERER_LPV_GL ? &r->gl_result : ilpv_result(&r->cpu);
+    if (r->backend == RENDERER_LPV_GL)
+        return &r->gl_result;
+    return r->mode == RENDERER_LPV_CLASSIC ? lpv_classic_result(&r->classic) : ilpv_result(&r->cpu);
+}
+
+renderer_lpv_mode renderer_get_lpv_mode(const renderer *r)
+{
+    return r->mode;
+}
+
+void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
+{
+    out->frames_skipped = r->converge.frames_skipped;
+    out->last_residual = r->converge.residual;
+    out->skipped_this_frame = r->converge.skipped;
+}
+
+double renderer_measure_step_ms(renderer *r, int steps)
+{
+    double t0 = 0;
+    if (r->backend == RENDERER_LPV_GL) {
+        use_propagate(r, 0.0f, 0.0f);
+        for (int s = 0; s <= steps; s++) {
+            if (s == 1) {
+                r->gl->Finish();
+                t0 = clock_now_ms();
+            }
+            gl_step(r, r->gl_volume[s & 1], r->gl_volume[1 - (s & 1)], 1);
+        }
+        r->gl->Finish();
+    } else {
+        lpv_propagate_desc pd = {.transfer = &r->transfer, .geometry = &r->geometry,
+                                 .use_blocking = 1, .pool = r->pool};
+        for (int s = 0; s <= steps; s++) {
+            if (s == 1)
+                t0 = clock_now_ms();
+            lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
+        }
+    }
+    double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
+    ilpv_reset(&r->cpu);
+    r->gl_have_history = 0;
+    lpv_converge_forget(&r->converge);
+    return ms;
 }
 
 float renderer_get_indirect_scale(const renderer *r)

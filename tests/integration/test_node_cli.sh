@@ -56,6 +56,31 @@ for d in hud hudwand; do
     cmp -s "$out/nohud/frame0000_mono.png" "$out/$d/frame0000_mono.png" && fail "$d: no HUD drawn"
 done
 
+# The report: fitted lattice against a cube; converged static frames are skipped with the
+# same checksum; classic mode; a budget picks a lattice and steps and says so.
+json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
+"$node" "${small[@]}" --frames 4 --steps 2 --lambda 0 --out "$out/skip" > /dev/null \
+    || fail "static run failed"
+[ "$(json "$out/skip/report.json" "r['cells'] < r['cube_cells'], r['frames_skipped'], \
+    [f['skipped'] for f in r['frames']], len(set(f['lpv_checksum'] for f in r['frames']))")" \
+    = "True 2 [False, False, True, True] 1" ] || fail "skip fields in report.json wrong"
+"$node" "${small[@]}" --frames 4 --steps 2 --lambda 0 --converge-threshold -1 \
+    --out "$out/noskip" > /dev/null || fail "--converge-threshold -1 failed"
+[ "$(json "$out/noskip/report.json" "r['frames_skipped']")" = 0 ] || fail "skipped with -1"
+cmp "$out/skip/frame0003_mono.png" "$out/noskip/frame0003_mono.png" \
+    || fail "a skipped frame looks different"
+"$node" "${small[@]}" --lpv-mode classic --steps 6 --out "$out/classic" > /dev/null \
+    || fail "--lpv-mode classic failed"
+[ "$(json "$out/classic/report.json" "r['lpv_mode'], r['indirect_scale']")" = "classic 1" ] \
+    || fail "classic report wrong"
+"$node" --standalone --frames 1 --width 96 --height 72 --rsm 64 --budget-ms 15 \
+    --out "$out/budget" > "$out/budget.log" || fail "--budget-ms failed"
+grep -q "budget 15 ms: lattice [0-9]*, [0-9]* steps, predicted" "$out/budget.log" \
+    || fail "--budget-ms printed no choice"
+[ "$(json "$out/budget/report.json" "r['budget']['lattice_cells'] == max(r['lattice']) and \
+    r['budget']['steps'] == r['steps'] and r['budget']['predicted_ms'] > 0")" = True ] \
+    || fail "budget choice not applied or not reported"
+
 # Errors: non-zero exit and exactly one line naming the culprit.
 one_line_error() { # expected-substring command...
     local want=$1; shift
@@ -70,4 +95,7 @@ one_line_error "unknown format" "$node" --standalone --scene "$out/scene.obj"
 one_line_error "GLFW" env -u DISPLAY -u WAYLAND_DISPLAY "$node" --standalone --gl glfw
 one_line_error "--gl" "$node" --standalone --gl vulkan
 one_line_error "--hud" "$node" --standalone --hud 3
+one_line_error "--lpv-mode" "$node" --standalone --lpv-mode cascaded
+one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice 32
+one_line_error "--budget-ms" "$node" --standalone --budget-ms -1
 echo "node CLI: all checks passed"
