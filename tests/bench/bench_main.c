@@ -14,6 +14,8 @@ static const struct {
     {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
                            "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
     {"input", bench_input, "input [--iterations N]"},
+    {"accuracy", bench_accuracy, "accuracy sweep|move|path|savings [--scene S --out DIR --width W "
+                                 "--height H --ref-samples N ...] (scripts/chart.sh)"},
 };
 
 int main(int argc, char **argv)

@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Speed against accuracy of the LPV on the built-in scenes (default room and corridor):
+# sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and the
+# classic accumulating LPV against a path-traced (Embree) reference; measures the error
+# after an abrupt light move and the frame-to-frame change along a light path; writes
+# CSVs and PNG charts to OUT (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
+# Usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/scripts/deps.sh"
+cavelight_install_deps
+cavelight_build "$root" >/dev/null
+
+quick=0 docs=1 out=$root/out/chart
+while [ $# -gt 0 ]; do
+  case $1 in
+    --quick) quick=1 ;;
+    --no-docs) docs=0 ;;
+    --out) out=$2; shift ;;
+    *) echo "usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs]" >&2; exit 2 ;;
+  esac
+  shift
+done
+mkdir -p "$out"
+rm -f "$out"/*.csv "$out"/*.json "$out"/*.png
+
+if [ $quick = 1 ]; then
+  size=(--width 160 --height 120) ref=(--ref-samples 32)
+  sweep=(--lattices 16,32 --gl-max-lattice 16 --timing-frames 3)
+  motion=(--frames 40)
+else
+  size=(--width 320 --height 240) ref=(--ref-samples 256)
+  sweep=(--lattices 16,32,64 --gl-max-lattice 32 --timing-frames 5)
+  motion=(--frames 60)
+fi
+bench=$root/build/cavelight-bench
+start=$SECONDS
+for scene in default corridor; do
+  echo "chart: $scene: sweep" >&2
+  "$bench" accuracy sweep --scene $scene --out "$out" "${size[@]}" "${ref[@]}" "${sweep[@]}" \
+    > "$out/sweep_$scene.json"
+  echo "chart: $scene: light move and light path" >&2
+  "$bench" accuracy move --scene $scene --out "$out" "${size[@]}" "${ref[@]}" "${motion[@]}" \
+    > "$out/move_$scene.json"
+  "$bench" accuracy path --scene $scene --out "$out" "${size[@]}" "${motion[@]}" \
+    > "$out/path_$scene.json"
+  "$bench" accuracy savings --scene $scene --out "$out" "${size[@]}" > "$out/savings_$scene.json"
+done
+echo "chart: measured in $((SECONDS - start)) s" >&2
+
+# Charts. Columns of sweep_*.csv: see the header line.
+for scene in default corridor; do
+  csv=$out/sweep_$scene.csv
+  gnuplot <<EOF
+set datafile separator ","
+set terminal pngcairo size 1000,700 font ",11"
+set key outside right top
+set grid
+set logscale x
+set xlabel "propagation ms per frame (median)"
+set ylabel "mean absolute error of the displayed image vs path-traced reference"
+sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
+front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
+set output "$out/speed_accuracy_$scene.png"
+set title "$scene: speed against accuracy (labels: lattice/steps)"
+plot front using 11:23 with lines lw 2 lc rgb "black" title "Pareto front", \
+     sel("cpu","incremental","0") using 11:23 with points pt 7 ps 1.2 lc rgb "#999999" title "CPU ILPV lambda 0 (plain LPV)", \
+     sel("cpu","incremental","0.5") using 11:23 with points pt 7 lc rgb "#2a9d8f" title "CPU ILPV lambda 0.5", \
+     sel("cpu","incremental","0.8") using 11:23 with points pt 7 lc rgb "#e76f51" title "CPU ILPV lambda 0.8", \
+     sel("cpu","incremental","0.9") using 11:23 with points pt 7 lc rgb "#9b2226" title "CPU ILPV lambda 0.9", \
+     sel("cpu","classic","any") using 11:23 with points pt 5 lc rgb "#264653" title "CPU classic LPV (accumulated)", \
+     sel("gl","incremental","0") using 11:23 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
+     sel("gl","incremental","0.8") using 11:23 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
+     sel("gl","classic","any") using 11:23 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
+     front using 11:23:(sprintf("%d/%d", \$4, \$8)) with labels offset 0,0.8 font ",8" notitle
+set output "$out/frame_accuracy_$scene.png"
+set xlabel "whole frame ms (frame pass + one eye pass, median)"
+set title "$scene: whole-frame time against accuracy"
+plot sel("cpu","incremental","0") using 14:23 with points pt 7 lc rgb "#999999" title "ILPV lambda 0", \
+     sel("cpu","incremental","0.8") using 14:23 with points pt 7 lc rgb "#e76f51" title "ILPV lambda 0.8", \
+     sel("cpu","incremental","0.9") using 14:23 with points pt 7 lc rgb "#9b2226" title "ILPV lambda 0.9", \
+     sel("cpu","classic","any") using 14:23 with points pt 5 lc rgb "#264653" title "classic LPV", \
+     sel("gl","incremental","any") using 14:23 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)"
+unset logscale x
+set logscale x 2
+set xlabel "propagation steps per frame"
+set ylabel "MAE of the displayed image vs 32 plain steps"
+set title "$scene: the paper's Fig. 2 (CPU, second lattice size in the sweep)"
+lat = system("awk -F, 'NR>1 && \$2==\"cpu\"{print \$4}' $csv | sort -n | uniq | sed -n 2p")
+sl(l) = "< awk -F, 'NR>1 && \$2==\"cpu\" && \$3==\"incremental\" && \$4==" . lat . " && \$9==\"" . l . "\"' $csv"
+set output "$out/self32_$scene.png"
+plot for [l in "0 0.5 0.8 0.9"] sl(l) using 8:24 with linespoints pt 7 title "lambda ".l
+EOF
+  gnuplot <<EOF
+set datafile separator ","
+set terminal pngcairo size 1000,600 font ",11"
+set key outside right top
+set grid
+set output "$out/move_$scene.png"
+set logscale y
+set xlabel "frames after the light jumped"
+set ylabel "relative summed |lattice - steady state after the move|"
+set title "$scene: convergence after an abrupt light move (8 steps per frame)"
+mv(m,l) = "< awk -F, 'NR>1 && \$1==\"" . m . "\" && \$2==\"" . l . "\"' $out/move_$scene.csv"
+plot for [l in "0 0.5 0.8 0.9"] mv("incremental", l) using 3:(\$4>1e-7?\$4:1e-7) with linespoints pt 7 ps 0.6 title "ILPV lambda ".l, \
+     mv("classic", "0") using 3:(\$4>1e-7?\$4:1e-7) with linespoints pt 5 ps 0.6 title "classic LPV"
+unset logscale y
+set output "$out/path_$scene.png"
+set xlabel "frame (light circling at walking speed, 60 Hz)"
+set ylabel "mean |image - previous image| / mean image"
+set title "$scene: frame-to-frame change along a light path"
+pa(m,l) = "< awk -F, 'NR>1 && \$1==\"" . m . "\" && \$2==\"" . l . "\"' $out/path_$scene.csv"
+plot pa("incremental","0") using 3:6 with lines lw 2 lc rgb "black" title "direct light (the motion itself)", \
+     for [l in "0 0.5 0.8 0.9"] pa("incremental", l) using 3:5 with lines title "indirect, ILPV lambda ".l, \
+     pa("classic","0") using 3:5 with lines dt 2 title "indirect, classic LPV"
+EOF
+done
+
+if [ $docs = 1 ]; then
+  mkdir -p "$root/docs/accuracy"
+  cp "$out"/*.png "$root/docs/accuracy/"
+  python3 "$root/scripts/accuracy_report.py" "$out" $([ $quick = 1 ] && echo --quick) \
+    > "$root/docs/ACCURACY.md"
+  echo "chart: wrote docs/ACCURACY.md and docs/accuracy/*.png" >&2
+fi
+echo "chart: CSVs and charts in $out ($((SECONDS - start)) s)" >&2

@@ -1,0 +1,276 @@
+/* cavelight-bench accuracy: speed against accuracy of the LPV, for scripts/chart.sh.
+ *
+ *   accuracy sweep    every (backend, lattice, steps, lambda_incr) of the lists, plus the
+ *                     classic accumulating LPV, each run to its steady state: propagation
+ *                     and whole-frame ms against the error versus the path-traced
+ *                     reference and versus 32 plain steps (the paper's Fig. 2); Pareto front.
+ *   accuracy move     error after an abrupt light move, per lambda_incr (bench_accuracy_motion.c)
+ *   accuracy path     frame-to-frame change for a light moving smoothly (same file)
+ *   accuracy savings  what skipping converged frames and a fitted lattice save
+ *                     (bench_accuracy_savings.c)
+ *
+ * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+
+#ifdef CAVELIGHT_HAVE_NODE
+#include "bench_accuracy.h"
+
+enum { MAX_LIST = 16, SELF_STEPS = 32 };
+
+typedef struct sweep_row {
+    renderer_lpv_backend backend;
+    int classic, lattice, n[3], steps, frames;
+    float lambda;
+    double propagate_ms, frame_pass_ms, eye_ms;
+    image_metrics indirect, final;
+    double display_mae, self_mae;
+    int pareto;
+} sweep_row;
+
+static int parse_list(const char *s, double *out, int max)
+{
+    int n = 0;
+    while (*s && n < max) {
+        char *end;
+        out[n++] = strtod(s, &end);
+        if (end == s)
+            return -1;
+        s = *end == ',' ? end + 1 : end;
+        if (*end && *end != ',')
+            return -1;
+    }
+    return *s ? -1 : n;
+}
+
+/* Runs one configuration from a cleared history to its steady state, then `timing` more
+ * frames; the last frame is measured against the reference. */
+static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_reference *ref,
+                      int timing, sweep_row *row, uint8_t *display)
+{
+    fp->reset_epoch++;
+    fp->lpv_steps = row->steps;
+    fp->lambda_incr = row->lambda;
+    int warm = acc_warm_frames(row->lambda);
+    row->frames = warm + timing;
+    double prop[64], pass[64], eye[64];
+    renderer_image img = {0};
+    for (int f = 0; f < row->frames; f++) {
+        renderer_frame_pass(r, fp);
+        if (f < warm)
+            continue;
+        if (renderer_eye_pass(r, fp, &s->view, 1, &img) != 0) {
+            fprintf(stderr, "bench accuracy: %s\n", renderer_last_error(r));
+            return -1;
+        }
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        prop[f - warm] = t.propagate_ms;
+        pass[f - warm] = t.frame_host_ms;
+        eye[f - warm] = t.eye_host_ms;
+    }
+    row->propagate_ms = acc_median(prop, timing);
+    row->frame_pass_ms = acc_median(pass, timing);
+    row->eye_ms = acc_median(eye, timing);
+    int w = s->opt.width, h = s->opt.height;
+    if (image_metrics_compare(img.indirect, ref->indirect1, w, h, NULL, &row->indirect) != 0 ||
+        image_metrics_compare(img.final, ref->final1, w, h, NULL, &row->final) != 0)
+        return -1;
+    memcpy(display, img.rgb, (size_t)w * h * 3);
+    row->display_mae = acc_display_mae(display, ref->display, (size_t)w * h);
+    return 0;
+}
+
+/* A row is on the front when no other row is at least as fast and strictly more accurate,
+ * or strictly faster and at least as accurate (display error against the reference). */
+static void mark_pareto(sweep_row *rows, int n)
+{
+    for (int i = 0; i < n; i++) {
+        rows[i].pareto = 1;
+        for (int j = 0; j < n && rows[i].pareto; j++) {
+            double ti = rows[i].propagate_ms, tj = rows[j].propagate_ms;
+            double ei = rows[i].display_mae, ej = rows[j].display_mae;
+            if (j != i && tj <= ti && ej <= ei && (tj < ti || ej < ei))
+                rows[i].pareto = 0;
+        }
+    }
+}
+
+static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n)
+{
+    for (int i = 0; i < n; i++) {
+        const sweep_row *r = &rows[i];
+        fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d,%.4f,%.4f,%.4f,%.4f,"
+                   "%.6g,%.6g,%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d\n",
+                s->opt.scene, r->backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
+                r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
+                r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
+                r->indirect.relmse, r->indirect.ssim, r->indirect.best_scale,
+                r->indirect.mae_scaled, r->final.mae, r->final.ssim, r->display_mae, r->self_mae,
+                r->pareto);
+    }
+}
+
+static const sweep_row *find_row(const sweep_row *rows, int n, renderer_lpv_backend b,
+                                 int lattice, int classic, int steps, float lambda)
+{
+    for (int i = 0; i < n; i++)
+        if (rows[i].backend == b && rows[i].lattice == lattice && rows[i].classic == classic &&
+            rows[i].steps == steps && fabsf(rows[i].lambda - lambda) < 1e-6f)
+            return &rows[i];
+    return NULL;
+}
+
+static int accuracy_sweep(int argc, char **argv)
+{
+    acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
+                     .ref_samples = 64};
+    double lattices[MAX_LIST] = {16, 32, 64}, steps[MAX_LIST] = {1, 2, 4, 8, 16, 32},
+           lambdas[MAX_LIST] = {0, 0.5, 0.8, 0.9}, backends[2] = {0, 1};
+    int nl = 3, ns = 6, nlam = 4, nb = 2, gl_max_lattice = 32, timing = 3, classic = 1;
+    for (int i = 1; i < argc; i++) {
+        int bad = 0;
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (acc_parse_common(&o, argc, argv, &i, &bad)) {
+        } else if (!v) {
+            bad = 1;
+        } else if (strcmp(a, "--lattices") == 0) {
+            bad = (nl = parse_list(v, lattices, MAX_LIST)) < 1, i++;
+        } else if (strcmp(a, "--steps") == 0) {
+            bad = (ns = parse_list(v, steps, MAX_LIST)) < 1, i++;
+        } else if (strcmp(a, "--lambdas") == 0) {
+            bad = (nlam = parse_list(v, lambdas, MAX_LIST)) < 1, i++;
+        } else if (strcmp(a, "--backends") == 0) {
+            nb = 0;
+            if (strstr(v, "cpu")) backends[nb++] = 0;
+            if (strstr(v, "gl")) backends[nb++] = 1;
+            bad = nb == 0, i++;
+        } else if (strcmp(a, "--gl-max-lattice") == 0) {
+            bad = (gl_max_lattice = atoi(v)) < 2, i++;
+        } else if (strcmp(a, "--timing-frames") == 0) {
+            bad = (timing = atoi(v)) < 1 || timing > 32, i++;
+        } else if (strcmp(a, "--classic") == 0) {
+            classic = atoi(v) != 0, i++;
+        } else {
+            bad = 1;
+        }
+        if (bad) {
+            fprintf(stderr, "bench accuracy sweep: bad or unknown option %s\n", a);
+            return 2;
+        }
+    }
+    acc_setup s;
+    if (acc_setup_open(&s, &o) != 0)
+        return 1;
+    acc_reference ref;
+    if (acc_reference_get(&s, &s.base, "a", &ref) != 0) {
+        acc_setup_close(&s);
+        return 1;
+    }
+    size_t px = (size_t)o.width * o.height;
+    int cap = nb * nl * (ns * nlam + ns + 1);
+    sweep_row *rows = calloc((size_t)cap, sizeof *rows);
+    uint8_t *display = malloc(px * 3), *self = malloc(px * 3);
+    int n = 0, rc = rows && display && self ? 0 : 1;
+    frame_params fp = s.base;
+    for (int b = 0; b < nb && rc == 0; b++) {
+        renderer_lpv_backend backend = backends[b] ? RENDERER_LPV_GL : RENDERER_LPV_CPU;
+        for (int l = 0; l < nl && rc == 0; l++) {
+            int lattice = (int)lattices[l];
+            if (backend == RENDERER_LPV_GL && lattice > gl_max_lattice)
+                continue;
+            for (int mode = 0; mode <= classic && rc == 0; mode++) {
+                acc_renderer_desc d = {.backend = backend, .lattice = lattice, .classic = mode};
+                renderer *r = acc_renderer_create(&s, &d);
+                if (!r) {
+                    rc = 1;
+                    break;
+                }
+                const lattice_desc *lat = renderer_get_lattice(r);
+                /* The paper's yardstick first: 32 plain steps on this lattice. */
+                if (!mode) {
+                    sweep_row base = {.backend = backend, .lattice = lattice, .steps = SELF_STEPS};
+                    rc = run_config(&s, r, &fp, &ref, 1, &base, self);
+                }
+                for (int st = 0; st < ns && rc == 0; st++)
+                    for (int k = 0; k < (mode ? 1 : nlam) && rc == 0; k++) {
+                        sweep_row *row = &rows[n++];
+                        *row = (sweep_row){.backend = backend, .classic = mode,
+                                           .lattice = lattice, .steps = (int)steps[st],
+                                           .lambda = mode ? 0.0f : (float)lambdas[k]};
+                        memcpy(row->n, lat->n, sizeof row->n);
+                        rc = run_config(&s, r, &fp, &ref, timing, row, display);
+                        row->self_mae = mode ? NAN : acc_display_mae(display, self, px);
+                        fprintf(stderr, "  %s %s lattice %d steps %d lambda %.2f: %.2f ms, "
+                                "display MAE %.4f\n", backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                                mode ? "classic" : "ilpv", lattice, row->steps, row->lambda,
+                                row->propagate_ms, row->display_mae);
+                    }
+                renderer_destroy(r);
+            }
+        }
+    }
+    if (rc == 0) {
+        mark_pareto(rows, n);
+        FILE *f = acc_open_csv(&s, "sweep",
+            "scene,backend,mode,lattice,nx,ny,nz,steps,lambda,frames,propagate_ms,"
+            "frame_pass_ms,eye_ms,frame_ms,mae_indirect,rmse_rel_indirect,relmse_indirect,"
+            "ssim_indirect,best_scale_indirect,mae_scaled_indirect,mae_final,ssim_final,"
+            "mae_display,mae_self32,pareto");
+        rc = f ? 0 : 1;
+        if (f) {
+            write_rows(f, &s, rows, n);
+            fclose(f);
+        }
+    }
+    if (rc == 0) {
+        /* The paper's comparison: 8 steps with lambda 0.8 against 8 plain steps. */
+        int lat = (int)lattices[nl > 1 ? 1 : 0];
+        const sweep_row *inc = find_row(rows, n, RENDERER_LPV_CPU, lat, 0, 8, 0.8f);
+        const sweep_row *plain = find_row(rows, n, RENDERER_LPV_CPU, lat, 0, 8, 0.0f);
+        printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
+               "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
+               "\"reference_seconds\":%.1f,\"reference_noise_indirect1\":%.6g,"
+               "\"reference_mean_indirect1\":%.6g",
+               o.scene, o.width, o.height, n, 2 * o.ref_samples, ref.seconds,
+               ref.noise_indirect1, ref.mean_indirect1);
+        if (inc && plain)
+            printf(",\"paper_lattice\":%d,\"self32_mae_8_0.8\":%.4f,\"self32_mae_8_0\":%.4f,"
+                   "\"reference_mae_8_0.8\":%.4f,\"reference_mae_8_0\":%.4f",
+                   lat, inc->self_mae, plain->self_mae, inc->display_mae, plain->display_mae);
+        printf("}\n");
+    }
+    free(rows);
+    free(display);
+    free(self);
+    acc_reference_free(&ref);
+    acc_setup_close(&s);
+    return rc;
+}
+
+int bench_accuracy(int argc, char **argv)
+{
+    if (argc >= 2 && strcmp(argv[1], "sweep") == 0)
+        return accuracy_sweep(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "move") == 0)
+        return accuracy_move(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "path") == 0)
+        return accuracy_path(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "savings") == 0)
+        return accuracy_savings(argc - 1, argv + 1);
+    fprintf(stderr, "bench accuracy: sweep|move|path|savings [options] (see scripts/chart.sh)\n");
+    return 2;
+}
+#else
+int bench_accuracy(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    fprintf(stderr, "bench accuracy: this build has no render node (cavelight_node)\n");
+    return 1;
+}
+#endif

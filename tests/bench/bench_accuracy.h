@@ -1,0 +1,76 @@
+/* Shared by the accuracy subcommands of cavelight-bench (bench_accuracy*.c): one scene,
+ * one GL context and one camera per run, the path-traced reference for a light setting
+ * (rendered once and cached as PFMs in the output folder), and the measurements every
+ * experiment takes of a rendered frame. */
+#ifndef CAVELIGHT_BENCH_ACCURACY_H
+#define CAVELIGHT_BENCH_ACCURACY_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "frame_params.h"
+#include "glctx.h"
+#include "image_metrics.h"
+#include "renderer.h"
+#include "scene.h"
+
+typedef struct acc_options {
+    const char *scene;      /* "default", "corridor" or a glTF path */
+    const char *out;        /* folder for CSVs and the cached reference */
+    int width, height;
+    int ref_samples;        /* paths per pixel of each of the two reference halves */
+    int threads;            /* CPU LPV threads, 0 = all */
+} acc_options;
+
+typedef struct acc_setup {
+    acc_options opt;
+    scene sc;
+    glctx *ctx;
+    renderer_view view;
+    frame_params base;      /* the scene's lights and the renderer's defaults */
+    float encoding_gamma;
+} acc_setup;
+
+/* The reference for one light setting: linear images and their tone-mapped display. */
+typedef struct acc_reference {
+    float *direct, *indirect1, *final1; /* final1 = direct + indirect1: what the LPV models */
+    uint8_t *display;                   /* final1 tone-mapped like shaders/final.frag */
+    double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
+    double mean_indirect1;
+    double seconds;                     /* render time, 0 when read from the cache */
+} acc_reference;
+
+/* Parses the options every accuracy subcommand takes; returns 1 if argv[*i] was one. */
+int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad);
+int acc_setup_open(acc_setup *s, const acc_options *o);
+void acc_setup_close(acc_setup *s);
+
+/* tag names the light setting in the cache's file names (e.g. "a", "moved"). */
+int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_reference *out);
+void acc_reference_free(acc_reference *r);
+
+typedef struct acc_renderer_desc {
+    renderer_lpv_backend backend;
+    int lattice;            /* cells along the longest axis */
+    int classic;            /* sum every step into an accumulation lattice (KD10) */
+    int skip_converged;     /* let the renderer skip work once converged */
+} acc_renderer_desc;
+renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
+
+/* L/(1+L), then the encoding gamma, rounded to 8 bits: the C twin of shaders/final.frag. */
+void acc_tonemap(const float *linear, size_t pixels, float encoding_gamma, uint8_t *rgb);
+/* Mean absolute difference of two 8-bit images, in [0, 1]. */
+double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels);
+/* Mean absolute difference of two linear float images. */
+double acc_linear_mae(const float *a, const float *b, size_t pixels);
+double acc_median(double *v, int n);
+FILE *acc_open_csv(const acc_setup *s, const char *name, const char *header);
+/* Frames until the history's weight lambda^k falls below 1e-3: the steady state. */
+int acc_warm_frames(float lambda);
+
+/* The subcommands (bench_accuracy_motion.c, bench_accuracy_savings.c). */
+int accuracy_move(int argc, char **argv);
+int accuracy_path(int argc, char **argv);
+int accuracy_savings(int argc, char **argv);
+
+#endif

@@ -1,0 +1,280 @@
+/* cavelight-bench accuracy move|path: the LPV while lights move.
+ *
+ *   move  The light sits at A until the lattice is steady, then jumps `--distance` metres
+ *         (1.4 m as in the paper's Fig. 3.3) to B. Per frame after the jump: the summed
+ *         absolute lattice difference to B's own steady state (relative), the same for the
+ *         indirect image, and the display error against B's path-traced reference.
+ *   path  The light circles its start at walking speed; per frame the change of the final,
+ *         indirect and direct images from the frame before and the largest 8-bit jump of any
+ *         pixel. The direct image's change is the motion itself, the rest is the LPV's. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+
+#ifdef CAVELIGHT_HAVE_NODE
+#include "bench_accuracy.h"
+
+enum { MAX_CONFIGS = 8 };
+
+typedef struct motion_options {
+    acc_options common;
+    double lambdas[MAX_CONFIGS];
+    int lambda_count, lattice, steps, frames, classic;
+    float distance, speed, radius;
+} motion_options;
+
+static int parse_motion(motion_options *m, int argc, char **argv, const char *name)
+{
+    *m = (motion_options){
+        .common = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
+                   .ref_samples = 64},
+        .lambdas = {0, 0.5, 0.8, 0.9}, .lambda_count = 4, .lattice = 32, .steps = 8,
+        .frames = 60, .classic = 1, .distance = 1.4f, .speed = 0.5f, .radius = 0.5f,
+    };
+    for (int i = 1; i < argc; i++) {
+        int bad = 0;
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (acc_parse_common(&m->common, argc, argv, &i, &bad)) {
+        } else if (!v) {
+            bad = 1;
+        } else if (strcmp(a, "--lambdas") == 0) {
+            char *s = (char *)v, *end;
+            m->lambda_count = 0;
+            while (*s && m->lambda_count < MAX_CONFIGS) {
+                double l = strtod(s, &end);
+                bad |= end == s || l < 0 || l >= 1;
+                m->lambdas[m->lambda_count++] = l;
+                s = *end == ',' ? end + 1 : end;
+                if (end == s && *end)
+                    break;
+            }
+            i++;
+        } else if (strcmp(a, "--lattice") == 0) {
+            bad = (m->lattice = atoi(v)) < 2, i++;
+        } else if (strcmp(a, "--steps") == 0) {
+            bad = (m->steps = atoi(v)) < 1, i++;
+        } else if (strcmp(a, "--frames") == 0) {
+            bad = (m->frames = atoi(v)) < 2, i++;
+        } else if (strcmp(a, "--classic") == 0) {
+            m->classic = atoi(v) != 0, i++;
+        } else if (strcmp(a, "--distance") == 0) {
+            bad = !((m->distance = strtof(v, NULL)) > 0), i++;
+        } else if (strcmp(a, "--speed") == 0) {
+            bad = !((m->speed = strtof(v, NULL)) > 0), i++;
+        } else {
+            bad = 1;
+        }
+        if (bad) {
+            fprintf(stderr, "bench accuracy %s: bad or unknown option %s\n", name, a);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* B: the first light moved along the longer horizontal axis of the bounds, towards the
+ * centre, so it stays inside the scene. */
+static void moved_light(const acc_setup *s, const frame_params *a, float distance,
+                        frame_params *b)
+{
+    *b = *a;
+    int axis = s->sc.bounds_max[0] - s->sc.bounds_min[0] >=
+                       s->sc.bounds_max[2] - s->sc.bounds_min[2] ? 0 : 2;
+    float centre = 0.5f * (s->sc.bounds_min[axis] + s->sc.bounds_max[axis]);
+    b->lights[0].position[axis] += a->lights[0].position[axis] > centre ? -distance : distance;
+}
+
+static double lattice_difference(const lpv_volume *a, const lpv_volume *b)
+{
+    double diff = 0, sum = 0;
+    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++)
+        for (size_t i = 0; i < a->cells; i++) {
+            diff += fabs((double)a->ch[c][i] - (double)b->ch[c][i]);
+            sum += fabs((double)b->ch[c][i]);
+        }
+    return sum > 0 ? diff / sum : 0;
+}
+
+static double mean_of(const float *v, size_t n)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        sum += v[i];
+    return n ? sum / (double)n : 0;
+}
+
+int accuracy_move(int argc, char **argv)
+{
+    motion_options m;
+    if (parse_motion(&m, argc, argv, "move") != 0)
+        return 2;
+    acc_setup s;
+    if (acc_setup_open(&s, &m.common) != 0)
+        return 1;
+    frame_params a = s.base, b;
+    moved_light(&s, &a, m.distance, &b);
+    acc_reference ref;
+    if (acc_reference_get(&s, &b, "moved", &ref) != 0) {
+        acc_setup_close(&s);
+        return 1;
+    }
+    size_t px = (size_t)m.common.width * m.common.height;
+    float *steady_indirect = malloc(px * 3 * sizeof(float));
+    uint8_t *steady_display = malloc(px * 3);
+    FILE *csv = acc_open_csv(&s, "move",
+        "config,lambda,frame,lattice_change,indirect_change,display_mae_steady,"
+        "display_mae_reference");
+    int rc = steady_indirect && steady_display && csv ? 0 : 1;
+    printf("{\"bench\":\"accuracy\",\"experiment\":\"move\",\"scene\":\"%s\",\"distance\":%g,"
+           "\"steps\":%d,\"lattice\":%d,\"configs\":[", m.common.scene, m.distance, m.steps,
+           m.lattice);
+    for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
+        int classic = k == m.lambda_count;
+        float lambda = classic ? 0.0f : (float)m.lambdas[k];
+        acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m.lattice,
+                               .classic = classic};
+        renderer *r = acc_renderer_create(&s, &d);
+        lpv_volume steady = {0};
+        if (!r || lpv_volume_init(&steady, renderer_get_lattice(r)->n, LPV_LIGHT_CHANNELS)) {
+            rc = 1;
+            break;
+        }
+        a.lpv_steps = b.lpv_steps = m.steps;
+        a.lambda_incr = b.lambda_incr = lambda;
+        renderer_image img;
+        /* B's own steady state: what the lattice converges to after the move. */
+        b.reset_epoch = a.reset_epoch + 1;
+        for (int f = 0; f < 2 * acc_warm_frames(lambda) + 2; f++)
+            renderer_frame_pass(r, &b);
+        lpv_volume_copy(&steady, renderer_get_lpv(r));
+        rc = renderer_eye_pass(r, &b, &s.view, 1, &img);
+        if (rc == 0) {
+            memcpy(steady_indirect, img.indirect, px * 3 * sizeof(float));
+            memcpy(steady_display, img.rgb, px * 3);
+        }
+        double steady_mean = mean_of(steady_indirect, px * 3);
+        /* A until steady, then the jump. */
+        a.reset_epoch = b.reset_epoch + 1;
+        b.reset_epoch = a.reset_epoch;
+        for (int f = 0; f < 2 * acc_warm_frames(lambda) + 2 && rc == 0; f++)
+            renderer_frame_pass(r, &a);
+        int settle = -1;
+        for (int f = 1; f <= m.frames && rc == 0; f++) {
+            renderer_frame_pass(r, &b);
+            if ((rc = renderer_eye_pass(r, &b, &s.view, 1, &img)) != 0)
+                break;
+            double lat = lattice_difference(renderer_get_lpv(r), &steady);
+            double ind = steady_mean > 0
+                             ? acc_linear_mae(img.indirect, steady_indirect, px) / steady_mean : 0;
+            if (settle < 0 && lat < 0.05)
+                settle = f;
+            fprintf(csv, "%s,%g,%d,%.6g,%.6g,%.5f,%.5f\n", classic ? "classic" : "incremental",
+                    lambda, f, lat, ind, acc_display_mae(img.rgb, steady_display, px),
+                    acc_display_mae(img.rgb, ref.display, px));
+        }
+        printf("%s{\"mode\":\"%s\",\"lambda\":%g,\"frames_to_5pct\":%d}", k ? "," : "",
+               classic ? "classic" : "incremental", lambda, settle);
+        lpv_volume_free(&steady);
+        renderer_destroy(r);
+    }
+    printf("]}\n");
+    if (csv)
+        fclose(csv);
+    free(steady_indirect);
+    free(steady_display);
+    acc_reference_free(&ref);
+    acc_setup_close(&s);
+    return rc ? 1 : 0;
+}
+
+int accuracy_path(int argc, char **argv)
+{
+    motion_options m;
+    if (parse_motion(&m, argc, argv, "path") != 0)
+        return 2;
+    m.common.ref_samples = 1; /* no reference needed */
+    acc_setup s;
+    if (acc_setup_open(&s, &m.common) != 0)
+        return 1;
+    size_t px = (size_t)m.common.width * m.common.height;
+    float *prev[3] = {malloc(px * 3 * sizeof(float)), malloc(px * 3 * sizeof(float)),
+                      malloc(px * 3 * sizeof(float))};
+    uint8_t *prev_rgb = malloc(px * 3);
+    FILE *csv = acc_open_csv(&s, "path",
+        "config,lambda,frame,change_final,change_indirect,change_direct,max_jump");
+    int rc = prev[0] && prev[1] && prev[2] && prev_rgb && csv ? 0 : 1;
+    printf("{\"bench\":\"accuracy\",\"experiment\":\"path\",\"scene\":\"%s\",\"speed\":%g,"
+           "\"radius\":%g,\"steps\":%d,\"lattice\":%d,\"configs\":[", m.common.scene, m.speed,
+           m.radius, m.steps, m.lattice);
+    const float *start = s.base.lights[0].position;
+    for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
+        int classic = k == m.lambda_count;
+        float lambda = classic ? 0.0f : (float)m.lambdas[k];
+        acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m.lattice,
+                               .classic = classic};
+        renderer *r = acc_renderer_create(&s, &d);
+        if (!r) {
+            rc = 1;
+            break;
+        }
+        frame_params fp = s.base;
+        fp.lpv_steps = m.steps;
+        fp.lambda_incr = lambda;
+        fp.reset_epoch = (uint32_t)k + 1;
+        double worst_indirect = 0, worst_final = 0, worst_direct = 0;
+        int worst_jump = 0;
+        int warm = acc_warm_frames(lambda);
+        for (int f = -warm; f <= m.frames && rc == 0; f++) {
+            /* Circle around the start, radius m.radius, at m.speed m/s, 60 frames a second. */
+            double angle = f > 0 ? f * m.speed / (m.radius * 60.0) : 0;
+            fp.lights[0].position[0] = start[0] + m.radius * (float)(cos(angle) - 1.0);
+            fp.lights[0].position[2] = start[2] + m.radius * (float)sin(angle);
+            renderer_frame_pass(r, &fp);
+            if (f < 0)
+                continue;
+            renderer_image img;
+            if ((rc = renderer_eye_pass(r, &fp, &s.view, 1, &img)) != 0)
+                break;
+            const float *now[3] = {img.final, img.indirect, img.direct};
+            if (f > 0) {
+                double change[3];
+                for (int i = 0; i < 3; i++) {
+                    double mean = mean_of(now[i], px * 3);
+                    change[i] = mean > 0 ? acc_linear_mae(now[i], prev[i], px) / mean : 0;
+                }
+                int jump = 0;
+                for (size_t i = 0; i < px * 3; i++) {
+                    int dj = abs((int)img.rgb[i] - (int)prev_rgb[i]);
+                    jump = dj > jump ? dj : jump;
+                }
+                fprintf(csv, "%s,%g,%d,%.6g,%.6g,%.6g,%d\n", classic ? "classic" : "incremental",
+                        lambda, f, change[0], change[1], change[2], jump);
+                worst_final = fmax(worst_final, change[0]);
+                worst_indirect = fmax(worst_indirect, change[1]);
+                worst_direct = fmax(worst_direct, change[2]);
+                worst_jump = jump > worst_jump ? jump : worst_jump;
+            }
+            for (int i = 0; i < 3; i++)
+                memcpy(prev[i], now[i], px * 3 * sizeof(float));
+            memcpy(prev_rgb, img.rgb, px * 3);
+        }
+        printf("%s{\"mode\":\"%s\",\"lambda\":%g,\"max_change_final\":%.5f,"
+               "\"max_change_indirect\":%.5f,\"max_change_direct\":%.5f,\"max_jump\":%d}",
+               k ? "," : "", classic ? "classic" : "incremental", lambda, worst_final,
+               worst_indirect, worst_direct, worst_jump);
+        renderer_destroy(r);
+    }
+    printf("]}\n");
+    if (csv)
+        fclose(csv);
+    for (int i = 0; i < 3; i++)
+        free(prev[i]);
+    free(prev_rgb);
+    acc_setup_close(&s);
+    return rc ? 1 : 0;
+}
+#else
+typedef int accuracy_motion_unused;
+#endif

@@ -1,0 +1,268 @@
+/* The common ground of the accuracy subcommands: scene, context, camera, the cached
+ * path-traced reference, and the small measurements they all take. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "bench_accuracy.h"
+#include "clock.h"
+#include "image.h"
+#include "offaxis.h"
+#include "reference.h"
+
+int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad)
+{
+    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (strcmp(a, "--scene") && strcmp(a, "--out") && strcmp(a, "--width") &&
+        strcmp(a, "--height") && strcmp(a, "--ref-samples") && strcmp(a, "--threads"))
+        return 0;
+    if (!v) {
+        *bad = 1;
+        return 1;
+    }
+    if (strcmp(a, "--scene") == 0) o->scene = v;
+    else if (strcmp(a, "--out") == 0) o->out = v;
+    else if (strcmp(a, "--width") == 0) *bad = (o->width = atoi(v)) < 8;
+    else if (strcmp(a, "--height") == 0) *bad = (o->height = atoi(v)) < 8;
+    else if (strcmp(a, "--ref-samples") == 0) *bad = (o->ref_samples = atoi(v)) < 1;
+    else *bad = (o->threads = atoi(v)) < 0;
+    (*i)++;
+    return 1;
+}
+
+int acc_setup_open(acc_setup *s, const acc_options *o)
+{
+    memset(s, 0, sizeof *s);
+    s->opt = *o;
+    char err[512];
+    if (mkdir(o->out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "bench accuracy: cannot create %s (%s)\n", o->out, strerror(errno));
+        return -1;
+    }
+    if (scene_load(o->scene, &s->sc, err, sizeof err) != 0) {
+        fprintf(stderr, "bench accuracy: %s\n", err);
+        return -1;
+    }
+    glctx_desc gd = {.backend = GLCTX_EGL, .width = o->width, .height = o->height};
+    s->ctx = glctx_create(&gd, err, sizeof err);
+    if (!s->ctx) {
+        fprintf(stderr, "bench accuracy: %s\n", err);
+        scene_free(&s->sc);
+        return -1;
+    }
+    float eye[3], target[3];
+    scene_default_view(&s->sc, eye, target);
+    renderer_view *v = &s->view;
+    v->width = o->width;
+    v->height = o->height;
+    memcpy(v->eye_position, eye, sizeof eye);
+    offaxis_look_at(eye, target, s->sc.camera.valid ? s->sc.camera.yfov : 1.0f,
+                    (float)o->width / (float)o->height, 0.02f, scene_far_plane(&s->sc),
+                    v->view, v->projection);
+    frame_params_default(&s->base);
+    frame_params_lights_from_scene(&s->base, &s->sc);
+    s->encoding_gamma = frame_params_e2e_gamma(s->base.environment) / s->base.display_gamma;
+    return 0;
+}
+
+void acc_setup_close(acc_setup *s)
+{
+    if (s->ctx)
+        glctx_destroy(s->ctx);
+    scene_free(&s->sc);
+}
+
+/* Cache file names: <out>/ref_<scene>_<tag>_<w>x<h>_<spp>_<kind>.pfm */
+static void ref_path(const acc_setup *s, const char *tag, const char *kind, char *out, size_t n)
+{
+    const char *base = strrchr(s->opt.scene, '/');
+    base = base ? base + 1 : s->opt.scene;
+    snprintf(out, n, "%s/ref_%.*s_%s_%dx%d_%d_%s.pfm", s->opt.out, (int)strcspn(base, "."),
+             base, tag, s->opt.width, s->opt.height, s->opt.ref_samples, kind);
+}
+
+static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
+{
+    char path[4200], err[256];
+    int w, h;
+    ref_path(s, tag, "direct", path, sizeof path);
+    if (image_read_pfm(path, &w, &h, &out->direct, err, sizeof err) != 0)
+        return -1;
+    ref_path(s, tag, "indirect1", path, sizeof path);
+    if (w != s->opt.width || h != s->opt.height ||
+        image_read_pfm(path, &w, &h, &out->indirect1, err, sizeof err) != 0)
+        return -1;
+    ref_path(s, tag, "noise", path, sizeof path);
+    FILE *f = fopen(path, "r");
+    int ok = f && fscanf(f, "%lf", &out->noise_indirect1) == 1;
+    if (f)
+        fclose(f);
+    return ok && w == s->opt.width && h == s->opt.height ? 0 : -1;
+}
+
+/* Two independent halves (seeds 1 and 2), averaged; their difference estimates the noise. */
+static int render_reference(acc_setup *s, const frame_params *p, const char *tag,
+                            acc_reference *out)
+{
+    char err[512];
+    reference *ref = reference_create(&s->sc, s->opt.threads, err, sizeof err);
+    if (!ref) {
+        fprintf(stderr, "bench accuracy: %s\n", err);
+        return -1;
+    }
+    double t0 = clock_now_ms();
+    reference_images half[2] = {{0}};
+    int rc = 0;
+    for (int k = 0; k < 2 && rc == 0; k++) {
+        reference_render_desc d = {.params = p, .view = &s->view,
+                                   .samples = s->opt.ref_samples, .seed = (uint64_t)k + 1};
+        rc = reference_render(ref, &d, &half[k], err, sizeof err);
+    }
+    reference_destroy(ref);
+    if (rc != 0) {
+        fprintf(stderr, "bench accuracy: reference: %s\n", err);
+        reference_images_free(&half[0]);
+        reference_images_free(&half[1]);
+        return -1;
+    }
+    out->seconds = (clock_now_ms() - t0) / 1000.0;
+    size_t n = (size_t)s->opt.width * s->opt.height * 3;
+    out->direct = malloc(n * sizeof(float));
+    out->indirect1 = malloc(n * sizeof(float));
+    if (!out->direct || !out->indirect1)
+        rc = -1;
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        out->direct[i] = 0.5f * (half[0].direct[i] + half[1].direct[i]);
+        out->indirect1[i] = 0.5f * (half[0].indirect1[i] + half[1].indirect1[i]);
+    }
+    /* The mean of two halves deviates from the truth by about |a - b| / 2. */
+    if (rc == 0)
+        out->noise_indirect1 = 0.5 * acc_linear_mae(half[0].indirect1, half[1].indirect1, n / 3);
+    reference_images_free(&half[0]);
+    reference_images_free(&half[1]);
+    if (rc != 0)
+        return -1;
+    char path[4200];
+    ref_path(s, tag, "direct", path, sizeof path);
+    rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->direct, err, sizeof err);
+    ref_path(s, tag, "indirect1", path, sizeof path);
+    rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->indirect1, err, sizeof err);
+    ref_path(s, tag, "noise", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fprintf(f, "%.9g\n", out->noise_indirect1);
+        fclose(f);
+    }
+    return rc || !f ? -1 : 0;
+}
+
+int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_reference *out)
+{
+    memset(out, 0, sizeof *out);
+    if (read_cached(s, tag, out) != 0) {
+        acc_reference_free(out);
+        if (render_reference(s, p, tag, out) != 0) {
+            acc_reference_free(out);
+            return -1;
+        }
+    }
+    size_t px = (size_t)s->opt.width * s->opt.height;
+    out->final1 = malloc(px * 3 * sizeof(float));
+    out->display = malloc(px * 3);
+    if (!out->final1 || !out->display) {
+        acc_reference_free(out);
+        return -1;
+    }
+    double sum = 0;
+    for (size_t i = 0; i < px * 3; i++) {
+        out->final1[i] = out->direct[i] + out->indirect1[i];
+        sum += out->indirect1[i];
+    }
+    out->mean_indirect1 = sum / (double)(px * 3);
+    acc_tonemap(out->final1, px, s->encoding_gamma, out->display);
+    return 0;
+}
+
+void acc_reference_free(acc_reference *r)
+{
+    free(r->direct);
+    free(r->indirect1);
+    free(r->final1);
+    free(r->display);
+    memset(r, 0, sizeof *r);
+}
+
+renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
+{
+    char err[512];
+    renderer_desc rd = {
+        .gl = glctx_gl(s->ctx), .scene = &s->sc, .lpv_backend = d->backend,
+        .lattice_cells = d->lattice, .threads = s->opt.threads,
+        .lpv_mode = d->classic ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL,
+        .converge_threshold = d->skip_converged ? 0.0f : -1.0f,
+    };
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    if (!r)
+        fprintf(stderr, "bench accuracy: %s\n", err);
+    return r;
+}
+
+void acc_tonemap(const float *linear, size_t pixels, float encoding_gamma, uint8_t *rgb)
+{
+    for (size_t i = 0; i < pixels * 3; i++) {
+        double l = linear[i] > 0 ? linear[i] : 0;
+        double v = pow(l / (1.0 + l), encoding_gamma);
+        rgb[i] = (uint8_t)lround(fmin(fmax(v, 0.0), 1.0) * 255.0);
+    }
+}
+
+double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels)
+{
+    double sum = 0;
+    for (size_t i = 0; i < pixels * 3; i++)
+        sum += abs((int)a[i] - (int)b[i]);
+    return pixels ? sum / (255.0 * (double)(pixels * 3)) : 0;
+}
+
+double acc_linear_mae(const float *a, const float *b, size_t pixels)
+{
+    double sum = 0;
+    for (size_t i = 0; i < pixels * 3; i++)
+        sum += fabs((double)a[i] - (double)b[i]);
+    return pixels ? sum / (double)(pixels * 3) : 0;
+}
+
+int acc_warm_frames(float lambda)
+{
+    return lambda > 0 ? (int)ceil(log(1e-3) / log(lambda)) : 1;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double acc_median(double *v, int n)
+{
+    if (n <= 0)
+        return 0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+FILE *acc_open_csv(const acc_setup *s, const char *name, const char *header)
+{
+    char path[4200];
+    const char *base = strrchr(s->opt.scene, '/');
+    base = base ? base + 1 : s->opt.scene;
+    snprintf(path, sizeof path, "%s/%s_%.*s.csv", s->opt.out, name, (int)strcspn(base, "."), base);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        fprintf(stderr, "bench accuracy: cannot write %s (%s)\n", path, strerror(errno));
+    else
+        fprintf(f, "%s\n", header);
+    return f;
+}
