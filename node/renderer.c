@@ -579,9 +579,13 @@ static void render_rsms(renderer *r, const frame_params *p)
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-uint64_t renderer_frame_pass(renderer *r, const frame_params *p)
+uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
+    /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. */
+    frame_params sane = *params;
+    frame_params_sanitize(&sane);
+    const frame_params *p = &sane;
     int slot = queries_begin_frame(r, &r->frame_queries, 1);
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     render_rsms(r, p);
@@ -611,10 +615,13 @@ static void read_rgb_float(renderer *r, GLenum attachment, float *out)
         }
 }
 
-int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
+int renderer_eye_pass(renderer *r, const frame_params *params, const renderer_view *view,
                       int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
+    frame_params sane = *params;
+    frame_params_sanitize(&sane);
+    const frame_params *p = &sane;
     if (view->width <= 0 || view->height <= 0) {
         snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
                  view->width, view->height);
