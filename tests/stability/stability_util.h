@@ -105,6 +105,41 @@ static inline double stab_mean(const float *img, int w, int h)
     return s / (double)n;
 }
 
+/* VPLs where a spot lights the floor y = 0 over [x0,x1] x [z0,z1], a grid x grid
+ * raster (no shadows): flux = albedo E dA / pi, as the renderer passes it. Returns the
+ * count written to out (at most grid^2). */
+static inline size_t stab_floor_vpls(const scene_light *l, float x0, float x1, float z0,
+                                     float z1, int grid, float albedo, lpv_vpl *out)
+{
+    size_t n = 0;
+    float dx = (x1 - x0) / grid, dz = (z1 - z0) / grid;
+    float cos_outer = cosf(l->outer_angle), cos_inner = cosf(l->inner_angle);
+    for (int i = 0; i < grid; i++)
+        for (int k = 0; k < grid; k++) {
+            float p[3] = {x0 + (i + 0.5f) * dx, 0.0f, z0 + (k + 0.5f) * dz};
+            float d[3], r2 = 0;
+            for (int a = 0; a < 3; a++) {
+                d[a] = p[a] - l->position[a];
+                r2 += d[a] * d[a];
+            }
+            float r = sqrtf(r2), axis = 0;
+            for (int a = 0; a < 3; a++)
+                axis += d[a] / r * l->direction[a];
+            float spot = (axis - cos_outer) / (cos_inner - cos_outer);
+            spot = spot < 0 ? 0 : spot > 1 ? 1 : spot;
+            float irradiance = l->intensity * spot * (-d[1] / r) / r2;
+            if (!(irradiance > 0))
+                continue;
+            lpv_vpl *v = &out[n++];
+            memset(v, 0, sizeof *v);
+            memcpy(v->position, p, sizeof p);
+            v->normal[1] = 1.0f;
+            for (int a = 0; a < 3; a++)
+                v->flux[a] = albedo * l->color[a] * irradiance * dx * dz / 3.14159265f;
+        }
+    return n;
+}
+
 /* The CPU ILPV core on the default room: a lattice of `cells` along the longest axis, the
  * room's blocking lattice, and VPLs where the room's spot lights the floor (a 5 cm grid,
  * albedo 0.75, flux = albedo E dA / pi as the renderer passes it). */
@@ -137,35 +172,11 @@ static inline int stab_cpu_open(stab_cpu *c, int cells)
         return -1;
     lpv_geometry_add_triangles(&c->geometry, &c->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
-    const scene_light *l = &s->lights[0];
     const int grid = 80;
-    const float step = 4.0f / grid;
     c->vpls = calloc((size_t)grid * grid, sizeof *c->vpls);
     if (!c->vpls)
         return -1;
-    float cos_outer = cosf(l->outer_angle), cos_inner = cosf(l->inner_angle);
-    for (int i = 0; i < grid; i++)
-        for (int k = 0; k < grid; k++) {
-            float p[3] = {-2.0f + (i + 0.5f) * step, 0.0f, -2.0f + (k + 0.5f) * step};
-            float d[3], r2 = 0;
-            for (int a = 0; a < 3; a++) {
-                d[a] = p[a] - l->position[a];
-                r2 += d[a] * d[a];
-            }
-            float r = sqrtf(r2), axis = 0;
-            for (int a = 0; a < 3; a++)
-                axis += d[a] / r * l->direction[a];
-            float spot = (axis - cos_outer) / (cos_inner - cos_outer);
-            spot = spot < 0 ? 0 : spot > 1 ? 1 : spot;
-            float irradiance = l->intensity * spot * (-d[1] / r) / r2;
-            if (!(irradiance > 0))
-                continue;
-            lpv_vpl *v = &c->vpls[c->vpl_count++];
-            memcpy(v->position, p, sizeof p);
-            v->normal[1] = 1.0f;
-            for (int a = 0; a < 3; a++)
-                v->flux[a] = 0.75f * l->color[a] * irradiance * step * step / 3.14159265f;
-        }
+    c->vpl_count = stab_floor_vpls(&s->lights[0], -2.0f, 2.0f, -2.0f, 2.0f, grid, 0.75f, c->vpls);
     return 0;
 }
 
