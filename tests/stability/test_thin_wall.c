@@ -14,10 +14,13 @@
  *   direct light, mean dark-half view / mean lit-half view                      0.0069
  * So about a fifth to a third of the indirect light leaks: the known LPV failure, and
  * fuzzy blocking removes about 37% of the leak. The direct leak is a bright line along
- * the foot of the wall on the dark side: the shadow test's fixed depth bias (5e-4 of the
- * [0,1] depth, with the RSM near plane at 5 cm about 9 cm of distance at 3 m) lets an
- * occluder closer than that to the receiver cast no shadow.
- * Bounds: 0.33, 0.21, blocking on <= 0.19 and < 0.7 x off, direct 0.008. */
+ * the foot of the wall on the dark side: the shadow test's depth bias (5e-4 of the [0,1]
+ * depth; with the RSM near plane at 5 cm about 9 cm of distance at 3 m) lets an occluder
+ * closer than that to the receiver cast no shadow. With the near plane fixed at 5 cm the
+ * same room scaled by 10 leaked 0.060 and by 100 0.118 (no shadow at all); the near plane
+ * now follows the scene's size and the 400 m hall measures the same 0.0069.
+ * Bounds: 0.33, 0.21, blocking on <= 0.19 and < 0.7 x off, direct 0.008; the 400 m hall
+ * within 0.002 (direct) and 0.01 (indirect) of the 4 m room. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -31,7 +34,8 @@ enum { W = 160, H = 120, FRAMES = 30, STEPS = 8 };
 
 static const float WALL = 0.02f;
 
-static void build_room(scene *s, float wall)
+/* The room scaled by S (intensity by S^2, so the picture stays the same). */
+static void build_room(scene *s, float wall, float S)
 {
     memset(s, 0, sizeof *s);
     scene_material white = {{0.75f, 0.75f, 0.75f, 1}, -1, {0, 0, 0}, 0.8f};
@@ -44,6 +48,11 @@ static void build_room(scene *s, float wall)
                         .color = {1, 1, 1}, .intensity = 12.0f, .outer_angle = 0.6f,
                         .inner_angle = 0.45f};
     assert_true(scene_add_light(s, &spot) >= 0);
+    for (size_t i = 0; i < 9 * s->triangle_count; i++)
+        s->positions[i] *= S;
+    for (int a = 0; a < 3; a++)
+        s->lights[0].position[a] *= S;
+    s->lights[0].intensity *= S * S;
     char err[256];
     assert_int_equal(scene_finish(s, err, sizeof err), 0);
 }
@@ -71,7 +80,7 @@ static double dark_over_lit(const lpv_volume *v, const lattice_desc *lat)
 
 /* The CPU core on the renderer's lattice with VPLs on the lit floor: the leak with and
  * without the blocking lattice. */
-static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking)
+static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking, float S)
 {
     lpv_transfer tr;
     assert_int_equal(lpv_transfer_compute(NULL, &tr), 0);
@@ -82,7 +91,8 @@ static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking)
     enum { GRID = 60 };
     lpv_vpl *vpls = calloc(GRID * GRID, sizeof *vpls);
     assert_non_null(vpls);
-    size_t n = stab_floor_vpls(&s->lights[0], -2.0f, -0.5f * WALL, -2.0f, 2.0f, GRID, 0.75f, vpls);
+    size_t n = stab_floor_vpls(&s->lights[0], -2.0f * S, -0.5f * WALL * S, -2.0f * S, 2.0f * S, GRID,
+                               0.75f, vpls);
     ilpv il;
     assert_int_equal(ilpv_init(&il, lat), 0);
     for (int f = 0; f < FRAMES; f++) {
@@ -100,11 +110,14 @@ static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking)
     return leak;
 }
 
-static void test_thin_wall_leak(void **state)
+typedef struct leak {
+    double image_leak, direct_leak;
+} leak;
+
+static void measure(float S, leak *out)
 {
-    (void)state;
     scene s;
-    build_room(&s, WALL);
+    build_room(&s, WALL, S);
     stab_gl g;
     assert_int_equal(stab_open(&g, &s, 20), 0);
     frame_params p;
@@ -119,9 +132,10 @@ static void test_thin_wall_leak(void **state)
     double indirect[2], direct_max[2] = {0, 0}, direct_mean[2];
     for (int side = 0; side < 2; side++) {
         float sx = side == 0 ? -1.0f : 1.0f;
-        const float eye[3] = {sx * 1.9f, 2.6f, 1.9f}, target[3] = {sx * 1.0f, 0.0f, -0.8f};
+        const float eye[3] = {S * sx * 1.9f, S * 2.6f, S * 1.9f},
+                    target[3] = {S * sx * 1.0f, 0.0f, S * -0.8f};
         renderer_view v;
-        stab_view(&v, eye, target, 1.2f, W, H, 0.05f, 50.0f);
+        stab_view(&v, eye, target, 1.2f, W, H, 0.05f * S, 50.0f * S);
         renderer_image img;
         assert_int_equal(renderer_eye_pass(g.r, &p, &v, 1, &img), 0);
         assert_int_equal(stab_image_nonfinite(&img), 0);
@@ -139,8 +153,11 @@ static void test_thin_wall_leak(void **state)
     }
     double image_leak = indirect[1] / indirect[0];
     double direct_leak = direct_mean[1] / direct_mean[0];
-    double on = cpu_leak(&s, lat, 1), off = cpu_leak(&s, lat, 0);
-    printf("wall %.0f mm, cell %.0f mm (lattice %dx%dx%d)\n", WALL * 1000, lat->cell * 1000,
+    double on = cpu_leak(&s, lat, 1, S), off = cpu_leak(&s, lat, 0, S);
+    out->image_leak = image_leak;
+    out->direct_leak = direct_leak;
+    printf("scale %g: wall %.0f mm, cell %.0f mm (lattice %dx%dx%d)\n", S, S * WALL * 1000,
+           lat->cell * 1000,
            lat->n[0], lat->n[1], lat->n[2]);
     printf("renderer: indirect mean dark %.4g / lit %.4g = %.3f; lattice energy dark/lit %.3f\n",
            indirect[1], indirect[0], image_leak, lattice_leak);
@@ -158,10 +175,31 @@ static void test_thin_wall_leak(void **state)
     scene_free(&s);
 }
 
+static void test_thin_wall_leak(void **state)
+{
+    (void)state;
+    leak l;
+    measure(1.0f, &l);
+}
+
+/* The same room as a 400 m hall: the shadow map's bias follows the scene's size, so the
+ * direct light leaks no more than in the small room (it was 0.118, no shadow at all, with
+ * the former fixed 5 cm RSM near plane). */
+static void test_large_hall_same_leak(void **state)
+{
+    (void)state;
+    leak small, large;
+    measure(1.0f, &small);
+    measure(100.0f, &large);
+    assert_true(fabs(large.direct_leak - small.direct_leak) <= 0.002);
+    assert_true(fabs(large.image_leak - small.image_leak) <= 0.01);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_thin_wall_leak),
+        cmocka_unit_test(test_large_hall_same_leak),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
