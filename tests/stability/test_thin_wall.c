@@ -27,7 +27,6 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "image.h"
 #include "stability_util.h"
 
 enum { W = 160, H = 120, FRAMES = 30, STEPS = 8 };
@@ -139,13 +138,6 @@ static void measure(float S, leak *out)
         renderer_image img;
         assert_int_equal(renderer_eye_pass(g.r, &p, &v, 1, &img), 0);
         assert_int_equal(stab_image_nonfinite(&img), 0);
-        if (getenv("STAB_DUMP")) {
-            char path[256];
-            snprintf(path, sizeof path, "/tmp/thin_%d.png", side);
-            image_write_png(path, W, H, img.rgb, NULL, 0);
-            snprintf(path, sizeof path, "/tmp/thin_direct_%d.pfm", side);
-            image_write_pfm(path, W, H, img.direct, NULL, 0);
-        }
         indirect[side] = stab_mean(img.indirect, W, H);
         direct_mean[side] = stab_mean(img.direct, W, H);
         for (size_t i = 0; i < (size_t)W * H * 3; i++)
