@@ -70,3 +70,95 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s)
     f->outer_angle = 0.6f;
     f->inner_angle = 0.45f;
 }
+
+static int all_finite(const float *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+/* Sets *x to fallback unless it is in [lo, hi] (NaN is never in range); 1 if changed. */
+static int clamp_or(float *x, float lo, float hi, float below, float above, float nan)
+{
+    float v = *x;
+    if (v != v)
+        *x = nan;
+    else if (v < lo)
+        *x = below;
+    else if (v > hi)
+        *x = above;
+    else
+        return 0;
+    return 1;
+}
+
+static int sanitize_light(frame_light *l)
+{
+    int changed = 0;
+    float len2 = l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                 l->direction[2] * l->direction[2];
+    if (!all_finite(l->position, 3) || !all_finite(l->direction, 3) || !all_finite(l->color, 3) ||
+        !isfinite(l->intensity) || !isfinite(l->outer_angle) || !isfinite(l->inner_angle) ||
+        !(len2 > 0.0f) || !isfinite(len2)) {
+        changed = l->enabled != 0;
+        l->enabled = 0;
+        return changed;
+    }
+    if (fabsf(len2 - 1.0f) > 1e-4f) {
+        float len = sqrtf(len2);
+        for (int a = 0; a < 3; a++)
+            l->direction[a] /= len;
+        changed++;
+    }
+    for (int c = 0; c < 3; c++)
+        changed += clamp_or(&l->color[c], 0.0f, INFINITY, 0.0f, 0.0f, 0.0f);
+    changed += clamp_or(&l->intensity, 0.0f, FRAME_MAX_INTENSITY, 0.0f, FRAME_MAX_INTENSITY, 0.0f);
+    return changed;
+}
+
+int frame_params_sanitize(frame_params *p)
+{
+    int changed = 0;
+    float *poses[3] = {p->head, p->wand, p->navigation};
+    for (int i = 0; i < 3; i++)
+        if (!all_finite(poses[i], 16)) {
+            identity(poses[i]);
+            changed++;
+        }
+    if (!isfinite(p->time)) {
+        p->time = 0.0;
+        changed++;
+    }
+    if (p->light_count < 0 || p->light_count > FRAME_MAX_LIGHTS) {
+        p->light_count = p->light_count < 0 ? 0 : FRAME_MAX_LIGHTS;
+        changed++;
+    }
+    for (int i = 0; i < p->light_count; i++)
+        changed += sanitize_light(&p->lights[i]);
+    if (p->lpv_steps < 0 || p->lpv_steps > FRAME_MAX_LPV_STEPS) {
+        p->lpv_steps = p->lpv_steps < 0 ? 0 : FRAME_MAX_LPV_STEPS;
+        changed++;
+    }
+    changed += clamp_or(&p->lambda_incr, 0.0f, 0.999f, 0.0f, 0.999f, 0.0f);
+    changed += clamp_or(&p->absorption, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
+    changed += clamp_or(&p->scattering, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
+    if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
+        p->environment != FRAME_ENV_OFFICE) {
+        p->environment = FRAME_ENV_DIM;
+        changed++;
+    }
+    if (!(p->display_gamma > 0.0f) || !isfinite(p->display_gamma)) {
+        p->display_gamma = 2.2f;
+        changed++;
+    }
+    if (!(p->exposure > 0.0f) || !isfinite(p->exposure)) {
+        p->exposure = 1.0f;
+        changed++;
+    } else if (p->exposure > FRAME_MAX_EXPOSURE) {
+        p->exposure = FRAME_MAX_EXPOSURE;
+        changed++;
+    }
+    return changed;
+}

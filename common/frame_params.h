@@ -52,6 +52,23 @@ void frame_params_default(frame_params *p);
 /* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
  * one spot 1.5 x its height above the centre of its bounds, pointing down. */
 void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
+/* Largest values frame_params_sanitize() lets through: beyond them float shading overflows
+ * or a frame never ends. */
+#define FRAME_MAX_LPV_STEPS 256
+#define FRAME_MAX_INTENSITY 1e12f
+#define FRAME_MAX_EXPOSURE 1e6f
+
+/* Makes every field usable, in place, whatever a master, a config or a command line sent:
+ * a light whose position, direction (or a zero one), colour, intensity or angles are not
+ * finite is disabled; a non-unit direction is normalized; negative colours and intensities
+ * become 0, intensities are capped at FRAME_MAX_INTENSITY; lambda_incr NaN or < 0 becomes
+ * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
+ * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
+ * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
+ * display gamma, an unknown environment and non-finite poses or time get their defaults.
+ * Returns how many fields it changed (0 for valid parameters). The renderer applies it to
+ * its own copy in every frame and eye pass. */
+int frame_params_sanitize(frame_params *p);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);
 

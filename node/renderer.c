@@ -523,15 +523,26 @@ void renderer_destroy(renderer *r)
 
 /* ---- frame pass ------------------------------------------------------------------- */
 
+/* The shadow map's near plane, the shadow test's normal offset and the closest light
+ * distance in the falloff follow the scene's size, so that a 4 cm model and a 4 km site
+ * render alike (docs/stability.md): fixed 5 cm, 1 cm and 10 cm made a 40 m hall's shadow
+ * depth bias metres long and a 4 cm model's RSM empty. These fractions of the bounds'
+ * diagonal give the 6.4 m default room the former values. */
+static float scene_diagonal(const scene *s)
+{
+    float d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        float e = s->bounds_max[a] - s->bounds_min[a];
+        d2 += e * e;
+    }
+    return sqrtf(d2);
+}
+
 static void render_rsms(renderer *r, const frame_params *p)
 {
     const gl_functions *gl = r->gl;
     GLuint prog = r->prog_rsm;
-    float far_plane = 0;
-    for (int a = 0; a < 3; a++) {
-        float e = r->scene->bounds_max[a] - r->scene->bounds_min[a];
-        far_plane += e * e;
-    }
+    float diagonal = scene_diagonal(r->scene);
     r->rsm_lights = 0;
     gl->UseProgram(prog);
     gl->Viewport(0, 0, r->rsm_size, r->rsm_size);
@@ -553,8 +564,9 @@ static void render_rsms(renderer *r, const frame_params *p)
             float c = 0.5f * (r->scene->bounds_min[a] + r->scene->bounds_max[a]) - l->position[a];
             dist += c * c;
         }
-        float fp = sqrtf(far_plane) + sqrtf(dist) + 1.0f;
-        offaxis_look_at(l->position, target, 2.0f * outer, 1.0f, 0.05f, fp, view, proj);
+        float fp = diagonal + sqrtf(dist) + diagonal / 6.4f;
+        offaxis_look_at(l->position, target, 2.0f * outer, 1.0f, diagonal / 128.0f, fp, view,
+                        proj);
         mat4_mul(proj, view, r->light_view_projection[layer]);
         r->rsm_tan_half_fov[layer] = tanf(outer);
         gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
@@ -579,9 +591,13 @@ static void render_rsms(renderer *r, const frame_params *p)
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-uint64_t renderer_frame_pass(renderer *r, const frame_params *p)
+uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
+    /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. */
+    frame_params sane = *params;
+    frame_params_sanitize(&sane);
+    const frame_params *p = &sane;
     if (renderer_lpv_skip(r, p)) { /* RSMs, textures and the LPV still hold this result */
         r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
         r->timings.frame_host_ms = clock_now_ms() - t0;
@@ -616,10 +632,13 @@ static void read_rgb_float(renderer *r, GLenum attachment, float *out)
         }
 }
 
-int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
+int renderer_eye_pass(renderer *r, const frame_params *params, const renderer_view *view,
                       int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
+    frame_params sane = *params;
+    frame_params_sanitize(&sane);
+    const frame_params *p = &sane;
     if (view->width <= 0 || view->height <= 0) {
         snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
                  view->width, view->height);
@@ -704,6 +723,9 @@ int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *v
                              r->light_view_projection[0]);
     }
     gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
+    float diagonal = scene_diagonal(r->scene);
+    gl->Uniform1f(loc(r, prog, "u_shadow_offset"), diagonal / 640.0f);
+    gl->Uniform1f(loc(r, prog, "u_min_light_distance"), diagonal / 64.0f);
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);

@@ -17,6 +17,8 @@ uniform float u_cos_outer[MAX_LIGHTS];
 uniform float u_cos_inner[MAX_LIGHTS];
 uniform mat4 u_light_view_projection[MAX_LIGHTS];
 uniform float u_shadow_texel;
+uniform float u_shadow_offset;       // normal offset, metres (scales with the scene)
+uniform float u_min_light_distance;  // falloff bound near a light, metres (ditto)
 uniform float u_absorption;
 uniform vec3 u_eye;
 uniform float u_exposure;
@@ -36,8 +38,9 @@ layout(location = 2) out vec4 out_indirect;
 
 float shadow(int i, vec3 p, vec3 n)
 {
-    // Normal offset plus a small constant bias against self-shadowing (paper: ~5e-4).
-    vec4 q = u_light_view_projection[i] * vec4(p + n * 0.01, 1.0);
+    // Normal offset plus a small constant bias against self-shadowing (paper: ~5e-4); the
+    // RSM's near plane scales with the scene, so the bias does too.
+    vec4 q = u_light_view_projection[i] * vec4(p + n * u_shadow_offset, 1.0);
     vec3 s = q.xyz / q.w * 0.5 + 0.5;
     if (q.w <= 0.0 || any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0))))
         return 0.0;
@@ -77,8 +80,9 @@ void main()
         float spot = spot_factor(-l, u_light_direction[i], u_cos_outer[i], u_cos_inner[i]);
         if (spot <= 0.0)
             continue;
-        // Irradiance E = I cos / r^2, bounded near the light (r >= 10 cm).
-        vec3 irradiance = u_light_radiance[i] * spot * cos_i / max(r2, 0.01) *
+        // Irradiance E = I cos / r^2, bounded near the light (10 cm in the default room).
+        vec3 irradiance = u_light_radiance[i] * spot * cos_i /
+                          max(r2, u_min_light_distance * u_min_light_distance) *
                           transmittance(u_absorption, r) * shadow(i, p, n);
         vec3 h = normalize(l + v);
         vec3 brdf = albedo / PI + (m + 8.0) / (8.0 * PI) * spec * pow(max(dot(n, h), 0.0), m);
