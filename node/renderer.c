@@ -695,7 +695,7 @@ int renderer_eye_pass(renderer *r, const frame_params *params, const renderer_vi
     gl->Uniform1i(loc(r, prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
     gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
     gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
-    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale);
+    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale * r->energy_gain);
     gl->Uniform3f(loc(r, prog, "u_lpv_size"), (float)r->lattice.n[0], (float)r->lattice.n[1],
                   (float)r->lattice.n[2]);
     float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];

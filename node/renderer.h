@@ -81,6 +81,8 @@ typedef struct renderer_lpv_stats {
     double last_residual;     /* relative L1 change of the last computed frame's result,
                                  +Inf before two computed frames */
     int skipped_this_frame;   /* the last frame pass was skipped */
+    float energy_gain;        /* injected over held lattice energy, times the indirect scale
+                                 in the shading (1 in classic mode; docs/lpv.md) */
 } renderer_lpv_stats;
 
 /* Returns NULL with a one-line reason in err. */

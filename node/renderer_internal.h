@@ -62,6 +62,8 @@ struct renderer {
     int clamp_negative;
     int gl_tiles;            /* GL propagation through shared-memory tiles */
     float indirect_scale;
+    double mean_free_path;   /* metres, 4V/A of the scene */
+    float energy_gain;       /* level of the indirect light this frame (renderer_lpv.c) */
     lattice_desc lattice;
     lpv_transfer transfer;
     lpv_volume geometry;

@@ -152,14 +152,10 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
     return 0;
 }
 
-/* The ILPV keeps the lattice's energy equal to one frame's injected flux, i.e. light that
- * lives for one propagation step; in a room it lives for the mean free path 4V/A
- * (V volume, A surface area) before it hits a surface, d_mean * cell per step. The ratio
- * is how much brighter the steady indirect light is than the lattice says. */
-static float auto_indirect_scale(const renderer *r)
+/* Mean free path of light in the scene, 4V/A (V volume of the bounds, A surface area). */
+static double mean_free_path(const scene *s, double cell)
 {
-    const scene *s = r->scene;
-    double volume = 1, area = 0, cell = r->lattice.cell;
+    double volume = 1, area = 0;
     for (int a = 0; a < 3; a++)
         volume *= fmax(s->bounds_max[a] - s->bounds_min[a], cell);
     for (size_t t = 0; t < s->triangle_count; t++) {
@@ -173,11 +169,41 @@ static float auto_indirect_scale(const renderer *r)
                cz = e1[0] * e2[1] - e1[1] * e2[0];
         area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
     }
+    return area > 0 ? 4.0 * volume / area : 0.0;
+}
+
+/* Light injected in a frame lives for the mean free path before it hits a surface, i.e.
+ * for mfp / (d_mean * cell) propagation steps; the steady indirect light is that many
+ * times one step's worth (docs/lpv.md). */
+static float auto_indirect_scale(const renderer *r)
+{
     int longest = r->lattice.n[0];
     for (int a = 1; a < 3; a++)
         longest = r->lattice.n[a] > longest ? r->lattice.n[a] : longest;
-    double k = area > 0 ? 4.0 * volume / (area * LPV_MEAN_NEIGHBOUR_DISTANCE * cell) : 1.0;
+    double k = r->mean_free_path > 0
+                   ? r->mean_free_path / (LPV_MEAN_NEIGHBOUR_DISTANCE * r->lattice.cell) : 1.0;
     return (float)fmin(fmax(k, 1.0), (double)longest);
+}
+
+/* The incremental lattice says how the light is spread, not how much there is: blocking
+ * removes light within a frame's own steps and the merge keeps only (1 - lambda_incr) of
+ * the fresh injection, so its energy changes with steps and lambda_incr while the light in
+ * the room does not. The level is therefore this frame's injected energy (less what the
+ * medium absorbs over a mean free path), spread as the lattice says. Classic mode keeps
+ * the level of its sum, as published. */
+static float energy_gain(const renderer *r, const frame_params *p, const lpv_volume *result)
+{
+    if (r->mode == RENDERER_LPV_CLASSIC)
+        return 1.0f;
+    double in[3], out[3];
+    lpv_volume_energy(&r->cpu.injected, in);
+    lpv_volume_energy(result, out);
+    double injected = in[0] + in[1] + in[2], held = out[0] + out[1] + out[2];
+    if (!(injected > 0) || !(held > 0))
+        return 1.0f;
+    double kept = p->absorption > 0
+                      ? pow(1.0 - fmin(p->absorption, 0.999999), r->mean_free_path) : 1.0;
+    return (float)fmin(injected / held * kept, 1e4);
 }
 
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err,
@@ -218,6 +244,8 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     }
     lpv_geometry_add_triangles(&r->geometry, &r->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
+    r->mean_free_path = mean_free_path(s, r->lattice.cell);
+    r->energy_gain = 1.0f;
     /* Classic mode sums the light over its life in steps already (docs/lpv.md). */
     r->indirect_scale = desc->indirect_scale > 0       ? desc->indirect_scale
                         : r->mode == RENDERER_LPV_CLASSIC ? 1.0f
@@ -476,6 +504,7 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
                                                .propagate = pd});
     const lpv_volume *result = renderer_get_lpv(r);
     r->checksum = lpv_volume_checksum(result);
+    r->energy_gain = energy_gain(r, p, result);
     if (r->backend != RENDERER_LPV_GL)
         upload_volume(r, result, r->lpv_tex);
     lpv_converge_end(&r->converge, result, r->pool);
@@ -507,6 +536,7 @@ void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
     out->frames_skipped = r->converge.frames_skipped;
     out->last_residual = r->converge.residual;
     out->skipped_this_frame = r->converge.skipped;
+    out->energy_gain = r->energy_gain;
 }
 
 double renderer_measure_step_ms(renderer *r, int steps)
