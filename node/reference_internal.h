@@ -28,6 +28,7 @@ struct reference {
 
 typedef struct reference_spot {
     float position[3], direction[3], radiance[3];
+    float axis[3];            /* direction normalized: the cone the spot strategy samples */
     float cos_outer, cos_inner;
 } reference_spot;
 
