@@ -1,6 +1,6 @@
-/* The Embree reference (node/reference.h): direct light and textures equal to the rasterizer's, two
- * closed-form checks (a furnace box and one spot bounce integrated independently),
- * noise that halves with 4x the samples, determinism, and bad input. */
+/* The Embree reference (node/reference.h): direct light and textures equal to the
+ * rasterizer's, two closed-form checks (a furnace box and one spot bounce integrated
+ * independently), noise that halves with 4x the samples, determinism, and bad input. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
