@@ -14,6 +14,7 @@ static const struct {
     {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
                            "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
     {"input", bench_input, "input [--iterations N]"},
+    {"reference", bench_reference, "reference [--width W --height H --samples N --bounces B --runs R]"},
 };
 
 int main(int argc, char **argv)
