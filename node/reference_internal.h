@@ -1,5 +1,6 @@
-/* reference_internal: state shared by reference.c (Embree scene, threads, images) and
- * reference_sample.c (one pixel's paths). Not for other modules. */
+/* reference_internal: state shared by reference.c (Embree scene, threads, images),
+ * reference_sample.c (one pixel's paths) and reference_light.c (light arriving at a path
+ * vertex). Not for other modules. */
 #ifndef CAVELIGHT_REFERENCE_INTERNAL_H
 #define CAVELIGHT_REFERENCE_INTERNAL_H
 
