@@ -257,6 +257,10 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
         float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
         memcpy(s->position, l->position, sizeof s->position);
         memcpy(s->direction, l->direction, sizeof s->direction);
+        float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                          l->direction[2] * l->direction[2]);
+        for (int c = 0; c < 3; c++)
+            s->axis[c] = len > 0 ? l->direction[c] / len : (c == 1 ? -1.0f : 0.0f);
         for (int c = 0; c < 3; c++)
             s->radiance[c] = l->color[c] * l->intensity;
         s->cos_outer = cosf(outer);

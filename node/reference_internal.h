@@ -1,5 +1,6 @@
-/* reference_internal: state shared by reference.c (Embree scene, threads, images) and
- * reference_sample.c (one pixel's paths). Not for other modules. */
+/* reference_internal: state shared by reference.c (Embree scene, threads, images),
+ * reference_sample.c (one pixel's paths) and reference_light.c (light arriving at a path
+ * vertex). Not for other modules. */
 #ifndef CAVELIGHT_REFERENCE_INTERNAL_H
 #define CAVELIGHT_REFERENCE_INTERNAL_H
 
@@ -28,6 +29,7 @@ struct reference {
 
 typedef struct reference_spot {
     float position[3], direction[3], radiance[3];
+    float axis[3];            /* direction normalized: the cone the spot strategy samples */
     float cos_outer, cos_inner;
 } reference_spot;
 

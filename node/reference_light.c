@@ -48,11 +48,13 @@ static float power_heuristic(float a, float b)
     return a * a / (a * a + b * b);
 }
 
-/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone.
- * Densities in area measure take the geometric normal's cosine (the true surface). */
+/* Area density at h of the spot strategy: a direction uniform in spot i's outer cone
+ * (0 outside it). Densities in area measure take the geometric normal's cosine. */
 static float spot_area_pdf(const reference_job *job, int i, const hit *h, const float l[3])
 {
     const reference_spot *s = &job->spots[i];
+    if (-dot3(l, s->axis) < s->cos_outer)
+        return 0;
     float to[3];
     for (int k = 0; k < 3; k++)
         to[k] = s->position[k] - h->p[k];
@@ -153,8 +155,8 @@ void reference_light_spot_connect(const reference_job *job, int i, const hit *x0
                                   float out[3], uint64_t *rays)
 {
     const reference_spot *s = &job->spots[i];
-    float axis[3] = {s->direction[0], s->direction[1], s->direction[2]}, t[3], bt[3], w[3];
-    normalize3(axis);
+    const float *axis = s->axis;
+    float t[3], bt[3], w[3];
     basis(axis, t, bt);
     float c = 1 - rng_next(g) * (1 - s->cos_outer), phi = 2 * PI_F * rng_next(g);
     float sn = sqrtf(fmaxf(0, 1 - c * c));

@@ -7,5 +7,6 @@ int bench_cluster(int argc, char **argv);
 int bench_frame(int argc, char **argv);
 int bench_input(int argc, char **argv);
 int bench_accuracy(int argc, char **argv);
+int bench_reference(int argc, char **argv);
 
 #endif

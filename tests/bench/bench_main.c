@@ -16,6 +16,7 @@ static const struct {
     {"input", bench_input, "input [--iterations N]"},
     {"accuracy", bench_accuracy, "accuracy sweep|move|path|savings [--scene S --out DIR --width W "
                                  "--height H --ref-samples N ...] (scripts/chart.sh)"},
+    {"reference", bench_reference, "reference [--width W --height H --samples N --bounces B --runs R]"},
 };
 
 int main(int argc, char **argv)

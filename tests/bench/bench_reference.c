@@ -1,0 +1,107 @@
+/* cavelight-bench reference: the Embree reference's speed on the default room from its
+ * camera: milliseconds per image (median of --runs), rays per second, and the speed-up of
+ * all cores over one thread measured in the same run. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+
+#ifdef CAVELIGHT_HAVE_NODE
+#include "frame_params.h"
+#include "offaxis.h"
+#include "reference.h"
+#include "scene.h"
+#include "workpool.h"
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median render time with `threads` threads; 0 or -1 with a message. */
+static int measure(const scene *sc, const reference_render_desc *rd, int threads, int runs,
+                   double *median_ms, double *rays)
+{
+    char err[512];
+    reference *ref = reference_create(sc, threads, err, sizeof err);
+    if (!ref) {
+        fprintf(stderr, "bench reference: %s\n", err);
+        return -1;
+    }
+    double ms[16];
+    for (int i = 0; i < runs; i++) {
+        reference_images img;
+        if (reference_render(ref, rd, &img, err, sizeof err) != 0) {
+            fprintf(stderr, "bench reference: %s\n", err);
+            reference_destroy(ref);
+            return -1;
+        }
+        ms[i] = img.render_ms;
+        *rays = (double)img.rays;
+        reference_images_free(&img);
+    }
+    reference_destroy(ref);
+    qsort(ms, (size_t)runs, sizeof ms[0], cmp_double);
+    *median_ms = runs % 2 ? ms[runs / 2] : 0.5 * (ms[runs / 2 - 1] + ms[runs / 2]);
+    return 0;
+}
+
+int bench_reference(int argc, char **argv)
+{
+    int width = 160, height = 120, samples = 16, bounces = 8, runs = 3;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (strcmp(argv[i], "--width") == 0) width = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--height") == 0) height = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--samples") == 0) samples = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--bounces") == 0) bounces = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--runs") == 0) runs = atoi(argv[i + 1]);
+        else {
+            fprintf(stderr, "bench reference: unknown option %s\n", argv[i]);
+            return 2;
+        }
+    }
+    if (width < 1 || height < 1 || samples < 1 || bounces < 1 || runs < 1 || runs > 16) {
+        fprintf(stderr, "bench reference: need a positive size, samples, bounces and 1..16 runs\n");
+        return 2;
+    }
+    char err[512];
+    scene sc;
+    if (scene_load("default", &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "bench reference: %s\n", err);
+        return 1;
+    }
+    frame_params p;
+    frame_params_default(&p);
+    frame_params_lights_from_scene(&p, &sc);
+    renderer_view v = {.width = width, .height = height};
+    memcpy(v.eye_position, sc.camera.position, sizeof v.eye_position);
+    offaxis_look_at(sc.camera.position, sc.camera.target, sc.camera.yfov,
+                    (float)width / (float)height, 0.02f, scene_far_plane(&sc), v.view,
+                    v.projection);
+    reference_render_desc rd = {.params = &p, .view = &v, .samples = samples,
+                                .max_bounces = bounces, .seed = 1};
+    workpool *probe = workpool_create(0);
+    int cores = probe ? workpool_threads(probe) : 1;
+    workpool_destroy(probe);
+    double ms_all, ms_one, rays;
+    int rc = measure(&sc, &rd, 0, runs, &ms_all, &rays) || measure(&sc, &rd, 1, runs, &ms_one, &rays);
+    if (rc == 0)
+        printf("{\"bench\":\"reference\",\"width\":%d,\"height\":%d,\"samples\":%d,\"bounces\":%d,"
+               "\"threads\":%d,\"ms\":%.1f,\"mrays_per_s\":%.2f,\"ms_1_thread\":%.1f,"
+               "\"speedup\":%.2f,\"rays_per_path\":%.2f}\n",
+               width, height, samples, bounces, cores, ms_all, rays / ms_all / 1e3, ms_one,
+               ms_one / ms_all, rays / ((double)width * height * samples));
+    scene_free(&sc);
+    return rc ? 1 : 0;
+}
+#else
+int bench_reference(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    fprintf(stderr, "bench reference: this build has no render node (cavelight_node)\n");
+    return 1;
+}
+#endif
