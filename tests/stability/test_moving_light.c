@@ -9,12 +9,14 @@
  *   static light, lambda 0.8:  frame-to-frame mean |diff| / mean 5.4e-10, 8-bit jump 0
  *   0.5 m/s, lambda 0:         0.00538, jump 12 (at the spot's cone edge and shadows)
  *   0.5 m/s, lambda 0.8:       0.00551, jump 14
- *   lambda 0.8, last moving frame vs the light converged where it stopped: 1.7e-5 (the
- *   history trails very little: blocking and the open lattice faces remove most of a
- *   frame's light within its 8 steps, so the history decays much faster than lambda^k).
+ *   lambda 0.8, last moving frame vs the light converged where it stopped: 1.7e-4 (the
+ *   history trails little: blocking and the open lattice faces remove most of a frame's
+ *   light within its 8 steps, so the history decays much faster than lambda^k; the
+ *   figure was 1.7e-5 before the indirect level followed the injected energy, which made
+ *   the indirect light, and so its trail, several times brighter).
  * A renderer that dropped its history every other frame measured 0.045 and failed.
  * Bounds: static 1e-8 and jump <= 1; moving 0.0065 and jump <= 16 for both lambdas and
- * at least 100 x the static figure; trailing 5e-5. */
+ * at least 100 x the static figure; trailing 2.5e-4. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -107,7 +109,7 @@ static void test_walking_speed_is_smooth(void **state)
     assert_true(l0.mad > 100 * still.mad && l8.mad > 100 * still.mad); /* it did move */
     assert_true(l0.mad <= 0.0065 && l8.mad <= 0.0065);
     assert_true(l0.jump <= 16 && l8.jump <= 16);
-    assert_true(lag <= 5e-5);
+    assert_true(lag <= 2.5e-4);
     free(end.last);
     free(still.last);
     free(l0.last);
