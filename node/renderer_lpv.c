@@ -525,15 +525,25 @@ double renderer_measure_step_ms(renderer *r, int steps)
                 t0 = clock_now_ms();
             }
             gl_step(r, r->gl_volume[s & 1], r->gl_volume[1 - (s & 1)], 1);
+            if (r->mode == RENDERER_LPV_CLASSIC) { /* a classic step includes its addition */
+                gl_accumulate(r, r->gl_volume[1 - (s & 1)], 0, 1.0f);
+                use_propagate(r, 0.0f, 0.0f);
+            }
         }
         r->gl->Finish();
     } else {
         lpv_propagate_desc pd = {.transfer = &r->transfer, .geometry = &r->geometry,
                                  .use_blocking = 1, .pool = r->pool};
-        for (int s = 0; s <= steps; s++) {
-            if (s == 1)
-                t0 = clock_now_ms();
-            lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
+        if (r->mode == RENDERER_LPV_CLASSIC) {
+            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), 1, &pd);
+            t0 = clock_now_ms();
+            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), steps, &pd);
+        } else {
+            for (int s = 0; s <= steps; s++) {
+                if (s == 1)
+                    t0 = clock_now_ms();
+                lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
+            }
         }
     }
     double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
