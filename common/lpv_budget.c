@@ -35,27 +35,3 @@ int lpv_budget_choose(const lpv_budget_desc *d, lpv_budget_choice *out)
     };
     return 0;
 }
-
-int lpv_budget_fit(const size_t *cells, const double *ms, int n, double *a, double *b)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < n; i++) {
-        double x = (double)cells[i];
-        sx += x;
-        sy += ms[i];
-        sxx += x * x;
-        sxy += x * ms[i];
-    }
-    double det = n * sxx - sx * sx;
-    if (n < 2 || !(fabs(det) > 0) || !isfinite(det))
-        return -1;
-    *b = (n * sxy - sx * sy) / det;
-    *a = (sy - *b * sx) / n;
-    return isfinite(*a) && isfinite(*b) ? 0 : -1;
-}
-
-double lpv_budget_predict(double a, double b, size_t cells)
-{
-    double ms = a + b * (double)cells;
-    return ms > 1e-6 ? ms : 1e-6;
-}

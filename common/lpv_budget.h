@@ -38,14 +38,8 @@ typedef struct lpv_budget_choice {
 } lpv_budget_choice;
 
 /* Returns 0, or -1 (choice untouched) without candidates, with a budget that is not a
- * positive number, or with a candidate whose cost is not positive and finite. */
+ * positive number, or with a candidate whose step cost is not positive and finite or
+ * whose fixed cost is negative or not finite. */
 int lpv_budget_choose(const lpv_budget_desc *desc, lpv_budget_choice *out);
-
-/* Least-squares line ms = a + b * cells through n >= 2 points with distinct cells,
- * to predict the cost of candidates that were not measured. Returns -1 if the points do
- * not determine a line. */
-int lpv_budget_fit(const size_t *cells, const double *ms, int n, double *a, double *b);
-/* a + b * cells, at least 1e-6 ms (a cost is never 0). */
-double lpv_budget_predict(double a, double b, size_t cells);
 
 #endif

@@ -312,65 +312,44 @@ static int write_images(const node_options *o, int frame, const char *eye,
     return 0;
 }
 
-/* Measures, on the smallest and largest candidate lattice with this context and backend,
- * one propagation step and the LPV's other work per frame (injection, merge, upload,
- * checksum: a frame with 0 steps), fits both as a + b * cells, and picks by
- * lpv_budget_choose(). */
-static int choose_budget(const node_options *o, const renderer_desc *base, const scene *sc,
+/* Measures every candidate lattice with this context and backend: one propagation step
+ * and the LPV's other work per frame (injection, merge, upload, checksum, residual: a
+ * frame with 0 steps), each the median of three tries (what a frame meets on a shared
+ * machine, not its luckiest moment); then picks by lpv_budget_choose(). */
+static int choose_budget(const node_options *o, const renderer_desc *base,
                          const frame_params *fp, lpv_budget_choice *choice, cJSON *report)
 {
     static const int axis[] = {16, 24, 32, 48, 64};
     enum { N = sizeof axis / sizeof axis[0] };
     lpv_budget_candidate cand[N];
     char err[512];
-    for (int i = 0; i < N; i++) {
-        lattice_fit_desc fit = {
-            .bounds_min = {sc->bounds_min[0], sc->bounds_min[1], sc->bounds_min[2]},
-            .bounds_max = {sc->bounds_max[0], sc->bounds_max[1], sc->bounds_max[2]},
-            .max_axis_cells = axis[i], .margin_cells = -1.0f,
-        };
-        lattice_desc lat;
-        if (lattice_fit(&fit, &lat, err, sizeof err) != 0) {
-            fprintf(stderr, "cavelight-node: --budget-ms: no %d-cell lattice: %s\n", axis[i], err);
-            return -1;
-        }
-        cand[i] = (lpv_budget_candidate){.axis_cells = axis[i], .cells = lattice_cell_count(&lat)};
-    }
-    size_t cells[2];
-    double ms[2], fixed[2];
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < N; k++) {
         renderer_desc rd = *base;
-        rd.lattice_cells = axis[k ? N - 1 : 0];
+        rd.lattice_cells = axis[k];
         rd.converge_threshold = -1;
         renderer *r = renderer_create(&rd, err, sizeof err);
         if (!r) {
             fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
             return -1;
         }
-        cells[k] = lattice_cell_count(renderer_get_lattice(r));
-        /* The fastest of three tries: other processes only ever add time. */
-        ms[k] = fixed[k] = INFINITY;
+        double step_try[3], fixed_try[3];
         frame_params none = *fp;
         none.lpv_steps = 0;
         renderer_frame_pass(r, &none); /* the first frame pays for first touches */
         for (int i = 0; i < 3; i++) {
-            ms[k] = fmin(ms[k], renderer_measure_step_ms(r, 3));
+            step_try[i] = renderer_measure_step_ms(r, 3);
             renderer_frame_pass(r, &none);
             renderer_timings t;
             renderer_get_timings(r, &t);
-            fixed[k] = fmin(fixed[k], t.inject_ms + t.propagate_ms);
+            fixed_try[i] = t.inject_ms + t.propagate_ms;
         }
+        cand[k] = (lpv_budget_candidate){
+            .axis_cells = axis[k],
+            .cells = lattice_cell_count(renderer_get_lattice(r)),
+            .step_ms = fmax(median(step_try, 3), 1e-6), /* a step is never free */
+            .fixed_ms = median(fixed_try, 3),
+        };
         renderer_destroy(r);
-    }
-    double a, b, fa, fb;
-    if (lpv_budget_fit(cells, ms, 2, &a, &b) != 0 || lpv_budget_fit(cells, fixed, 2, &fa, &fb) != 0) {
-        fprintf(stderr, "cavelight-node: --budget-ms: step costs %.3g and %.3g ms give no cost "
-                "model; give --lattice and --steps\n", ms[0], ms[1]);
-        return -1;
-    }
-    for (int i = 0; i < N; i++) {
-        cand[i].step_ms = lpv_budget_predict(a, b, cand[i].cells);
-        cand[i].fixed_ms = lpv_budget_predict(fa, fb, cand[i].cells);
     }
     int classic = o->mode == RENDERER_LPV_CLASSIC;
     lpv_budget_desc bd = {.budget_ms = o->budget_ms, .candidates = cand, .count = N,
@@ -379,29 +358,26 @@ static int choose_budget(const node_options *o, const renderer_desc *base, const
         fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
         return -1;
     }
-    printf("cavelight-node: budget %.3g ms: lattice %d, %d steps, predicted %.3g ms per frame%s "
-           "(measured per step %.3g ms at %zu cells, %.3g at %zu; per frame besides the steps "
-           "%.3g and %.3g)\n", o->budget_ms, choice->axis_cells, choice->steps,
-           choice->predicted_ms, choice->fits ? "" : ", over budget even at the coarsest lattice",
-           ms[0], cells[0], ms[1], cells[1], fixed[0], fixed[1]);
+    const lpv_budget_candidate *c = &cand[choice->index];
+    printf("cavelight-node: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame%s "
+           "(measured %.3g ms per step, %.3g ms per frame besides the steps)\n", o->budget_ms,
+           choice->axis_cells, choice->steps, choice->steps == 1 ? "" : "s", choice->predicted_ms,
+           choice->fits ? "" : ", over budget even at the coarsest lattice", c->step_ms,
+           c->fixed_ms);
     cJSON *jb = cJSON_AddObjectToObject(report, "budget");
     cJSON_AddNumberToObject(jb, "budget_ms", o->budget_ms);
     cJSON_AddNumberToObject(jb, "lattice_cells", choice->axis_cells);
     cJSON_AddNumberToObject(jb, "steps", choice->steps);
     cJSON_AddNumberToObject(jb, "predicted_ms", choice->predicted_ms);
     cJSON_AddBoolToObject(jb, "fits", choice->fits);
-    cJSON_AddNumberToObject(jb, "fit_a_ms", a);
-    cJSON_AddNumberToObject(jb, "fit_b_ms_per_cell", b);
-    cJSON_AddNumberToObject(jb, "fixed_fit_a_ms", fa);
-    cJSON_AddNumberToObject(jb, "fixed_fit_b_ms_per_cell", fb);
     cJSON *jc = cJSON_AddArrayToObject(jb, "candidates");
     for (int i = 0; i < N; i++) {
-        cJSON *c = cJSON_CreateObject();
-        cJSON_AddNumberToObject(c, "axis_cells", cand[i].axis_cells);
-        cJSON_AddNumberToObject(c, "cells", (double)cand[i].cells);
-        cJSON_AddNumberToObject(c, "step_ms", cand[i].step_ms);
-        cJSON_AddNumberToObject(c, "fixed_ms", cand[i].fixed_ms);
-        cJSON_AddItemToArray(jc, c);
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddNumberToObject(e, "axis_cells", cand[i].axis_cells);
+        cJSON_AddNumberToObject(e, "cells", (double)cand[i].cells);
+        cJSON_AddNumberToObject(e, "step_ms", cand[i].step_ms);
+        cJSON_AddNumberToObject(e, "fixed_ms", cand[i].fixed_ms);
+        cJSON_AddItemToArray(jc, e);
     }
     return 0;
 }
@@ -474,7 +450,7 @@ static int standalone_main(const node_options *o)
     cJSON *report = cJSON_CreateObject();
     if (o->budget_ms > 0) {
         lpv_budget_choice budget;
-        if (choose_budget(o, &rd, &sc, &fp, &budget, report) != 0) {
+        if (choose_budget(o, &rd, &fp, &budget, report) != 0) {
             cJSON_Delete(report);
             glctx_destroy(ctx);
             scene_free(&sc);

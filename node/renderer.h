@@ -106,8 +106,8 @@ const lpv_volume *renderer_get_lpv(const renderer *r);
 float renderer_get_indirect_scale(const renderer *r);
 renderer_lpv_mode renderer_get_lpv_mode(const renderer *r);
 void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out);
-/* Milliseconds per propagation step on this backend and lattice (blocking on), timed over
- * `steps` steps after one untimed step; GL work is finished before the clock stops. It
+/* Milliseconds per propagation step on this backend and lattice (blocking on; in classic
+ * mode with its addition into the sum), timed over `steps` steps after one untimed step; GL work is finished before the clock stops. It
  * overwrites the light volumes: the next frame pass starts without history and is never
  * skipped; show no eye pass before it. */
 double renderer_measure_step_ms(renderer *r, int steps);

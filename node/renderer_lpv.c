@@ -402,29 +402,34 @@ static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], int u
     dispatch(r);
 }
 
-/* lpv_classic_frame() on the GPU: the steps start from the injection, each one is added
- * into gl_accum (the first replaces it; 0 steps leave it zero). */
-static void gl_classic_frame(renderer *r, const frame_params *p)
+/* gl_accum = (first ? 0 : gl_accum) + weight * step. */
+static void gl_accumulate(renderer *r, const GLuint step[3], int first, float weight)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
+    GLuint prog = r->prog_accumulate;
+    gl->UseProgram(prog);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_first"), first);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_weight"), weight);
+    bind_images(r, r->gl_accum, 3, 0, GL_READ_WRITE);
+    bind_images(r, step, 3, 3, GL_READ_ONLY);
+    dispatch(r);
+}
+
+/* lpv_classic_frame() on the GPU: the steps start from the injection, each one is added
+ * into gl_accum (the first replaces it; 0 steps clear it). */
+static void gl_classic_frame(renderer *r, const frame_params *p)
+{
     upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
+    if (p->lpv_steps <= 0)
+        gl_accumulate(r, r->gl_injected, 1, 0.0f);
     const GLuint *src = r->gl_injected;
-    int steps = p->lpv_steps;
-    for (int step = 0; step < steps || (step == 0 && steps == 0); step++) {
+    for (int step = 0; step < p->lpv_steps; step++) {
         const GLuint *dst = r->gl_volume[step & 1];
-        if (steps > 0) {
-            use_propagate(r, p->absorption, p->scattering);
-            gl_step(r, src, dst, step > 0);
-        }
-        GLuint prog = r->prog_accumulate;
-        gl->UseProgram(prog);
-        gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
-        gl->Uniform1i(gl->GetUniformLocation(prog, "u_first"), step == 0);
-        gl->Uniform1f(gl->GetUniformLocation(prog, "u_weight"), steps > 0 ? 1.0f : 0.0f);
-        bind_images(r, r->gl_accum, 3, 0, GL_READ_WRITE);
-        bind_images(r, steps > 0 ? dst : r->gl_injected, 3, 3, GL_READ_ONLY);
-        dispatch(r);
+        use_propagate(r, p->absorption, p->scattering);
+        gl_step(r, src, dst, step > 0);
+        gl_accumulate(r, dst, step == 0, 1.0f);
         src = dst;
     }
     download_volume(r, r->gl_accum, &r->gl_result);
@@ -550,15 +555,25 @@ double renderer_measure_step_ms(renderer *r, int steps)
                 t0 = clock_now_ms();
             }
             gl_step(r, r->gl_volume[s & 1], r->gl_volume[1 - (s & 1)], 1);
+            if (r->mode == RENDERER_LPV_CLASSIC) { /* a classic step includes its addition */
+                gl_accumulate(r, r->gl_volume[1 - (s & 1)], 0, 1.0f);
+                use_propagate(r, 0.0f, 0.0f);
+            }
         }
         r->gl->Finish();
     } else {
         lpv_propagate_desc pd = {.transfer = &r->transfer, .geometry = &r->geometry,
                                  .use_blocking = 1, .pool = r->pool};
-        for (int s = 0; s <= steps; s++) {
-            if (s == 1)
-                t0 = clock_now_ms();
-            lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
+        if (r->mode == RENDERER_LPV_CLASSIC) {
+            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), 1, &pd);
+            t0 = clock_now_ms();
+            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), steps, &pd);
+        } else {
+            for (int s = 0; s <= steps; s++) {
+                if (s == 1)
+                    t0 = clock_now_ms();
+                lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
+            }
         }
     }
     double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;

@@ -89,7 +89,8 @@ int bench_frame(int argc, char **argv)
         return 1;
     }
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
-                        .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles};
+                        .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles,
+                        .converge_threshold = -1}; /* static frames: measure the work, never skip */
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);

@@ -1,6 +1,6 @@
 /* The renderer's LPV modes and frame skipping on real contexts:
  * - classic LPV: the GL accumulation agrees with the CPU one within 1e-3 relative; 0 steps
- *   are black; the indirect scale is 1;
+ *   are black, also right after a lit frame; the indirect scale is 1;
  * - skipping: with static lights and lambda 0 frames are skipped from the third on, with
  *   the same checksum and bit-identical images as a run that never skips; a moved light is
  *   computed on that very frame; lambda 0.9 converges, then skips, and its images stay
@@ -45,11 +45,11 @@ static void classic_gl_matches_cpu(int steps)
     assert_true(renderer_get_indirect_scale(cpu.r) == 1.0f);
     gltest *both[2] = {&cpu, &gpu};
     for (int k = 0; k < 2; k++) {
-        both[k]->params.lpv_steps = steps;
         both[k]->params.lambda_incr = 0.8f; /* ignored by classic */
         both[k]->params.absorption = 0.05f;
         both[k]->params.scattering = 0.1f;
-        for (int f = 0; f < 2; f++) {
+        for (int f = 0; f < 2; f++) { /* a lit frame first: nothing of it may remain */
+            both[k]->params.lpv_steps = f == 0 ? 3 : steps;
             if (f == 1)
                 both[k]->params.lights[0].intensity *= 1.5f;
             renderer_frame_pass(both[k]->r, &both[k]->params);
@@ -236,15 +236,17 @@ static void test_nan_is_sanitized_and_changing_input_never_skips(void **state)
 static void test_measure_then_render(void **state)
 {
     (void)state;
-    for (int backend = RENDERER_LPV_CPU; backend <= RENDERER_LPV_GL; backend++) {
+    for (int combo = 0; combo < 4; combo++) {
+        renderer_lpv_backend backend = combo & 1 ? RENDERER_LPV_GL : RENDERER_LPV_CPU;
+        renderer_lpv_mode mode = combo & 2 ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL;
         gltest a, b;
-        open_with(&a, (renderer_lpv_backend)backend, RENDERER_LPV_INCREMENTAL, 0);
-        open_with(&b, (renderer_lpv_backend)backend, RENDERER_LPV_INCREMENTAL, 0);
+        open_with(&a, backend, mode, 0);
+        open_with(&b, backend, mode, 0);
         a.params.lambda_incr = b.params.lambda_incr = 0.8f;
         uint64_t ca, cb;
         run(&a, 4, &ca, NULL);
         double ms = renderer_measure_step_ms(a.r, 2);
-        printf("backend %d: %.3g ms per step\n", backend, ms);
+        printf("backend %d, mode %d: %.3g ms per step\n", backend, mode, ms);
         assert_true(ms > 0);
         assert_int_equal(run(&a, 1, &ca, NULL), 0);
         run(&b, 1, &cb, NULL);

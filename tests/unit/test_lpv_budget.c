@@ -1,6 +1,6 @@
 /* The budget rule on synthetic cost tables: the finest lattice that affords min_steps,
  * with as many steps as fit up to max_steps; the coarsest (and "does not fit") when none
- * does; the cost line fit; refused inputs. */
+ * does; the per-frame cost; refused inputs. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -97,30 +97,12 @@ static void test_refused(void **state)
     assert_int_equal(c.steps, -7);
 }
 
-static void test_fit(void **state)
-{
-    (void)state;
-    size_t cells[3] = {1000, 8000, 64000};
-    double ms[3];
-    for (int i = 0; i < 3; i++)
-        ms[i] = 0.3 + 2e-4 * cells[i];
-    double a, b;
-    assert_int_equal(lpv_budget_fit(cells, ms, 3, &a, &b), 0);
-    assert_true(fabs(a - 0.3) < 1e-9 && fabs(b - 2e-4) < 1e-12);
-    assert_true(fabs(lpv_budget_predict(a, b, 27000) - 5.7) < 1e-9);
-    assert_true(lpv_budget_predict(-5.0, 0.0, 10) > 0.0); /* never free */
-    size_t same[2] = {500, 500};
-    assert_int_equal(lpv_budget_fit(same, ms, 2, &a, &b), -1);
-    assert_int_equal(lpv_budget_fit(cells, ms, 1, &a, &b), -1);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rule),
         cmocka_unit_test(test_fixed_cost),
         cmocka_unit_test(test_refused),
-        cmocka_unit_test(test_fit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
