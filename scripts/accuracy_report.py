@@ -177,3 +177,23 @@ p("")
 p("The lattice is fitted to the scene's bounds with cubic cells (same cell size as the cube), "
   "so the cells it leaves out are outside the scene. A converged, static frame skips the RSM, "
   "injection and propagation (docs/lpv.md) and resumes the frame anything changes.\n")
+
+budgets = []
+for name in sorted(os.listdir(out)):
+    path = os.path.join(out, name, "report.json")
+    if name.startswith("budget_") and os.path.exists(path):
+        with open(path) as fh:
+            budgets.append(json.load(fh))
+if budgets:
+    p("### A frame-time budget\n")
+    p("`cavelight-node --standalone --budget-ms X` measures one step and the per-frame LPV "
+      "work on every candidate lattice, then picks the finest lattice that affords 4 steps "
+      "and as many steps as fit, up to 8 (docs/lpv.md). The budget covers injection and "
+      "propagation. Default room, skipping off, median over the frames:\n")
+    p("| budget ms | lattice cells (longest axis) | steps | predicted ms | measured inject + propagate ms | fits |")
+    p("|---|---|---|---|---|---|")
+    for r in sorted(budgets, key=lambda r: r["budget"]["budget_ms"]):
+        b, m = r["budget"], r["median"]
+        p(f"| {f(b['budget_ms'], 0)} | {b['lattice_cells']} | {b['steps']} | {f(b['predicted_ms'], 1)} | "
+          f"{f(m['inject_ms'] + m['propagate_ms'], 1)} | {'yes' if b['fits'] else 'no (coarsest)'} |")
+    p("")

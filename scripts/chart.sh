@@ -4,29 +4,34 @@
 # classic accumulating LPV against a path-traced (Embree) reference; measures the error
 # after an abrupt light move and the frame-to-frame change along a light path; writes
 # CSVs and PNG charts to OUT (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
-# Usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs]
+# The path-traced reference is cached in OUT as ref_*.pfm; --reuse-reference keeps it
+# between runs (only when the scene, camera and reference code are unchanged).
+# Usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 . "$root/scripts/deps.sh"
 cavelight_install_deps
 cavelight_build "$root" >/dev/null
 
-quick=0 docs=1 out=$root/out/chart
+quick=0 docs=1 reuse=0 out=$root/out/chart
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
     --no-docs) docs=0 ;;
+    --reuse-reference) reuse=1 ;;
     --out) out=$2; shift ;;
-    *) echo "usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs]" >&2; exit 2 ;;
+    *) echo "usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference]" >&2
+       exit 2 ;;
   esac
   shift
 done
 mkdir -p "$out"
-rm -f "$out"/*.csv "$out"/*.json "$out"/*.png
+rm -rf "$out"/*.csv "$out"/*.json "$out"/*.png "$out"/budget_*
+[ $reuse = 1 ] || rm -f "$out"/ref_*
 
 if [ $quick = 1 ]; then
   size=(--width 160 --height 120) ref=(--ref-samples 32)
-  sweep=(--lattices 16,32 --gl-max-lattice 16 --timing-frames 3)
+  sweep=(--lattices 16,32,64 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
@@ -45,6 +50,11 @@ for scene in default corridor; do
   "$bench" accuracy path --scene $scene --out "$out" "${size[@]}" "${motion[@]}" \
     > "$out/path_$scene.json"
   "$bench" accuracy savings --scene $scene --out "$out" "${size[@]}" > "$out/savings_$scene.json"
+done
+echo "chart: frame-time budgets" >&2
+for budget in 5 10 20 40; do
+  "$root/build/cavelight-node" --standalone --budget-ms $budget --frames 12 \
+    --converge-threshold -1 "${size[@]}" --out "$out/budget_$budget" > /dev/null
 done
 echo "chart: measured in $((SECONDS - start)) s" >&2
 
@@ -100,11 +110,13 @@ set output "$out/move_$scene.png"
 set logscale y
 set xlabel "frames after the light jumped"
 set ylabel "relative summed |lattice - steady state after the move|"
+set format y "10^{%L}"
 set title "$scene: convergence after an abrupt light move (8 steps per frame)"
 mv(m,l) = "< awk -F, 'NR>1 && \$1==\"" . m . "\" && \$2==\"" . l . "\"' $out/move_$scene.csv"
 plot for [l in "0 0.5 0.8 0.9"] mv("incremental", l) using 3:(\$4>1e-7?\$4:1e-7) with linespoints pt 7 ps 0.6 title "ILPV lambda ".l, \
      mv("classic", "0") using 3:(\$4>1e-7?\$4:1e-7) with linespoints pt 5 ps 0.6 title "classic LPV"
 unset logscale y
+set format y "%g"
 set output "$out/path_$scene.png"
 set xlabel "frame (light circling at walking speed, 60 Hz)"
 set ylabel "mean |image - previous image| / mean image"

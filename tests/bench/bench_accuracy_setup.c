@@ -74,12 +74,12 @@ void acc_setup_close(acc_setup *s)
     scene_free(&s->sc);
 }
 
-/* Cache file names: <out>/ref_<scene>_<tag>_<w>x<h>_<spp>_<kind>.pfm */
+/* Cache file names: <out>/ref_<scene>_<tag>_<w>x<h>_<spp>_<kind> */
 static void ref_path(const acc_setup *s, const char *tag, const char *kind, char *out, size_t n)
 {
     const char *base = strrchr(s->opt.scene, '/');
     base = base ? base + 1 : s->opt.scene;
-    snprintf(out, n, "%s/ref_%.*s_%s_%dx%d_%d_%s.pfm", s->opt.out, (int)strcspn(base, "."),
+    snprintf(out, n, "%s/ref_%.*s_%s_%dx%d_%d_%s", s->opt.out, (int)strcspn(base, "."),
              base, tag, s->opt.width, s->opt.height, s->opt.ref_samples, kind);
 }
 
@@ -87,14 +87,14 @@ static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
 {
     char path[4200], err[256];
     int w, h;
-    ref_path(s, tag, "direct", path, sizeof path);
+    ref_path(s, tag, "direct.pfm", path, sizeof path);
     if (image_read_pfm(path, &w, &h, &out->direct, err, sizeof err) != 0)
         return -1;
-    ref_path(s, tag, "indirect1", path, sizeof path);
+    ref_path(s, tag, "indirect1.pfm", path, sizeof path);
     if (w != s->opt.width || h != s->opt.height ||
         image_read_pfm(path, &w, &h, &out->indirect1, err, sizeof err) != 0)
         return -1;
-    ref_path(s, tag, "noise", path, sizeof path);
+    ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "r");
     int ok = f && fscanf(f, "%lf", &out->noise_indirect1) == 1;
     if (f)
@@ -145,11 +145,11 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     if (rc != 0)
         return -1;
     char path[4200];
-    ref_path(s, tag, "direct", path, sizeof path);
+    ref_path(s, tag, "direct.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->direct, err, sizeof err);
-    ref_path(s, tag, "indirect1", path, sizeof path);
+    ref_path(s, tag, "indirect1.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->indirect1, err, sizeof err);
-    ref_path(s, tag, "noise", path, sizeof path);
+    ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "w");
     if (f) {
         fprintf(f, "%.9g\n", out->noise_indirect1);
