@@ -182,6 +182,20 @@ static int ends_with(const char *s, const char *suffix)
     return 1;
 }
 
+void scene_light_aim(scene_light *l, const float target[3])
+{
+    float d[3], len = 0;
+    for (int a = 0; a < 3; a++) {
+        d[a] = target[a] - l->position[a];
+        len += d[a] * d[a];
+    }
+    len = sqrtf(len);
+    if (!(len > 0))
+        return;
+    for (int a = 0; a < 3; a++)
+        l->direction[a] = d[a] / len;
+}
+
 float scene_far_plane(const scene *s)
 {
     float extent = 0;

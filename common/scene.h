@@ -74,6 +74,8 @@ long scene_add_triangle(scene *s, const float positions[9], const float *normals
 /* Appends an axis-aligned box with outward (or inward, for a room) faces. */
 int scene_add_box(scene *s, const float min[3], const float max[3], int inward, uint32_t material);
 int scene_add_light(scene *s, const scene_light *l);
+/* Points the light's axis from its position at target (unchanged if they coincide). */
+void scene_light_aim(scene_light *l, const float target[3]);
 /* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
 int scene_finish(scene *s, char *err, size_t errlen);
 

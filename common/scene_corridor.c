@@ -5,7 +5,6 @@
  * beyond it is lit only indirectly, which is where a few propagation steps per frame fall
  * short and reusing last frame's light (ILPV) pays. Three pillars along the right wall
  * cast indirect shadows, and the lattice fitted to this shape is about 1/20 of a cube. */
-#include <math.h>
 #include <stdio.h>
 
 #include "scene.h"
@@ -48,14 +47,7 @@ int scene_corridor_build(scene *s, char *err, size_t errlen)
         .inner_angle = 0.45f,
     };
     const float target[3] = {3.0f, 0.0f, -0.4f};
-    float len = 0;
-    for (int a = 0; a < 3; a++) {
-        spot.direction[a] = target[a] - spot.position[a];
-        len += spot.direction[a] * spot.direction[a];
-    }
-    len = sqrtf(len);
-    for (int a = 0; a < 3; a++)
-        spot.direction[a] /= len;
+    scene_light_aim(&spot, target);
     if (scene_add_light(s, &spot) < 0)
         goto oom;
 

@@ -4,7 +4,6 @@
  * z in [-2, 2] (back wall at -2). A tall blue box and a low yellow box stand on the floor,
  * a small warm emissive panel hangs on the back wall, and a spotlight near the ceiling
  * points at the floor beside the red wall, so colour bleeding is easy to see. */
-#include <math.h>
 #include <string.h>
 #include <stdio.h>
 
@@ -73,14 +72,7 @@ int scene_default_build(scene *s, char *err, size_t errlen)
         .inner_angle = 0.40f,
     };
     const float target[3] = {-2.0f, 0.4f, -0.5f};
-    float len = 0;
-    for (int a = 0; a < 3; a++) {
-        spot.direction[a] = target[a] - spot.position[a];
-        len += spot.direction[a] * spot.direction[a];
-    }
-    len = sqrtf(len);
-    for (int a = 0; a < 3; a++)
-        spot.direction[a] /= len;
+    scene_light_aim(&spot, target);
     if (scene_add_light(s, &spot) < 0)
         goto oom;
 
