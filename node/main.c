@@ -30,6 +30,7 @@ typedef struct node_options {
     float converge_threshold; /* 0 = renderer default, negative = never skip */
     float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
     int rsm, lattice, threads, clamp_negative;
+    int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
     int frames, width, height;
     const char *out;
     int pfm;
@@ -62,6 +63,8 @@ static void usage(FILE *f)
         "  --screen blx,bly,blz,brx,bry,brz,tlx,tly,tlz --eye x,y,z   off-axis screen\n"
         "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
+        "  --lattice-cells N            instead of --lattice: N cells in all, fitted to the\n"
+        "                               scene's shape (finer cells in a long, thin scene)\n"
         "  --absorption S --scattering S --clamp-negative\n"
         "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
         "  --lpv-mode incremental|classic   ILPV (default) or classic LPV accumulation\n"
@@ -133,6 +136,7 @@ static int parse_options(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--height") == 0) bad = parse_int(v, &o->height, 1, 16384);
         else if (strcmp(a, "--rsm") == 0) bad = parse_int(v, &o->rsm, 8, 4096);
         else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
+        else if (strcmp(a, "--lattice-cells") == 0) bad = parse_int(v, &o->lattice_total, 8, 1 << 24);
         else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
         else if (strcmp(a, "--steps") == 0) bad = parse_int(v, &o->steps, 0, 1000);
         else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &o->lambda, 1) || o->lambda < 0 || o->lambda >= 1;
@@ -193,9 +197,14 @@ static int parse_options(int argc, char **argv, node_options *o)
         }
         i += takes;
     }
-    if (o->budget_ms > 0 && (o->lattice > 0 || o->steps >= 0)) {
+    if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->steps >= 0)) {
         fprintf(stderr, "cavelight-node: --budget-ms chooses --lattice and --steps: give "
                 "either the budget or those two\n");
+        return -1;
+    }
+    if (o->lattice > 0 && o->lattice_total > 0) {
+        fprintf(stderr, "cavelight-node: give --lattice (cells along the longest axis) or "
+                "--lattice-cells (cells in all), not both\n");
         return -1;
     }
     if (o->have_screen != o->have_eye) {
@@ -444,7 +453,8 @@ static int standalone_main(const node_options *o)
     }
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
-        .lattice_cells = o->lattice, .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
+        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
     };
     cJSON *report = cJSON_CreateObject();

@@ -45,6 +45,8 @@ typedef struct renderer_desc {
     renderer_lpv_backend lpv_backend;
     int rsm_size;        /* 0 = 256 */
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
+    long lattice_cell_budget; /* > 0: instead, as many cells in total, spent on the scene's
+                                 shape (a long corridor gets finer cells than a cube would) */
     int threads;         /* CPU propagation threads, 0 = all cores */
     int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
     renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */

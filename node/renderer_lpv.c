@@ -219,7 +219,8 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     lattice_fit_desc fit = {
         .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
         .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
-        .max_axis_cells = desc->lattice_cells,
+        .max_axis_cells = desc->lattice_cell_budget > 0 ? 1024 : desc->lattice_cells,
+        .max_cells = desc->lattice_cell_budget > 0 ? desc->lattice_cell_budget : 0,
         .margin_cells = -1.0f,
     };
     char why[160];

@@ -38,9 +38,10 @@ def f(x, digits=4):
 
 
 def label(r):
+    cells = "fitted 32^3 cells" if r["lattice"] == "0" else f"{r['lattice']} cells"
     if r["mode"] == "classic":
-        return f"{r['backend']} classic LPV, {r['lattice']} cells, {r['steps']} steps"
-    return f"{r['backend']} ILPV, {r['lattice']} cells, {r['steps']} steps, lambda {r['lambda']}"
+        return f"{r['backend']} classic LPV, {cells}, {r['steps']} steps"
+    return f"{r['backend']} ILPV, {cells}, {r['steps']} steps, lambda {r['lambda']}"
 
 
 def cpu_model():

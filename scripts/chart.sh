@@ -31,11 +31,11 @@ rm -rf "$out"/*.csv "$out"/*.json "$out"/*.png "$out"/budget_*
 
 if [ $quick = 1 ]; then
   size=(--width 160 --height 120) ref=(--ref-samples 32)
-  sweep=(--lattices 16,32,64 --gl-max-lattice 16 --timing-frames 3)
+  sweep=(--lattices 16,32,64,fit --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
-  sweep=(--lattices 16,32,64 --gl-max-lattice 32 --timing-frames 5)
+  sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
 fi
 bench=$root/build/cavelight-bench
@@ -72,7 +72,7 @@ set ylabel "mean absolute error of the displayed image vs path-traced reference"
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
 front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
 set output "$out/speed_accuracy_$scene.png"
-set title "$scene: speed against accuracy (labels: lattice/steps)"
+set title "$scene: speed against accuracy (labels: lattice/steps; fit = 32^3 cells shaped to the scene)"
 plot front using 11:23 with lines lw 2 lc rgb "black" title "Pareto front", \
      sel("cpu","incremental","0") using 11:23 with points pt 7 ps 1.2 lc rgb "#999999" title "CPU ILPV lambda 0 (plain LPV)", \
      sel("cpu","incremental","0.5") using 11:23 with points pt 7 lc rgb "#2a9d8f" title "CPU ILPV lambda 0.5", \
@@ -82,7 +82,7 @@ plot front using 11:23 with lines lw 2 lc rgb "black" title "Pareto front", \
      sel("gl","incremental","0") using 11:23 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
      sel("gl","incremental","0.8") using 11:23 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
      sel("gl","classic","any") using 11:23 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
-     front using 11:23:(sprintf("%d/%d", \$4, \$8)) with labels offset 0,0.8 font ",8" notitle
+     front using 11:23:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
 set xlabel "whole frame ms (frame pass + one eye pass, median)"
 set title "$scene: whole-frame time against accuracy"
@@ -95,8 +95,8 @@ unset logscale x
 set logscale x 2
 set xlabel "propagation steps per frame"
 set ylabel "MAE of the displayed image vs 32 plain steps"
-set title "$scene: the paper's Fig. 2 (CPU, second lattice size in the sweep)"
-lat = system("awk -F, 'NR>1 && \$2==\"cpu\"{print \$4}' $csv | sort -n | uniq | sed -n 2p")
+set title "$scene: the paper's Fig. 2 (CPU, 32 cells along the longest axis)"
+lat = 32
 sl(l) = "< awk -F, 'NR>1 && \$2==\"cpu\" && \$3==\"incremental\" && \$4==" . lat . " && \$9==\"" . l . "\"' $csv"
 set output "$out/self32_$scene.png"
 plot for [l in "0 0.5 0.8 0.9"] sl(l) using 8:24 with linespoints pt 7 title "lambda ".l

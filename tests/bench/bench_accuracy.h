@@ -49,9 +49,12 @@ void acc_setup_close(acc_setup *s);
 int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_reference *out);
 void acc_reference_free(acc_reference *r);
 
+enum { ACC_FITTED = 0, ACC_FITTED_CELLS = 32 * 32 * 32 };
+
 typedef struct acc_renderer_desc {
     renderer_lpv_backend backend;
-    int lattice;            /* cells along the longest axis */
+    int lattice;            /* cells along the longest axis; ACC_FITTED: a cube's worth of
+                               cells (ACC_FITTED_CELLS) spent on the scene's shape */
     int classic;            /* sum every step into an accumulation lattice (KD10) */
     int skip_converged;     /* let the renderer skip work once converged */
 } acc_renderer_desc;

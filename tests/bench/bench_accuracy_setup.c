@@ -199,7 +199,9 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
     char err[512];
     renderer_desc rd = {
         .gl = glctx_gl(s->ctx), .scene = &s->sc, .lpv_backend = d->backend,
-        .lattice_cells = d->lattice, .threads = s->opt.threads,
+        .lattice_cells = d->lattice,
+        .lattice_cell_budget = d->lattice == ACC_FITTED ? ACC_FITTED_CELLS : 0,
+        .threads = s->opt.threads,
         .lpv_mode = d->classic ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL,
         .converge_threshold = d->skip_converged ? 0.0f : -1.0f,
     };

@@ -80,6 +80,11 @@ grep -q "budget 15 ms: lattice [0-9]*, [0-9]* steps\?, predicted" "$out/budget.l
 [ "$(json "$out/budget/report.json" "r['budget']['lattice_cells'] == max(r['lattice']) and \
     r['budget']['steps'] == r['steps'] and r['budget']['predicted_ms'] > 0")" = True ] \
     || fail "budget choice not applied or not reported"
+# --lattice-cells spends a total on the scene's shape: the corridor gets long thin counts.
+"$node" --standalone --scene corridor --frames 1 --width 64 --height 48 --rsm 64 \
+    --lattice-cells 4096 --out "$out/cells" > /dev/null || fail "--lattice-cells failed"
+[ "$(json "$out/cells/report.json" "r['cells'] <= 4096 and r['cells'] > 3000 and \
+    r['lattice'][0] > 3 * r['lattice'][1]")" = True ] || fail "--lattice-cells not applied"
 
 # Errors: non-zero exit and exactly one line naming the culprit.
 one_line_error() { # expected-substring command...
@@ -98,4 +103,6 @@ one_line_error "--hud" "$node" --standalone --hud 3
 one_line_error "--lpv-mode" "$node" --standalone --lpv-mode cascaded
 one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice 32
 one_line_error "--budget-ms" "$node" --standalone --budget-ms -1
+one_line_error "--lattice-cells" "$node" --standalone --lattice 16 --lattice-cells 4096
+one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells 4096
 echo "node CLI: all checks passed"
