@@ -196,12 +196,24 @@ void scene_light_aim(scene_light *l, const float target[3])
         l->direction[a] = d[a] / len;
 }
 
+float scene_diagonal(const scene *s)
+{
+    float d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        float e = s->bounds_max[a] - s->bounds_min[a];
+        d2 += e * e;
+    }
+    return sqrtf(d2);
+}
+
+float scene_min_light_distance(const scene *s)
+{
+    return scene_diagonal(s) / 64.0f;
+}
+
 float scene_far_plane(const scene *s)
 {
-    float extent = 0;
-    for (int a = 0; a < 3; a++)
-        extent += (s->bounds_max[a] - s->bounds_min[a]) * (s->bounds_max[a] - s->bounds_min[a]);
-    return 4.0f * sqrtf(extent) + 10.0f;
+    return 4.0f * scene_diagonal(s) + 10.0f;
 }
 
 void scene_default_view(const scene *s, float position[3], float target[3])

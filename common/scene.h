@@ -79,6 +79,12 @@ void scene_light_aim(scene_light *l, const float target[3]);
 /* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
 int scene_finish(scene *s, char *err, size_t errlen);
 
+/* Length of the bounds' diagonal. Needs scene_finish(). */
+float scene_diagonal(const scene *s);
+/* Inverse-square falloff is bounded at this distance from a light (diagonal / 64: 10 cm in
+ * the default room), so irradiance stays finite next to it; the rasterizer and the
+ * path-traced reference share it. */
+float scene_min_light_distance(const scene *s);
 /* Far clip distance that keeps the whole scene visible from in or near its bounds:
  * 4 x the bounds' diagonal + 10 m. Needs scene_finish(). */
 float scene_far_plane(const scene *s);

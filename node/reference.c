@@ -279,6 +279,8 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
         return -1;
     }
     job->absorption = p->absorption;
+    float closest = scene_min_light_distance(job->ref->scene);
+    job->min_light_distance2 = closest * closest;
     job->exposure = p->exposure > 0 ? p->exposure : 1.0f;
     memcpy(job->eye, v->eye_position, sizeof job->eye);
     job->width = v->width;

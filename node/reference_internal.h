@@ -39,6 +39,7 @@ typedef struct reference_job {
     int spot_count;
     reference_spot spots[FRAME_MAX_LIGHTS];
     float absorption, exposure;
+    float min_light_distance2;      /* falloff bound, squared: scene_min_light_distance() */
     double inv_view_projection[16]; /* column-major, clip -> world */
     float eye[3];
     int width, height, samples, max_bounces;

@@ -37,7 +37,7 @@ int reference_light_spot(const reference_job *job, int i, const hit *h, int shad
         if (!reference_sample_visible(job, o, od, dist, rays))
             return 0;
     }
-    float f = spot * cos_i / fmaxf(r2, 0.01f) * transmittance(job->absorption, r);
+    float f = spot * cos_i / fmaxf(r2, job->min_light_distance2) * transmittance(job->absorption, r);
     for (int k = 0; k < 3; k++)
         e[k] = s->radiance[k] * f;
     return 1;

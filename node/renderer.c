@@ -523,21 +523,11 @@ void renderer_destroy(renderer *r)
 
 /* ---- frame pass ------------------------------------------------------------------- */
 
-/* The shadow map's near plane, the shadow test's normal offset and the closest light
- * distance in the falloff follow the scene's size, so that a 4 cm model and a 4 km site
- * render alike (docs/stability.md): fixed 5 cm, 1 cm and 10 cm made a 40 m hall's shadow
- * depth bias metres long and a 4 cm model's RSM empty. These fractions of the bounds'
- * diagonal give the 6.4 m default room the former values. */
-static float scene_diagonal(const scene *s)
-{
-    float d2 = 0;
-    for (int a = 0; a < 3; a++) {
-        float e = s->bounds_max[a] - s->bounds_min[a];
-        d2 += e * e;
-    }
-    return sqrtf(d2);
-}
-
+/* The shadow map's near plane and the shadow test's normal offset follow the scene's size
+ * (as the falloff bound does, scene_min_light_distance()), so that a 4 cm model and a
+ * 4 km site render alike (docs/stability.md): fixed 5 cm and 1 cm made a 40 m hall's
+ * shadow depth bias metres long and a 4 cm model's RSM empty. These fractions of the
+ * bounds' diagonal give the 6.4 m default room the former values. */
 static void render_rsms(renderer *r, const frame_params *p)
 {
     const gl_functions *gl = r->gl;
@@ -725,7 +715,7 @@ int renderer_eye_pass(renderer *r, const frame_params *params, const renderer_vi
     gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
     float diagonal = scene_diagonal(r->scene);
     gl->Uniform1f(loc(r, prog, "u_shadow_offset"), diagonal / 640.0f);
-    gl->Uniform1f(loc(r, prog, "u_min_light_distance"), diagonal / 64.0f);
+    gl->Uniform1f(loc(r, prog, "u_min_light_distance"), scene_min_light_distance(r->scene));
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);

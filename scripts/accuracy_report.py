@@ -71,7 +71,7 @@ p("Errors are the mean absolute error (MAE) of the displayed, tone-mapped image 
   "frames of a configuration once it reached its steady state (history weight below 1e-3).\n")
 
 p("## The reference and its noise\n")
-p("| scene | reference seconds | mean indirect radiance | noise of the averaged indirect (MAE) | noise relative to the mean |")
+p("| scene | reference seconds (2 cores) | mean indirect radiance | noise of the averaged indirect (MAE) | noise relative to the mean |")
 p("|---|---|---|---|---|")
 for s in SCENES:
     j = summary(f"sweep_{s}.json")
@@ -79,7 +79,8 @@ for s in SCENES:
         continue
     mean = j.get("reference_mean_indirect1", 0) or 0
     noise = j.get("reference_noise_indirect1", 0) or 0
-    p(f"| {s} | {f(j.get('reference_seconds'), 1)} (0 = cached) | {f(mean, 5)} | {f(noise, 5)} | "
+    cached = " (cached from an earlier run)" if j.get("reference_cached") else ""
+    p(f"| {s} | {f(j.get('reference_seconds'), 1)}{cached} | {f(mean, 5)} | {f(noise, 5)} | "
       f"{f(noise / mean if mean else 0, 3)} |")
 p("")
 

@@ -241,10 +241,11 @@ static int accuracy_sweep(int argc, char **argv)
         const sweep_row *plain = find_row(rows, n, RENDERER_LPV_CPU, lat, 0, 8, 0.0f);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
                "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
-               "\"reference_seconds\":%.4g,\"reference_noise_indirect1\":%.6g,"
+               "\"reference_seconds\":%.4g,\"reference_cached\":%s,"
+               "\"reference_noise_indirect1\":%.6g,"
                "\"reference_mean_indirect1\":%.6g",
                o.scene, o.width, o.height, n, 2 * o.ref_samples, ref.seconds,
-               ref.noise_indirect1, ref.mean_indirect1);
+               ref.cached ? "true" : "false", ref.noise_indirect1, ref.mean_indirect1);
         if (inc && plain)
             printf(",\"paper_lattice\":%d,\"self32_mae_8_0.8\":%.4f,\"self32_mae_8_0\":%.4f,"
                    "\"reference_mae_8_0.8\":%.4f,\"reference_mae_8_0\":%.4f",

@@ -37,7 +37,8 @@ typedef struct acc_reference {
     uint8_t *display;                   /* final1 tone-mapped like shaders/final.frag */
     double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
     double mean_indirect1;
-    double seconds;                     /* render time, 0 when read from the cache */
+    double seconds;                     /* render time (when it was rendered) */
+    int cached;                         /* read from the cache, not rendered now */
 } acc_reference;
 
 /* Parses the options every accuracy subcommand takes; returns 1 if argv[*i] was one. */

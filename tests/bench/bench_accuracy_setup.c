@@ -96,7 +96,8 @@ static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
         return -1;
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "r");
-    int ok = f && fscanf(f, "%lf", &out->noise_indirect1) == 1;
+    int ok = f && fscanf(f, "%lf %lf", &out->noise_indirect1, &out->seconds) == 2;
+    out->cached = 1;
     if (f)
         fclose(f);
     return ok && w == s->opt.width && h == s->opt.height ? 0 : -1;
@@ -152,7 +153,7 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "w");
     if (f) {
-        fprintf(f, "%.9g\n", out->noise_indirect1);
+        fprintf(f, "%.9g %.3f\n", out->noise_indirect1, out->seconds);
         fclose(f);
     }
     return rc || !f ? -1 : 0;

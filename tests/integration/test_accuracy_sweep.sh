@@ -39,13 +39,14 @@ for a in rows:
     assert on_front == (a["pareto"] == "1"), a
 j = json.loads(open(f"{out}/sweep.json").read())
 assert j["configs"] == 12 and j["reference_noise_indirect1"] > 0 and j["reference_seconds"] > 0
+assert j["reference_cached"] is False
 PY
 
 # A second run reads the cached reference instead of tracing it again.
 "$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8 \
     --steps 1 --lambdas 0 --backends cpu --classic 0 --timing-frames 1 > "$out/again.json" \
     2>/dev/null || fail "second sweep failed"
-python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['reference_seconds'] == 0" \
+python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['reference_cached'] is True" \
     "$out/again.json" || fail "the cached reference was not reused"
 "$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8 \
     --steps 1 --lambdas 0 --backends cpu --timing-frames 1 > "$out/sweep.json" 2>/dev/null
