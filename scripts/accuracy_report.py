@@ -44,6 +44,10 @@ def label(r):
     return f"{r['backend']} ILPV, {cells}, {r['steps']} steps, lambda {r['lambda']}"
 
 
+def config_name(c):
+    return "classic LPV" if c["mode"] == "classic" else f"ILPV lambda {c['lambda']}"
+
+
 def cpu_model():
     try:
         for line in open("/proc/cpuinfo"):
@@ -147,7 +151,7 @@ for s in SCENES:
         p("| configuration | frames until the lattice is within 5% of its new steady state |")
         p("|---|---|")
         for c in mv.get("configs", []):
-            name = "classic LPV" if c["mode"] == "classic" else f"ILPV lambda {c['lambda']}"
+            name = config_name(c)
             settle = c["frames_to_5pct"] if c["frames_to_5pct"] >= 0 else "more than the run"
             p(f"| {name} | {settle} |")
         p("")
@@ -158,7 +162,7 @@ for s in SCENES:
         p("| configuration | largest relative change of the indirect image | of the final image | of the direct image (the motion itself) | largest 8-bit jump of a pixel |")
         p("|---|---|---|---|---|")
         for c in pa.get("configs", []):
-            name = "classic LPV" if c["mode"] == "classic" else f"ILPV lambda {c['lambda']}"
+            name = config_name(c)
             p(f"| {name} | {f(c['max_change_indirect'])} | {f(c['max_change_final'])} | "
               f"{f(c['max_change_direct'])} | {c['max_jump']} |")
         p("")

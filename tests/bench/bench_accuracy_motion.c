@@ -86,6 +86,17 @@ static void moved_light(const acc_setup *s, const frame_params *a, float distanc
     b->lights[0].position[axis] += a->lights[0].position[axis] > centre ? -distance : distance;
 }
 
+/* Configuration k: the lambdas in turn, then the classic LPV; on the CPU backend. */
+static renderer *config_renderer(acc_setup *s, const motion_options *m, int k, int *classic,
+                                 float *lambda)
+{
+    *classic = k == m->lambda_count;
+    *lambda = *classic ? 0.0f : (float)m->lambdas[k];
+    acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m->lattice,
+                           .classic = *classic};
+    return acc_renderer_create(s, &d);
+}
+
 static double lattice_difference(const lpv_volume *a, const lpv_volume *b)
 {
     double diff = 0, sum = 0;
@@ -131,11 +142,9 @@ int accuracy_move(int argc, char **argv)
            "\"steps\":%d,\"lattice\":%d,\"configs\":[", m.common.scene, m.distance, m.steps,
            m.lattice);
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
-        int classic = k == m.lambda_count;
-        float lambda = classic ? 0.0f : (float)m.lambdas[k];
-        acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m.lattice,
-                               .classic = classic};
-        renderer *r = acc_renderer_create(&s, &d);
+        int classic;
+        float lambda;
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
         lpv_volume steady = {0};
         if (!r || lpv_volume_init(&steady, renderer_get_lattice(r)->n, LPV_LIGHT_CHANNELS)) {
             rc = 1;
@@ -210,11 +219,9 @@ int accuracy_path(int argc, char **argv)
            m.radius, m.steps, m.lattice);
     const float *start = s.base.lights[0].position;
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
-        int classic = k == m.lambda_count;
-        float lambda = classic ? 0.0f : (float)m.lambdas[k];
-        acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m.lattice,
-                               .classic = classic};
-        renderer *r = acc_renderer_create(&s, &d);
+        int classic;
+        float lambda;
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
         if (!r) {
             rc = 1;
             break;
