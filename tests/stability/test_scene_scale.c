@@ -12,9 +12,12 @@
  *     s = 1000: energy 1.0006, final 0.0054, direct 0.0055, indirect 0.0011, 8-bit 0.12
  *               (the shadow depth bias was kilometres long: no shadows at all)
  *   after (those lengths are fractions of the scene's diagonal, node/renderer.c):
- *     s = 0.01: energy 1.0005, final 4.1e-5, direct 8.3e-6, indirect 1.5e-3, 8-bit 0.003
- *     s = 1000: energy 1.0012, final 8.0e-5, direct 5.5e-5, indirect 1.2e-3, 8-bit 0.004
- * Bounds: |energy - 1| <= 0.003; final and direct <= 3e-4, indirect <= 0.003; 8-bit 0.05. */
+ *     s = 0.01: energy 1.0005, final 2.4e-4, direct 8.3e-6, indirect 1.4e-3, 8-bit 0.011
+ *     s = 1000: energy 1.0012, final 1.9e-4, direct 5.5e-5, indirect 9.5e-4, 8-bit 0.008
+ *   (final was 4.1e-5 and 8.0e-5 before the indirect level followed the injected energy,
+ *   which made the indirect share of the image, and so its difference, larger).
+ * Bounds: |energy - 1| <= 0.003; final <= 4e-4, direct <= 3e-4, indirect <= 0.003;
+ * 8-bit 0.05. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -126,7 +129,7 @@ static void test_scaled_rooms_look_the_same(void **state)
         assert_memory_equal(r.n, ref.n, sizeof r.n);
         assert_true(fabs(r.cell / (ref.cell * scales[i]) - 1.0) < 1e-4);
         assert_true(fabs(e - 1.0) <= 0.003);
-        assert_true(final <= 3e-4 && direct <= 3e-4 && indirect <= 0.003);
+        assert_true(final <= 4e-4 && direct <= 3e-4 && indirect <= 0.003);
         assert_true(rgb <= 0.05);
         free_render(&r);
     }
