@@ -91,12 +91,10 @@ uint64_t lpv_volume_checksum(const lpv_volume *v)
     for (int c = 0; c < v->channels; c++) {
         const float *p = v->ch[c];
         for (size_t i = 0; i < v->cells; i++) {
-            uint32_t bits;
+            uint32_t bits; /* a value, not bytes: the same on every host's byte order */
             memcpy(&bits, &p[i], sizeof bits);
-            for (int b = 0; b < 4; b++) {
-                h ^= (bits >> (8 * b)) & 0xffu; /* little-endian byte order on every host */
-                h *= 0x100000001b3ull;
-            }
+            h ^= bits;     /* one step per float, not per byte: 4x fewer serial multiplies */
+            h *= 0x100000001b3ull;
         }
     }
     return h;

@@ -32,8 +32,8 @@ void lpv_volume_copy(lpv_volume *dst, const lpv_volume *src); /* same shape requ
 
 /* Total energy per colour, <L|1> = 2 sqrt(pi) L0 summed over cells, in double. */
 void lpv_volume_energy(const lpv_volume *v, double energy_rgb[3]);
-/* 64-bit FNV-1a over the raw bits of every channel, in lattice order: equal on two nodes
- * exactly when their volumes are bit-identical. */
+/* 64-bit FNV-1a over the 32-bit words (raw float bits) of every channel, in lattice order,
+ * one multiply per value: equal on two nodes exactly when their volumes are bit-identical. */
 uint64_t lpv_volume_checksum(const lpv_volume *v);
 /* Counts NaN and Inf values. */
 size_t lpv_volume_count_nonfinite(const lpv_volume *v);
