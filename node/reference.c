@@ -333,3 +333,39 @@ void reference_images_free(reference_images *img)
     free(img->indirect);
     img->direct = img->indirect1 = img->indirect = NULL;
 }
+
+static double half_difference(const float *a, const float *b, size_t n)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        sum += fabs((double)a[i] - b[i]);
+    return n ? sum / (2.0 * (double)n) : 0;
+}
+
+int reference_render_averaged(reference *ref, const reference_render_desc *d,
+                              reference_images *out, reference_noise *noise, char *err,
+                              size_t errlen)
+{
+    reference_images half = {0};
+    reference_render_desc second = *d;
+    second.seed = d->seed + 1;
+    if (reference_render(ref, d, out, err, errlen) != 0)
+        return -1;
+    if (reference_render(ref, &second, &half, err, errlen) != 0) {
+        reference_images_free(out);
+        return -1;
+    }
+    size_t n = (size_t)out->width * out->height * 3;
+    noise->direct = half_difference(out->direct, half.direct, n);
+    noise->indirect1 = half_difference(out->indirect1, half.indirect1, n);
+    noise->indirect = half_difference(out->indirect, half.indirect, n);
+    for (size_t i = 0; i < n; i++) {
+        out->direct[i] = 0.5f * (out->direct[i] + half.direct[i]);
+        out->indirect1[i] = 0.5f * (out->indirect1[i] + half.indirect1[i]);
+        out->indirect[i] = 0.5f * (out->indirect[i] + half.indirect[i]);
+    }
+    out->render_ms += half.render_ms;
+    out->rays += half.rays;
+    reference_images_free(&half);
+    return 0;
+}

@@ -57,4 +57,16 @@ int reference_render(reference *ref, const reference_render_desc *d, reference_i
                      char *err, size_t errlen);
 void reference_images_free(reference_images *img);
 
+/* Expected error of an averaged image: mean |a - b| / 2 over all channels of two
+ * independent estimates a and b. */
+typedef struct reference_noise {
+    double direct, indirect1, indirect;
+} reference_noise;
+
+/* Two independent renders (seeds d->seed and d->seed + 1) averaged into out (times and
+ * rays summed), and the noise of that average estimated from their difference. */
+int reference_render_averaged(reference *ref, const reference_render_desc *d,
+                              reference_images *out, reference_noise *noise, char *err,
+                              size_t errlen);
+
 #endif

@@ -61,8 +61,6 @@ typedef struct acc_renderer_desc {
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
 
-/* L/(1+L), then the encoding gamma, rounded to 8 bits: the C twin of shaders/final.frag. */
-void acc_tonemap(const float *linear, size_t pixels, float encoding_gamma, uint8_t *rgb);
 /* Mean absolute difference of two 8-bit images, in [0, 1]. */
 double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels);
 /* Mean absolute difference of two linear float images. */

@@ -7,10 +7,10 @@
 #include <sys/stat.h>
 
 #include "bench_accuracy.h"
-#include "clock.h"
 #include "image.h"
 #include "offaxis.h"
 #include "reference.h"
+#include "tonemap.h"
 
 int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad)
 {
@@ -113,38 +113,21 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
         fprintf(stderr, "bench accuracy: %s\n", err);
         return -1;
     }
-    double t0 = clock_now_ms();
-    reference_images half[2] = {{0}};
-    int rc = 0;
-    for (int k = 0; k < 2 && rc == 0; k++) {
-        reference_render_desc d = {.params = p, .view = &s->view,
-                                   .samples = s->opt.ref_samples, .seed = (uint64_t)k + 1};
-        rc = reference_render(ref, &d, &half[k], err, sizeof err);
-    }
+    reference_images img = {0};
+    reference_noise noise;
+    reference_render_desc d = {.params = p, .view = &s->view, .samples = s->opt.ref_samples,
+                               .seed = 1};
+    int rc = reference_render_averaged(ref, &d, &img, &noise, err, sizeof err);
     reference_destroy(ref);
     if (rc != 0) {
         fprintf(stderr, "bench accuracy: reference: %s\n", err);
-        reference_images_free(&half[0]);
-        reference_images_free(&half[1]);
         return -1;
     }
-    out->seconds = (clock_now_ms() - t0) / 1000.0;
-    size_t n = (size_t)s->opt.width * s->opt.height * 3;
-    out->direct = malloc(n * sizeof(float));
-    out->indirect1 = malloc(n * sizeof(float));
-    if (!out->direct || !out->indirect1)
-        rc = -1;
-    for (size_t i = 0; rc == 0 && i < n; i++) {
-        out->direct[i] = 0.5f * (half[0].direct[i] + half[1].direct[i]);
-        out->indirect1[i] = 0.5f * (half[0].indirect1[i] + half[1].indirect1[i]);
-    }
-    /* The mean of two halves deviates from the truth by about |a - b| / 2. */
-    if (rc == 0)
-        out->noise_indirect1 = 0.5 * acc_linear_mae(half[0].indirect1, half[1].indirect1, n / 3);
-    reference_images_free(&half[0]);
-    reference_images_free(&half[1]);
-    if (rc != 0)
-        return -1;
+    out->seconds = img.render_ms / 1000.0;
+    out->noise_indirect1 = noise.indirect1;
+    out->direct = img.direct;       /* the images pass to out; img.indirect is not needed */
+    out->indirect1 = img.indirect1;
+    free(img.indirect);
     char path[4200];
     ref_path(s, tag, "direct.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->direct, err, sizeof err);
@@ -182,7 +165,7 @@ int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_
         sum += out->indirect1[i];
     }
     out->mean_indirect1 = sum / (double)(px * 3);
-    acc_tonemap(out->final1, px, s->encoding_gamma, out->display);
+    tonemap_rgb8(out->final1, px, s->encoding_gamma, out->display);
     return 0;
 }
 
@@ -210,15 +193,6 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
     if (!r)
         fprintf(stderr, "bench accuracy: %s\n", err);
     return r;
-}
-
-void acc_tonemap(const float *linear, size_t pixels, float encoding_gamma, uint8_t *rgb)
-{
-    for (size_t i = 0; i < pixels * 3; i++) {
-        double l = linear[i] > 0 ? linear[i] : 0;
-        double v = pow(l / (1.0 + l), encoding_gamma);
-        rgb[i] = (uint8_t)lround(fmin(fmax(v, 0.0), 1.0) * 255.0);
-    }
 }
 
 double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels)
