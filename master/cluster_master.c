@@ -6,7 +6,7 @@
 #include <string.h>
 #include <zmq.h>
 
-#include "clock.h"
+#include "base/clock.h"
 
 typedef struct peer {
     cluster_peer_stats s;

@@ -14,9 +14,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "cluster_config.h"
-#include "params.h"
-#include "wire.h"
+#include "cluster/cluster_config.h"
+#include "cluster/params.h"
+#include "cluster/wire.h"
 
 typedef struct cluster_master cluster_master;
 

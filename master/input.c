@@ -7,14 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
+#include "base/clock.h"
 #include "input_desk.h"
 #include "input_dtrack.h"
 #include "input_playback.h"
 #include "input_source.h"
 #include "input_usb.h"
 #include "input_vrpn.h"
-#include "textfile.h"
+#include "base/textfile.h"
 
 enum { INPUT_MAX_SOURCES = 16 };
 

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "mat4.h"
+#include "base/mat4.h"
 
 static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 

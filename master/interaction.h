@@ -20,7 +20,7 @@
 #define CAVELIGHT_INTERACTION_H
 
 #include <stdint.h>
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "input.h"
 
 typedef enum interaction_layout {

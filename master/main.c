@@ -12,12 +12,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "clock.h"
+#include "base/clock.h"
 #include "cluster_master.h"
 #include "input.h"
 #include "interaction.h"
 #include "overview.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "spawn.h"
 #include "script.h"
 

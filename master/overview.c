@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
+#include "image/image.h"
 
 static uint8_t *read_png(const char *path, int *w, int *h, char *err, size_t errlen)
 {

@@ -9,7 +9,7 @@
 
 #include <stddef.h>
 
-#include "cluster_config.h"
+#include "cluster/cluster_config.h"
 
 /* Returns 0, or -1 with a one-line reason (e.g. the missing file) in err. */
 int overview_compose(const cluster_config *cfg, const char *dir, const char *out_path, char *err, size_t errlen);

@@ -7,8 +7,8 @@
 #ifndef CAVELIGHT_SCRIPT_H
 #define CAVELIGHT_SCRIPT_H
 
-#include "cluster_config.h"
-#include "params.h"
+#include "cluster/cluster_config.h"
+#include "cluster/params.h"
 
 typedef struct script {
     float home[3];

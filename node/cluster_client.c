@@ -6,7 +6,7 @@
 #include <string.h>
 #include <zmq.h>
 
-#include "clock.h"
+#include "base/clock.h"
 
 typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
 

@@ -16,9 +16,9 @@
 
 #include <stdint.h>
 
-#include "cluster_config.h"
-#include "params.h"
-#include "wire.h"
+#include "cluster/cluster_config.h"
+#include "cluster/params.h"
+#include "cluster/wire.h"
 
 typedef struct cluster_client cluster_client;
 

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "cluster_config.h"
+#include "cluster/cluster_config.h"
 
 typedef enum cluster_render_mode {
     CLUSTER_RENDER_GL = 0, /* the renderer on a GL context */

@@ -9,10 +9,10 @@
 
 #include "cluster_window.h"
 #include "glctx.h"
-#include "image.h"
-#include "mat4.h"
-#include "offaxis.h"
-#include "scene.h"
+#include "image/image.h"
+#include "base/mat4.h"
+#include "frame/offaxis.h"
+#include "scene/scene.h"
 
 typedef struct eye_image {
     int width, height;

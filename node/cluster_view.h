@@ -16,10 +16,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "cluster_config.h"
-#include "frame_params.h"
+#include "cluster/cluster_config.h"
+#include "frame/frame_params.h"
 #include "renderer.h"
-#include "wire.h"
+#include "cluster/wire.h"
 
 typedef struct cluster_view cluster_view;
 

@@ -9,16 +9,16 @@
 #include <sys/stat.h>
 
 #include "cluster_node.h"
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "glctx.h"
-#include "image.h"
-#include "lattice.h"
-#include "lpv_budget.h"
-#include "offaxis.h"
+#include "image/image.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_budget.h"
+#include "frame/offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct node_options {
     int standalone;

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
+#include "base/clock.h"
 #include "reference_internal.h"
 
 static void cross3(const float a[3], const float b[3], float out[3])

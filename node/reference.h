@@ -24,9 +24,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct reference reference; /* Embree device + committed scene, built once */
 

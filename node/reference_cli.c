@@ -4,10 +4,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "image.h"
+#include "image/image.h"
 #include "reference.h"
 #include "reference_cli.h"
-#include "tonemap.h"
+#include "image/tonemap.h"
 
 static double mean(const float *v, size_t n)
 {

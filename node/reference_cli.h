@@ -11,9 +11,9 @@
 
 #include <stdint.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct reference_cli_desc {
     const scene *scene;

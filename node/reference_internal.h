@@ -8,7 +8,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "workpool.h"
+#include "base/workpool.h"
 
 struct reference {
     const scene *scene;

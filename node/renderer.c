@@ -5,11 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
-#include "mat4.h"
-#include "offaxis.h"
+#include "base/clock.h"
+#include "base/mat4.h"
+#include "frame/offaxis.h"
 #include "renderer_internal.h"
-#include "textfile.h"
+#include "base/textfile.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
 

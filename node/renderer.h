@@ -14,11 +14,11 @@
 #define CAVELIGHT_RENDERER_H
 
 #include <stdint.h>
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "gl_functions.h"
-#include "lattice.h"
-#include "lpv_volume.h"
-#include "scene.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_volume.h"
+#include "scene/scene.h"
 
 typedef struct renderer renderer;
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mat4.h"
+#include "base/mat4.h"
 #include "renderer_hud.h"
 #include "renderer_internal.h"
 

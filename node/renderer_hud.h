@@ -1,4 +1,4 @@
-/* renderer_hud: where the wand-referenced HUD (common/hud.h) sits in the world.
+/* renderer_hud: where the wand-referenced HUD (common/frame/hud.h) sits in the world.
  *
  * The HUD is a small panel in the wand's frame (the wand points along its -Z, +X is its
  * right, +Y its up), RENDERER_HUD_DISTANCE in front of the wand's origin and facing the
@@ -12,7 +12,7 @@
 #ifndef CAVELIGHT_RENDERER_HUD_H
 #define CAVELIGHT_RENDERER_HUD_H
 
-#include "hud.h"
+#include "frame/hud.h"
 
 #define RENDERER_HUD_DISTANCE 0.12f   /* panel in front of the wand origin, metres */
 #define RENDERER_HUD_BAR_LENGTH 0.12f /* a bar at value 1 */

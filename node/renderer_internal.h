@@ -5,13 +5,13 @@
 
 #include <stddef.h>
 
-#include "ilpv.h"
-#include "lpv_classic.h"
-#include "lpv_converge.h"
-#include "lpv_inject.h"
-#include "lpv_transfer.h"
+#include "lpv/ilpv.h"
+#include "lpv/lpv_classic.h"
+#include "lpv/lpv_converge.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_transfer.h"
 #include "renderer.h"
-#include "workpool.h"
+#include "base/workpool.h"
 
 enum { RENDERER_QUERY_RING = 4 };
 

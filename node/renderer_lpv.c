@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
-#include "lpv_geometry.h"
+#include "base/clock.h"
+#include "lpv/lpv_geometry.h"
 #include "renderer_internal.h"
 
 static const double PI = 3.14159265358979323846;

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "lpv_volume.h"
+#include "lpv/lpv_volume.h"
 
 /* Deterministic [0, 1) numbers for test data. */
 static inline float testutil_rand(uint64_t *s)

@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
-#include "image_metrics.h"
+#include "image/image.h"
+#include "image/image_metrics.h"
 
 static void usage(FILE *f)
 {
@@ -22,7 +22,7 @@ static void usage(FILE *f)
                "all channels\n"
                "  --ssim-range L    SSIM dynamic range (default: max reference luminance)\n"
                "  --crop x,y,w,h    compare only this rectangle (top-left origin)\n"
-               "Prints one JSON object with the metrics of common/image_metrics.h.\n");
+               "Prints one JSON object with the metrics of common/image/image_metrics.h.\n");
 }
 
 /* Reads a PFM or PNG (told apart by their magic bytes) into linear-layout floats. */

@@ -8,11 +8,11 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "glctx.h"
-#include "image_metrics.h"
+#include "image/image_metrics.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct acc_options {
     const char *scene;      /* "default", "corridor" or a glTF path */

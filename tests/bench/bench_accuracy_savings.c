@@ -13,10 +13,10 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
-#include "clock.h"
-#include "lpv_propagate.h"
-#include "lpv_transfer.h"
-#include "workpool.h"
+#include "base/clock.h"
+#include "lpv/lpv_propagate.h"
+#include "lpv/lpv_transfer.h"
+#include "base/workpool.h"
 
 enum { REPEATS = 7 };
 

@@ -7,10 +7,10 @@
 #include <sys/stat.h>
 
 #include "bench_accuracy.h"
-#include "image.h"
-#include "offaxis.h"
+#include "image/image.h"
+#include "frame/offaxis.h"
 #include "reference.h"
-#include "tonemap.h"
+#include "image/tonemap.h"
 
 int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad)
 {

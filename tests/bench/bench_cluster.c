@@ -20,7 +20,7 @@
 #include "bench.h"
 
 #if defined(CAVELIGHT_HAVE_MASTER) && defined(CAVELIGHT_HAVE_NODE)
-#include "clock.h"
+#include "base/clock.h"
 #include "cluster_master.h"
 #include "cluster_node.h"
 

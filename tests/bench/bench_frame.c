@@ -11,11 +11,11 @@
 #include "bench.h"
 
 #ifdef CAVELIGHT_HAVE_NODE
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "glctx.h"
-#include "offaxis.h"
+#include "frame/offaxis.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 enum { WARMUP = 2, PASSES = 8 };
 

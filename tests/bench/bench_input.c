@@ -19,7 +19,7 @@
 #include <zmq.h>
 
 #include "bench.h"
-#include "clock.h"
+#include "base/clock.h"
 #include "input.h"
 #include "input_dtrack.h"
 #include "interaction.h"

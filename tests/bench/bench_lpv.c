@@ -7,15 +7,15 @@
 #include <string.h>
 
 #include "bench.h"
-#include "clock.h"
-#include "lattice.h"
-#include "lpv_geometry.h"
-#include "lpv_inject.h"
-#include "lpv_propagate.h"
+#include "base/clock.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_geometry.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_propagate.h"
 #include "lpv_reference.h"
-#include "lpv_transfer.h"
-#include "lpv_volume.h"
-#include "workpool.h"
+#include "lpv/lpv_transfer.h"
+#include "lpv/lpv_volume.h"
+#include "base/workpool.h"
 
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>

@@ -8,11 +8,11 @@
 #include "bench.h"
 
 #ifdef CAVELIGHT_HAVE_NODE
-#include "frame_params.h"
-#include "offaxis.h"
+#include "frame/frame_params.h"
+#include "frame/offaxis.h"
 #include "reference.h"
-#include "scene.h"
-#include "workpool.h"
+#include "scene/scene.h"
+#include "base/workpool.h"
 
 static int cmp_double(const void *a, const void *b)
 {

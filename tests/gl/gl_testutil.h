@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "glctx.h"
-#include "offaxis.h"
+#include "frame/offaxis.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct gltest {
     glctx *ctx;

@@ -13,7 +13,7 @@
 #include <cmocka.h>
 
 #include "cluster_view.h"
-#include "params.h"
+#include "cluster/params.h"
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:1\", \"connect\": \"tcp://127.0.0.1:1\"},"

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "input.h"
 #include "input_playback.h"
 #include "input_source.h"

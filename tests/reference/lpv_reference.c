@@ -1,6 +1,6 @@
 #include "lpv_reference.h"
 
-#include "sh.h"
+#include "lpv/sh.h"
 
 static float clamp01(float x)
 {

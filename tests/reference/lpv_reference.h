@@ -7,8 +7,8 @@
 #ifndef CAVELIGHT_LPV_REFERENCE_H
 #define CAVELIGHT_LPV_REFERENCE_H
 
-#include "lpv_transfer.h"
-#include "lpv_volume.h"
+#include "lpv/lpv_transfer.h"
+#include "lpv/lpv_volume.h"
 
 typedef struct lpv_reference_desc {
     const lpv_transfer *transfer;

@@ -8,17 +8,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 #include "glctx.h"
-#include "ilpv.h"
-#include "lattice.h"
-#include "lpv_geometry.h"
-#include "lpv_inject.h"
-#include "lpv_transfer.h"
-#include "lpv_volume.h"
-#include "offaxis.h"
+#include "lpv/ilpv.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_geometry.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_transfer.h"
+#include "lpv/lpv_volume.h"
+#include "frame/offaxis.h"
 #include "renderer.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct stab_gl {
     glctx *ctx;

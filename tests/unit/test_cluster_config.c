@@ -9,7 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "cluster_config.h"
+#include "cluster/cluster_config.h"
 
 static cluster_config cfg;
 

@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "frame_params.h"
+#include "frame/frame_params.h"
 
 static frame_params valid(void)
 {

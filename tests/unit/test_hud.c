@@ -7,7 +7,7 @@
 
 #include <string.h>
 
-#include "hud.h"
+#include "frame/hud.h"
 
 static void params(frame_params *p)
 {

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "ilpv.h"
-#include "lpv_inject.h"
+#include "lpv/ilpv.h"
+#include "lpv/lpv_inject.h"
 #include "lpv_testutil.h"
 
 static lpv_transfer tr;

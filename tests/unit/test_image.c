@@ -9,7 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "image.h"
+#include "image/image.h"
 
 static void test_pfm_round_trip(void **state)
 {

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "image_metrics.h"
+#include "image/image_metrics.h"
 
 enum { W = 40, H = 30, N = W * H };
 

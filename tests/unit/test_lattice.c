@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lattice.h"
+#include "lpv/lattice.h"
 
 static void test_elongated_scene_gets_elongated_lattice(void **state)
 {

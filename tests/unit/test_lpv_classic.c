@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lpv_classic.h"
+#include "lpv/lpv_classic.h"
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
 

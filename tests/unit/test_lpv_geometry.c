@@ -6,9 +6,9 @@
 
 #include <math.h>
 
-#include "lpv_geometry.h"
-#include "lpv_transfer.h"
-#include "sh.h"
+#include "lpv/lpv_geometry.h"
+#include "lpv/lpv_transfer.h"
+#include "lpv/sh.h"
 
 static size_t idx_of(const lattice_desc *lat, int x, int y, int z)
 {

@@ -6,8 +6,8 @@
 
 #include <math.h>
 
-#include "lpv_inject.h"
-#include "sh.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/sh.h"
 
 static void test_vpl_lands_half_a_cell_along_its_normal(void **state)
 {

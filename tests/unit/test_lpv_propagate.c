@@ -9,12 +9,12 @@
 #include <string.h>
 #include <xmmintrin.h>
 
-#include "lpv_geometry.h"
-#include "lpv_inject.h"
-#include "lpv_propagate.h"
+#include "lpv/lpv_geometry.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_propagate.h"
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
-#include "sh.h"
+#include "lpv/sh.h"
 
 static lpv_transfer tr;
 

@@ -7,10 +7,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "lpv_propagate.h"
+#include "lpv/lpv_propagate.h"
 #include "lpv_testutil.h"
-#include "lpv_transfer.h"
-#include "sh.h"
+#include "lpv/lpv_transfer.h"
+#include "lpv/sh.h"
 
 static lpv_transfer tr;
 

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "lpv_volume.h"
-#include "sh.h"
+#include "lpv/lpv_volume.h"
+#include "lpv/sh.h"
 
 static void test_init_refuses_bad_shapes(void **state)
 {

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "mat4.h"
+#include "base/mat4.h"
 
 /* Translation by (1, 2, 3) and a non-uniform scale (2, 3, 4), column-major. */
 static const float T[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 2, 3, 1};

@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "offaxis.h"
+#include "frame/offaxis.h"
 
 static void project(const float view[16], const float proj[16], const float p[3], float ndc[3])
 {

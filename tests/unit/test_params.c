@@ -7,7 +7,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "params.h"
+#include "cluster/params.h"
 
 static void head_at(float m[16], float x, float y, float z)
 {

@@ -9,8 +9,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "image.h"
-#include "scene.h"
+#include "image/image.h"
+#include "scene/scene.h"
 
 #define TMP CAVELIGHT_BINARY_DIR "/test_scene_"
 

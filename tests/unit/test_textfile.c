@@ -9,7 +9,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 
-#include "textfile.h"
+#include "base/textfile.h"
 
 static void test_reads_whole_file(void **state)
 {

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "wire.h"
+#include "cluster/wire.h"
 
 static size_t sample(int type, uint8_t *buf, size_t cap, const uint8_t *params, size_t plen)
 {

@@ -1,0 +1,38 @@
+#include "base/textfile.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+char *textfile_read(const char *path, size_t *len, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "cannot open (%s)", strerror(errno));
+        return NULL;
+    }
+    /* fstat, not fseek/ftell: a directory opens fine and would report a bogus size. */
+    struct stat st;
+    char *s = NULL;
+    size_t n = 0;
+    if (fstat(fileno(f), &st) != 0) {
+        snprintf(err, errlen, "cannot read (%s)", strerror(errno));
+    } else if (!S_ISREG(st.st_mode)) {
+        snprintf(err, errlen, "cannot read (not a regular file)");
+    } else if (!(s = malloc((n = (size_t)st.st_size) + 1))) {
+        snprintf(err, errlen, "out of memory for %zu bytes", n);
+    } else if (fread(s, 1, n, f) != n) {
+        snprintf(err, errlen, "cannot read (%s)", ferror(f) ? strerror(errno) : "file shrank");
+        free(s);
+        s = NULL;
+    }
+    fclose(f);
+    if (s) {
+        s[n] = '\0';
+        if (len)
+            *len = n;
+    }
+    return s;
+}

@@ -1,0 +1,461 @@
+#include "cluster/cluster_config.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/textfile.h"
+#include "cluster/wire.h"
+
+typedef struct parse_ctx {
+    const char *path;
+    char *err;
+    size_t errlen;
+    int failed;
+} parse_ctx;
+
+static void fail(parse_ctx *c, const char *field, const char *fmt, ...)
+{
+    if (c->failed)
+        return;
+    c->failed = 1;
+    char msg[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+}
+
+static const char *const eyes_names[] = {"mono", "stereo", "left", "right"};
+static const char *const output_names[] = {"window", "headless", "png"};
+static const char *const stereo_names[] = {"quad", "side-by-side", "top-bottom", "window-per-eye", "anaglyph"};
+
+static int lookup(const char *s, const char *const *names, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(s, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *cluster_eyes_name(cluster_eyes e) { return (unsigned)e < 4 ? eyes_names[e] : "?"; }
+const char *cluster_output_name(cluster_output o) { return (unsigned)o < 3 ? output_names[o] : "?"; }
+const char *cluster_stereo_name(cluster_stereo s) { return (unsigned)s < 5 ? stereo_names[s] : "?"; }
+int cluster_output_parse(const char *s) { return lookup(s, output_names, 3); }
+int cluster_stereo_parse(const char *s) { return lookup(s, stereo_names, 5); }
+
+/* Each getter: absent -> default (or an error when required); wrong type -> error. */
+static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
+                       char *out, size_t cap, const char *def)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) {
+        if (!def)
+            fail(c, field, "missing (a string is required)");
+        else
+            snprintf(out, cap, "%s", def);
+        return;
+    }
+    if (!cJSON_IsString(v) || !v->valuestring) {
+        fail(c, field, "must be a string");
+        return;
+    }
+    if (strlen(v->valuestring) >= cap) {
+        fail(c, field, "longer than %zu characters", cap - 1);
+        return;
+    }
+    snprintf(out, cap, "%s", v->valuestring);
+}
+
+static double get_number(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
+                         double def, int required, double lo, double hi)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) {
+        if (required)
+            fail(c, field, "missing (a number is required)");
+        return def;
+    }
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) {
+        fail(c, field, "must be a number");
+        return def;
+    }
+    if (v->valuedouble < lo || v->valuedouble > hi) {
+        fail(c, field, "%g is outside [%g, %g]", v->valuedouble, lo, hi);
+        return def;
+    }
+    return v->valuedouble;
+}
+
+static int get_vector(parse_ctx *c, const cJSON *v, const char *field, float *out, int n,
+                      double lo, double hi)
+{
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) {
+        fail(c, field, "must be an array of %d numbers", n);
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        const cJSON *e = cJSON_GetArrayItem(v, i);
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
+            fail(c, field, "element %d must be a number in [%g, %g]", i, lo, hi);
+            return -1;
+        }
+        out[i] = (float)e->valuedouble;
+    }
+    return 0;
+}
+
+static int get_enum(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
+                    const char *const *names, int n, int def)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v)
+        return def;
+    int i = cJSON_IsString(v) ? lookup(v->valuestring, names, n) : -1;
+    if (i < 0) {
+        char list[160] = "";
+        for (int k = 0; k < n; k++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", names[k]);
+        fail(c, field, "must be one of: %s", list);
+        return def;
+    }
+    return i;
+}
+
+static void identity(float m[16])
+{
+    memset(m, 0, 16 * sizeof *m);
+    m[0] = m[5] = m[10] = m[15] = 1;
+}
+
+/* M = T * Rz * Ry * Rx * S, column-major. */
+static void rigid_transform(const float t[3], const float deg[3], float scale, float m[16])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = deg[i] * 3.14159265358979323846 / 180.0;
+    double cx = cos(r[0]), sx = sin(r[0]), cy = cos(r[1]), sy = sin(r[1]), cz = cos(r[2]), sz = sin(r[2]);
+    double R[3][3] = { /* R[row][col] = Rz*Ry*Rx */
+        {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+        {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+        {-sy, cy * sx, cy * cx},
+    };
+    identity(m);
+    for (int col = 0; col < 3; col++)
+        for (int row = 0; row < 3; row++)
+            m[col * 4 + row] = (float)(R[row][col] * scale);
+    m[12] = t[0];
+    m[13] = t[1];
+    m[14] = t[2];
+}
+
+static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
+{
+    obs->eye_separation = 0.064f;
+    obs->home[1] = 1.7f;
+    identity(obs->tracker_to_cave);
+    if (!o)
+        return;
+    if (!cJSON_IsObject(o)) {
+        fail(c, "observer", "must be an object");
+        return;
+    }
+    obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", 0.064, 0, 0, 0.2);
+    const cJSON *h = cJSON_GetObjectItemCaseSensitive(o, "head_to_eye");
+    if (h)
+        get_vector(c, h, "observer.head_to_eye", obs->head_to_eye, 3, -1, 1);
+    const cJSON *home = cJSON_GetObjectItemCaseSensitive(o, "home");
+    if (home)
+        get_vector(c, home, "observer.home", obs->home, 3, -1e4, 1e4);
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "tracker_to_cave");
+    if (t) {
+        if (!cJSON_IsObject(t)) {
+            fail(c, "observer.tracker_to_cave", "must be an object with translation, rotation_deg, scale");
+            return;
+        }
+        float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
+        const cJSON *v;
+        if ((v = cJSON_GetObjectItemCaseSensitive(t, "translation")))
+            get_vector(c, v, "observer.tracker_to_cave.translation", tr, 3, -1e4, 1e4);
+        if ((v = cJSON_GetObjectItemCaseSensitive(t, "rotation_deg")))
+            get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
+        float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
+        rigid_transform(tr, rot, scale, obs->tracker_to_cave);
+    }
+}
+
+static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config *cfg)
+{
+    char field[96];
+    cluster_screen *scr = &cfg->screens[index];
+    snprintf(field, sizeof field, "screens[%d]", index);
+    if (!cJSON_IsObject(s)) {
+        fail(c, field, "must be an object");
+        return;
+    }
+    snprintf(field, sizeof field, "screens[%d].name", index);
+    get_string(c, s, "name", field, scr->name, sizeof scr->name, NULL);
+    if (c->failed)
+        return;
+    if (!wire_name_valid(scr->name)) {
+        fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", scr->name, WIRE_NAME_MAX);
+        return;
+    }
+    for (int i = 0; i < index; i++)
+        if (strcmp(cfg->screens[i].name, scr->name) == 0) {
+            fail(c, field, "'%s' is used twice", scr->name);
+            return;
+        }
+    static const char *const corner[3] = {"bottom_left", "bottom_right", "top_left"};
+    float *dst[3] = {scr->bottom_left, scr->bottom_right, scr->top_left};
+    for (int k = 0; k < 3; k++) {
+        snprintf(field, sizeof field, "screens[%d].%s", index, corner[k]);
+        const cJSON *v = cJSON_GetObjectItemCaseSensitive(s, corner[k]);
+        if (!v) {
+            fail(c, field, "missing (three corners in CAVE space are required)");
+            return;
+        }
+        if (get_vector(c, v, field, dst[k], 3, -1e4, 1e4))
+            return;
+    }
+    double u[3], w[3], uu = 0, ww = 0, uw = 0;
+    for (int i = 0; i < 3; i++) {
+        u[i] = scr->bottom_right[i] - scr->bottom_left[i];
+        w[i] = scr->top_left[i] - scr->bottom_left[i];
+        uu += u[i] * u[i];
+        ww += w[i] * w[i];
+        uw += u[i] * w[i];
+    }
+    snprintf(field, sizeof field, "screens[%d]", index);
+    if (uu < 1e-6 || ww < 1e-6) {
+        fail(c, field, "'%s' has zero width or height", scr->name);
+        return;
+    }
+    if (fabs(uw) > 1e-3 * sqrt(uu * ww)) {
+        fail(c, field, "'%s' corners do not form a rectangle (bottom edge not perpendicular to left edge)", scr->name);
+        return;
+    }
+    scr->overview[0] = scr->overview[1] = -1;
+    const cJSON *o = cJSON_GetObjectItemCaseSensitive(s, "overview");
+    if (o) {
+        float xy[2];
+        snprintf(field, sizeof field, "screens[%d].overview", index);
+        if (get_vector(c, o, field, xy, 2, 0, 65536) == 0) {
+            scr->overview[0] = (int)xy[0];
+            scr->overview[1] = (int)xy[1];
+        }
+    }
+}
+
+static int parse_resolution(parse_ctx *c, const cJSON *v, const char *field, int *w, int *h)
+{
+    float r[2];
+    if (get_vector(c, v, field, r, 2, 1, 16384))
+        return -1;
+    if (r[0] != floorf(r[0]) || r[1] != floorf(r[1])) {
+        fail(c, field, "must be whole pixels");
+        return -1;
+    }
+    *w = (int)r[0];
+    *h = (int)r[1];
+    return 0;
+}
+
+static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *cfg)
+{
+    char field[96];
+    cluster_node *node = &cfg->nodes[index];
+    snprintf(field, sizeof field, "nodes[%d]", index);
+    if (!cJSON_IsObject(n)) {
+        fail(c, field, "must be an object");
+        return;
+    }
+    snprintf(field, sizeof field, "nodes[%d].name", index);
+    get_string(c, n, "name", field, node->name, sizeof node->name, NULL);
+    if (c->failed)
+        return;
+    if (!wire_name_valid(node->name)) {
+        fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", node->name, WIRE_NAME_MAX);
+        return;
+    }
+    for (int i = 0; i < index; i++)
+        if (strcmp(cfg->nodes[i].name, node->name) == 0) {
+            fail(c, field, "'%s' is used twice", node->name);
+            return;
+        }
+    snprintf(field, sizeof field, "nodes[%d].host", index);
+    get_string(c, n, "host", field, node->host, sizeof node->host, "localhost");
+
+    int dw = 0, dh = 0;
+    const cJSON *res = cJSON_GetObjectItemCaseSensitive(n, "resolution");
+    snprintf(field, sizeof field, "nodes[%d].resolution", index);
+    if (res && parse_resolution(c, res, field, &dw, &dh))
+        return;
+
+    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(n, "screens");
+    snprintf(field, sizeof field, "nodes[%d].screens", index);
+    if (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
+        cJSON_GetArraySize(screens) > CLUSTER_NODE_MAX_SCREENS) {
+        fail(c, field, "must be an array of 1..%d screen names", CLUSTER_NODE_MAX_SCREENS);
+        return;
+    }
+    node->screen_count = cJSON_GetArraySize(screens);
+    for (int i = 0; i < node->screen_count; i++) {
+        const cJSON *e = cJSON_GetArrayItem(screens, i);
+        cluster_node_screen *ns = &node->screens[i];
+        const char *sname = NULL;
+        ns->width = dw;
+        ns->height = dh;
+        snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
+        if (cJSON_IsString(e)) {
+            sname = e->valuestring;
+        } else if (cJSON_IsObject(e)) {
+            const cJSON *nm = cJSON_GetObjectItemCaseSensitive(e, "name");
+            sname = cJSON_IsString(nm) ? nm->valuestring : NULL;
+            const cJSON *r = cJSON_GetObjectItemCaseSensitive(e, "resolution");
+            snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
+            if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
+                return;
+            snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
+        }
+        if (!sname) {
+            fail(c, field, "must be a screen name or {\"name\", \"resolution\"}");
+            return;
+        }
+        ns->screen = cluster_config_find_screen(cfg, sname);
+        if (ns->screen < 0) {
+            fail(c, field, "unknown screen '%s' (define it under \"screens\")", sname);
+            return;
+        }
+        if (ns->width <= 0) {
+            fail(c, field, "no resolution (give nodes[%d].resolution or one per screen)", index);
+            return;
+        }
+    }
+    snprintf(field, sizeof field, "nodes[%d].eyes", index);
+    node->eyes = (cluster_eyes)get_enum(c, n, "eyes", field, eyes_names, 4, CLUSTER_EYES_MONO);
+    snprintf(field, sizeof field, "nodes[%d].output", index);
+    node->output = (cluster_output)get_enum(c, n, "output", field, output_names, 3, CLUSTER_OUTPUT_WINDOW);
+    snprintf(field, sizeof field, "nodes[%d].stereo", index);
+    node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
+    snprintf(field, sizeof field, "nodes[%d].monitor", index);
+    node->monitor = (int)get_number(c, n, "monitor", field, 0, 0, 0, 64);
+    const cJSON *fs = cJSON_GetObjectItemCaseSensitive(n, "fullscreen");
+    if (fs && !cJSON_IsBool(fs)) {
+        snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
+        fail(c, field, "must be true or false");
+    }
+    node->fullscreen = fs && cJSON_IsTrue(fs);
+}
+
+int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
+                         char *err, size_t errlen)
+{
+    parse_ctx c = {.path = path, .err = err, .errlen = errlen};
+    memset(cfg, 0, sizeof *cfg);
+    snprintf(cfg->path, sizeof cfg->path, "%s", path);
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < len; i++)
+        h = (h ^ (uint8_t)text[i]) * 1099511628211ull;
+    cfg->hash = h;
+
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
+    if (!root) {
+        size_t off = end ? (size_t)(end - text) : 0;
+        int line = 1;
+        for (size_t i = 0; i < off && i < len; i++)
+            line += text[i] == '\n';
+        snprintf(err, errlen, "cluster config %s: not valid JSON near line %d: fix the syntax", path, line);
+        return -1;
+    }
+    if (!cJSON_IsObject(root)) {
+        fail(&c, "(top level)", "must be a JSON object");
+        goto done;
+    }
+    get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
+    get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
+    get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
+
+    const cJSON *m = cJSON_GetObjectItemCaseSensitive(root, "master");
+    if (!cJSON_IsObject(m)) {
+        fail(&c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
+        goto done;
+    }
+    get_string(&c, m, "bind", "master.bind", cfg->master_bind, sizeof cfg->master_bind, NULL);
+    get_string(&c, m, "connect", "master.connect", cfg->master_connect, sizeof cfg->master_connect, NULL);
+    if (!c.failed && strncmp(cfg->master_bind, "tcp://", 6) && strncmp(cfg->master_bind, "ipc://", 6))
+        fail(&c, "master.bind", "'%s' must start with tcp:// or ipc://", cfg->master_bind);
+    if (!c.failed && strncmp(cfg->master_connect, "tcp://", 6) && strncmp(cfg->master_connect, "ipc://", 6))
+        fail(&c, "master.connect", "'%s' must start with tcp:// or ipc://", cfg->master_connect);
+
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "timeouts");
+    if (t && !cJSON_IsObject(t))
+        fail(&c, "timeouts", "must be an object");
+    cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
+    cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 250, 0, 10, 60000);
+    cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
+
+    parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
+
+    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(root, "screens");
+    if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
+                      cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
+        fail(&c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
+        goto done;
+    }
+    for (int i = 0; !c.failed && i < cJSON_GetArraySize(screens); i++) {
+        parse_screen(&c, cJSON_GetArrayItem(screens, i), i, cfg);
+        cfg->screen_count = i + 1;
+    }
+    const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(root, "nodes");
+    if (!c.failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
+                      cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
+        fail(&c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);
+        goto done;
+    }
+    for (int i = 0; !c.failed && i < cJSON_GetArraySize(nodes); i++) {
+        parse_node(&c, cJSON_GetArrayItem(nodes, i), i, cfg);
+        cfg->node_count = i + 1;
+    }
+done:
+    cJSON_Delete(root);
+    return c.failed ? -1 : 0;
+}
+
+int cluster_config_load(const char *path, cluster_config *out, char *err, size_t errlen)
+{
+    enum { MAX_FILE = 1 << 20 };
+    char why[128];
+    size_t len = 0;
+    char *text = textfile_read(path, &len, why, sizeof why);
+    if (!text || len >= MAX_FILE) {
+        free(text);
+        snprintf(err, errlen, "cluster config %s: %s", path,
+                 text ? "larger than 1 MiB" : why);
+        return -1;
+    }
+    int rc = cluster_config_parse(text, len, path, out, err, errlen);
+    free(text);
+    return rc;
+}
+
+int cluster_config_find_node(const cluster_config *c, const char *name)
+{
+    for (int i = 0; i < c->node_count; i++)
+        if (strcmp(c->nodes[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+int cluster_config_find_screen(const cluster_config *c, const char *name)
+{
+    for (int i = 0; i < c->screen_count; i++)
+        if (strcmp(c->screens[i].name, name) == 0)
+            return i;
+    return -1;
+}

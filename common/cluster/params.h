@@ -1,0 +1,114 @@
+/* params: the versioned parameter store the master commits and every node mirrors.
+ *
+ * A fixed set of typed keys (head, wand, navigation, per-light pose/colour/intensity/cone,
+ * LPV settings, tone mapping, history-reset epoch, time). Setting a key to a new value
+ * stamps it with the version the next params_commit() creates; a delta since version b
+ * carries exactly the keys stamped after b, a snapshot carries every key. Encodings are
+ * little-endian records (u16 key, fixed-size value); params_apply() validates a whole
+ * buffer before changing anything, so a malformed delta leaves the store untouched.
+ * No allocation: the store is a plain struct the caller owns. */
+#ifndef CAVELIGHT_PARAMS_H
+#define CAVELIGHT_PARAMS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "frame/frame_params.h"
+
+typedef enum params_type {
+    PARAMS_T_I32 = 0,
+    PARAMS_T_U32,
+    PARAMS_T_F32,
+    PARAMS_T_F64,
+    PARAMS_T_VEC2,
+    PARAMS_T_VEC3,
+    PARAMS_T_POSE,  /* position vec3 + unit direction vec3 */
+    PARAMS_T_MAT4,  /* column-major */
+} params_type;
+
+enum {
+    PARAMS_HEAD = 0,       /* mat4, tracked head pose in CAVE space */
+    PARAMS_WAND,           /* mat4, wand pose in CAVE space */
+    PARAMS_NAVIGATION,     /* mat4, CAVE-to-world */
+    PARAMS_TIME,           /* f64, seconds */
+    PARAMS_RESET_EPOCH,    /* u32, raised to drop every node's LPV history */
+    PARAMS_LPV_STEPS,      /* i32 */
+    PARAMS_LAMBDA_INCR,    /* f32 */
+    PARAMS_ABSORPTION,     /* f32 */
+    PARAMS_SCATTERING,     /* f32 */
+    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default) */
+    PARAMS_ENVIRONMENT,    /* i32, frame_environment */
+    PARAMS_DISPLAY_GAMMA,  /* f32 */
+    PARAMS_EXPOSURE,       /* f32 */
+    PARAMS_HUD_LAYOUT,     /* i32 */
+    PARAMS_LIGHT_COUNT,    /* i32, 0..FRAME_MAX_LIGHTS */
+    PARAMS_LIGHT_BASE      /* first per-light key, see params_light_key() */
+};
+
+enum {
+    PARAMS_LIGHT_ENABLED = 0, /* i32 */
+    PARAMS_LIGHT_POSE,        /* pose: position, direction */
+    PARAMS_LIGHT_COLOR,       /* vec3, linear RGB */
+    PARAMS_LIGHT_INTENSITY,   /* f32 */
+    PARAMS_LIGHT_CONE,        /* vec2: outer, inner half angle (radians) */
+    PARAMS_LIGHT_FIELDS
+};
+
+enum {
+    PARAMS_KEY_COUNT = PARAMS_LIGHT_BASE + FRAME_MAX_LIGHTS * PARAMS_LIGHT_FIELDS,
+    PARAMS_VALUE_MAX = 64,  /* largest value (mat4) in bytes */
+    /* Largest encoding: every key with its id. */
+    PARAMS_ENCODED_MAX = PARAMS_KEY_COUNT * (2 + PARAMS_VALUE_MAX),
+};
+
+typedef struct params_store {
+    uint64_t version;                          /* last committed (or applied) version */
+    uint8_t value[PARAMS_KEY_COUNT][PARAMS_VALUE_MAX];
+    uint64_t stamp[PARAMS_KEY_COUNT];          /* version in which each key last changed */
+} params_store;
+
+/* Defaults: identity poses, one white spotlight, 8 steps, lambda 0.9, office, gamma 2.2. */
+void params_init(params_store *s);
+/* Seeds every key from a frame (e.g. the scene's lights); stamps as a change. */
+void params_set_from_frame(params_store *s, const frame_params *f);
+
+int params_light_key(int light, int field);
+params_type params_key_type(int key);
+size_t params_key_size(int key);
+const char *params_key_name(int key); /* "head", "light3.pose", ... */
+
+/* Typed setters: return 0, or -1 when key is out of range or of another type.
+ * A value equal to the current one does not stamp the key. */
+int params_set(params_store *s, int key, const void *value, size_t size);
+int params_set_i32(params_store *s, int key, int32_t v);
+int params_set_u32(params_store *s, int key, uint32_t v);
+int params_set_f32(params_store *s, int key, float v);
+int params_set_f64(params_store *s, int key, double v);
+int params_set_mat4(params_store *s, int key, const float m[16]);
+int params_get(const params_store *s, int key, void *value, size_t size);
+int32_t params_get_i32(const params_store *s, int key);
+uint32_t params_get_u32(const params_store *s, int key);
+float params_get_f32(const params_store *s, int key);
+
+/* Makes the pending changes version s->version + 1 and returns it. */
+uint64_t params_commit(params_store *s);
+/* Number of keys changed after version since (since = 0 means all stamped keys). */
+int params_changed_count(const params_store *s, uint64_t since);
+
+/* Encode the keys changed after `since` (a delta) or all keys (snapshot) into buf.
+ * Return the byte count (0: nothing changed), or PARAMS_ENCODE_TOO_SMALL when cap is too
+ * small (PARAMS_ENCODED_MAX always fits). */
+#define PARAMS_ENCODE_TOO_SMALL ((size_t)-1)
+size_t params_encode_delta(const params_store *s, uint64_t since, uint8_t *buf, size_t cap);
+size_t params_encode_snapshot(const params_store *s, uint8_t *buf, size_t cap);
+/* Applies an encoding as `version`. Returns 0, or -1 (store unchanged) on an unknown
+ * key, a truncated record, a duplicate key or a non-finite float. */
+int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t len);
+
+/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping). */
+void params_to_frame(const params_store *s, frame_params *out);
+/* FNV-1a over version and every value: what a node with no renderer reports as its
+ * checksum, and a cheap equality test between stores. */
+uint64_t params_checksum(const params_store *s);
+
+#endif

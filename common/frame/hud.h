@@ -1,0 +1,52 @@
+/* hud: what the wand-referenced HUD shows, as plain values the renderer draws.
+ *
+ * hud_describe() derives everything from frame_params, so every node computes the same
+ * HUD from the same frame version without any extra message:
+ *   - three layout indicators on the wand's left side (arrow = navigation, cone =
+ *     lighting, torus = renderer settings): white when their layout is active, grey
+ *     otherwise; the cone always has the spot's colour and sits at the spot's real pose
+ *     with the spot's opening angle;
+ *   - four bars on the wand's right side, values in [0, 1]: absorption (A), scattering
+ *     (S), lambda_incr (I, white while incremental rendering is on, lambda > 0) and
+ *     propagation steps (P) normalised by the lattice resolution.
+ * Positions are world space: navigation * wand. hud_layout < 0 hides the HUD. */
+#ifndef CAVELIGHT_HUD_H
+#define CAVELIGHT_HUD_H
+
+#include "frame/frame_params.h"
+
+enum { HUD_INDICATOR_COUNT = 3, HUD_BAR_COUNT = 4 };
+
+typedef enum hud_shape { HUD_SHAPE_ARROW = 0, HUD_SHAPE_CONE = 1, HUD_SHAPE_TORUS = 2 } hud_shape;
+
+typedef struct hud_indicator {
+    hud_shape shape;       /* indicator i stands for interaction layout i */
+    int active;
+    float color[3];        /* linear RGB */
+} hud_indicator;
+
+typedef struct hud_bar {
+    char letter;           /* 'A', 'S', 'I', 'P' */
+    float value;           /* [0, 1] */
+    float color[3];
+} hud_bar;
+
+typedef struct hud {
+    int visible;
+    int active_layout;
+    float wand_world[16];  /* navigation * wand, column-major: the HUD's anchor */
+    hud_indicator indicators[HUD_INDICATOR_COUNT];
+    hud_bar bars[HUD_BAR_COUNT];
+    int has_spot;          /* lights[0] exists and is enabled */
+    float spot_position[3];/* world space, for the cone */
+    float spot_direction[3];
+    float spot_angle;      /* outer half angle, radians: the cone's opening */
+} hud;
+
+/* lattice_cells: cells along the lattice's longest axis (normalises the P bar). */
+void hud_describe(const frame_params *p, int lattice_cells, hud *out);
+
+#define HUD_GREY 0.5f
+#define HUD_WHITE 1.0f
+
+#endif

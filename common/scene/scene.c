@@ -1,0 +1,260 @@
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene.h"
+
+static int grow(void **p, size_t elem, size_t count, size_t *capacity)
+{
+    if (count < *capacity)
+        return 0;
+    size_t cap = *capacity ? *capacity * 2 : 64;
+    void *q = realloc(*p, cap * elem);
+    if (!q)
+        return -1;
+    *p = q;
+    *capacity = cap;
+    return 0;
+}
+
+int scene_add_material(scene *s, const scene_material *m)
+{
+    scene_material *q = realloc(s->materials, (s->material_count + 1) * sizeof *q);
+    if (!q)
+        return -1;
+    s->materials = q;
+    q[s->material_count] = *m;
+    return (int)s->material_count++;
+}
+
+int scene_add_texture(scene *s, int width, int height, uint8_t *rgba)
+{
+    scene_texture *q = realloc(s->textures, (s->texture_count + 1) * sizeof *q);
+    if (!q)
+        return -1;
+    s->textures = q;
+    q[s->texture_count] = (scene_texture){width, height, rgba};
+    return (int)s->texture_count++;
+}
+
+long scene_add_triangle(scene *s, const float p[9], const float *normals, const float *uvs,
+                        uint32_t material)
+{
+    size_t n = s->triangle_count, cap = s->triangle_capacity;
+    size_t c1 = cap, c2 = cap, c3 = cap, c4 = cap;
+    if (grow((void **)&s->positions, 9 * sizeof(float), n, &c1) ||
+        grow((void **)&s->normals, 9 * sizeof(float), n, &c2) ||
+        grow((void **)&s->uvs, 6 * sizeof(float), n, &c3) ||
+        grow((void **)&s->triangle_material, sizeof(uint32_t), n, &c4))
+        return -1;
+    s->triangle_capacity = c4;
+    memcpy(s->positions + 9 * n, p, 9 * sizeof(float));
+    float *nn = s->normals + 9 * n;
+    if (normals) {
+        memcpy(nn, normals, 9 * sizeof(float));
+    } else {
+        float e1[3], e2[3], f[3];
+        for (int i = 0; i < 3; i++) {
+            e1[i] = p[3 + i] - p[i];
+            e2[i] = p[6 + i] - p[i];
+        }
+        f[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        f[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        f[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        for (int v = 0; v < 3; v++)
+            memcpy(nn + 3 * v, f, sizeof f);
+    }
+    for (int v = 0; v < 3; v++) {
+        float *q = nn + 3 * v;
+        float len = sqrtf(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (len > 0.0f && isfinite(len)) {
+            q[0] /= len; q[1] /= len; q[2] /= len;
+        } else {
+            q[0] = 0.0f; q[1] = 1.0f; q[2] = 0.0f;
+        }
+    }
+    if (uvs)
+        memcpy(s->uvs + 6 * n, uvs, 6 * sizeof(float));
+    else
+        memset(s->uvs + 6 * n, 0, 6 * sizeof(float));
+    s->triangle_material[n] = material;
+    s->triangle_count = n + 1;
+    return (long)n;
+}
+
+int scene_add_box(scene *s, const float lo[3], const float hi[3], int inward, uint32_t material)
+{
+    /* Each face: axis, side, and the two in-plane axes in counter-clockwise order seen
+     * from outside. */
+    for (int axis = 0; axis < 3; axis++)
+        for (int side = 0; side < 2; side++) {
+            int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            float c[4][3];
+            const float us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
+            for (int k = 0; k < 4; k++) {
+                c[k][axis] = side ? hi[axis] : lo[axis];
+                c[k][u] = us[k] ? hi[u] : lo[u];
+                c[k][v] = vs[k] ? hi[v] : lo[v];
+            }
+            float n[3] = {0, 0, 0};
+            n[axis] = (side ? 1.0f : -1.0f) * (inward ? -1.0f : 1.0f);
+            const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+            for (int t = 0; t < 2; t++) {
+                float p[9], nn[9], uv[6];
+                for (int k = 0; k < 3; k++) {
+                    int ci = tri[t][k];
+                    memcpy(p + 3 * k, c[ci], sizeof c[ci]);
+                    memcpy(nn + 3 * k, n, sizeof n);
+                    uv[2 * k] = us[ci];
+                    uv[2 * k + 1] = vs[ci];
+                }
+                if (scene_add_triangle(s, p, nn, uv, material) < 0)
+                    return -1;
+            }
+        }
+    return 0;
+}
+
+int scene_add_light(scene *s, const scene_light *l)
+{
+    if (s->light_count >= SCENE_MAX_LIGHTS)
+        return -1;
+    s->lights[s->light_count] = *l;
+    return s->light_count++;
+}
+
+int scene_finish(scene *s, char *err, size_t errlen)
+{
+    if (s->triangle_count == 0) {
+        snprintf(err, errlen, "scene has no triangles (add a mesh with mode TRIANGLES)");
+        return -1;
+    }
+    for (int a = 0; a < 3; a++) {
+        s->bounds_min[a] = INFINITY;
+        s->bounds_max[a] = -INFINITY;
+    }
+    for (size_t i = 0; i < 3 * s->triangle_count; i++)
+        for (int a = 0; a < 3; a++) {
+            float x = s->positions[3 * i + a];
+            if (!isfinite(x)) {
+                snprintf(err, errlen, "scene triangle %zu has a non-finite vertex "
+                         "(fix the model's positions)", i / 3);
+                return -1;
+            }
+            if (x < s->bounds_min[a]) s->bounds_min[a] = x;
+            if (x > s->bounds_max[a]) s->bounds_max[a] = x;
+        }
+    for (uint32_t i = 0; i < s->triangle_count; i++)
+        if (s->triangle_material[i] >= s->material_count) {
+            snprintf(err, errlen, "scene triangle %u uses material %u of %zu", i,
+                     s->triangle_material[i], s->material_count);
+            return -1;
+        }
+    return 0;
+}
+
+void scene_free(scene *s)
+{
+    free(s->positions);
+    free(s->normals);
+    free(s->uvs);
+    free(s->triangle_material);
+    free(s->materials);
+    for (size_t i = 0; i < s->texture_count; i++)
+        free(s->textures[i].rgba);
+    free(s->textures);
+    memset(s, 0, sizeof *s);
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    if (n < m)
+        return 0;
+    for (size_t i = 0; i < m; i++) {
+        char c = s[n - m + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != suffix[i])
+            return 0;
+    }
+    return 1;
+}
+
+void scene_light_aim(scene_light *l, const float target[3])
+{
+    float d[3], len = 0;
+    for (int a = 0; a < 3; a++) {
+        d[a] = target[a] - l->position[a];
+        len += d[a] * d[a];
+    }
+    len = sqrtf(len);
+    if (!(len > 0))
+        return;
+    for (int a = 0; a < 3; a++)
+        l->direction[a] = d[a] / len;
+}
+
+float scene_diagonal(const scene *s)
+{
+    float d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        float e = s->bounds_max[a] - s->bounds_min[a];
+        d2 += e * e;
+    }
+    return sqrtf(d2);
+}
+
+float scene_min_light_distance(const scene *s)
+{
+    return scene_diagonal(s) / 64.0f;
+}
+
+float scene_far_plane(const scene *s)
+{
+    return 4.0f * scene_diagonal(s) + 10.0f;
+}
+
+void scene_default_view(const scene *s, float position[3], float target[3])
+{
+    if (s->camera.valid) {
+        memcpy(position, s->camera.position, sizeof s->camera.position);
+        memcpy(target, s->camera.target, sizeof s->camera.target);
+        return;
+    }
+    float size = 0;
+    for (int a = 0; a < 3; a++) {
+        target[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
+        size = fmaxf(size, s->bounds_max[a] - s->bounds_min[a]);
+    }
+    position[0] = target[0];
+    position[1] = target[1] + 0.3f * size;
+    position[2] = target[2] + 1.5f * size;
+}
+
+int scene_load(const char *path, scene *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    int rc;
+    if (strcmp(path, "default") == 0) {
+        rc = scene_default_build(out, err, errlen);
+    } else if (strcmp(path, "corridor") == 0) {
+        rc = scene_corridor_build(out, err, errlen);
+    } else if (ends_with(path, ".gltf") || ends_with(path, ".glb")) {
+        rc = gltf_import(path, out, err, errlen);
+    } else {
+        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, "
+                 "\"default\" or \"corridor\")", path);
+        return -1;
+    }
+    if (rc == 0) {
+        char why[200];
+        rc = scene_finish(out, why, sizeof why);
+        if (rc != 0)
+            snprintf(err, errlen, "scene %s: %s", path, why);
+    }
+    if (rc != 0)
+        scene_free(out);
+    return rc;
+}
