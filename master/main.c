@@ -398,6 +398,10 @@ int main(int argc, char **argv)
             input_state ist;
             if (input_poll(in, &ist, err, sizeof err) != 0)
                 fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+            if (ist.failed) {
+                exit_code = 1; /* a recording with errors is no session to report as done */
+                break;
+            }
             if (ist.finished)
                 break; /* a stepped recording has ended */
             interaction_update(&ia, &ist, ist.dt, &fp);
