@@ -79,14 +79,52 @@ static int parse_int(const char *s, int *out, int lo, int hi)
     return 0;
 }
 
+/* The frame's ranges are frame_params_sanitize()'s alone: a value it would change is
+ * refused here with the option's name rather than changed behind the user's back. */
+static int check_frame_options(const node_options *o)
+{
+    frame_params sane = o->frame;
+    if (frame_params_sanitize(&sane) == 0)
+        return 0;
+    const frame_params *f = &o->frame;
+    struct { const char *option; double given; int changed; } field[] = {
+        {"--steps", f->lpv_steps, f->lpv_steps != sane.lpv_steps},
+        {"--lambda", f->lambda_incr, f->lambda_incr != sane.lambda_incr},
+        {"--absorption", f->absorption, f->absorption != sane.absorption},
+        {"--scattering", f->scattering, f->scattering != sane.scattering},
+        {"--display-gamma", f->display_gamma, f->display_gamma != sane.display_gamma},
+        {"--exposure", f->exposure, f->exposure != sane.exposure},
+    };
+    for (size_t i = 0; i < sizeof field / sizeof field[0]; i++)
+        if (field[i].changed) {
+            fprintf(stderr, "cavelight-node: %s %g is outside what a frame accepts (see "
+                    "frame_params_sanitize() in common/frame/frame_params.h)\n", field[i].option,
+                    field[i].given);
+            return -1;
+        }
+    return 0;
+}
+
+void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
+                             frame_params *out)
+{
+    *out = o->frame;
+    frame_params_lights_from_scene(out, s);
+    /* No tracker: the HUD, when shown, hangs in front of the first eye. */
+    if (o->have_wand)
+        memcpy(out->wand + 12, o->wand, sizeof o->wand);
+    else if (out->hud_layout >= 0)
+        renderer_hud_wand_in_front(first_eye->view, out->wand);
+}
+
 int standalone_parse(int argc, char **argv, node_options *o)
 {
     *o = (node_options){
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
-        .fov_deg = -1, .eye_separation = 0.065f, .steps = -1, .lambda = -1,
-        .absorption = 0, .scattering = 0, .display_gamma = 2.2f, .exposure = 1,
-        .env = FRAME_ENV_DIM, .hud_layout = -1, .seed = 1,
+        .fov_deg = -1, .eye_separation = 0.065f, .seed = 1,
     };
+    frame_params_default(&o->frame);
+    frame_params *fp = &o->frame;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -106,20 +144,20 @@ int standalone_parse(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
         else if (strcmp(a, "--lattice-cells") == 0) bad = parse_int(v, &o->lattice_total, 8, 1 << 24);
         else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
-        else if (strcmp(a, "--steps") == 0) bad = parse_int(v, &o->steps, 0, 1000);
-        else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &o->lambda, 1) || o->lambda < 0 || o->lambda >= 1;
+        else if (strcmp(a, "--steps") == 0) { bad = parse_int(v, &fp->lpv_steps, 0, 1000); o->have_steps = 1; }
+        else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &fp->lambda_incr, 1);
         else if (strcmp(a, "--converge-threshold") == 0) bad = parse_floats(v, &o->converge_threshold, 1);
         else if (strcmp(a, "--budget-ms") == 0) bad = parse_floats(v, &o->budget_ms, 1) || o->budget_ms <= 0;
-        else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &o->absorption, 1);
-        else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &o->scattering, 1);
-        else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &o->display_gamma, 1) || o->display_gamma <= 0;
-        else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &o->exposure, 1) || o->exposure <= 0;
+        else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &fp->absorption, 1);
+        else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &fp->scattering, 1);
+        else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &fp->display_gamma, 1);
+        else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &fp->exposure, 1);
         else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
         else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
         else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
         else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
-        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &o->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
+        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &fp->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
         else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
         else if (strcmp(a, "--samples") == 0) bad = parse_int(v, &o->samples, 1, 1 << 20);
         else if (strcmp(a, "--bounces") == 0) bad = parse_int(v, &o->bounces, 1, 1000);
@@ -150,9 +188,9 @@ int standalone_parse(int argc, char **argv, node_options *o)
             else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
             else bad = 1;
         } else if (strcmp(a, "--env") == 0) {
-            if (strcmp(v, "dark") == 0) o->env = FRAME_ENV_DARK;
-            else if (strcmp(v, "dim") == 0) o->env = FRAME_ENV_DIM;
-            else if (strcmp(v, "office") == 0) o->env = FRAME_ENV_OFFICE;
+            if (strcmp(v, "dark") == 0) fp->environment = FRAME_ENV_DARK;
+            else if (strcmp(v, "dim") == 0) fp->environment = FRAME_ENV_DIM;
+            else if (strcmp(v, "office") == 0) fp->environment = FRAME_ENV_OFFICE;
             else bad = 1;
         } else {
             fprintf(stderr, "cavelight-node: unknown option %s (see --help)\n", a);
@@ -165,7 +203,9 @@ int standalone_parse(int argc, char **argv, node_options *o)
         }
         i += takes;
     }
-    if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->steps >= 0)) {
+    if (check_frame_options(o) != 0)
+        return -1;
+    if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->have_steps)) {
         fprintf(stderr, "cavelight-node: --budget-ms chooses --lattice and --steps: give "
                 "either the budget or those two\n");
         return -1;
@@ -388,20 +428,7 @@ int standalone_run(const node_options *o)
         return 1;
     }
     frame_params fp;
-    frame_params_default(&fp);
-    frame_params_lights_from_scene(&fp, &sc);
-    if (o->steps >= 0) fp.lpv_steps = o->steps;
-    if (o->lambda >= 0) fp.lambda_incr = o->lambda;
-    fp.absorption = o->absorption;
-    fp.scattering = o->scattering;
-    fp.environment = o->env;
-    fp.display_gamma = o->display_gamma;
-    fp.exposure = o->exposure;
-    fp.hud_layout = o->hud_layout;
-    if (o->have_wand)
-        memcpy(fp.wand + 12, o->wand, sizeof o->wand);
-    else
-        renderer_hud_wand_in_front(eyes[0].view.view, fp.wand);
+    standalone_frame_params(o, &sc, &eyes[0].view, &fp);
     if (o->reference) {
         reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
                                  .view = &eyes[0].view, .threads = o->threads,

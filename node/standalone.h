@@ -31,11 +31,11 @@ typedef struct node_options {
     float screen[9], eye[3];
     int stereo;
     float eye_separation;
-    /* frame parameters */
-    int steps;
-    float lambda, absorption, scattering, display_gamma, exposure;
-    frame_environment env;
-    int hud_layout, have_wand; /* HUD (docs/node.md): layout, wand position */
+    /* the frame parameters: frame_params_default() with the command line's values;
+     * lights come from the scene */
+    frame_params frame;
+    int have_steps;
+    int have_wand;        /* HUD (docs/node.md): wand position given */
     float wand[3];
     /* --renderer reference: the path tracer (docs/reference.md) instead of GL */
     int reference, samples, bounces;
@@ -44,6 +44,11 @@ typedef struct node_options {
 
 /* Returns 0, or -1 after printing one line about the bad option. */
 int standalone_parse(int argc, char **argv, node_options *o);
+/* The frame a standalone run starts from: o->frame (frame_params_default() and the
+ * command line), the scene's lights, and the wand in front of the first eye when the HUD
+ * is shown without --wand. Frame version and time are 0. */
+void standalone_frame_params(const node_options *o, const scene *s,
+                             const renderer_view *first_eye, frame_params *out);
 /* Returns the process exit status. */
 int standalone_run(const node_options *o);
 

@@ -48,6 +48,9 @@ typedef struct frame_params {
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
 } frame_params;
 
+/* The one set of defaults (the parameter store, the standalone node and the benchmarks
+ * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
+ * environment, display gamma 2.2, exposure 1, no HUD. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
  * one spot 1.5 x its height above the centre of its bounds, pointing down. */
