@@ -89,8 +89,8 @@ struct renderer {
     GLuint prog_merge, prog_propagate, prog_accumulate;
     GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
     GLuint gl_accum[3];      /* classic mode: the sum of the steps */
-    int gl_current, gl_have_history;
-    double gl_previous_energy;
+    int gl_current;
+    ilpv_history gl_history; /* the GL path's own merge state (ilpv_merge_factors()) */
     lpv_volume gl_result;
 
     /* HUD: one program, three meshes in one buffer */
