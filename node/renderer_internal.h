@@ -99,6 +99,8 @@ struct renderer {
     GLsizei hud_count[RENDERER_HUD_MESHES];
     GLint hud_loc_model, hud_loc_view_projection, hud_loc_color, hud_loc_eye, hud_loc_gamma;
 
+    frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
+                                passes render */
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
     char error[256];         /* why the last eye pass failed */

@@ -525,7 +525,7 @@ int standalone_run(const node_options *o)
         double eye_sum[4] = {0, 0, 0, 0};
         for (int e = 0; e < eye_count && rc == 0; e++) {
             renderer_image img;
-            if (renderer_eye_pass(r, &fp, &eyes[e].view, o->pfm, &img) != 0) {
+            if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {
                 fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
                         renderer_last_error(r));
                 rc = 1;
