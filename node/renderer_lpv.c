@@ -343,7 +343,8 @@ static size_t collect_vpls(renderer *r)
         }
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
+    if (r->emitter_count) /* a scene without emitters has no emitter array */
+        memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
     return n + r->emitter_count;
 }
 
