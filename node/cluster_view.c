@@ -309,7 +309,7 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
                 return -1;
             }
             renderer_image out;
-            if (renderer_eye_pass(v->r, f, &view, 0, &out) != 0) {
+            if (renderer_eye_pass(v->r, &view, 0, &out) != 0) {
                 snprintf(err, errlen, "cluster node %s: eye pass failed", n->name);
                 return -1;
             }

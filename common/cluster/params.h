@@ -72,7 +72,8 @@ typedef struct params_store {
     uint64_t stamp[PARAMS_KEY_COUNT];          /* version in which each key last changed */
 } params_store;
 
-/* Defaults: identity poses, one white spotlight, 8 steps, lambda 0.9, office, gamma 2.2. */
+/* Every key at frame_params_default()'s value (no lights: the master seeds them from its
+ * scene), as version 0. */
 void params_init(params_store *s);
 /* Seeds every key from a frame (e.g. the scene's lights); stamps as a change. */
 void params_set_from_frame(params_store *s, const frame_params *f);
@@ -110,7 +111,8 @@ size_t params_encode_snapshot(const params_store *s, uint8_t *buf, size_t cap);
  * key, a truncated record, a duplicate key or a non-finite float. */
 int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t len);
 
-/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping). */
+/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping),
+ * as stored: out-of-range values are frame_params_sanitize()'s to fix, not this. */
 void params_to_frame(const params_store *s, frame_params *out);
 /* FNV-1a over version and every value: what a node with no renderer reports as its
  * checksum, and a cheap equality test between stores. */

@@ -121,4 +121,8 @@ one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice 32
 one_line_error "--budget-ms" "$node" --standalone --budget-ms -1
 one_line_error "--lattice-cells" "$node" --standalone --lattice 16 --lattice-cells 4096
 one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells 4096
+# Frame values outside frame_params_sanitize()'s ranges are refused, not changed.
+one_line_error "--lambda 1.5 is outside" "$node" --standalone --lambda 1.5
+one_line_error "--exposure" "$node" --standalone --exposure 0
+one_line_error "--steps 300" "$node" --standalone --steps 300
 echo "node CLI: all checks passed"
