@@ -7,57 +7,47 @@
 int lpv_classic_init(lpv_classic *c, const lattice_desc *lat)
 {
     memset(c, 0, sizeof *c);
-    if (!lat || lpv_volume_init(&c->work[0], lat->n, LPV_LIGHT_CHANNELS) != 0 ||
-        lpv_volume_init(&c->work[1], lat->n, LPV_LIGHT_CHANNELS) != 0 ||
-        lpv_volume_init(&c->accum, lat->n, LPV_LIGHT_CHANNELS) != 0) {
-        lpv_classic_free(c);
-        return -1;
-    }
-    return 0;
+    lpv_volume *all[] = {&c->near, &c->shell, &c->work[0], &c->work[1], &c->accum};
+    for (size_t i = 0; lat && i < sizeof all / sizeof all[0]; i++)
+        if (lpv_volume_init(all[i], lat->n, LPV_LIGHT_CHANNELS) != 0) {
+            lpv_classic_free(c);
+            return -1;
+        }
+    return lat ? 0 : -1;
 }
 
 void lpv_classic_free(lpv_classic *c)
 {
-    lpv_volume_free(&c->work[0]);
-    lpv_volume_free(&c->work[1]);
-    lpv_volume_free(&c->accum);
+    lpv_volume *all[] = {&c->near, &c->shell, &c->work[0], &c->work[1], &c->accum};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        lpv_volume_free(all[i]);
+    lpv_splat_free(&c->splat);
     memset(c, 0, sizeof *c);
 }
 
-typedef struct add_job {
-    lpv_volume *accum;
-    const lpv_volume *step;
-} add_job;
-
-/* One z slice of accum += step. */
-static void add_slice(void *ctx, int z)
+int lpv_classic_frame(lpv_classic *c, const lpv_volume *injected, const lpv_volume *origin,
+                      int steps, const lpv_propagate_desc *propagate)
 {
-    const add_job *j = ctx;
+    lpv_splat_desc sd = {injected, origin, propagate->blockers, propagate->absorption,
+                         propagate->pool};
+    int rc = lpv_splat_run(&c->splat, &sd, &c->near, &c->shell);
     fpmode mode = fpmode_enter();
-    size_t plane = (size_t)j->accum->n[0] * j->accum->n[1], lo = (size_t)z * plane;
-    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
-        float *a = j->accum->ch[c] + lo;
-        const float *s = j->step->ch[c] + lo;
-        for (size_t i = 0; i < plane; i++)
-            a[i] += s[i];
-    }
+    lpv_volume_copy(&c->accum, &c->near);
+    lpv_volume_add(&c->accum, &c->shell);
     fpmode_leave(mode);
-}
-
-void lpv_classic_frame(lpv_classic *c, const lpv_volume *injected, int steps,
-                       const lpv_propagate_desc *propagate)
-{
-    lpv_volume_clear(&c->accum);
     lpv_propagate_desc pd = *propagate;
-    const lpv_volume *src = injected;
+    pd.source = NULL;
+    const lpv_volume *src = &c->shell;
     for (int step = 0; step < steps; step++) {
         lpv_volume *dst = &c->work[step & 1];
-        pd.use_blocking = step > 0 && propagate->use_blocking;
+        pd.step = (unsigned)step;
         lpv_propagate_step(&pd, src, dst);
-        add_job j = {&c->accum, dst};
-        workpool_run(pd.pool, c->accum.n[2], add_slice, &j);
+        mode = fpmode_enter();
+        lpv_volume_add(&c->accum, dst);
+        fpmode_leave(mode);
         src = dst;
     }
+    return rc;
 }
 
 const lpv_volume *lpv_classic_result(const lpv_classic *c)

@@ -1,39 +1,109 @@
 #include "lpv/lpv_geometry.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
-#include "lpv/sh.h"
+#include "lpv/lpv_transfer.h"
 
-/* Sub-triangle edges are at most a quarter cell: at least about 16 samples in a fully
- * covered cell keep its total weight within some 15% of the exact coverage. The
- * subdivision per edge is capped at 2048 (a triangle that large is sampled coarser). */
-enum { SAMPLES_PER_CELL_EDGE = 4, MAX_SUBDIVISION = 2048 };
+int lpv_blockers_init(lpv_blockers *b, const int n[3])
+{
+    memset(b, 0, sizeof *b);
+    size_t cells = 1;
+    for (int a = 0; a < 3; a++) {
+        if (n[a] < 1 || n[a] > (1 << 16))
+            return -1;
+        cells *= (size_t)n[a];
+        b->n[a] = n[a];
+    }
+    if (cells > ((size_t)1 << 34))
+        return -1;
+    b->mask = calloc(cells, sizeof *b->mask);
+    if (!b->mask)
+        return -1;
+    b->cells = cells;
+    return 0;
+}
 
-/* A fully covered cell should block (about) fully: <B|Gamma_j> = 1 for light heading
- * straight into a cell-filling plane. With Gamma ~ kappa SH_cos and
- * kappa = 1 / sqrt(26 pi / 4), <SH_cos(n)|kappa SH_cos(n)> = kappa (pi/4 + pi/3). */
-#define GEOMETRY_WEIGHT (1.0 / (0.22130 * (3.14159265358979 * 7.0 / 12.0)))
+void lpv_blockers_free(lpv_blockers *b)
+{
+    free(b->mask);
+    memset(b, 0, sizeof *b);
+}
 
-void lpv_geometry_add_triangles(lpv_volume *geometry, const lattice_desc *lat,
+int lpv_blockers_blocked(const lpv_blockers *b, int x, int y, int z, int k)
+{
+    if (x < 0 || y < 0 || z < 0 || x >= b->n[0] || y >= b->n[1] || z >= b->n[2] || k < 0 ||
+        k >= LPV_NEIGHBOURS)
+        return 0;
+    size_t i = (size_t)x + (size_t)b->n[0] * ((size_t)y + (size_t)b->n[1] * z);
+    return (int)((b->mask[i] >> k) & 1u);
+}
+
+static void sub(const double a[3], const double b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = a[k] - b[k];
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Does the segment p -> q cross triangle v (plane normal n)? A point on the plane counts
+ * as in front; the crossing point may lie on an edge (closed meshes then leave no gap). */
+static int crosses(const double v[3][3], const double n[3], const double p[3],
+                   const double q[3])
+{
+    double dp[3], dq[3];
+    sub(p, v[0], dp);
+    sub(q, v[0], dq);
+    double sp = dot(n, dp), sq = dot(n, dq);
+    if ((sp >= 0.0) == (sq >= 0.0))
+        return 0;
+    double t = sp / (sp - sq), x[3];
+    for (int k = 0; k < 3; k++)
+        x[k] = p[k] + t * (q[k] - p[k]);
+    for (int e = 0; e < 3; e++) {
+        double edge[3], rel[3], c[3];
+        sub(v[(e + 1) % 3], v[e], edge);
+        sub(x, v[e], rel);
+        cross(edge, rel, c);
+        if (dot(c, n) < 0.0)
+            return 0;
+    }
+    return 1;
+}
+
+void lpv_geometry_add_triangles(lpv_blockers *b, const lattice_desc *lat,
                                 const float *positions, size_t vertex_count,
                                 const unsigned *indices, size_t triangle_count,
                                 lpv_geometry_stats *stats)
 {
     lpv_geometry_stats st = {0};
-    int usable = geometry && geometry->channels == LPV_GEOMETRY_CHANNELS && lat &&
-                 lat->n[0] == geometry->n[0] && lat->n[1] == geometry->n[1] &&
-                 lat->n[2] == geometry->n[2] && lat->cell > 0.0f && positions;
+    int usable = b && b->mask && lat && lat->n[0] == b->n[0] && lat->n[1] == b->n[1] &&
+                 lat->n[2] == b->n[2] && lat->cell > 0.0f && positions;
     for (size_t t = 0; usable && t < triangle_count; t++) {
+        /* Vertices in lattice units with cell centres at integer coordinates. */
         double v[3][3];
         int ok = 1;
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 3 && ok; k++) {
             size_t vi = indices ? indices[3 * t + k] : 3 * t + k;
             if (vi >= vertex_count) {
                 ok = 0;
                 break;
             }
             for (int a = 0; a < 3; a++) {
-                v[k][a] = positions[3 * vi + a];
+                double w = positions[3 * vi + a];
+                v[k][a] = (w - lat->origin[a]) / lat->cell - 0.5;
                 ok &= isfinite(v[k][a]) != 0;
             }
         }
@@ -41,70 +111,55 @@ void lpv_geometry_add_triangles(lpv_volume *geometry, const lattice_desc *lat,
             st.invalid++;
             continue;
         }
-        double e1[3], e2[3], e3[3], cr[3];
-        for (int a = 0; a < 3; a++) {
-            e1[a] = v[1][a] - v[0][a];
-            e2[a] = v[2][a] - v[0][a];
-            e3[a] = v[2][a] - v[1][a];
-        }
-        cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double twice_area = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
-        if (!(twice_area > 0.0) || !isfinite(twice_area)) {
+        double e1[3], e2[3], n[3];
+        sub(v[1], v[0], e1);
+        sub(v[2], v[0], e2);
+        cross(e1, e2, n);
+        if (!(dot(n, n) > 0.0) || !isfinite(dot(n, n))) {
             st.degenerate++;
             continue;
         }
         st.triangles++;
-        /* Blocking lobe around the direction into the front face (-normal): light heading
-         * into a surface is stopped; closed meshes have both orientations. */
-        float into[3] = {(float)-cr[0], (float)-cr[1], (float)-cr[2]}, lobe[4];
-        sh_cosine_lobe(into, lobe);
-        /* Regular subdivision into m^2 congruent sub-triangles with edges of at most a quarter
-         * cell: every cell whose centre lies within a quarter cell of the triangle (above
-         * its interior) holds the centroid of a sub-triangle, so a triangle larger than a
-         * cell leaves no holes. One sample per sub-triangle, weighted by its area. */
-        double longest = fmax(sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]),
-                              fmax(sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]),
-                                   sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2])));
-        double md = ceil(longest * SAMPLES_PER_CELL_EDGE / lat->cell);
-        int m = md < 1.0 ? 1 : md > MAX_SUBDIVISION ? MAX_SUBDIVISION : (int)md;
-        double cell2 = (double)lat->cell * lat->cell;
-        float w = (float)(0.5 * twice_area / ((double)m * m) / cell2 * GEOMETRY_WEIGHT);
-        float add[4];
-        for (int s = 0; s < 4; s++)
-            add[s] = w * lobe[s];
-        for (int i = 0; i < m; i++) {
-            for (int j = 0; j < m - i; j++) {
-                /* Upward sub-triangle (i,j),(i+1,j),(i,j+1), and, where it exists, the
-                 * downward one (i+1,j),(i+1,j+1),(i,j+1): centroids in barycentrics. */
-                for (int down = 0; down < 2; down++) {
-                    if (down && j >= m - i - 1)
-                        continue;
-                    double bu = down ? (i + 2.0 / 3.0) / m : (i + 1.0 / 3.0) / m;
-                    double bv = down ? (j + 2.0 / 3.0) / m : (j + 1.0 / 3.0) / m;
-                    float p[3];
-                    for (int a = 0; a < 3; a++)
-                        p[a] = (float)(v[0][a] + bu * e1[a] + bv * e2[a]);
-                    size_t idx;
-                    if (lattice_cell_of(lat, p, NULL, &idx) != 0) {
-                        st.outside++;
-                        continue;
-                    }
-                    for (int s = 0; s < 4; s++)
-                        geometry->ch[s][idx] += add[s];
-                    st.samples++;
-                }
-            }
+        /* Segments start at the centres in the triangle's box grown by one cell (a segment
+         * spans one cell along each axis at most); the second half of the neighbours
+         * (k >= 13) covers every segment once, its antipode is 25 - k. */
+        int lo[3], hi[3], empty = 0;
+        for (int a = 0; a < 3; a++) {
+            double mn = fmin(v[0][a], fmin(v[1][a], v[2][a]));
+            double mx = fmax(v[0][a], fmax(v[1][a], v[2][a]));
+            lo[a] = (int)fmax(floor(mn) - 1.0, 0.0);
+            hi[a] = (int)fmin(ceil(mx) + 1.0, (double)(lat->n[a] - 1));
+            empty |= lo[a] > hi[a];
         }
+        if (empty)
+            continue;
+        for (int z = lo[2]; z <= hi[2]; z++)
+            for (int y = lo[1]; y <= hi[1]; y++)
+                for (int x = lo[0]; x <= hi[0]; x++) {
+                    double p[3] = {x, y, z};
+                    size_t i = (size_t)x + (size_t)lat->n[0] * ((size_t)y + (size_t)lat->n[1] * z);
+                    for (int k = LPV_NEIGHBOURS / 2; k < LPV_NEIGHBOURS; k++) {
+                        const int *o = lpv_transfer_offsets[k];
+                        double q[3] = {x + o[0], y + o[1], z + o[2]};
+                        if (!crosses(v, n, p, q))
+                            continue;
+                        st.segments++;
+                        b->mask[i] |= 1u << k;
+                        int qx = x + o[0], qy = y + o[1], qz = z + o[2];
+                        if (qx >= 0 && qy >= 0 && qz >= 0 && qx < lat->n[0] &&
+                            qy < lat->n[1] && qz < lat->n[2])
+                            b->mask[(size_t)qx + (size_t)lat->n[0] *
+                                                     ((size_t)qy + (size_t)lat->n[1] * qz)] |=
+                                1u << (LPV_NEIGHBOURS - 1 - k);
+                    }
+                }
     }
-    if (!usable) /* nothing can be injected: every triangle counts as refused input */
+    if (!usable) /* nothing can be added: every triangle counts as refused input */
         st.invalid += triangle_count;
     if (stats) {
         stats->triangles += st.triangles;
         stats->degenerate += st.degenerate;
         stats->invalid += st.invalid;
-        stats->samples += st.samples;
-        stats->outside += st.outside;
+        stats->segments += st.segments;
     }
 }

@@ -71,6 +71,27 @@ void lpv_volume_copy(lpv_volume *dst, const lpv_volume *src)
         memcpy(dst->ch[c], src->ch[c], src->cells * sizeof(float));
 }
 
+void lpv_volume_add(lpv_volume *dst, const lpv_volume *src)
+{
+    if (dst == src || dst->cells != src->cells || dst->channels != src->channels)
+        return;
+    for (int c = 0; c < src->channels; c++) {
+        float *d = dst->ch[c];
+        const float *s = src->ch[c];
+        for (size_t i = 0; i < src->cells; i++)
+            d[i] += s[i];
+    }
+}
+
+void lpv_volume_scale(lpv_volume *v, float a)
+{
+    for (int c = 0; c < v->channels; c++) {
+        float *d = v->ch[c];
+        for (size_t i = 0; i < v->cells; i++)
+            d[i] *= a;
+    }
+}
+
 void lpv_volume_energy(const lpv_volume *v, double energy_rgb[3])
 {
     for (int c = 0; c < 3; c++) {

@@ -29,6 +29,8 @@ int lpv_volume_init(lpv_volume *v, const int n[3], int channels);
 void lpv_volume_free(lpv_volume *v);
 void lpv_volume_clear(lpv_volume *v);
 void lpv_volume_copy(lpv_volume *dst, const lpv_volume *src); /* same shape required */
+void lpv_volume_add(lpv_volume *dst, const lpv_volume *src);  /* dst += src, same shape */
+void lpv_volume_scale(lpv_volume *v, float a);                /* v *= a */
 
 /* Total energy per colour, <L|1> = 2 sqrt(pi) L0 summed over cells, in double. */
 void lpv_volume_energy(const lpv_volume *v, double energy_rgb[3]);

@@ -1,23 +1,14 @@
-/* lpv_reference: a plain scalar propagation step, straight from eq. 2.4 in scatter form.
- *
- * Every source cell sends, to each of its 26 neighbours inside the lattice,
- *   (1 - b) ((1 - l_t) <L|G_j> + g_j l_s <L|1> / <G_j|1>) G_j
- * with b = clamp(<B|G_j>, 0, 1) of the source cell. Shares only the transfer vectors with
- * the fast path; used to check it and as the speed baseline. Not for production. */
+/* lpv_reference: a plain scalar propagation step in scatter form, straight from the rule
+ * in lpv_transfer.h: every source cell splits its light (lpv_transfer_split) and sends
+ * each half to the 27 targets with lpv_transfer_axis_weights(), summing in double. Shares
+ * only those two functions with the fast path; used to check it and as the speed
+ * baseline. Not for production. */
 #ifndef CAVELIGHT_LPV_REFERENCE_H
 #define CAVELIGHT_LPV_REFERENCE_H
 
-#include "lpv/lpv_transfer.h"
-#include "lpv/lpv_volume.h"
+#include "lpv/lpv_propagate.h"
 
-typedef struct lpv_reference_desc {
-    const lpv_transfer *transfer;
-    const lpv_volume *geometry; /* NULL or use_blocking 0: no blocking */
-    int use_blocking;
-    float absorption, scattering; /* per step, as in lpv_propagate_desc */
-    int clamp_negative;           /* clamp the factor sent to a neighbour at 0 */
-} lpv_reference_desc;
-
-void lpv_reference_step(const lpv_reference_desc *desc, const lpv_volume *src, lpv_volume *dst);
+/* The same arguments as lpv_propagate_step() (the pool is ignored). */
+void lpv_reference_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);
 
 #endif
