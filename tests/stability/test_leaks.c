@@ -18,7 +18,14 @@
  * build/stability_leaks. Every bound is a little above what the renderer measures now;
  * the indirect ones are to be tightened as the LPV's injection and blocking improve.
  *
- * Measured with the shadow test's constant depth bias (5e-4 of the [0,1] depth):
+ * Measured (RSM 256, lattice 32, 160x120):
+ *            direct mean   largest pixel   indirect mean   (all over the lit level)
+ *   lid      0             0               0.00142
+ *   room     7.8e-8        7.5e-4          0
+ *   wall     8.1e-5        0.283           0.00992
+ * Bounds: direct mean 1e-6, 1e-6, 1e-4, largest pixel 1e-3, 2e-3, 0.33; indirect 0.0016,
+ * 1e-4, 0.011; panel walls >= 0.04 of the closed form, relRMSE <= 1.1, ceiling <= 1.5.
+ * Before, with the shadow test's constant depth bias (5e-4 of the [0,1] depth):
  *            direct mean   largest pixel   indirect mean   (all over the lit level)
  *   lid      1.49e-4       0.207           0.00142
  *   room     5.86e-3       0.355           0
@@ -168,7 +175,7 @@ static void test_lid(void **state)
     leak_render(&lv);
     const float top[3] = {0, 2, 0}, up[3] = {0, 1, 0};
     leak_figures f = dark_view("lid", &lv, lit_radiance(&lv.p.lights[0], top, up));
-    assert_true(f.direct_mean <= 1.7e-4 && f.direct_max <= 0.23);
+    assert_true(f.direct_mean <= 1e-6 && f.direct_max <= 1e-3);
     assert_true(f.indirect_mean <= 0.0016);
     leak_close(&lv);
 }
@@ -186,7 +193,7 @@ static void test_room_under_default_spot(void **state)
     const float top[3] = {0, 3, 0}, up[3] = {0, 1, 0};
     leak_figures f = dark_view("room under the default spot", &lv,
                                lit_radiance(&lv.p.lights[0], top, up));
-    assert_true(f.direct_mean <= 0.0065 && f.direct_max <= 0.4);
+    assert_true(f.direct_mean <= 1e-6 && f.direct_max <= 2e-3);
     assert_true(f.indirect_mean <= 1e-4);
     leak_close(&lv);
 }
@@ -205,7 +212,10 @@ static void test_wall(void **state)
     for (int a = 0; a < 3; a++)
         aim[a] = l->position[a] + t * l->direction[a];
     leak_figures f = dark_view("wall", &lv, lit_radiance(l, aim, up));
-    assert_true(f.direct_mean <= 5.6e-4 && f.direct_max <= 0.85);
+    /* A line along the wall's foot: the 3x3 filter's texels across the wall see the lit
+     * floor, the same plane as the receiver (shade.frag), so it is no wider than the
+     * filter's reach, 2 sqrt(2) RSM texels. */
+    assert_true(f.direct_mean <= 1e-4 && f.direct_max <= 0.33);
     assert_true(f.indirect_mean <= 0.011);
     leak_close(&lv);
 }
