@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "base/clock.h"
+#include "cluster_auth.h"
 #include "cluster_master.h"
 #include "input.h"
 #include "interaction.h"
@@ -36,12 +37,13 @@ static void usage(void)
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
             "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n");
+            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n"
+            "       cavelight-master --config FILE --keygen   (CURVE keys into the config's security.keys)\n");
 }
 
 typedef struct options {
     const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input;
-    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet;
+    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen;
     double dt, fps;
 } options;
 
@@ -55,6 +57,7 @@ static int parse_args(int argc, char **argv, options *o)
         if (strcmp(a, "--spawn-local") == 0) { o->spawn_local = 1; continue; }
         if (strcmp(a, "--spawn-remote") == 0) { o->spawn_remote = 1; continue; }
         if (strcmp(a, "--quiet") == 0) { o->quiet = 1; continue; }
+        if (strcmp(a, "--keygen") == 0) { o->keygen = 1; continue; }
         if (!v) {
             fprintf(stderr, "cavelight-master: unknown or incomplete option %s\n", a);
             return -1;
@@ -224,6 +227,7 @@ static int write_report(const char *path, const cluster_config *cfg, cluster_mas
     cJSON_AddNumberToObject(root, "drops", (double)st.drops);
     cJSON_AddNumberToObject(root, "malformed_messages", (double)st.malformed);
     cJSON_AddNumberToObject(root, "unknown_peer_messages", (double)st.unknown_peers);
+    cJSON_AddNumberToObject(root, "refused_connections", (double)st.refused);
     cJSON_AddNumberToObject(root, "bytes_sent", (double)st.bytes_sent);
     cJSON_AddNumberToObject(root, "bytes_received", (double)st.bytes_received);
     cJSON_AddNumberToObject(root, "messages_sent", (double)st.messages_sent);
@@ -285,6 +289,15 @@ int main(int argc, char **argv)
     if (cluster_config_load(o.config, &cfg, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
+    }
+    if (o.keygen) {
+        if (cluster_keygen(&cfg, err, sizeof err) != 0) {
+            fprintf(stderr, "cavelight-master: %s\n", err);
+            return 1;
+        }
+        fprintf(stderr, "cavelight-master: wrote master.key/.pub and one pair per node into %s; give "
+                "each host its own .key and master.pub\n", cfg.keys_dir);
+        return 0;
     }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -398,6 +411,10 @@ int main(int argc, char **argv)
             input_state ist;
             if (input_poll(in, &ist, err, sizeof err) != 0)
                 fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+            if (ist.failed) {
+                exit_code = 1; /* a recording with errors is no session to report as done */
+                break;
+            }
             if (ist.finished)
                 break; /* a stepped recording has ended */
             interaction_update(&ia, &ist, ist.dt, &fp);

@@ -460,6 +460,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     }
     r->gl = desc->gl;
     r->scene = desc->scene;
+    frame_params_default(&r->frame);
     r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
@@ -583,10 +584,11 @@ static void render_rsms(renderer *r, const frame_params *p)
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
-    /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. */
-    frame_params sane = *params;
-    frame_params_sanitize(&sane);
-    const frame_params *p = &sane;
+    /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. Once
+     * per frame; the eye passes render this copy. */
+    r->frame = *params;
+    frame_params_sanitize(&r->frame);
+    const frame_params *p = &r->frame;
     if (renderer_lpv_skip(r, p)) { /* RSMs, textures and the LPV still hold this result */
         r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
         r->timings.frame_host_ms = clock_now_ms() - t0;
@@ -621,13 +623,11 @@ static void read_rgb_float(renderer *r, GLenum attachment, float *out)
         }
 }
 
-int renderer_eye_pass(renderer *r, const frame_params *params, const renderer_view *view,
-                      int want_linear, renderer_image *out)
+int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
+                      renderer_image *out)
 {
     const gl_functions *gl = r->gl;
-    frame_params sane = *params;
-    frame_params_sanitize(&sane);
-    const frame_params *p = &sane;
+    const frame_params *p = &r->frame;
     if (view->width <= 0 || view->height <= 0) {
         snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
                  view->width, view->height);

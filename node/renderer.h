@@ -90,10 +90,12 @@ typedef struct renderer_lpv_stats {
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
+/* Takes the frame's parameters as sent (frame_params_sanitize() runs here, once). */
 uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
-/* want_linear: also read back final/direct/indirect linear images for measurement. */
-int renderer_eye_pass(renderer *r, const frame_params *p, const renderer_view *view,
-                      int want_linear, renderer_image *out);
+/* Renders the last frame pass's frame from one view. want_linear: also read back
+ * final/direct/indirect linear images for measurement. */
+int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
+                      renderer_image *out);
 void renderer_get_timings(const renderer *r, renderer_timings *out);
 /* One line: why the last renderer_eye_pass() returned -1. */
 const char *renderer_last_error(const renderer *r);

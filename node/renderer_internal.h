@@ -89,8 +89,8 @@ struct renderer {
     GLuint prog_merge, prog_propagate, prog_accumulate;
     GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
     GLuint gl_accum[3];      /* classic mode: the sum of the steps */
-    int gl_current, gl_have_history;
-    double gl_previous_energy;
+    int gl_current;
+    ilpv_history gl_history; /* the GL path's own merge state (ilpv_merge_factors()) */
     lpv_volume gl_result;
 
     /* HUD: one program, three meshes in one buffer */
@@ -99,6 +99,8 @@ struct renderer {
     GLsizei hud_count[RENDERER_HUD_MESHES];
     GLint hud_loc_model, hud_loc_view_projection, hud_loc_color, hud_loc_eye, hud_loc_gamma;
 
+    frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
+                                passes render */
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
     char error[256];         /* why the last eye pass failed */

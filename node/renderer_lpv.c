@@ -343,7 +343,8 @@ static size_t collect_vpls(renderer *r)
         }
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
+    if (r->emitter_count) /* a scene without emitters has no emitter array */
+        memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
     return n + r->emitter_count;
 }
 
@@ -441,15 +442,7 @@ static void gl_frame(renderer *r, const frame_params *p, double energy)
 {
     const gl_functions *gl = r->gl;
     upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
-    /* Exactly ilpv_frame()'s factors. */
-    double lambda = p->lambda_incr;
-    if (!(lambda > 0.0) || !r->gl_have_history || !(r->gl_previous_energy > 0.0) ||
-        !isfinite(energy))
-        lambda = 0.0;
-    if (lambda >= 1.0)
-        lambda = 0.999;
-    float a = lambda > 0.0 ? (float)(energy / r->gl_previous_energy * lambda) : 0.0f;
-    float b = (float)(1.0 - lambda);
+    ilpv_merge f = ilpv_merge_factors(&r->gl_history, p->lambda_incr, energy);
     const int *n = r->lattice.n;
 
     int dst = 1 - r->gl_current;
@@ -458,8 +451,8 @@ static void gl_frame(renderer *r, const frame_params *p, double energy)
     bind_images(r, r->gl_injected, 3, 3, GL_READ_ONLY);
     bind_images(r, r->gl_volume[dst], 3, 6, GL_WRITE_ONLY);
     gl->Uniform3i(gl->GetUniformLocation(r->prog_merge, "u_size"), n[0], n[1], n[2]);
-    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_a"), a);
-    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_b"), b);
+    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_a"), f.a);
+    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_b"), f.b);
     dispatch(r);
     r->gl_current = dst;
 
@@ -469,8 +462,7 @@ static void gl_frame(renderer *r, const frame_params *p, double energy)
         gl_step(r, r->gl_volume[r->gl_current], r->gl_volume[dst], step > 0);
         r->gl_current = dst;
     }
-    r->gl_have_history = 1;
-    r->gl_previous_energy = isfinite(energy) && energy > 0.0 ? energy : 0.0;
+    ilpv_history_advance(&r->gl_history, energy);
     download_volume(r, r->gl_volume[r->gl_current], &r->gl_result);
 }
 
@@ -478,7 +470,7 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
 {
     if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
         ilpv_reset(&r->cpu);
-        r->gl_have_history = 0;
+        r->gl_history = (ilpv_history){0};
         r->reset_epoch = p->reset_epoch;
     }
     double t0 = clock_now_ms();
@@ -579,7 +571,7 @@ double renderer_measure_step_ms(renderer *r, int steps)
     }
     double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
     ilpv_reset(&r->cpu);
-    r->gl_have_history = 0;
+    r->gl_history = (ilpv_history){0};
     lpv_converge_forget(&r->converge);
     return ms;
 }

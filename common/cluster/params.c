@@ -151,34 +151,16 @@ void params_set_from_frame(params_store *s, const frame_params *f)
     params_set_f32(s, PARAMS_DISPLAY_GAMMA, f->display_gamma);
     params_set_f32(s, PARAMS_EXPOSURE, f->exposure);
     params_set_i32(s, PARAMS_HUD_LAYOUT, f->hud_layout);
-    int n = f->light_count < 0 ? 0 : f->light_count > FRAME_MAX_LIGHTS ? FRAME_MAX_LIGHTS : f->light_count;
-    params_set_i32(s, PARAMS_LIGHT_COUNT, n);
-    for (int i = 0; i < n; i++)
+    params_set_i32(s, PARAMS_LIGHT_COUNT, f->light_count);
+    for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++)
         set_light(s, i, &f->lights[i]);
 }
 
 void params_init(params_store *s)
 {
     memset(s, 0, sizeof *s);
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     frame_params f;
-    memset(&f, 0, sizeof f);
-    memcpy(f.head, identity, sizeof identity);
-    memcpy(f.wand, identity, sizeof identity);
-    memcpy(f.navigation, identity, sizeof identity);
-    f.lpv_steps = 8;
-    f.lambda_incr = 0.9f;
-    f.absorption = 0.0f;
-    f.scattering = 0.0f;
-    f.environment = FRAME_ENV_OFFICE;
-    f.display_gamma = 2.2f;
-    f.exposure = 1.0f;
-    f.hud_layout = -1;
-    f.light_count = 1;
-    f.lights[0] = (frame_light){
-        .enabled = 1, .position = {0, 2.5f, 0}, .direction = {0, -1, 0},
-        .color = {1, 1, 1}, .intensity = 10.0f, .outer_angle = 0.6f, .inner_angle = 0.5f,
-    };
+    frame_params_default(&f);
     params_set_from_frame(s, &f);
     /* Defaults are version 0: a fresh store and a snapshot of it agree without a commit. */
     memset(s->stamp, 0, sizeof s->stamp);
@@ -312,15 +294,12 @@ void params_to_frame(const params_store *s, frame_params *f)
     f->lambda_incr = params_get_f32(s, PARAMS_LAMBDA_INCR);
     f->absorption = params_get_f32(s, PARAMS_ABSORPTION);
     f->scattering = params_get_f32(s, PARAMS_SCATTERING);
-    int env = params_get_i32(s, PARAMS_ENVIRONMENT);
-    f->environment = env >= FRAME_ENV_DARK && env <= FRAME_ENV_OFFICE ? (frame_environment)env : FRAME_ENV_OFFICE;
+    f->environment = (frame_environment)params_get_i32(s, PARAMS_ENVIRONMENT);
     f->display_gamma = params_get_f32(s, PARAMS_DISPLAY_GAMMA);
     f->exposure = params_get_f32(s, PARAMS_EXPOSURE);
     f->hud_layout = params_get_i32(s, PARAMS_HUD_LAYOUT);
-    int n = params_get_i32(s, PARAMS_LIGHT_COUNT);
-    n = n < 0 ? 0 : n > FRAME_MAX_LIGHTS ? FRAME_MAX_LIGHTS : n;
-    f->light_count = n;
-    for (int i = 0; i < n; i++) {
+    f->light_count = params_get_i32(s, PARAMS_LIGHT_COUNT);
+    for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++) {
         frame_light *l = &f->lights[i];
         float pose[6], cone[2];
         l->enabled = params_get_i32(s, params_light_key(i, PARAMS_LIGHT_ENABLED));

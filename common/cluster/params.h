@@ -36,7 +36,8 @@ enum {
     PARAMS_LAMBDA_INCR,    /* f32 */
     PARAMS_ABSORPTION,     /* f32 */
     PARAMS_SCATTERING,     /* f32 */
-    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default) */
+    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default),
+                              at most PARAMS_LPV_RESOLUTION_MAX */
     PARAMS_ENVIRONMENT,    /* i32, frame_environment */
     PARAMS_DISPLAY_GAMMA,  /* f32 */
     PARAMS_EXPOSURE,       /* f32 */
@@ -61,13 +62,18 @@ enum {
     PARAMS_ENCODED_MAX = PARAMS_KEY_COUNT * (2 + PARAMS_VALUE_MAX),
 };
 
+/* Largest lattice a node builds when the master asks: 128^3 cells of the node's volumes
+ * are about 0.5 GB; a larger request is clamped to it by the node. */
+enum { PARAMS_LPV_RESOLUTION_MAX = 128 };
+
 typedef struct params_store {
     uint64_t version;                          /* last committed (or applied) version */
     uint8_t value[PARAMS_KEY_COUNT][PARAMS_VALUE_MAX];
     uint64_t stamp[PARAMS_KEY_COUNT];          /* version in which each key last changed */
 } params_store;
 
-/* Defaults: identity poses, one white spotlight, 8 steps, lambda 0.9, office, gamma 2.2. */
+/* Every key at frame_params_default()'s value (no lights: the master seeds them from its
+ * scene), as version 0. */
 void params_init(params_store *s);
 /* Seeds every key from a frame (e.g. the scene's lights); stamps as a change. */
 void params_set_from_frame(params_store *s, const frame_params *f);
@@ -105,7 +111,8 @@ size_t params_encode_snapshot(const params_store *s, uint8_t *buf, size_t cap);
  * key, a truncated record, a duplicate key or a non-finite float. */
 int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t len);
 
-/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping). */
+/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping),
+ * as stored: out-of-range values are frame_params_sanitize()'s to fix, not this. */
 void params_to_frame(const params_store *s, frame_params *out);
 /* FNV-1a over version and every value: what a node with no renderer reports as its
  * checksum, and a cheap equality test between stores. */

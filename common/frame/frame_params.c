@@ -16,10 +16,13 @@ void frame_params_default(frame_params *p)
     identity(p->head);
     identity(p->wand);
     identity(p->navigation);
+    /* 8 steps with lambda_incr 0.8 look like non-incremental rendering (paper, figure 2)
+     * and stay below 0.9, beyond which the temporal lag becomes noticeable (section 3.4). */
     p->lpv_steps = 8;
     p->lambda_incr = 0.8f;
     p->absorption = 0.0f;
     p->scattering = 0.0f;
+    /* A CAVE's projected light lights its own room: a dim surround (paper table 3.1). */
     p->environment = FRAME_ENV_DIM;
     p->display_gamma = 2.2f;
     p->exposure = 1.0f;

@@ -48,6 +48,9 @@ typedef struct frame_params {
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
 } frame_params;
 
+/* The one set of defaults (the parameter store, the standalone node and the benchmarks
+ * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
+ * environment, display gamma 2.2, exposure 1, no HUD. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
  * one spot 1.5 x its height above the centre of its bounds, pointing down. */
@@ -66,8 +69,9 @@ void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
  * display gamma, an unknown environment and non-finite poses or time get their defaults.
- * Returns how many fields it changed (0 for valid parameters). The renderer applies it to
- * its own copy in every frame and eye pass. */
+ * Returns how many fields it changed (0 for valid parameters). This is the only place a
+ * frame's values are clamped: the renderer applies it to its own copy once per frame, in
+ * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);

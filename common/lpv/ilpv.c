@@ -30,8 +30,7 @@ void ilpv_free(ilpv *s)
 
 void ilpv_reset(ilpv *s)
 {
-    s->have_history = 0;
-    s->previous_energy = 0.0;
+    s->history = (ilpv_history){0};
 }
 
 lpv_volume *ilpv_injection(ilpv *s)
@@ -70,21 +69,35 @@ static void merge_slice(void *ctx, int z)
     fpmode_leave(mode);
 }
 
+ilpv_merge ilpv_merge_factors(const ilpv_history *h, float lambda_incr, double emitted_energy)
+{
+    double lambda = lambda_incr;
+    if (!(lambda > 0.0) || !h->have_history || !(h->previous_energy > 0.0) ||
+        !(emitted_energy >= 0.0) || !isfinite(emitted_energy))
+        lambda = 0.0; /* also for a negative or NaN energy: no scale can be trusted */
+    ilpv_merge m;
+    m.with_history = lambda > 0.0;
+    m.a = m.with_history ? (float)(emitted_energy / h->previous_energy * lambda) : 0.0f;
+    m.b = (float)(1.0 - lambda);
+    return m;
+}
+
+void ilpv_history_advance(ilpv_history *h, double emitted_energy)
+{
+    h->have_history = 1;
+    h->previous_energy = isfinite(emitted_energy) && emitted_energy > 0.0 ? emitted_energy : 0.0;
+}
+
 void ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
 {
-    double lambda = desc->lambda_incr;
-    if (!(lambda > 0.0) || !s->have_history || !(s->previous_energy > 0.0) ||
-        !(desc->emitted_energy >= 0.0) || !isfinite(desc->emitted_energy))
-        lambda = 0.0; /* also for a negative or NaN energy: no scale can be trusted */
-    if (lambda >= 1.0) /* 1 would freeze the history and ignore the lights */
-        lambda = 0.999;
+    ilpv_merge f = ilpv_merge_factors(&s->history, desc->lambda_incr, desc->emitted_energy);
     merge_job m;
     m.history = &s->volume[s->current];
     m.injected = &s->injected;
     m.out = &s->volume[s->current];
-    m.a = (float)(desc->emitted_energy / (s->previous_energy > 0.0 ? s->previous_energy : 1.0) * lambda);
-    m.b = (float)(1.0 - lambda);
-    m.with_history = lambda > 0.0;
+    m.a = f.a;
+    m.b = f.b;
+    m.with_history = f.with_history;
     workpool_run(desc->propagate.pool, s->lattice.n[2], merge_slice, &m);
 
     lpv_propagate_desc pd = desc->propagate;
@@ -94,9 +107,7 @@ void ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
         lpv_propagate_step(&pd, &s->volume[s->current], &s->volume[1 - s->current]);
         s->current = 1 - s->current;
     }
-    s->have_history = 1;
-    s->previous_energy = isfinite(desc->emitted_energy) && desc->emitted_energy > 0.0
-                             ? desc->emitted_energy : 0.0;
+    ilpv_history_advance(&s->history, desc->emitted_energy);
 }
 
 const lpv_volume *ilpv_result(const ilpv *s)

@@ -5,8 +5,10 @@
  * history. Per frame: clear and fill the injection volume (ilpv_injection()), then
  * ilpv_frame() merges L = a * history + (1 - lambda) * injected with
  * a = (E_now / E_prev) * lambda, and propagates `steps` steps (blocking off in the first).
- * lambda is forced to 0 on the first frame, after ilpv_reset(), when E_prev is 0 and when
- * E_now is negative or not finite. */
+ * ilpv_merge_factors() is that rule, once, for this core and for the GL path
+ * (node/renderer_lpv.c): lambda is taken as 0 on the first frame, after ilpv_reset(), when
+ * E_prev is 0 and when E_now is negative or not finite. lambda's range [0,1) is the
+ * caller's (frame_params_sanitize()); 1 would freeze the history. */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
 
@@ -14,13 +16,25 @@
 #include "lpv/lpv_propagate.h"
 #include "lpv/lpv_volume.h"
 
+/* What the merge needs to know of the frames before: whether there is a history and the
+ * emitted energy it was made with. */
+typedef struct ilpv_history {
+    int have_history;
+    double previous_energy;
+} ilpv_history;
+
+/* L = a * history + b * injected; with_history 0: L = b * injected, the history unread. */
+typedef struct ilpv_merge {
+    float a, b;
+    int with_history;
+} ilpv_merge;
+
 typedef struct ilpv {
     lattice_desc lattice;
     lpv_volume injected;
     lpv_volume volume[2];
     int current;            /* index of the volume holding the latest result */
-    int have_history;
-    double previous_energy;
+    ilpv_history history;
 } ilpv;
 
 typedef struct ilpv_frame_desc {
@@ -37,5 +51,10 @@ lpv_volume *ilpv_injection(ilpv *s);      /* cleared by ilpv_begin_frame() */
 void ilpv_begin_frame(ilpv *s);
 void ilpv_frame(ilpv *s, const ilpv_frame_desc *desc);
 const lpv_volume *ilpv_result(const ilpv *s);
+
+/* This frame's merge factors from the history and the lights' emitted energy. */
+ilpv_merge ilpv_merge_factors(const ilpv_history *h, float lambda_incr, double emitted_energy);
+/* After a merge: the history now exists and was made with emitted_energy. */
+void ilpv_history_advance(ilpv_history *h, double emitted_energy);
 
 #endif

@@ -2,17 +2,28 @@
 // The one C++ file of the project: everything C++ stays in here behind gltf_import().
 // Reads meshes (TRIANGLES), node transforms, base colour factor and texture, emissive
 // factor (times KHR_materials_emissive_strength) and KHR_lights_punctual spot lights.
+//
+// A scene file is untrusted input that every node loads: before anything is read, every
+// index, offset, stride, count and type in the file is checked against what it refers to
+// (validate()), and the first violation is refused with one line naming its JSON path.
+// Images are decoded here, after that check, never by tinygltf; files are read only when
+// they are regular files of bounded size.
 #define TINYGLTF_IMPLEMENTATION
-#define STB_IMAGE_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <string>
 #include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 extern "C" {
@@ -20,6 +31,314 @@ extern "C" {
 }
 
 namespace {
+
+// Resource limits: a file may describe more than a node can hold; these turn that into a
+// refusal instead of an allocation failure. 2^24 triangles is 1.6 GB of scene arrays.
+constexpr size_t max_file_bytes = (size_t)1 << 30;
+constexpr size_t max_triangles = (size_t)1 << 24;
+constexpr int max_image_side = 16384;
+constexpr long long max_image_pixels = 1LL << 26;
+constexpr int max_node_depth = 64;
+
+struct refusal : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void refuse(const std::string &what)
+{
+    throw refusal(what);
+}
+
+std::string item(const std::string &array, size_t i)
+{
+    return array + "[" + std::to_string(i) + "]";
+}
+
+// Index v names one of n things called `what`; -1 only where the field is optional.
+void check_index(long long v, size_t n, const std::string &field, const char *what, bool optional)
+{
+    if (optional && v == -1)
+        return;
+    if (v < 0 || (unsigned long long)v >= n)
+        refuse(field + " " + std::to_string(v) + " out of range (" + std::to_string(n) + " " +
+               what + ")");
+}
+
+// ---- files: regular files only, bounded in size (a uri may name /dev/zero or a FIFO) ----
+
+bool fs_exists(const std::string &path, void *)
+{
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string fs_expand(const std::string &path, void *)
+{
+    return path;
+}
+
+bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *)
+{
+    int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) ||
+        (unsigned long long)st.st_size > max_file_bytes) {
+        if (err)
+            *err += "File not found or not a regular file of at most 1 GiB: " + path + "\n";
+        if (fd >= 0)
+            close(fd);
+        return false;
+    }
+    out->resize((size_t)st.st_size);
+    size_t got = 0;
+    while (got < out->size()) {
+        ssize_t r = read(fd, out->data() + got, out->size() - got);
+        if (r <= 0)
+            break;
+        got += (size_t)r;
+    }
+    close(fd);
+    out->resize(got);
+    return true;
+}
+
+bool fs_write(std::string *err, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    if (err)
+        *err += "writing is not supported\n";
+    return false;
+}
+
+// tinygltf hands over an image's encoded bytes when they come from a uri; images in a
+// bufferView are left for decode_images(), after their view has been checked.
+bool keep_encoded(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                  const unsigned char *bytes, int size, void *)
+{
+    if (image->bufferView < 0 && bytes && size > 0)
+        image->image.assign(bytes, bytes + size);
+    return true;
+}
+
+// ---- validation: everything the importer will follow, checked once, before any read ----
+
+const char *type_name(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown";
+    }
+}
+
+const char *component_name(int c)
+{
+    switch (c) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "unknown";
+    }
+}
+
+struct validator {
+    const tinygltf::Model &model;
+
+    void buffer_views()
+    {
+        for (size_t i = 0; i < model.bufferViews.size(); i++) {
+            const tinygltf::BufferView &bv = model.bufferViews[i];
+            std::string at = item("bufferViews", i);
+            check_index(bv.buffer, model.buffers.size(), at + ".buffer", "buffers", false);
+            size_t size = model.buffers[bv.buffer].data.size();
+            if (bv.byteLength > size || bv.byteOffset > size - bv.byteLength)
+                refuse(at + ": bytes " + std::to_string(bv.byteOffset) + " + " +
+                       std::to_string(bv.byteLength) + " outside buffers[" +
+                       std::to_string(bv.buffer) + "] (" + std::to_string(size) + " bytes)");
+            if (bv.byteStride != 0 && (bv.byteStride < 4 || bv.byteStride > 252 || bv.byteStride % 4))
+                refuse(at + ".byteStride " + std::to_string(bv.byteStride) +
+                       " invalid (4 to 252, a multiple of 4)");
+        }
+    }
+
+    void accessors()
+    {
+        for (size_t i = 0; i < model.accessors.size(); i++) {
+            const tinygltf::Accessor &a = model.accessors[i];
+            std::string at = item("accessors", i);
+            if (a.sparse.isSparse)
+                refuse(at + ".sparse: sparse accessors are not supported");
+            int size = tinygltf::GetComponentSizeInBytes((uint32_t)a.componentType);
+            int comps = tinygltf::GetNumComponentsInType((uint32_t)a.type);
+            if (size <= 0)
+                refuse(at + ".componentType " + std::to_string(a.componentType) + " invalid");
+            if (comps <= 0)
+                refuse(at + ".type invalid");
+            if (a.count < 1)
+                refuse(at + ".count 0 invalid (at least 1)");
+            if (a.bufferView < 0)
+                refuse(at + ".bufferView missing (accessors without data are not supported)");
+            check_index(a.bufferView, model.bufferViews.size(), at + ".bufferView", "bufferViews",
+                        false);
+            const tinygltf::BufferView &bv = model.bufferViews[a.bufferView];
+            size_t elem = (size_t)size * (size_t)comps;
+            size_t stride = bv.byteStride ? bv.byteStride : elem;
+            if (stride < elem)
+                refuse(at + ": element of " + std::to_string(elem) + " bytes wider than bufferViews[" +
+                       std::to_string(a.bufferView) + "].byteStride " + std::to_string(stride));
+            // byteOffset + (count - 1) * stride + elem <= byteLength, without overflow.
+            if (a.byteOffset > bv.byteLength || elem > bv.byteLength - a.byteOffset ||
+                a.count - 1 > (bv.byteLength - a.byteOffset - elem) / stride)
+                refuse(at + ": byteOffset " + std::to_string(a.byteOffset) + " + count " +
+                       std::to_string(a.count) + " x stride " + std::to_string(stride) +
+                       " outside bufferViews[" + std::to_string(a.bufferView) + "] (" +
+                       std::to_string(bv.byteLength) + " bytes)");
+        }
+    }
+
+    // What the importer reads from an attribute: type and the component types it decodes.
+    void attribute(int accessor, const std::string &at, int type, bool normalized_ok)
+    {
+        check_index(accessor, model.accessors.size(), at, "accessors", false);
+        const tinygltf::Accessor &a = model.accessors[accessor];
+        bool component_ok = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                            (normalized_ok && a.normalized &&
+                             (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+        if (a.type != type || !component_ok)
+            refuse(at + ": accessors[" + std::to_string(accessor) + "] is " + type_name(a.type) +
+                   " " + component_name(a.componentType) + ", expected " + type_name(type) +
+                   (normalized_ok ? " FLOAT or normalized UNSIGNED_BYTE/SHORT" : " FLOAT"));
+    }
+
+    void meshes()
+    {
+        for (size_t m = 0; m < model.meshes.size(); m++)
+            for (size_t p = 0; p < model.meshes[m].primitives.size(); p++) {
+                const tinygltf::Primitive &prim = model.meshes[m].primitives[p];
+                std::string at = item(item("meshes", m) + ".primitives", p);
+                for (const auto &kv : prim.attributes)
+                    check_index(kv.second, model.accessors.size(), at + ".attributes." + kv.first,
+                                "accessors", false);
+                check_index(prim.material, model.materials.size(), at + ".material", "materials", true);
+                if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+                    continue; // points and lines carry no surfaces: skipped
+                auto pos = prim.attributes.find("POSITION");
+                if (pos == prim.attributes.end())
+                    refuse(at + ".attributes: no POSITION");
+                attribute(pos->second, at + ".attributes.POSITION", TINYGLTF_TYPE_VEC3, false);
+                size_t vertices = model.accessors[pos->second].count;
+                for (const char *name : {"NORMAL", "TEXCOORD_0"}) {
+                    auto it = prim.attributes.find(name);
+                    if (it == prim.attributes.end())
+                        continue;
+                    bool uv = std::strcmp(name, "TEXCOORD_0") == 0;
+                    std::string field = at + ".attributes." + name;
+                    attribute(it->second, field, uv ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3, uv);
+                    if (model.accessors[it->second].count != vertices)
+                        refuse(field + ": count " + std::to_string(model.accessors[it->second].count) +
+                               " differs from POSITION's " + std::to_string(vertices));
+                }
+                if (prim.indices < 0)
+                    continue;
+                check_index(prim.indices, model.accessors.size(), at + ".indices", "accessors", false);
+                const tinygltf::Accessor &ia = model.accessors[prim.indices];
+                if (ia.type != TINYGLTF_TYPE_SCALAR ||
+                    (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                     ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                     ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+                    refuse(at + ".indices: accessors[" + std::to_string(prim.indices) + "] is " +
+                           type_name(ia.type) + " " + component_name(ia.componentType) +
+                           ", expected SCALAR UNSIGNED_BYTE/SHORT/INT");
+            }
+    }
+
+    void materials()
+    {
+        for (size_t i = 0; i < model.images.size(); i++) {
+            const tinygltf::Image &img = model.images[i];
+            check_index(img.bufferView, model.bufferViews.size(), item("images", i) + ".bufferView",
+                        "bufferViews", true);
+        }
+        for (size_t i = 0; i < model.textures.size(); i++)
+            check_index(model.textures[i].source, model.images.size(),
+                        item("textures", i) + ".source", "images", true);
+        for (size_t i = 0; i < model.materials.size(); i++) {
+            const tinygltf::Material &m = model.materials[i];
+            std::string at = item("materials", i) + ".pbrMetallicRoughness.baseColorTexture";
+            int ti = m.pbrMetallicRoughness.baseColorTexture.index;
+            check_index(ti, model.textures.size(), at + ".index", "textures", true);
+            if (ti >= 0 && model.textures[ti].source < 0)
+                refuse(item("textures", (size_t)ti) + ".source missing (used by " +
+                       item("materials", i) + ")");
+        }
+    }
+
+    // Nodes form a forest: each has at most one parent, scenes name roots once each.
+    void nodes()
+    {
+        std::vector<long long> parent(model.nodes.size(), -1);
+        for (size_t i = 0; i < model.nodes.size(); i++) {
+            const tinygltf::Node &n = model.nodes[i];
+            std::string at = item("nodes", i);
+            check_index(n.mesh, model.meshes.size(), at + ".mesh", "meshes", true);
+            for (size_t c = 0; c < n.children.size(); c++) {
+                std::string field = item(at + ".children", c);
+                check_index(n.children[c], model.nodes.size(), field, "nodes", false);
+                long long &p = parent[n.children[c]];
+                if (p >= 0 || (size_t)n.children[c] == i)
+                    refuse(field + ": nodes[" + std::to_string(n.children[c]) + "] already has a parent (" +
+                           (p >= 0 ? item("nodes", (size_t)p) : at) + "); nodes must form trees");
+                p = (long long)i;
+            }
+            auto ext = n.extensions.find("KHR_lights_punctual");
+            if (ext != n.extensions.end() && ext->second.Has("light")) {
+                const tinygltf::Value &l = ext->second.Get("light");
+                if (!l.IsInt())
+                    refuse(at + ".extensions.KHR_lights_punctual.light is not an integer");
+                check_index(l.GetNumberAsInt(), model.lights.size(),
+                            at + ".extensions.KHR_lights_punctual.light", "lights", false);
+            }
+        }
+        for (size_t i = 0; i < model.nodes.size(); i++) { // a cycle has no root above it
+            size_t steps = 0;
+            for (long long p = parent[i]; p >= 0; p = parent[p])
+                if (++steps > (size_t)max_node_depth)
+                    refuse(item("nodes", i) + ": nested deeper than " + std::to_string(max_node_depth) +
+                           " levels or in a cycle");
+        }
+        check_index(model.defaultScene, model.scenes.size(), "scene", "scenes", true);
+        for (size_t s = 0; s < model.scenes.size(); s++) {
+            std::vector<bool> seen(model.nodes.size(), false);
+            for (size_t k = 0; k < model.scenes[s].nodes.size(); k++) {
+                std::string field = item(item("scenes", s) + ".nodes", k);
+                int n = model.scenes[s].nodes[k];
+                check_index(n, model.nodes.size(), field, "nodes", false);
+                if (parent[n] >= 0 || seen[n])
+                    refuse(field + ": nodes[" + std::to_string(n) + "] is not a root or is listed twice");
+                seen[n] = true;
+            }
+        }
+    }
+
+    void run()
+    {
+        buffer_views();
+        accessors();
+        meshes();
+        materials();
+        nodes();
+    }
+};
+
+// ---- import: reads only what validate() accepted ----
 
 struct mat4 {
     double m[16]; // column-major
@@ -93,121 +412,112 @@ void transform_normal(const mat4 &m, const float in[3], float out[3])
 struct importer {
     const tinygltf::Model &model;
     scene *out;
-    std::string error;
-    int material_base;
-    int default_material;
+    std::vector<int> material_index; // glTF material -> scene material
+    int default_material = -1;
 
-    // Float accessor element i, component k; false if the accessor is not float or short.
-    bool read_float(int accessor, size_t i, int comps, float *v)
+    const unsigned char *element(int accessor, size_t i) const
     {
         const tinygltf::Accessor &a = model.accessors[accessor];
-        if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.bufferView < 0 ||
-            i >= a.count)
-            return false;
         const tinygltf::BufferView &bv = model.bufferViews[a.bufferView];
-        size_t stride = a.ByteStride(bv);
-        size_t off = bv.byteOffset + a.byteOffset + i * stride;
-        const std::vector<unsigned char> &data = model.buffers[bv.buffer].data;
-        if (stride == (size_t)-1 || off + comps * sizeof(float) > data.size())
-            return false;
-        std::memcpy(v, data.data() + off, comps * sizeof(float));
-        return true;
+        size_t elem = (size_t)tinygltf::GetComponentSizeInBytes((uint32_t)a.componentType) *
+                      (size_t)tinygltf::GetNumComponentsInType((uint32_t)a.type);
+        size_t stride = bv.byteStride ? bv.byteStride : elem;
+        return model.buffers[bv.buffer].data.data() + bv.byteOffset + a.byteOffset + i * stride;
     }
 
-    bool read_index(int accessor, size_t i, uint32_t *v)
+    // Float (or, for uvs, normalized unsigned) components of element i, as validated.
+    void read_float(int accessor, size_t i, int comps, float *v) const
     {
-        const tinygltf::Accessor &a = model.accessors[accessor];
-        if (a.bufferView < 0 || i >= a.count)
-            return false;
-        const tinygltf::BufferView &bv = model.bufferViews[a.bufferView];
-        int size = tinygltf::GetComponentSizeInBytes(a.componentType);
-        size_t stride = bv.byteStride ? bv.byteStride : (size_t)size;
-        size_t off = bv.byteOffset + a.byteOffset + i * stride;
-        const std::vector<unsigned char> &data = model.buffers[bv.buffer].data;
-        if (size <= 0 || off + size > data.size())
-            return false;
-        const unsigned char *p = data.data() + off;
-        switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: *v = p[0]; return true;
+        const unsigned char *p = element(accessor, i);
+        switch (model.accessors[accessor].componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            for (int k = 0; k < comps; k++)
+                v[k] = p[k] / 255.0f;
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            for (int k = 0; k < comps; k++) {
+                uint16_t s;
+                std::memcpy(&s, p + 2 * k, 2);
+                v[k] = s / 65535.0f;
+            }
+            break;
+        default:
+            std::memcpy(v, p, (size_t)comps * sizeof(float));
+        }
+    }
+
+    uint32_t read_index(int accessor, size_t i) const
+    {
+        const unsigned char *p = element(accessor, i);
+        switch (model.accessors[accessor].componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            uint16_t s; std::memcpy(&s, p, 2); *v = s; return true;
+            uint16_t s;
+            std::memcpy(&s, p, 2);
+            return s;
         }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(v, p, 4); return true;
-        default: return false;
+        default: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
         }
     }
 
-    bool primitive(const tinygltf::Primitive &prim, const mat4 &world, const std::string &mesh)
+    void primitive(const tinygltf::Primitive &prim, const mat4 &world, const std::string &at)
     {
         if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-            return true; // points and lines carry no surfaces: skipped
-        auto pos = prim.attributes.find("POSITION");
-        if (pos == prim.attributes.end()) {
-            error = "mesh \"" + mesh + "\" has a primitive without POSITION";
-            return false;
-        }
+            return;
+        int pos = prim.attributes.at("POSITION");
         auto nrm = prim.attributes.find("NORMAL");
         auto tex = prim.attributes.find("TEXCOORD_0");
-        const tinygltf::Accessor &pa = model.accessors[pos->second];
-        size_t count = prim.indices >= 0 ? model.accessors[prim.indices].count : pa.count;
-        uint32_t material = prim.material >= 0 ? (uint32_t)(material_base + prim.material)
+        bool have_n = nrm != prim.attributes.end(), have_uv = tex != prim.attributes.end();
+        size_t vertices = model.accessors[pos].count;
+        size_t count = prim.indices >= 0 ? model.accessors[prim.indices].count : vertices;
+        if (count / 3 > max_triangles - out->triangle_count)
+            refuse(at + ": more than " + std::to_string(max_triangles) + " triangles in the scene");
+        uint32_t material = prim.material >= 0 ? (uint32_t)material_index[prim.material]
                                                : (uint32_t)default_material;
         for (size_t t = 0; t + 2 < count; t += 3) {
             float p[9], n[9], uv[6];
-            bool have_n = nrm != prim.attributes.end(), have_uv = tex != prim.attributes.end();
             for (int k = 0; k < 3; k++) {
-                uint32_t idx = (uint32_t)(t + k);
-                if (prim.indices >= 0 && !read_index(prim.indices, t + k, &idx)) {
-                    error = "mesh \"" + mesh + "\": unreadable index accessor";
-                    return false;
+                size_t idx = t + k;
+                if (prim.indices >= 0) {
+                    idx = read_index(prim.indices, t + k);
+                    if (idx >= vertices)
+                        refuse(at + ".indices: accessors[" + std::to_string(prim.indices) + "][" +
+                               std::to_string(t + k) + "] = " + std::to_string(idx) +
+                               " out of range (" + std::to_string(vertices) + " vertices)");
                 }
                 float v[3];
-                if (!read_float(pos->second, idx, 3, v)) {
-                    error = "mesh \"" + mesh + "\": POSITION is not a readable float VEC3 "
-                            "accessor (index " + std::to_string(idx) + ")";
-                    return false;
-                }
+                read_float(pos, idx, 3, v);
                 transform_point(world, v, p + 3 * k);
                 if (have_n) {
-                    if (read_float(nrm->second, idx, 3, v))
-                        transform_normal(world, v, n + 3 * k);
-                    else
-                        have_n = false;
+                    read_float(nrm->second, idx, 3, v);
+                    transform_normal(world, v, n + 3 * k);
                 }
-                if (have_uv && !read_float(tex->second, idx, 2, uv + 2 * k))
-                    have_uv = false;
+                if (have_uv)
+                    read_float(tex->second, idx, 2, uv + 2 * k);
             }
             if (scene_add_triangle(out, p, have_n ? n : nullptr, have_uv ? uv : nullptr,
-                                   material) < 0) {
-                error = "out of memory";
-                return false;
-            }
+                                   material) < 0)
+                refuse("out of memory");
         }
-        return true;
     }
 
-    bool node(int index, const mat4 &parent, int depth)
+    void node(int index, const mat4 &parent)
     {
-        if (index < 0 || index >= (int)model.nodes.size() || depth > 64) {
-            error = "node " + std::to_string(index) + " does not exist or nests too deep";
-            return false;
-        }
         const tinygltf::Node &n = model.nodes[index];
         mat4 world = mul(parent, node_local(n));
         if (n.mesh >= 0) {
-            if (n.mesh >= (int)model.meshes.size()) {
-                error = "node " + std::to_string(index) + " uses missing mesh";
-                return false;
-            }
             const tinygltf::Mesh &m = model.meshes[n.mesh];
-            for (const tinygltf::Primitive &prim : m.primitives)
-                if (!primitive(prim, world, m.name))
-                    return false;
+            for (size_t p = 0; p < m.primitives.size(); p++)
+                primitive(m.primitives[p], world, item(item("meshes", n.mesh) + ".primitives", p));
         }
         auto ext = n.extensions.find("KHR_lights_punctual");
         if (ext != n.extensions.end() && ext->second.Has("light")) {
             int li = ext->second.Get("light").GetNumberAsInt();
-            if (li >= 0 && li < (int)model.lights.size() && model.lights[li].type == "spot") {
+            if (model.lights[li].type == "spot") {
                 const tinygltf::Light &l = model.lights[li];
                 scene_light sl{};
                 const float zero[3] = {0, 0, 0};
@@ -227,49 +537,59 @@ struct importer {
             }
         }
         for (int child : n.children)
-            if (!node(child, world, depth + 1))
-                return false;
-        return true;
+            node(child, world);
     }
 
-    bool materials()
+    // Decodes one image to RGBA8 (sRGB-encoded, as glTF stores base colour).
+    int texture(int image)
     {
-        material_base = (int)out->material_count;
-        int texture_base = (int)out->texture_count;
-        for (const tinygltf::Image &img : model.images) {
-            int w = img.width, h = img.height, c = img.component;
-            size_t need = (size_t)w * h * c * (img.bits == 16 ? 2 : 1);
-            uint8_t *rgba = (uint8_t *)std::malloc((size_t)(w > 0 ? w : 1) * (h > 0 ? h : 1) * 4);
-            if (!rgba)
-                return error = "out of memory", false;
-            if (w <= 0 || h <= 0 || c < 1 || c > 4 || img.image.size() < need) {
-                // An image tinygltf could not decode: a white 1x1 keeps indices valid.
-                w = h = 1;
-                std::memset(rgba, 255, 4);
-            } else {
-                for (size_t i = 0; i < (size_t)w * h; i++)
-                    for (int k = 0; k < 4; k++) {
-                        size_t src = (i * c + (k < c ? k : 0)) * (img.bits == 16 ? 2 : 1);
-                        uint8_t v = img.image[src + (img.bits == 16 ? 1 : 0)];
-                        rgba[4 * i + k] = k < c ? v : (k == 3 ? 255 : img.image[i * c]);
-                    }
-            }
-            if (scene_add_texture(out, w, h, rgba) < 0) {
-                std::free(rgba);
-                return error = "out of memory", false;
-            }
+        const tinygltf::Image &img = model.images[image];
+        std::string at = item("images", (size_t)image);
+        const unsigned char *bytes;
+        size_t size;
+        if (img.bufferView >= 0) {
+            const tinygltf::BufferView &bv = model.bufferViews[img.bufferView];
+            bytes = model.buffers[bv.buffer].data.data() + bv.byteOffset;
+            size = bv.byteLength;
+        } else {
+            bytes = img.image.data();
+            size = img.image.size();
         }
+        if (size == 0)
+            refuse(at + (img.uri.empty() ? ": no data"
+                                         : ".uri \"" + img.uri.substr(0, 80) + "\": file not found or empty"));
+        int w, h, c;
+        if (size > INT32_MAX || !stbi_info_from_memory(bytes, (int)size, &w, &h, &c))
+            refuse(at + ": cannot decode (" + (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") + ")");
+        if (w > max_image_side || h > max_image_side || (long long)w * h > max_image_pixels)
+            refuse(at + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
+                   std::to_string(max_image_side) + " a side or 2^26 pixels");
+        uint8_t *rgba = stbi_load_from_memory(bytes, (int)size, &w, &h, &c, 4);
+        if (!rgba)
+            refuse(at + ": cannot decode (" + (stbi_failure_reason() ? stbi_failure_reason() : "unknown") + ")");
+        // The scene owns malloc'ed pixels; stb_image's allocator is malloc.
+        int t = scene_add_texture(out, w, h, rgba);
+        if (t < 0) {
+            stbi_image_free(rgba);
+            refuse("out of memory");
+        }
+        return t;
+    }
+
+    void materials()
+    {
+        std::vector<int> texture_of(model.images.size(), -1);
         for (const tinygltf::Material &m : model.materials) {
             scene_material sm{};
             const auto &pbr = m.pbrMetallicRoughness;
             for (int k = 0; k < 4; k++)
                 sm.base_color[k] = pbr.baseColorFactor.size() == 4 ? (float)pbr.baseColorFactor[k] : 1.0f;
             sm.base_color_texture = -1;
-            int ti = pbr.baseColorTexture.index;
-            if (ti >= 0 && ti < (int)model.textures.size()) {
-                int src = model.textures[ti].source;
-                if (src >= 0 && src < (int)model.images.size())
-                    sm.base_color_texture = texture_base + src;
+            if (pbr.baseColorTexture.index >= 0) {
+                int src = model.textures[pbr.baseColorTexture.index].source;
+                if (texture_of[src] < 0)
+                    texture_of[src] = texture(src);
+                sm.base_color_texture = texture_of[src];
             }
             double strength = 1.0;
             auto es = m.extensions.find("KHR_materials_emissive_strength");
@@ -278,12 +598,32 @@ struct importer {
             for (int k = 0; k < 3; k++)
                 sm.emissive[k] = m.emissiveFactor.size() == 3 ? (float)(m.emissiveFactor[k] * strength) : 0.0f;
             sm.roughness = (float)pbr.roughnessFactor;
-            if (scene_add_material(out, &sm) < 0)
-                return error = "out of memory", false;
+            int index = scene_add_material(out, &sm);
+            if (index < 0)
+                refuse("out of memory");
+            material_index.push_back(index);
         }
         scene_material fallback = {{0.8f, 0.8f, 0.8f, 1.0f}, -1, {0, 0, 0}, 0.5f};
         default_material = scene_add_material(out, &fallback);
-        return default_material >= 0 || (error = "out of memory", false);
+        if (default_material < 0)
+            refuse("out of memory");
+    }
+
+    void run()
+    {
+        materials();
+        if (model.scenes.empty()) { // no scenes: every node that is nobody's child is a root
+            std::vector<bool> child(model.nodes.size(), false);
+            for (const tinygltf::Node &n : model.nodes)
+                for (int c : n.children)
+                    child[c] = true;
+            for (size_t n = 0; n < model.nodes.size(); n++)
+                if (!child[n])
+                    node((int)n, identity());
+            return;
+        }
+        for (int n : model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes)
+            node(n, identity());
     }
 };
 
@@ -300,6 +640,8 @@ extern "C" int gltf_import(const char *path, scene *out, char *err, size_t errle
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string error, warning;
+    loader.SetFsCallbacks({fs_exists, fs_expand, fs_read, fs_write, nullptr});
+    loader.SetImageLoader(keep_encoded, nullptr);
     bool ok;
     try {
         ok = ends_with_glb(path) ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
@@ -315,25 +657,9 @@ extern "C" int gltf_import(const char *path, scene *out, char *err, size_t errle
                       first.empty() ? "unreadable file" : first.c_str());
         return -1;
     }
-    importer im{model, out, std::string(), 0, 0};
     try {
-        if (!im.materials())
-            throw std::runtime_error(im.error);
-        int si = model.defaultScene >= 0 ? model.defaultScene : 0;
-        if (si < (int)model.scenes.size()) {
-            for (int n : model.scenes[si].nodes)
-                if (!im.node(n, identity(), 0))
-                    throw std::runtime_error(im.error);
-        } else { // no scenes: every node that is nobody's child is a root
-            std::vector<bool> child(model.nodes.size(), false);
-            for (const tinygltf::Node &n : model.nodes)
-                for (int c : n.children)
-                    if (c >= 0 && c < (int)child.size())
-                        child[c] = true;
-            for (int n = 0; n < (int)model.nodes.size(); n++)
-                if (!child[n] && !im.node(n, identity(), 0))
-                    throw std::runtime_error(im.error);
-        }
+        validator{model}.run();
+        importer{model, out, {}, -1}.run();
     } catch (const std::exception &e) {
         std::snprintf(err, errlen, "scene %s: %s", path, e.what());
         return -1;

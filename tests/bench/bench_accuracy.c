@@ -68,7 +68,7 @@ static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_ref
         renderer_frame_pass(r, fp);
         if (f < warm)
             continue;
-        if (renderer_eye_pass(r, fp, &s->view, 1, &img) != 0) {
+        if (renderer_eye_pass(r, &s->view, 1, &img) != 0) {
             fprintf(stderr, "bench accuracy: %s\n", renderer_last_error(r));
             return -1;
         }

@@ -158,7 +158,7 @@ int accuracy_move(int argc, char **argv)
         for (int f = 0; f < 2 * acc_warm_frames(lambda) + 2; f++)
             renderer_frame_pass(r, &b);
         lpv_volume_copy(&steady, renderer_get_lpv(r));
-        rc = renderer_eye_pass(r, &b, &s.view, 1, &img);
+        rc = renderer_eye_pass(r, &s.view, 1, &img);
         if (rc == 0) {
             memcpy(steady_indirect, img.indirect, px * 3 * sizeof(float));
             memcpy(steady_display, img.rgb, px * 3);
@@ -172,7 +172,7 @@ int accuracy_move(int argc, char **argv)
         int settle = -1;
         for (int f = 1; f <= m.frames && rc == 0; f++) {
             renderer_frame_pass(r, &b);
-            if ((rc = renderer_eye_pass(r, &b, &s.view, 1, &img)) != 0)
+            if ((rc = renderer_eye_pass(r, &s.view, 1, &img)) != 0)
                 break;
             double lat = lattice_difference(renderer_get_lpv(r), &steady);
             double ind = steady_mean > 0
@@ -242,7 +242,7 @@ int accuracy_path(int argc, char **argv)
             if (f < 0)
                 continue;
             renderer_image img;
-            if ((rc = renderer_eye_pass(r, &fp, &s.view, 1, &img)) != 0)
+            if ((rc = renderer_eye_pass(r, &s.view, 1, &img)) != 0)
                 break;
             const float *now[3] = {img.final, img.indirect, img.direct};
             if (f > 0) {

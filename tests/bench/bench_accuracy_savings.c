@@ -41,7 +41,7 @@ static int static_run(acc_setup *s, int skip, int frames, int lattice, double *t
     renderer_get_lpv_stats(r, &st);
     *skipped = st.frames_skipped;
     renderer_image img;
-    int rc = renderer_eye_pass(r, &fp, &s->view, 0, &img);
+    int rc = renderer_eye_pass(r, &s->view, 0, &img);
     if (rc == 0)
         memcpy(rgb, img.rgb, (size_t)s->opt.width * s->opt.height * 3);
     renderer_destroy(r);

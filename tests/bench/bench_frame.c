@@ -123,7 +123,7 @@ int bench_frame(int argc, char **argv)
     for (int f = 0; f < frames && rc == 0; f++) {
         renderer_frame_pass(r, &fp);
         renderer_image img;
-        rc = renderer_eye_pass(r, &fp, &v, 0, &img);
+        rc = renderer_eye_pass(r, &v, 0, &img);
         renderer_timings t;
         renderer_get_timings(r, &t);
         if (f < WARMUP)

@@ -28,7 +28,7 @@ static void test_floor_beside_red_wall_is_redder(void **state)
     renderer_image img;
     for (int f = 0; f < 6; f++) /* a few incremental frames towards the steady state */
         renderer_frame_pass(t.r, &t.params);
-    assert_int_equal(renderer_eye_pass(t.r, &t.params, &v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);
 
     const float near_red[3] = {-1.75f, 0.0f, 1.3f}, far_red[3] = {0.9f, 0.0f, 1.3f};
     float pn[2], pf[2];

@@ -19,7 +19,7 @@ static uint8_t *render(glctx_backend backend, uint64_t *checksum)
     renderer_image img;
     for (int f = 0; f < 2; f++)
         *checksum = renderer_frame_pass(t.r, &t.params);
-    assert_int_equal(renderer_eye_pass(t.r, &t.params, &v, 0, &img), 0);
+    assert_int_equal(renderer_eye_pass(t.r, &v, 0, &img), 0);
     uint8_t *copy = malloc((size_t)W * H * 3);
     assert_non_null(copy);
     memcpy(copy, img.rgb, (size_t)W * H * 3);

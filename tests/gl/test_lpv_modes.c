@@ -126,7 +126,7 @@ static int run(gltest *t, int frames, uint64_t *checksum, float *final)
         renderer_get_lpv_stats(t->r, &s);
         skipped += s.skipped_this_frame;
         renderer_image img;
-        assert_int_equal(renderer_eye_pass(t->r, &t->params, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(t->r, &v, 1, &img), 0);
         if (final)
             memcpy(final, img.final, sizeof(float) * 3 * W * H);
     }

@@ -37,7 +37,7 @@ static void direct_difference(gltest *t, reference *ref, const renderer_view *v,
     const int W = v->width, H = v->height;
     renderer_frame_pass(t->r, &t->params);
     renderer_image img;
-    assert_int_equal(renderer_eye_pass(t->r, &t->params, v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(t->r, v, 1, &img), 0);
     char err[256];
     reference_render_desc rd = {.params = &t->params, .view = v, .samples = 1, .max_bounces = 1};
     reference_images out;

@@ -20,7 +20,7 @@ static void test_not_black_not_saturated(void **state)
     renderer_image img;
     for (int f = 0; f < 2; f++) {
         renderer_frame_pass(t.r, &t.params);
-        assert_int_equal(renderer_eye_pass(t.r, &t.params, &v, 0, &img), 0);
+        assert_int_equal(renderer_eye_pass(t.r, &v, 0, &img), 0);
     }
     assert_int_equal(img.width, W);
     double mean = 0;
@@ -61,7 +61,7 @@ static void test_spot_disc_where_projected(void **state)
     gltest_look_at(&v, eye, target, 1.2f, W, H);
     renderer_frame_pass(t.r, &t.params);
     renderer_image img;
-    assert_int_equal(renderer_eye_pass(t.r, &t.params, &v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);
 
     float want[2];
     gltest_project(&v, hit, want);

@@ -93,6 +93,22 @@ one_line_error() { # expected-substring command...
     [ "$(wc -l < "$out/err")" -eq 1 ] || { cat "$out/err" >&2; fail "$* gave more than one line"; }
     grep -q -- "$want" "$out/err" || { cat "$out/err" >&2; fail "$* error lacks '$want'"; }
 }
+# A glTF scene without emissive surfaces renders (one floor triangle under a spot).
+cat > "$out/floor.gltf" <<'EOF'
+{"asset":{"version":"2.0"},"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},
+{"translation":[0,2,0],"rotation":[-0.7071068,0,0,0.7071068],"extensions":{"KHR_lights_punctual":{"light":0}}}],
+"extensions":{"KHR_lights_punctual":{"lights":[{"type":"spot","intensity":40,"spot":{"outerConeAngle":0.6}}]}},
+"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},{"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"}],
+"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36}],
+"buffers":[{"byteLength":72,"uri":"data:application/octet-stream;base64,AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AAAAAAAAAAAAAIA/AAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAA"}]}
+EOF
+"$node" --standalone --scene "$out/floor.gltf" --frames 2 --width 32 --height 24 --rsm 32 --lattice 8 \
+    --out "$out/floor" > /dev/null || fail "a glTF scene without emitters failed to render"
+# A malformed scene is refused with the JSON path of the fault, not a crash.
+sed 's/"bufferView":1,/"bufferView":9,/' "$out/floor.gltf" > "$out/bad_view.gltf"
+one_line_error "accessors\[1\].bufferView 9 out of range (2 bufferViews)" \
+    "$node" --standalone --scene "$out/bad_view.gltf"
 printf '{"asset": {"version": "2.0"' > "$out/broken.gltf"
 one_line_error "broken.gltf" "$node" --standalone --scene "$out/broken.gltf"
 one_line_error "missing.glb" "$node" --standalone --scene "$out/missing.glb"
@@ -105,4 +121,8 @@ one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice 32
 one_line_error "--budget-ms" "$node" --standalone --budget-ms -1
 one_line_error "--lattice-cells" "$node" --standalone --lattice 16 --lattice-cells 4096
 one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells 4096
+# Frame values outside frame_params_sanitize()'s ranges are refused, not changed.
+one_line_error "--lambda 1.5 is outside" "$node" --standalone --lambda 1.5
+one_line_error "--exposure" "$node" --standalone --exposure 0
+one_line_error "--steps 300" "$node" --standalone --steps 300
 echo "node CLI: all checks passed"

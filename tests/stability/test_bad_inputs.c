@@ -103,7 +103,7 @@ static void test_bad_frame_params(void **state)
     /* The valid steady image: lambda 0.8 converges to float precision in ~80 frames. */
     for (int f = 0; f < STEADY_FRAMES; f++)
         renderer_frame_pass(g.r, &valid);
-    assert_int_equal(renderer_eye_pass(g.r, &valid, &v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
     memcpy(steady, img.final, n * sizeof *steady);
     double mean = stab_mean(steady, W, H);
     size_t bad_cases = 0;
@@ -113,13 +113,13 @@ static void test_bad_frame_params(void **state)
         cases[c].apply(&p);
         renderer_frame_pass(g.r, &p);
         size_t lpv_bad = lpv_volume_count_nonfinite(renderer_get_lpv(g.r));
-        int rc = renderer_eye_pass(g.r, &p, &v, 1, &img);
+        int rc = renderer_eye_pass(g.r, &v, 1, &img);
         size_t img_bad = rc == 0 ? stab_image_nonfinite(&img) : 0;
         /* Recovery without a reset: what the bad frame left in the history decays at
          * rate lambda (0.8^20 = 1.2%). */
         for (int f = 0; f < RECOVER_FRAMES; f++)
             renderer_frame_pass(g.r, &valid);
-        assert_int_equal(renderer_eye_pass(g.r, &valid, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
         double diff = mean_abs_diff(img.final, steady, n) / mean;
         printf("%-28s eye pass %s, non-finite: LPV %zu, image %zu; after %d valid frames "
                "%.3g\n", cases[c].name, rc == 0 ? "ok" : renderer_last_error(g.r), lpv_bad,

@@ -80,7 +80,7 @@ static void leak_render(leak_view *lv)
     for (int f = 0; f < FRAMES; f++)
         renderer_frame_pass(g.r, &lv->p);
     renderer_image img;
-    assert_int_equal(renderer_eye_pass(g.r, &lv->p, &lv->v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(g.r, &lv->v, 1, &img), 0);
     assert_int_equal(stab_image_nonfinite(&img), 0);
     size_t bytes = (size_t)W * H * 3 * sizeof(float);
     lv->direct = malloc(bytes);

@@ -101,7 +101,7 @@ static void test_spots_outside_and_on_the_edge(void **state)
         size_t bad = lpv_volume_count_nonfinite(lpv);
         double energy = stab_energy(lpv) / 3.0 / stab_spot_energy(l);
         renderer_image img;
-        assert_int_equal(renderer_eye_pass(g.r, &p, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
         bad += stab_image_nonfinite(&img);
         float px[2];
         gltest_project(&v, k->target, px);

@@ -62,7 +62,7 @@ static smoothness run(stab_gl *g, const scene *s, float lambda, float speed, flo
         p.time = f / 60.0;
         renderer_frame_pass(g->r, &p);
         renderer_image img;
-        assert_int_equal(renderer_eye_pass(g->r, &p, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(g->r, &v, 1, &img), 0);
         assert_int_equal(stab_image_nonfinite(&img), 0);
         if (moving > 0) {
             double d = 0, m = 0;

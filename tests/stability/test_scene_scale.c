@@ -65,7 +65,7 @@ static void render_scaled(float s, scaled_render *out)
     stab_view(&v, sc.camera.position, sc.camera.target, sc.camera.yfov, W, H, 0.05f * s,
               50.0f * s);
     renderer_image img;
-    assert_int_equal(renderer_eye_pass(g.r, &p, &v, 1, &img), 0);
+    assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
     size_t n = (size_t)W * H * 3;
     out->final = malloc(n * sizeof(float));
     out->direct = malloc(n * sizeof(float));

@@ -137,7 +137,7 @@ static void measure(float S, leak *out)
         renderer_view v;
         stab_view(&v, eye, target, 1.2f, W, H, 0.05f * S, 50.0f * S);
         renderer_image img;
-        assert_int_equal(renderer_eye_pass(g.r, &p, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
         assert_int_equal(stab_image_nonfinite(&img), 0);
         indirect[side] = stab_mean(img.indirect, W, H);
         direct_mean[side] = stab_mean(img.direct, W, H);

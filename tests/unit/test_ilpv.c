@@ -192,6 +192,28 @@ static void test_merge_follows_emitted_energy(void **state)
     assert_int_equal(ilpv_init(&s, &bad2), -1);
 }
 
+/* The merge rule both the CPU core and the GL path use: no history, no previous energy, or
+ * an energy that cannot be trusted (negative, NaN, inf) mean lambda 0. */
+static void test_merge_factors(void **state)
+{
+    ilpv_history h = {0};
+    ilpv_merge m = ilpv_merge_factors(&h, 0.8f, 2.0);
+    assert_int_equal(m.with_history, 0);
+    assert_true(m.a == 0.0f && m.b == 1.0f);
+    ilpv_history_advance(&h, 2.0);
+    m = ilpv_merge_factors(&h, 0.8f, 3.0);
+    assert_int_equal(m.with_history, 1);
+    assert_true(m.a == (float)(3.0 / 2.0 * (double)0.8f) && m.b == (float)(1.0 - (double)0.8f));
+    const double untrusted[3] = {-1.0, NAN, INFINITY};
+    for (int i = 0; i < 3; i++) {
+        m = ilpv_merge_factors(&h, 0.8f, untrusted[i]);
+        assert_int_equal(m.with_history, 0);
+        assert_true(m.a == 0.0f && m.b == 1.0f);
+    }
+    ilpv_history_advance(&h, NAN); /* no usable energy: the next frame starts over */
+    assert_int_equal(ilpv_merge_factors(&h, 0.8f, 3.0).with_history, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -199,6 +221,7 @@ int main(void)
         cmocka_unit_test(test_converges_to_geometric_series),
         cmocka_unit_test(test_history_decays_at_the_predicted_rate),
         cmocka_unit_test(test_merge_follows_emitted_energy),
+        cmocka_unit_test(test_merge_factors),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -1,0 +1,597 @@
+/* standalone: cavelight-node --standalone (see standalone.h). */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "frame/frame_params.h"
+#include "glctx.h"
+#include "image/image.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_budget.h"
+#include "frame/offaxis.h"
+#include "reference_cli.h"
+#include "renderer.h"
+#include "renderer_hud.h"
+#include "scene/scene.h"
+#include "standalone.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "usage: cavelight-node --standalone [options]\n"
+        "  --gl egl|osmesa|glfw         GL context (default egl)\n"
+        "  --scene FILE|NAME            glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
+        "                               corridor, doorway, courtyard, leak-lid, leak-panel,\n"
+        "                               leak-wall (docs/node.md)\n"
+        "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
+        "  --pfm                        also write linear final/direct/indirect PFMs\n"
+        "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
+        "  --screen blx,bly,blz,brx,bry,brz,tlx,tly,tlz --eye x,y,z   off-axis screen\n"
+        "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
+        "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
+        "  --lattice-cells N            instead of --lattice: N cells in all, fitted to the\n"
+        "                               scene's shape (finer cells in a long, thin scene)\n"
+        "  --absorption S --scattering S --clamp-negative\n"
+        "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
+        "  --lpv-mode incremental|classic   ILPV (default) or classic LPV accumulation\n"
+        "  --converge-threshold R       skip the frame pass once the LPV residual is below R\n"
+        "                               and nothing changed (0 = 1e-4, negative = never)\n"
+        "  --budget-ms X                choose --lattice and --steps so that the LPV work\n"
+        "                               (inject + propagate) takes about X ms per frame on\n"
+        "                               this machine (standalone only)\n"
+        "  --env dark|dim|office --display-gamma G --exposure E\n"
+        "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
+        "                               settings) at a wand pointing along -Z (default: in\n"
+        "                               front of the first eye)\n"
+        "  --renderer raster|reference  GL rasterizer + LPV (default), or the Embree path\n"
+        "                               tracer (mono, writes reference_*.pfm/png/json)\n"
+        "  --samples N --bounces B --seed S   reference: paths per pixel per half image\n"
+        "                               (default 64), reflections (8), seed (1; halves S, S+1)\n");
+}
+
+static int parse_floats(const char *s, float *out, int n)
+{
+    for (int i = 0; i < n; i++) {
+        char *end;
+        errno = 0;
+        out[i] = strtof(s, &end);
+        if (end == s || errno || !isfinite(out[i]))
+            return -1;
+        s = end;
+        if (i + 1 < n) {
+            if (*s != ',')
+                return -1;
+            s++;
+        }
+    }
+    return *s ? -1 : 0;
+}
+
+static int parse_int(const char *s, int *out, int lo, int hi)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* The frame's ranges are frame_params_sanitize()'s alone: a value it would change is
+ * refused here with the option's name rather than changed behind the user's back. */
+static int check_frame_options(const node_options *o)
+{
+    frame_params sane = o->frame;
+    if (frame_params_sanitize(&sane) == 0)
+        return 0;
+    const frame_params *f = &o->frame;
+    struct { const char *option; double given; int changed; } field[] = {
+        {"--steps", f->lpv_steps, f->lpv_steps != sane.lpv_steps},
+        {"--lambda", f->lambda_incr, f->lambda_incr != sane.lambda_incr},
+        {"--absorption", f->absorption, f->absorption != sane.absorption},
+        {"--scattering", f->scattering, f->scattering != sane.scattering},
+        {"--display-gamma", f->display_gamma, f->display_gamma != sane.display_gamma},
+        {"--exposure", f->exposure, f->exposure != sane.exposure},
+    };
+    for (size_t i = 0; i < sizeof field / sizeof field[0]; i++)
+        if (field[i].changed) {
+            fprintf(stderr, "cavelight-node: %s %g is outside what a frame accepts (see "
+                    "frame_params_sanitize() in common/frame/frame_params.h)\n", field[i].option,
+                    field[i].given);
+            return -1;
+        }
+    return 0;
+}
+
+void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
+                             frame_params *out)
+{
+    *out = o->frame;
+    frame_params_lights_from_scene(out, s);
+    /* No tracker: the HUD, when shown, hangs in front of the first eye. */
+    if (o->have_wand)
+        memcpy(out->wand + 12, o->wand, sizeof o->wand);
+    else if (out->hud_layout >= 0)
+        renderer_hud_wand_in_front(first_eye->view, out->wand);
+}
+
+int standalone_parse(int argc, char **argv, node_options *o)
+{
+    *o = (node_options){
+        .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
+        .fov_deg = -1, .eye_separation = 0.065f, .seed = 1,
+    };
+    frame_params_default(&o->frame);
+    frame_params *fp = &o->frame;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int bad = 0, takes = 1;
+        if (strcmp(a, "--standalone") == 0) { o->standalone = 1; takes = 0; }
+        else if (strcmp(a, "--pfm") == 0) { o->pfm = 1; takes = 0; }
+        else if (strcmp(a, "--clamp-negative") == 0) { o->clamp_negative = 1; takes = 0; }
+        else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout); exit(0); }
+        else if (!v) bad = 1;
+        else if (strcmp(a, "--gl") == 0) bad = glctx_parse_backend(v, &o->gl);
+        else if (strcmp(a, "--scene") == 0) o->scene = v;
+        else if (strcmp(a, "--out") == 0) o->out = v;
+        else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
+        else if (strcmp(a, "--width") == 0) bad = parse_int(v, &o->width, 1, 16384);
+        else if (strcmp(a, "--height") == 0) bad = parse_int(v, &o->height, 1, 16384);
+        else if (strcmp(a, "--rsm") == 0) bad = parse_int(v, &o->rsm, 8, 4096);
+        else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
+        else if (strcmp(a, "--lattice-cells") == 0) bad = parse_int(v, &o->lattice_total, 8, 1 << 24);
+        else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
+        else if (strcmp(a, "--steps") == 0) { bad = parse_int(v, &fp->lpv_steps, 0, 1000); o->have_steps = 1; }
+        else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &fp->lambda_incr, 1);
+        else if (strcmp(a, "--converge-threshold") == 0) bad = parse_floats(v, &o->converge_threshold, 1);
+        else if (strcmp(a, "--budget-ms") == 0) bad = parse_floats(v, &o->budget_ms, 1) || o->budget_ms <= 0;
+        else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &fp->absorption, 1);
+        else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &fp->scattering, 1);
+        else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &fp->display_gamma, 1);
+        else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &fp->exposure, 1);
+        else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
+        else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
+        else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
+        else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
+        else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
+        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &fp->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
+        else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
+        else if (strcmp(a, "--samples") == 0) bad = parse_int(v, &o->samples, 1, 1 << 20);
+        else if (strcmp(a, "--bounces") == 0) bad = parse_int(v, &o->bounces, 1, 1000);
+        else if (strcmp(a, "--seed") == 0) {
+            char *end;
+            errno = 0;
+            o->seed = strtoull(v, &end, 10);
+            bad = end == v || *end || errno || v[0] == '-';
+        } else if (strcmp(a, "--renderer") == 0) {
+            o->reference = strcmp(v, "reference") == 0;
+            bad = !o->reference && strcmp(v, "raster") != 0;
+        } else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
+        else if (strcmp(a, "--eyes") == 0) {
+            o->stereo = strcmp(v, "stereo") == 0;
+            bad = !o->stereo && strcmp(v, "mono") != 0;
+        } else if (strcmp(a, "--lpv") == 0) {
+            if (strcmp(v, "auto") == 0) o->lpv = RENDERER_LPV_AUTO;
+            else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
+            else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
+            else bad = 1;
+        } else if (strcmp(a, "--lpv-mode") == 0) {
+            if (strcmp(v, "incremental") == 0) o->mode = RENDERER_LPV_INCREMENTAL;
+            else if (strcmp(v, "classic") == 0) o->mode = RENDERER_LPV_CLASSIC;
+            else bad = 1;
+        } else if (strcmp(a, "--gl-tiles") == 0) {
+            if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
+            else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
+            else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
+            else bad = 1;
+        } else if (strcmp(a, "--env") == 0) {
+            if (strcmp(v, "dark") == 0) fp->environment = FRAME_ENV_DARK;
+            else if (strcmp(v, "dim") == 0) fp->environment = FRAME_ENV_DIM;
+            else if (strcmp(v, "office") == 0) fp->environment = FRAME_ENV_OFFICE;
+            else bad = 1;
+        } else {
+            fprintf(stderr, "cavelight-node: unknown option %s (see --help)\n", a);
+            return -1;
+        }
+        if (bad) {
+            fprintf(stderr, "cavelight-node: bad or missing value for %s%s%s (see --help)\n",
+                    a, v ? ": " : "", v && takes ? v : "");
+            return -1;
+        }
+        i += takes;
+    }
+    if (check_frame_options(o) != 0)
+        return -1;
+    if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->have_steps)) {
+        fprintf(stderr, "cavelight-node: --budget-ms chooses --lattice and --steps: give "
+                "either the budget or those two\n");
+        return -1;
+    }
+    if (o->lattice > 0 && o->lattice_total > 0) {
+        fprintf(stderr, "cavelight-node: give --lattice (cells along the longest axis) or "
+                "--lattice-cells (cells in all), not both\n");
+        return -1;
+    }
+    if (o->have_screen != o->have_eye) {
+        fprintf(stderr, "cavelight-node: --screen and --eye go together\n");
+        return -1;
+    }
+    if (o->reference && o->stereo) {
+        fprintf(stderr, "cavelight-node: --renderer reference renders one eye: use --eyes mono\n");
+        return -1;
+    }
+    return 0;
+}
+
+typedef struct eye_setup {
+    const char *name;
+    renderer_view view;
+} eye_setup;
+
+/* Mono: one view; stereo: left and right eyes offset along the screen's (or camera's)
+ * right vector, with off-axis frusta for screens and parallel axes for cameras. */
+static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
+{
+    float right[3], head[3];
+    float aspect = (float)o->width / (float)o->height;
+    if (o->have_screen) {
+        float len = 0;
+        for (int i = 0; i < 3; i++) {
+            right[i] = o->screen[3 + i] - o->screen[i];
+            len += right[i] * right[i];
+        }
+        len = sqrtf(len);
+        for (int i = 0; i < 3; i++)
+            right[i] = len > 0 ? right[i] / len : 0;
+        memcpy(head, o->eye, sizeof head);
+    } else {
+        memcpy(head, o->position, sizeof head);
+        float f[3], up[3] = {0, 1, 0};
+        for (int i = 0; i < 3; i++)
+            f[i] = o->target[i] - o->position[i];
+        right[0] = f[1] * up[2] - f[2] * up[1];
+        right[1] = f[2] * up[0] - f[0] * up[2];
+        right[2] = f[0] * up[1] - f[1] * up[0];
+        float len = sqrtf(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+        for (int i = 0; i < 3; i++)
+            right[i] = len > 0 ? right[i] / len : (i == 0);
+    }
+    float pos[2][3];
+    *count = o->stereo ? 2 : 1;
+    if (o->stereo) {
+        offaxis_stereo_eyes(head, right, o->eye_separation, pos[0], pos[1]);
+        eyes[0].name = "left";
+        eyes[1].name = "right";
+    } else {
+        memcpy(pos[0], head, sizeof head);
+        eyes[0].name = "mono";
+    }
+    float far_plane = scene_far_plane(s);
+    for (int e = 0; e < *count; e++) {
+        renderer_view *v = &eyes[e].view;
+        v->width = o->width;
+        v->height = o->height;
+        memcpy(v->eye_position, pos[e], sizeof pos[e]);
+        int rc;
+        if (o->have_screen) {
+            offaxis_screen_desc sd = {.near_plane = 0.02f, .far_plane = far_plane};
+            memcpy(sd.bottom_left, o->screen, 12);
+            memcpy(sd.bottom_right, o->screen + 3, 12);
+            memcpy(sd.top_left, o->screen + 6, 12);
+            memcpy(sd.eye, pos[e], 12);
+            rc = offaxis_screen(&sd, v->view, v->projection);
+        } else {
+            float target[3];
+            for (int i = 0; i < 3; i++)
+                target[i] = o->target[i] + pos[e][i] - head[i];
+            rc = offaxis_look_at(pos[e], target, o->fov_deg * 3.14159265f / 180.0f, aspect,
+                                 0.02f, far_plane, v->view, v->projection);
+        }
+        if (rc != 0) {
+            fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
+                    "in the screen plane, or position equal to target)\n");
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static double median(double *v, int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = t;
+        }
+    return n ? (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])) : 0;
+}
+
+static int write_images(const node_options *o, int frame, const char *eye,
+                        const renderer_image *img)
+{
+    char path[4096], err[256];
+    snprintf(path, sizeof path, "%s/frame%04d_%s.png", o->out, frame, eye);
+    if (image_write_png(path, img->width, img->height, img->rgb, err, sizeof err))
+        return fprintf(stderr, "cavelight-node: %s\n", err), -1;
+    if (!o->pfm)
+        return 0;
+    const char *kind[3] = {"final", "direct", "indirect"};
+    const float *data[3] = {img->final, img->direct, img->indirect};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/frame%04d_%s_%s.pfm", o->out, frame, eye, kind[k]);
+        if (image_write_pfm(path, img->width, img->height, data[k], err, sizeof err))
+            return fprintf(stderr, "cavelight-node: %s\n", err), -1;
+    }
+    return 0;
+}
+
+/* Measures every candidate lattice with this context and backend: one propagation step
+ * and the LPV's other work per frame (injection, merge, upload, checksum, residual: a
+ * frame with 0 steps), each the median of three tries (what a frame meets on a shared
+ * machine, not its luckiest moment); then picks by lpv_budget_choose(). */
+static int choose_budget(const node_options *o, const renderer_desc *base,
+                         const frame_params *fp, lpv_budget_choice *choice, cJSON *report)
+{
+    static const int axis[] = {16, 24, 32, 48, 64};
+    enum { N = sizeof axis / sizeof axis[0] };
+    lpv_budget_candidate cand[N];
+    char err[512];
+    for (int k = 0; k < N; k++) {
+        renderer_desc rd = *base;
+        rd.lattice_cells = axis[k];
+        rd.converge_threshold = -1;
+        renderer *r = renderer_create(&rd, err, sizeof err);
+        if (!r) {
+            fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+            return -1;
+        }
+        double step_try[3], fixed_try[3];
+        frame_params none = *fp;
+        none.lpv_steps = 0;
+        renderer_frame_pass(r, &none); /* the first frame pays for first touches */
+        for (int i = 0; i < 3; i++) {
+            step_try[i] = renderer_measure_step_ms(r, 3);
+            renderer_frame_pass(r, &none);
+            renderer_timings t;
+            renderer_get_timings(r, &t);
+            fixed_try[i] = t.inject_ms + t.propagate_ms;
+        }
+        cand[k] = (lpv_budget_candidate){
+            .axis_cells = axis[k],
+            .cells = lattice_cell_count(renderer_get_lattice(r)),
+            .step_ms = fmax(median(step_try, 3), 1e-6), /* a step is never free */
+            .fixed_ms = median(fixed_try, 3),
+        };
+        renderer_destroy(r);
+    }
+    int classic = o->mode == RENDERER_LPV_CLASSIC;
+    lpv_budget_desc bd = {.budget_ms = o->budget_ms, .candidates = cand, .count = N,
+                          .min_steps = classic ? 8 : 4, .max_steps = classic ? 16 : 8};
+    if (lpv_budget_choose(&bd, choice) != 0) {
+        fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
+        return -1;
+    }
+    const lpv_budget_candidate *c = &cand[choice->index];
+    printf("cavelight-node: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame%s "
+           "(measured %.3g ms per step, %.3g ms per frame besides the steps)\n", o->budget_ms,
+           choice->axis_cells, choice->steps, choice->steps == 1 ? "" : "s", choice->predicted_ms,
+           choice->fits ? "" : ", over budget even at the coarsest lattice", c->step_ms,
+           c->fixed_ms);
+    cJSON *jb = cJSON_AddObjectToObject(report, "budget");
+    cJSON_AddNumberToObject(jb, "budget_ms", o->budget_ms);
+    cJSON_AddNumberToObject(jb, "lattice_cells", choice->axis_cells);
+    cJSON_AddNumberToObject(jb, "steps", choice->steps);
+    cJSON_AddNumberToObject(jb, "predicted_ms", choice->predicted_ms);
+    cJSON_AddBoolToObject(jb, "fits", choice->fits);
+    cJSON *jc = cJSON_AddArrayToObject(jb, "candidates");
+    for (int i = 0; i < N; i++) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddNumberToObject(e, "axis_cells", cand[i].axis_cells);
+        cJSON_AddNumberToObject(e, "cells", (double)cand[i].cells);
+        cJSON_AddNumberToObject(e, "step_ms", cand[i].step_ms);
+        cJSON_AddNumberToObject(e, "fixed_ms", cand[i].fixed_ms);
+        cJSON_AddItemToArray(jc, e);
+    }
+    return 0;
+}
+
+int standalone_run(const node_options *o)
+{
+    char err[512];
+    if (o->out && mkdir(o->out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "cavelight-node: cannot create output folder %s (%s)\n", o->out,
+                strerror(errno));
+        return 1;
+    }
+    scene sc;
+    if (scene_load(o->scene, &sc, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        return 1;
+    }
+    node_options opt = *o;
+    float view_position[3], view_target[3];
+    scene_default_view(&sc, view_position, view_target);
+    if (!opt.have_position)
+        memcpy(opt.position, view_position, sizeof view_position);
+    if (!opt.have_target)
+        memcpy(opt.target, view_target, sizeof view_target);
+    if (opt.fov_deg <= 0)
+        opt.fov_deg = sc.camera.valid ? sc.camera.yfov * 180.0f / 3.14159265f : 60.0f;
+    eye_setup eyes[2];
+    int eye_count;
+    if (make_views(&opt, &sc, eyes, &eye_count) != 0) {
+        scene_free(&sc);
+        return 1;
+    }
+    frame_params fp;
+    standalone_frame_params(o, &sc, &eyes[0].view, &fp);
+    if (o->reference) {
+        reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
+                                 .view = &eyes[0].view, .threads = o->threads,
+                                 .samples = o->samples, .bounces = o->bounces,
+                                 .seed = o->seed, .out = o->out};
+        int rc = reference_cli_run(&rd);
+        scene_free(&sc);
+        return rc;
+    }
+    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
+                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        scene_free(&sc);
+        return 1;
+    }
+    renderer_desc rd = {
+        .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
+        .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
+        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
+    };
+    cJSON *report = cJSON_CreateObject();
+    if (o->budget_ms > 0) {
+        lpv_budget_choice budget;
+        if (choose_budget(o, &rd, &fp, &budget, report) != 0) {
+            cJSON_Delete(report);
+            glctx_destroy(ctx);
+            scene_free(&sc);
+            return 1;
+        }
+        rd.lattice_cells = budget.axis_cells;
+        fp.lpv_steps = budget.steps;
+    }
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    if (!r) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        cJSON_Delete(report);
+        glctx_destroy(ctx);
+        scene_free(&sc);
+        return 1;
+    }
+
+    const lattice_desc *lat = renderer_get_lattice(r);
+    const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
+    printf("cavelight-node: %s, %s, scene %s (%zu triangles), lattice %dx%dx%d, LPV on %s\n",
+           glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc.triangle_count, lat->n[0],
+           lat->n[1], lat->n[2], backend);
+
+    cJSON_AddStringToObject(report, "scene", o->scene);
+    cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
+    cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
+    cJSON_AddStringToObject(report, "lpv_backend", backend);
+    cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
+    /* The lattice follows the scene's shape: what that saves against a cube. */
+    int longest = lat->n[0] > lat->n[1] ? lat->n[0] : lat->n[1];
+    longest = longest > lat->n[2] ? longest : lat->n[2];
+    cJSON_AddNumberToObject(report, "cells", (double)lattice_cell_count(lat));
+    cJSON_AddNumberToObject(report, "cube_cells", (double)longest * longest * longest);
+    cJSON_AddStringToObject(report, "lpv_mode",
+                            renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
+                                                                             : "incremental");
+    cJSON_AddNumberToObject(report, "triangles", (double)sc.triangle_count);
+    cJSON_AddNumberToObject(report, "width", o->width);
+    cJSON_AddNumberToObject(report, "height", o->height);
+    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
+    cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
+    cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
+    cJSON *frames = cJSON_AddArrayToObject(report, "frames");
+    enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
+    static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
+                                          "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms"};
+    double *samples = calloc((size_t)o->frames * M_COUNT, sizeof *samples);
+    int rc = samples ? 0 : 1, frames_done_early = 0, frames_run = 0;
+    for (int f = 0; f < o->frames && rc == 0 && !frames_done_early; f++) {
+        fp.version = (uint64_t)f;
+        fp.time = f / 60.0;
+        uint64_t checksum = renderer_frame_pass(r, &fp);
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        cJSON *jf = cJSON_CreateObject();
+        char hex[17];
+        snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
+        cJSON_AddNumberToObject(jf, "frame", f);
+        cJSON_AddStringToObject(jf, "lpv_checksum", hex);
+        renderer_lpv_stats ls;
+        renderer_get_lpv_stats(r, &ls);
+        cJSON_AddBoolToObject(jf, "skipped", ls.skipped_this_frame);
+        if (isfinite(ls.last_residual)) /* +Inf before two computed frames: JSON null */
+            cJSON_AddNumberToObject(jf, "residual", ls.last_residual);
+        else
+            cJSON_AddNullToObject(jf, "residual");
+        double eye_sum[4] = {0, 0, 0, 0};
+        for (int e = 0; e < eye_count && rc == 0; e++) {
+            renderer_image img;
+            if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {
+                fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
+                        renderer_last_error(r));
+                rc = 1;
+                break;
+            }
+            if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
+                rc = 1;
+            renderer_timings te;
+            renderer_get_timings(r, &te);
+            eye_sum[0] += te.gbuffer_ms;
+            eye_sum[1] += te.shade_ms;
+            eye_sum[2] += te.final_ms;
+            eye_sum[3] += te.eye_host_ms;
+        }
+        /* A window shows the first eye; closing it ends the run. */
+        if (rc == 0 && o->gl == GLCTX_GLFW) {
+            renderer_present(r, o->width, o->height);
+            if (!glctx_swap(ctx))
+                frames_done_early = 1;
+        }
+        double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
+                                eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
+        for (int m = 0; m < M_COUNT; m++) {
+            cJSON_AddNumberToObject(jf, mnames[m], vals[m]);
+            samples[(size_t)m * o->frames + f] = vals[m];
+        }
+        cJSON_AddItemToArray(frames, jf);
+        frames_run++;
+        printf("frame %d: lpv %s%s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
+               "eyes %.2f ms\n", f, hex, ls.skipped_this_frame ? " (skipped, converged)" : "",
+               t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms, eye_sum[3]);
+    }
+    if (rc == 0) {
+        /* GPU timer results arrive a few frames late: the first frames report 0 there. */
+        cJSON *med = cJSON_AddObjectToObject(report, "median");
+        double m[M_COUNT];
+        for (int k = 0; k < M_COUNT; k++) {
+            m[k] = median(samples + (size_t)k * o->frames, frames_run);
+            cJSON_AddNumberToObject(med, mnames[k], m[k]);
+        }
+        renderer_lpv_stats ls;
+        renderer_get_lpv_stats(r, &ls);
+        cJSON_AddNumberToObject(report, "frames_skipped", (double)ls.frames_skipped);
+        double total = m[M_FRAME] + m[M_EYE];
+        cJSON_AddNumberToObject(report, "lpv_share",
+                                total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);
+        if (o->out) {
+            char path[4096];
+            snprintf(path, sizeof path, "%s/report.json", o->out);
+            char *text = cJSON_Print(report);
+            FILE *f = fopen(path, "w");
+            if (!text || !f || fputs(text, f) < 0) {
+                fprintf(stderr, "cavelight-node: cannot write %s\n", path);
+                rc = 1;
+            }
+            if (f)
+                fclose(f);
+            free(text);
+        }
+    }
+    free(samples);
+    cJSON_Delete(report);
+    renderer_destroy(r);
+    glctx_destroy(ctx);
+    scene_free(&sc);
+    return rc;
+}

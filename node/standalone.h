@@ -1,0 +1,55 @@
+/* standalone: cavelight-node --standalone, a render node without a master.
+ *
+ * Parses the standalone command line, loads the scene, renders --frames frames (frame
+ * pass, then an eye pass per eye) and writes images and a timing report (report.json);
+ * --renderer reference runs the path tracer instead (reference_cli.h). The cluster mode
+ * is cluster_node.h. */
+#ifndef CAVELIGHT_STANDALONE_H
+#define CAVELIGHT_STANDALONE_H
+
+#include "frame/frame_params.h"
+#include "glctx.h"
+#include "renderer.h"
+
+typedef struct node_options {
+    int standalone;
+    glctx_backend gl;
+    const char *scene;
+    renderer_lpv_backend lpv;
+    renderer_tiles tiles;
+    renderer_lpv_mode mode;
+    float converge_threshold; /* 0 = renderer default, negative = never skip */
+    float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
+    int rsm, lattice, threads, clamp_negative;
+    int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
+    int frames, width, height;
+    const char *out;
+    int pfm;
+    /* camera: look-at unless a screen is given */
+    int have_position, have_target, have_screen, have_eye;
+    float position[3], target[3], fov_deg;
+    float screen[9], eye[3];
+    int stereo;
+    float eye_separation;
+    /* the frame parameters: frame_params_default() with the command line's values;
+     * lights come from the scene */
+    frame_params frame;
+    int have_steps;
+    int have_wand;        /* HUD (docs/node.md): wand position given */
+    float wand[3];
+    /* --renderer reference: the path tracer (docs/reference.md) instead of GL */
+    int reference, samples, bounces;
+    unsigned long long seed;
+} node_options;
+
+/* Returns 0, or -1 after printing one line about the bad option. */
+int standalone_parse(int argc, char **argv, node_options *o);
+/* The frame a standalone run starts from: o->frame (frame_params_default() and the
+ * command line), the scene's lights, and the wand in front of the first eye when the HUD
+ * is shown without --wand. Frame version and time are 0. */
+void standalone_frame_params(const node_options *o, const scene *s,
+                             const renderer_view *first_eye, frame_params *out);
+/* Returns the process exit status. */
+int standalone_run(const node_options *o);
+
+#endif
