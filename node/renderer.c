@@ -8,6 +8,7 @@
 #include "base/clock.h"
 #include "base/mat4.h"
 #include "frame/offaxis.h"
+#include "lpv/lpv_receive.h"
 #include "renderer_internal.h"
 #include "base/textfile.h"
 
@@ -465,9 +466,12 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
+    char shade_defines[64];
+    snprintf(shade_defines, sizeof shade_defines, "#define LPV_BEHIND %.9g\n",
+             (double)LPV_RECEIVE_BEHIND);
     if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, shade_defines, NULL, err, errlen)) ||
         !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
         renderer_lpv_init(r, desc, software, err, errlen) || renderer_hud_init(r, err, errlen)) {
@@ -687,9 +691,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->Uniform1i(loc(r, prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
     gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
     gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
-    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale * r->energy_gain);
-    gl->Uniform3f(loc(r, prog, "u_lpv_size"), (float)r->lattice.n[0], (float)r->lattice.n[1],
-                  (float)r->lattice.n[2]);
+    gl->Uniform3i(loc(r, prog, "u_lpv_size"), r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
     float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];
     float cos_outer[FRAME_MAX_LIGHTS], cos_inner[FRAME_MAX_LIGHTS];
     for (int k = 0; k < r->rsm_lights; k++) {

@@ -48,10 +48,7 @@ typedef struct renderer_desc {
     long lattice_cell_budget; /* > 0: instead, as many cells in total, spent on the scene's
                                  shape (a long corridor gets finer cells than a cube would) */
     int threads;         /* CPU propagation threads, 0 = all cores */
-    int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
     renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */
-    float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
-                               mean free path (docs/node.md); classic mode: 1 */
     renderer_lpv_mode lpv_mode;
     double converge_threshold; /* skip the frame pass below this residual with unchanged
                                   inputs; 0 = 1e-4, negative = never skip */
@@ -83,8 +80,8 @@ typedef struct renderer_lpv_stats {
     double last_residual;     /* relative L1 change of the last computed frame's result,
                                  +Inf before two computed frames */
     int skipped_this_frame;   /* the last frame pass was skipped */
-    float energy_gain;        /* injected over held lattice energy, times the indirect scale
-                                 in the shading (1 in classic mode; docs/lpv.md) */
+    double injected_energy[3]; /* <L|1> of the last computed frame's injection, per colour:
+                                  the flux of its VPLs (W) */
 } renderer_lpv_stats;
 
 /* Returns NULL with a one-line reason in err. */
@@ -107,7 +104,6 @@ void renderer_present(renderer *r, int width, int height);
 renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);
 const lattice_desc *renderer_get_lattice(const renderer *r);
 const lpv_volume *renderer_get_lpv(const renderer *r);
-float renderer_get_indirect_scale(const renderer *r);
 renderer_lpv_mode renderer_get_lpv_mode(const renderer *r);
 void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out);
 /* Milliseconds per propagation step on this backend and lattice (blocking on; in classic

@@ -9,7 +9,7 @@
 #include "lpv/lpv_classic.h"
 #include "lpv/lpv_converge.h"
 #include "lpv/lpv_inject.h"
-#include "lpv/lpv_transfer.h"
+#include "lpv/lpv_geometry.h"
 #include "renderer.h"
 #include "base/workpool.h"
 
@@ -59,15 +59,11 @@ struct renderer {
 
     /* LPV */
     renderer_lpv_backend backend;
-    int clamp_negative;
     int gl_tiles;            /* GL propagation through shared-memory tiles */
-    float indirect_scale;
-    double mean_free_path;   /* metres, 4V/A of the scene */
-    float energy_gain;       /* level of the indirect light this frame (renderer_lpv.c) */
     lattice_desc lattice;
-    lpv_transfer transfer;
-    lpv_volume geometry;
-    ilpv cpu;                /* incremental mode; its injection volume serves both modes */
+    lpv_blockers blockers;   /* built once from the scene (lpv_geometry.h) */
+    ilpv cpu;                /* incremental mode; its injection, splat and near/shell volumes
+                                serve every mode and backend */
     renderer_lpv_mode mode;
     lpv_classic classic;     /* classic mode, CPU backend */
     lpv_converge converge;
@@ -86,12 +82,14 @@ struct renderer {
     lpv_inject_stats inject_stats;
 
     /* GL compute backend */
-    GLuint prog_merge, prog_propagate, prog_accumulate;
-    GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
-    GLuint gl_accum[3];      /* classic mode: the sum of the steps */
+    GLuint prog_propagate, prog_accumulate;
+    GLuint gl_near[3], gl_shell[3], gl_front[2][3], gl_blockers;
+    GLuint gl_sum[3];        /* near + the chain's ages so far (classic: this frame's) */
+    GLuint gl_faded[3];      /* what earlier chains left (ilpv.h) */
+    GLuint gl_result[3];     /* sum + faded: what the shading samples */
     int gl_current;
-    ilpv_history gl_history; /* the GL path's own merge state (ilpv_merge_factors()) */
-    lpv_volume gl_result;
+    ilpv_history gl_history; /* the GL path's own history (ilpv_history_rule()) */
+    lpv_volume gl_readback;  /* the GL result, read back for the checksum */
 
     /* HUD: one program, three meshes in one buffer */
     GLuint prog_hud, hud_vao, hud_vbo;

@@ -68,16 +68,17 @@ static int build_emitters(renderer *r)
     return 0;
 }
 
-static void gather_body(const lpv_transfer *t, char *out, size_t n)
+/* The propagation shader's body: the 27 targets with constant offsets (uniform arrays
+ * indexed in a loop are very slow on llvmpipe), the cell itself as neighbour 26. */
+static void gather_body(char *out, size_t n)
 {
     size_t used = 0;
-    for (int j = 0; j < LPV_NEIGHBOURS && used < n; j++)
+    for (int k = 0; k <= LPV_NEIGHBOURS && used < n; k++) {
+        const int zero[3] = {0, 0, 0}, *o = k < LPV_NEIGHBOURS ? lpv_transfer_offsets[k] : zero;
         used += (size_t)snprintf(out + used, n - used,
-                                 "    gather(here, ivec3(%d, %d, %d), vec4(%.9g, %.9g, %.9g, %.9g), "
-                                 "%.9g, ar, ag, ab);\n",
-                                 lpv_transfer_offsets[j][0], lpv_transfer_offsets[j][1],
-                                 lpv_transfer_offsets[j][2], t->gamma[j][0], t->gamma[j][1],
-                                 t->gamma[j][2], t->gamma[j][3], t->outscatter[j]);
+                                 "    gather(here, cell, ivec3(%d, %d, %d), %d, ar, ag, ab);\n",
+                                 o[0], o[1], o[2], k);
+    }
 }
 
 /* Host SoA volume <-> three RGBA textures (one per colour, 4 SH coefficients each). */
@@ -108,102 +109,51 @@ static void download_volume(renderer *r, const GLuint tex[3], lpv_volume *v)
     }
 }
 
+/* The blockers as one 32-bit unsigned word per cell. */
+static GLuint blockers_texture(renderer *r)
+{
+    const gl_functions *gl = r->gl;
+    const int *n = r->lattice.n;
+    GLuint t;
+    gl->GenTextures(1, &t);
+    gl->BindTexture(GL_TEXTURE_3D, t);
+    gl->TexStorage3D(GL_TEXTURE_3D, 1, GL_R32UI, n[0], n[1], n[2]);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, n[0], n[1], n[2], GL_RED_INTEGER,
+                      GL_UNSIGNED_INT, r->blockers.mask);
+    return t;
+}
+
 static int init_gl_backend(renderer *r, int software, const renderer_desc *desc, char *err,
                            size_t errlen)
 {
-    char body[8192];
-    gather_body(&r->transfer, body, sizeof body);
+    char body[4096];
+    gather_body(body, sizeof body);
     r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
                                                             : desc->lpv_gl_tiles == RENDERER_TILES_ON;
     r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
                                          r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
                                          err, errlen);
-    r->prog_merge = r->prog_propagate
-                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
-                        : 0;
-    if (r->prog_merge && r->mode == RENDERER_LPV_CLASSIC)
-        r->prog_accumulate = renderer_program(r, NULL, NULL, "accumulate.comp", NULL, NULL, err,
-                                              errlen);
-    if (!r->prog_merge || (r->mode == RENDERER_LPV_CLASSIC && !r->prog_accumulate))
+    r->prog_accumulate = r->prog_propagate ? renderer_program(r, NULL, NULL, "accumulate.comp",
+                                                              NULL, NULL, err, errlen)
+                                           : 0;
+    if (!r->prog_accumulate)
         return -1;
-    if (lpv_volume_init(&r->gl_result, r->lattice.n, LPV_LIGHT_CHANNELS) != 0) {
+    if (lpv_volume_init(&r->gl_readback, r->lattice.n, LPV_LIGHT_CHANNELS) != 0) {
         snprintf(err, errlen, "renderer: out of memory for the LPV readback");
         return -1;
     }
-    for (int c = 0; c < 3; c++) {
-        r->gl_injected[c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[0][c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[1][c] = renderer_texture3d(r, r->lattice.n);
-        if (r->mode == RENDERER_LPV_CLASSIC)
-            r->gl_accum[c] = renderer_texture3d(r, r->lattice.n);
+    GLuint *all[] = {r->gl_near, r->gl_shell, r->gl_front[0], r->gl_front[1], r->gl_sum,
+                     r->gl_faded, r->gl_result};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+        for (int c = 0; c < 3; c++)
+            all[i][c] = renderer_texture3d(r, r->lattice.n);
+        upload_volume(r, &r->gl_readback, all[i]); /* defined contents: zeros */
     }
-    /* Defined contents everywhere: the zeroed readback volume. */
-    upload_volume(r, &r->gl_result, r->gl_volume[0]);
-    upload_volume(r, &r->gl_result, r->gl_volume[1]);
-    if (r->mode == RENDERER_LPV_CLASSIC)
-        upload_volume(r, &r->gl_result, r->gl_accum);
-    r->gl_geometry = renderer_texture3d(r, r->lattice.n);
-    for (size_t i = 0; i < r->geometry.cells; i++)
-        for (int s = 0; s < 4; s++)
-            r->upload[4 * i + s] = r->geometry.ch[s][i];
-    r->gl->BindTexture(GL_TEXTURE_3D, r->gl_geometry);
-    r->gl->TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, r->lattice.n[0], r->lattice.n[1],
-                         r->lattice.n[2], GL_RGBA, GL_FLOAT, r->upload);
+    r->gl_blockers = blockers_texture(r);
     return 0;
-}
-
-/* Mean free path of light in the scene, 4V/A (V volume of the bounds, A surface area). */
-static double mean_free_path(const scene *s, double cell)
-{
-    double volume = 1, area = 0;
-    for (int a = 0; a < 3; a++)
-        volume *= fmax(s->bounds_max[a] - s->bounds_min[a], cell);
-    for (size_t t = 0; t < s->triangle_count; t++) {
-        const float *p = s->positions + 9 * t;
-        double e1[3], e2[3];
-        for (int k = 0; k < 3; k++) {
-            e1[k] = p[3 + k] - p[k];
-            e2[k] = p[6 + k] - p[k];
-        }
-        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
-               cz = e1[0] * e2[1] - e1[1] * e2[0];
-        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
-    }
-    return area > 0 ? 4.0 * volume / area : 0.0;
-}
-
-/* Light injected in a frame lives for the mean free path before it hits a surface, i.e.
- * for mfp / (d_mean * cell) propagation steps; the steady indirect light is that many
- * times one step's worth (docs/lpv.md). */
-static float auto_indirect_scale(const renderer *r)
-{
-    int longest = r->lattice.n[0];
-    for (int a = 1; a < 3; a++)
-        longest = r->lattice.n[a] > longest ? r->lattice.n[a] : longest;
-    double k = r->mean_free_path > 0
-                   ? r->mean_free_path / (LPV_MEAN_NEIGHBOUR_DISTANCE * r->lattice.cell) : 1.0;
-    return (float)fmin(fmax(k, 1.0), (double)longest);
-}
-
-/* The incremental lattice says how the light is spread, not how much there is: blocking
- * removes light within a frame's own steps and the merge keeps only (1 - lambda_incr) of
- * the fresh injection, so its energy changes with steps and lambda_incr while the light in
- * the room does not. The level is therefore this frame's injected energy (less what the
- * medium absorbs over a mean free path), spread as the lattice says. Classic mode keeps
- * the level of its sum, as published. */
-static float energy_gain(const renderer *r, const frame_params *p, const lpv_volume *result)
-{
-    if (r->mode == RENDERER_LPV_CLASSIC)
-        return 1.0f;
-    double in[3], out[3];
-    lpv_volume_energy(&r->cpu.injected, in);
-    lpv_volume_energy(result, out);
-    double injected = in[0] + in[1] + in[2], held = out[0] + out[1] + out[2];
-    if (!(injected > 0) || !(held > 0))
-        return 1.0f;
-    double kept = p->absorption > 0
-                      ? pow(1.0 - fmin(p->absorption, 0.999999), r->mean_free_path) : 1.0;
-    return (float)fmin(injected / held * kept, 1e4);
 }
 
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err,
@@ -213,7 +163,6 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     r->backend = desc->lpv_backend != RENDERER_LPV_AUTO
                      ? desc->lpv_backend
                      : (software ? RENDERER_LPV_CPU : RENDERER_LPV_GL);
-    r->clamp_negative = desc->lpv_clamp_negative;
     r->mode = desc->lpv_mode == RENDERER_LPV_CLASSIC ? RENDERER_LPV_CLASSIC
                                                       : RENDERER_LPV_INCREMENTAL;
     lattice_fit_desc fit = {
@@ -228,14 +177,9 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
         snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
         return -1;
     }
-    lpv_transfer_desc td = {0};
-    if (lpv_transfer_compute(&td, &r->transfer) != 0) {
-        snprintf(err, errlen, "renderer: LPV transfer vectors could not be computed");
-        return -1;
-    }
-    /* Static scene: the blocking lattice is built once, here. */
-    if (lpv_volume_init(&r->geometry, r->lattice.n, LPV_GEOMETRY_CHANNELS) != 0 ||
-        ilpv_init(&r->cpu, &r->lattice) != 0 || build_emitters(r) != 0 ||
+    /* Static scene: the blockers are built once, here. */
+    if (lpv_blockers_init(&r->blockers, r->lattice.n) != 0 || ilpv_init(&r->cpu, &r->lattice) != 0 ||
+        build_emitters(r) != 0 ||
         lpv_converge_init(&r->converge, r->lattice.n, desc->converge_threshold) != 0 ||
         (r->mode == RENDERER_LPV_CLASSIC && r->backend == RENDERER_LPV_CPU &&
          lpv_classic_init(&r->classic, &r->lattice) != 0)) {
@@ -243,14 +187,8 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
                  r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
         return -1;
     }
-    lpv_geometry_add_triangles(&r->geometry, &r->lattice, s->positions, 3 * s->triangle_count,
+    lpv_geometry_add_triangles(&r->blockers, &r->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
-    r->mean_free_path = mean_free_path(s, r->lattice.cell);
-    r->energy_gain = 1.0f;
-    /* Classic mode sums the light over its life in steps already (docs/lpv.md). */
-    r->indirect_scale = desc->indirect_scale > 0       ? desc->indirect_scale
-                        : r->mode == RENDERER_LPV_CLASSIC ? 1.0f
-                                                          : auto_indirect_scale(r);
     size_t cells = lattice_cell_count(&r->lattice);
     size_t texels = (size_t)r->rsm_size * r->rsm_size;
     r->upload = malloc(cells * 4 * sizeof(float));
@@ -275,32 +213,29 @@ void renderer_lpv_free(renderer *r)
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
-        GLuint t[5] = {r->lpv_tex[c], r->gl_injected[c], r->gl_volume[0][c], r->gl_volume[1][c],
-                       r->gl_accum[c]};
-        for (int i = 0; i < 5; i++)
+        GLuint t[8] = {r->lpv_tex[c],     r->gl_near[c], r->gl_shell[c], r->gl_front[0][c],
+                       r->gl_front[1][c], r->gl_sum[c],  r->gl_faded[c], r->gl_result[c]};
+        for (int i = 0; i < 8; i++)
             if (t[i])
                 gl->DeleteTextures(1, &t[i]);
     }
-    if (r->gl_geometry)
-        gl->DeleteTextures(1, &r->gl_geometry);
-    if (r->prog_merge)
-        gl->DeleteProgram(r->prog_merge);
+    if (r->gl_blockers)
+        gl->DeleteTextures(1, &r->gl_blockers);
     if (r->prog_propagate)
         gl->DeleteProgram(r->prog_propagate);
     if (r->prog_accumulate)
         gl->DeleteProgram(r->prog_accumulate);
     if (r->pool)
         workpool_destroy(r->pool);
-    if (r->gl_result.cells)
-        lpv_volume_free(&r->gl_result);
+    if (r->gl_readback.cells)
+        lpv_volume_free(&r->gl_readback);
     if (r->cpu.injected.cells)
         ilpv_free(&r->cpu);
     if (r->classic.accum.cells)
         lpv_classic_free(&r->classic);
     if (r->converge.previous.cells)
         lpv_converge_free(&r->converge);
-    if (r->geometry.cells)
-        lpv_volume_free(&r->geometry);
+    lpv_blockers_free(&r->blockers);
     free(r->emitters);
     free(r->vpls);
     free(r->upload);
@@ -312,8 +247,8 @@ void renderer_lpv_textures(const renderer *r, GLuint out[3])
 {
     for (int c = 0; c < 3; c++)
         out[c] = r->backend != RENDERER_LPV_GL       ? r->lpv_tex[c]
-                 : r->mode == RENDERER_LPV_CLASSIC ? r->gl_accum[c]
-                                                   : r->gl_volume[r->gl_current][c];
+                 : r->mode == RENDERER_LPV_CLASSIC ? r->gl_sum[c]
+                                                   : r->gl_result[c];
 }
 
 /* RSM texels of every rendered light, in layer then texel order, plus the emitters. */
@@ -378,92 +313,116 @@ static void bind_images(renderer *r, const GLuint *tex, int count, int first, GL
         r->gl->BindImageTexture((GLuint)(first + i), tex[i], 0, GL_TRUE, 0, access, GL_RGBA32F);
 }
 
-/* Binds the propagation program and its per-frame uniforms and the geometry image. */
-static void use_propagate(renderer *r, float absorption, float scattering)
+/* Three 3D textures (R, G, B) on texture units unit .. unit + 2 as prog's name_r/g/b. */
+static void bind_samplers(renderer *r, GLuint prog, const char *name, const GLuint tex[3],
+                          int unit)
+{
+    const gl_functions *gl = r->gl;
+    static const char suffix[3] = {'r', 'g', 'b'};
+    for (int c = 0; c < 3; c++) {
+        char uname[32];
+        snprintf(uname, sizeof uname, "%s_%c", name, suffix[c]);
+        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)(unit + c));
+        gl->BindTexture(GL_TEXTURE_3D, tex[c]);
+        gl->Uniform1i(gl->GetUniformLocation(prog, uname), unit + c);
+    }
+}
+
+/* One step src -> dst (lpv_propagate_step()), also added into accum when not NULL. */
+static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], const GLuint *accum,
+                    float absorption, float scattering, unsigned step)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
-    float la = lpv_transfer_step_probability(absorption, r->lattice.cell);
-    float ls = lpv_transfer_step_probability(scattering, r->lattice.cell);
-    float lt = la + ls < 1.0f ? la + ls : 1.0f;
     GLuint prog = r->prog_propagate;
     gl->UseProgram(prog);
     gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_clamp_negative"), r->clamp_negative);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), 1.0f - lt);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_scatter"), ls);
-    bind_images(r, &r->gl_geometry, 1, 6, GL_READ_ONLY);
-}
-
-/* One step src -> dst with the bound propagation program. */
-static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], int use_blocking)
-{
-    r->gl->Uniform1i(r->gl->GetUniformLocation(r->prog_propagate, "u_use_blocking"), use_blocking);
-    bind_images(r, src, 3, 0, GL_READ_ONLY);
-    bind_images(r, dst, 3, 3, GL_WRITE_ONLY);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_use_accum"), accum != NULL);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_use_blockers"), 1);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), 1.0f - absorption);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep_flux"),
+                  (1.0f - absorption) * (1.0f - scattering));
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_step_odd"), (int)(step & 1u));
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_step_axis"), (int)(step % 3u));
+    bind_samplers(r, prog, "u_src", src, 0);
+    gl->ActiveTexture(GL_TEXTURE6);
+    gl->BindTexture(GL_TEXTURE_3D, r->gl_blockers);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blockers"), 6);
+    bind_images(r, dst, 3, 0, GL_WRITE_ONLY);
+    bind_images(r, accum ? accum : dst, 3, 3, GL_READ_WRITE);
     dispatch(r);
 }
 
-/* gl_accum = (first ? 0 : gl_accum) + weight * step. */
-static void gl_accumulate(renderer *r, const GLuint step[3], int first, float weight)
+/* dst = a dst + b src (shaders/accumulate.comp); a = 0 leaves dst unread, b = 0 src. */
+static void gl_combine(renderer *r, const GLuint dst[3], float a, const GLuint src[3], float b)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
     GLuint prog = r->prog_accumulate;
     gl->UseProgram(prog);
     gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_first"), first);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_weight"), weight);
-    bind_images(r, r->gl_accum, 3, 0, GL_READ_WRITE);
-    bind_images(r, step, 3, 3, GL_READ_ONLY);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_a"), a);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_b"), b);
+    bind_samplers(r, prog, "u_src", src, 0);
+    bind_images(r, dst, 3, 0, GL_READ_WRITE);
     dispatch(r);
 }
 
-/* lpv_classic_frame() on the GPU: the steps start from the injection, each one is added
- * into gl_accum (the first replaces it; 0 steps clear it). */
-static void gl_classic_frame(renderer *r, const frame_params *p)
+/* The splat on the host (both backends inject there), uploaded; a chain starts: front =
+ * shell, sum = near + shell. */
+static void gl_start_chain(renderer *r, float absorption)
 {
-    upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
-    if (p->lpv_steps <= 0)
-        gl_accumulate(r, r->gl_injected, 1, 0.0f);
-    const GLuint *src = r->gl_injected;
-    for (int step = 0; step < p->lpv_steps; step++) {
-        const GLuint *dst = r->gl_volume[step & 1];
-        use_propagate(r, p->absorption, p->scattering);
-        gl_step(r, src, dst, step > 0);
-        gl_accumulate(r, dst, step == 0, 1.0f);
-        src = dst;
-    }
-    download_volume(r, r->gl_accum, &r->gl_result);
+    lpv_splat_desc sd = {ilpv_injection(&r->cpu), ilpv_origin(&r->cpu), &r->blockers, absorption,
+                         r->pool};
+    lpv_splat_run(&r->cpu.splat, &sd, &r->cpu.near, &r->cpu.shell);
+    upload_volume(r, &r->cpu.near, r->gl_near);
+    upload_volume(r, &r->cpu.shell, r->gl_shell);
+    gl_combine(r, r->gl_front[0], 0.0f, r->gl_shell, 1.0f);
+    gl_combine(r, r->gl_sum, 0.0f, r->gl_near, 1.0f);
+    gl_combine(r, r->gl_sum, 1.0f, r->gl_shell, 1.0f);
+    r->gl_current = 0;
 }
 
-/* The same merge and steps as ilpv_frame(), on the GPU. */
-static void gl_frame(renderer *r, const frame_params *p, double energy)
+static void gl_steps(renderer *r, int steps, unsigned first, float absorption,
+                     float scattering)
 {
-    const gl_functions *gl = r->gl;
-    upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
-    ilpv_merge f = ilpv_merge_factors(&r->gl_history, p->lambda_incr, energy);
-    const int *n = r->lattice.n;
-
-    int dst = 1 - r->gl_current;
-    gl->UseProgram(r->prog_merge);
-    bind_images(r, r->gl_volume[r->gl_current], 3, 0, GL_READ_ONLY);
-    bind_images(r, r->gl_injected, 3, 3, GL_READ_ONLY);
-    bind_images(r, r->gl_volume[dst], 3, 6, GL_WRITE_ONLY);
-    gl->Uniform3i(gl->GetUniformLocation(r->prog_merge, "u_size"), n[0], n[1], n[2]);
-    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_a"), f.a);
-    gl->Uniform1f(gl->GetUniformLocation(r->prog_merge, "u_b"), f.b);
-    dispatch(r);
-    r->gl_current = dst;
-
-    use_propagate(r, p->absorption, p->scattering);
-    for (int step = 0; step < p->lpv_steps; step++) {
-        dst = 1 - r->gl_current;
-        gl_step(r, r->gl_volume[r->gl_current], r->gl_volume[dst], step > 0);
+    for (int step = 0; step < steps; step++) {
+        int dst = 1 - r->gl_current;
+        gl_step(r, r->gl_front[r->gl_current], r->gl_front[dst], r->gl_sum, absorption,
+                scattering, first + (unsigned)step);
         r->gl_current = dst;
     }
-    ilpv_history_advance(&r->gl_history, energy);
-    download_volume(r, r->gl_volume[r->gl_current], &r->gl_result);
+}
+
+/* lpv_classic_frame() on the GPU: a new chain every frame; the result is its sum. */
+static void gl_classic_frame(renderer *r, const frame_params *p, float absorption,
+                             float scattering)
+{
+    gl_start_chain(r, absorption);
+    gl_steps(r, p->lpv_steps, 0u, absorption, scattering);
+    download_volume(r, r->gl_sum, &r->gl_readback);
+}
+
+/* ilpv_frame() on the GPU. */
+static void gl_frame(renderer *r, const frame_params *p, uint64_t key, double energy,
+                     float absorption, float scattering)
+{
+    ilpv_rule rule = ilpv_history_rule(&r->gl_history, p->lambda_incr, key, energy);
+    if (!r->gl_history.have_history || rule.fade == 0.0f) {
+        gl_combine(r, r->gl_faded, 0.0f, r->gl_faded, 0.0f);
+    } else {
+        if (rule.restart)
+            gl_combine(r, r->gl_faded, 1.0f, r->gl_sum, 1.0f);
+        gl_combine(r, r->gl_faded, rule.fade, r->gl_faded, 0.0f);
+    }
+    if (rule.restart)
+        gl_start_chain(r, absorption);
+    gl_steps(r, p->lpv_steps, rule.restart ? 0u : r->gl_history.chain_steps, absorption,
+             scattering);
+    gl_combine(r, r->gl_result, 0.0f, r->gl_sum, 1.0f);
+    gl_combine(r, r->gl_result, 1.0f, r->gl_faded, 1.0f);
+    ilpv_history_advance(&r->gl_history, rule, p->lpv_steps, key, energy);
+    download_volume(r, r->gl_result, &r->gl_readback);
 }
 
 uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
@@ -477,24 +436,22 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
     size_t count = collect_vpls(r);
     ilpv_begin_frame(&r->cpu);
     memset(&r->inject_stats, 0, sizeof r->inject_stats);
-    lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, r->vpls, count, &r->inject_stats);
+    lpv_inject_vpls(ilpv_injection(&r->cpu), ilpv_origin(&r->cpu), &r->lattice, r->vpls, count,
+                    &r->inject_stats);
     double t1 = clock_now_ms();
     double energy = emitted_energy(r, p);
-    lpv_propagate_desc pd = {
-        .transfer = &r->transfer,
-        .geometry = &r->geometry,
-        .use_blocking = 1,
-        .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
-        .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell),
-        .clamp_negative = r->clamp_negative,
-        .pool = r->pool,
-    };
+    float la = lpv_transfer_step_probability(p->absorption, r->lattice.cell);
+    float ls = lpv_transfer_step_probability(p->scattering, r->lattice.cell);
+    lpv_propagate_desc pd = {.blockers = &r->blockers, .absorption = la, .scattering = ls,
+                             .pool = r->pool};
     if (r->backend == RENDERER_LPV_GL && r->mode == RENDERER_LPV_CLASSIC)
-        gl_classic_frame(r, p);
+        gl_classic_frame(r, p, la, ls);
     else if (r->backend == RENDERER_LPV_GL)
-        gl_frame(r, p, energy);
+        gl_frame(r, p, ilpv_injection_key(ilpv_injection(&r->cpu), ilpv_origin(&r->cpu), la, ls),
+                 energy, la, ls);
     else if (r->mode == RENDERER_LPV_CLASSIC)
-        lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), p->lpv_steps, &pd);
+        lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), ilpv_origin(&r->cpu),
+                          p->lpv_steps, &pd);
     else
         ilpv_frame(&r->cpu, &(ilpv_frame_desc){.steps = p->lpv_steps,
                                                .lambda_incr = p->lambda_incr,
@@ -502,7 +459,6 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
                                                .propagate = pd});
     const lpv_volume *result = renderer_get_lpv(r);
     r->checksum = lpv_volume_checksum(result);
-    r->energy_gain = energy_gain(r, p, result);
     if (r->backend != RENDERER_LPV_GL)
         upload_volume(r, result, r->lpv_tex);
     lpv_converge_end(&r->converge, result, r->pool);
@@ -520,7 +476,7 @@ int renderer_lpv_skip(renderer *r, const frame_params *p)
 const lpv_volume *renderer_get_lpv(const renderer *r)
 {
     if (r->backend == RENDERER_LPV_GL)
-        return &r->gl_result;
+        return &r->gl_readback;
     return r->mode == RENDERER_LPV_CLASSIC ? lpv_classic_result(&r->classic) : ilpv_result(&r->cpu);
 }
 
@@ -534,39 +490,29 @@ void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
     out->frames_skipped = r->converge.frames_skipped;
     out->last_residual = r->converge.residual;
     out->skipped_this_frame = r->converge.skipped;
-    out->energy_gain = r->energy_gain;
+    lpv_volume_energy(&r->cpu.injected, out->injected_energy);
 }
 
 double renderer_measure_step_ms(renderer *r, int steps)
 {
     double t0 = 0;
     if (r->backend == RENDERER_LPV_GL) {
-        use_propagate(r, 0.0f, 0.0f);
         for (int s = 0; s <= steps; s++) {
             if (s == 1) {
                 r->gl->Finish();
                 t0 = clock_now_ms();
             }
-            gl_step(r, r->gl_volume[s & 1], r->gl_volume[1 - (s & 1)], 1);
-            if (r->mode == RENDERER_LPV_CLASSIC) { /* a classic step includes its addition */
-                gl_accumulate(r, r->gl_volume[1 - (s & 1)], 0, 1.0f);
-                use_propagate(r, 0.0f, 0.0f);
-            }
+            gl_step(r, r->gl_front[s & 1], r->gl_front[1 - (s & 1)], r->gl_sum, 0.0f, 0.0f,
+                    (unsigned)s);
         }
         r->gl->Finish();
     } else {
-        lpv_propagate_desc pd = {.transfer = &r->transfer, .geometry = &r->geometry,
-                                 .use_blocking = 1, .pool = r->pool};
-        if (r->mode == RENDERER_LPV_CLASSIC) {
-            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), 1, &pd);
-            t0 = clock_now_ms();
-            lpv_classic_frame(&r->classic, ilpv_injection(&r->cpu), steps, &pd);
-        } else {
-            for (int s = 0; s <= steps; s++) {
-                if (s == 1)
-                    t0 = clock_now_ms();
-                lpv_propagate_step(&pd, &r->cpu.volume[s & 1], &r->cpu.volume[1 - (s & 1)]);
-            }
+        lpv_propagate_desc pd = {.blockers = &r->blockers, .accum = &r->cpu.sum, .pool = r->pool};
+        for (int s = 0; s <= steps; s++) {
+            if (s == 1)
+                t0 = clock_now_ms();
+            pd.step = (unsigned)s;
+            lpv_propagate_step(&pd, &r->cpu.front[s & 1], &r->cpu.front[1 - (s & 1)]);
         }
     }
     double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
@@ -574,9 +520,4 @@ double renderer_measure_step_ms(renderer *r, int steps)
     r->gl_history = (ilpv_history){0};
     lpv_converge_forget(&r->converge);
     return ms;
-}
-
-float renderer_get_indirect_scale(const renderer *r)
-{
-    return r->indirect_scale;
 }

@@ -35,7 +35,7 @@ static void usage(FILE *f)
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
         "  --lattice-cells N            instead of --lattice: N cells in all, fitted to the\n"
         "                               scene's shape (finer cells in a long, thin scene)\n"
-        "  --absorption S --scattering S --clamp-negative\n"
+        "  --absorption S --scattering S\n"
         "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
         "  --lpv-mode incremental|classic   ILPV (default) or classic LPV accumulation\n"
         "  --converge-threshold R       skip the frame pass once the LPV residual is below R\n"
@@ -133,7 +133,6 @@ int standalone_parse(int argc, char **argv, node_options *o)
         int bad = 0, takes = 1;
         if (strcmp(a, "--standalone") == 0) { o->standalone = 1; takes = 0; }
         else if (strcmp(a, "--pfm") == 0) { o->pfm = 1; takes = 0; }
-        else if (strcmp(a, "--clamp-negative") == 0) { o->clamp_negative = 1; takes = 0; }
         else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout); exit(0); }
         else if (!v) bad = 1;
         else if (strcmp(a, "--gl") == 0) bad = glctx_parse_backend(v, &o->gl);
@@ -451,7 +450,7 @@ int standalone_run(const node_options *o)
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
-        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .threads = o->threads,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
     };
     cJSON *report = cJSON_CreateObject();
@@ -499,7 +498,6 @@ int standalone_run(const node_options *o)
     cJSON_AddNumberToObject(report, "height", o->height);
     cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
     cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
-    cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
     cJSON *frames = cJSON_AddArrayToObject(report, "frames");
     enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
     static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",

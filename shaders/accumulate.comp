@@ -1,17 +1,18 @@
-// Classic LPV accumulation (lpv_classic.h): accum = (first ? 0 : accum) + weight * step,
-// per colour texture. weight is 1, or 0 to clear the sum when a frame has no steps.
+// dst = a * dst + b * src per colour texture, for the ILPV's history scale and result
+// (ilpv.h) and the classic LPV's sum (lpv_classic.h). a = 0 does not read dst (it may hold
+// anything, a stale history), b = 0 does not read src.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-layout(rgba32f, binding = 0) uniform image3D u_accum_r;
-layout(rgba32f, binding = 1) uniform image3D u_accum_g;
-layout(rgba32f, binding = 2) uniform image3D u_accum_b;
-layout(rgba32f, binding = 3) uniform readonly image3D u_step_r;
-layout(rgba32f, binding = 4) uniform readonly image3D u_step_g;
-layout(rgba32f, binding = 5) uniform readonly image3D u_step_b;
+layout(rgba32f, binding = 0) uniform image3D u_dst_r;
+layout(rgba32f, binding = 1) uniform image3D u_dst_g;
+layout(rgba32f, binding = 2) uniform image3D u_dst_b;
+uniform sampler3D u_src_r;
+uniform sampler3D u_src_g;
+uniform sampler3D u_src_b;
 
 uniform ivec3 u_size;
-uniform int u_first;
-uniform float u_weight;
+uniform float u_a;
+uniform float u_b;
 
 void main()
 {
@@ -19,12 +20,17 @@ void main()
     if (any(greaterThanEqual(c, u_size)))
         return;
     vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
-    if (u_first == 0) {
-        r = imageLoad(u_accum_r, c);
-        g = imageLoad(u_accum_g, c);
-        b = imageLoad(u_accum_b, c);
+    if (u_a != 0.0) {
+        r = u_a * imageLoad(u_dst_r, c);
+        g = u_a * imageLoad(u_dst_g, c);
+        b = u_a * imageLoad(u_dst_b, c);
     }
-    imageStore(u_accum_r, c, r + u_weight * imageLoad(u_step_r, c));
-    imageStore(u_accum_g, c, g + u_weight * imageLoad(u_step_g, c));
-    imageStore(u_accum_b, c, b + u_weight * imageLoad(u_step_b, c));
+    if (u_b != 0.0) {
+        r += u_b * texelFetch(u_src_r, c, 0);
+        g += u_b * texelFetch(u_src_g, c, 0);
+        b += u_b * texelFetch(u_src_b, c, 0);
+    }
+    imageStore(u_dst_r, c, r);
+    imageStore(u_dst_g, c, g);
+    imageStore(u_dst_b, c, b);
 }

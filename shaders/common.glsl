@@ -23,3 +23,8 @@ float transmittance(float sigma, float r)
 {
     return sigma > 0.0 ? pow(1.0 - min(sigma, 0.999999), r) : 1.0;
 }
+
+// SH basis constants (lpv/sh.h): Y0 = 1 / (2 sqrt pi), Y1 = sqrt(3 / (4 pi)); <L|1> = SH_ENERGY L0.
+const float SH_Y0 = 0.282094791773878;
+const float SH_Y1 = 0.488602511902920;
+const float SH_ENERGY = 3.544907701811032;

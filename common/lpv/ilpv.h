@@ -1,62 +1,67 @@
 /* ilpv: incremental light propagation volumes: the steady indirect field, a few
  * propagation steps per frame.
  *
- * The field to render is the light of every age at once: near + sum over s >= 0 of
- * T^s shell, where lpv_splat.h gives the first cells of this frame's injection in closed
- * form (near) and the light leaving them (shell), and T is one propagation step
- * (lpv_propagate.h). That sum is the fixed point of X <- shell + T X, which every step of
- * every frame iterates from the frame before's X (the history): the fixed point does not
- * depend on the steps per frame, and it is reached after about as many steps as light
- * survives in the scene (it leaves through or is absorbed by surfaces). Per frame:
- *   1. splat this frame's injection (ilpv_injection(), ilpv_origin(), lpv_inject.h);
- *   2. X <- a X, a = ilpv_merge_factors(): the history scaled by E_now / E_prev (the
- *      lights' emitted energy, from their parameters), and by lambda_incr as well when a
- *      light moved, so that light from where it was fades faster; no history (X = 0) on
- *      the first frame, after ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or
- *      E_now is negative or not finite;
- *   3. `steps` times X <- shell + T X;
- *   4. result = near + X (ilpv_result()).
- * ilpv_merge_factors() is that rule, once, for this core and for the GL path
+ * The field to render is the light of every age at once, near + sum over s >= 0 of
+ * T^s shell: lpv_splat.h gives the first cells of the injection in closed form (near) and
+ * the light leaving them (shell), T is one propagation step (lpv_propagate.h). A chain
+ * builds that sum over frames: it starts with sum = near + shell and front = shell, and
+ * every step sets front <- T front, sum += front, so after k steps the sum holds the ages
+ * 0 .. k; it converges to the whole field as the front's light leaves or is absorbed (after
+ * about as many steps as light survives in the scene), whatever the steps per frame, and
+ * then stops changing. T is not linear, so this is not the fixed point of
+ * X <- shell + T X (that iteration need not converge): each age is propagated alone, as
+ * the classic LPV does within one frame (lpv_classic.h).
+ *
+ * A chain restarts when this frame's injection differs from the last one's (a light
+ * moved, turned, changed, the absorption or scattering changed: lpv_volume_checksum() of
+ * the injected light and its origins, with the step probabilities). What the frames before
+ * showed then fades: faded <- f (faded + sum) at a restart and faded <- f faded otherwise,
+ * f = lambda_incr E_now / E_prev (ilpv_history_rule(), the lights' emitted energy from their
+ * parameters). The result is sum + faded. No history (faded = 0) on the first frame, after
+ * ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or E_now is negative or not
+ * finite. ilpv_history_rule() is that rule, once, for this core and the GL path
  * (node/renderer_lpv.c). lambda_incr's range [0,1) is the caller's (frame_params_sanitize()). */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
+
+#include <stdint.h>
 
 #include "lpv/lattice.h"
 #include "lpv/lpv_propagate.h"
 #include "lpv/lpv_splat.h"
 #include "lpv/lpv_volume.h"
 
-/* What the merge needs to know of the frames before. */
+/* What the rule needs to know of the frames before. */
 typedef struct ilpv_history {
     int have_history;
-    double previous_energy; /* emitted energy the history was made with */
-    unsigned steps;         /* steps since the history started (lpv_propagate_desc.step) */
+    double previous_energy; /* emitted energy of the last frame */
+    uint64_t key;           /* of the last frame's injection (ilpv_injection_key()) */
+    unsigned chain_steps;   /* steps since the chain started (lpv_propagate_desc.step) */
 } ilpv_history;
 
-/* X <- a X; with_history 0: X <- 0, the history unread (it may hold anything). */
-typedef struct ilpv_merge {
-    float a;
-    int with_history;
-} ilpv_merge;
+typedef struct ilpv_rule {
+    int restart;  /* start a new chain from this frame's splat */
+    float fade;   /* factor of the faded light (0: none kept) */
+} ilpv_rule;
 
 typedef struct ilpv {
     lattice_desc lattice;
     lpv_volume injected, origin; /* this frame's VPLs (lpv_inject.h) */
     lpv_volume near, shell;      /* lpv_splat.h */
-    lpv_volume volume[2];        /* X, ping-pong */
-    lpv_volume result;           /* near + X */
+    lpv_volume front[2];         /* the chain's oldest light, ping-pong */
+    lpv_volume sum;              /* near + every age of the chain so far */
+    lpv_volume faded;            /* what earlier chains left */
+    lpv_volume result;           /* sum + faded */
     lpv_splat splat;
-    int current;                 /* index of the volume holding X */
+    int current;                 /* index of the front volume */
     ilpv_history history;
 } ilpv;
 
 typedef struct ilpv_frame_desc {
     int steps;                 /* propagation steps this frame, >= 0 */
-    float lambda_incr;         /* [0,1): history kept when a light moved; 0 = no history */
-    int lights_moved;          /* a light's position, direction or cone changed */
+    float lambda_incr;         /* [0,1): share of the earlier light kept per frame */
     double emitted_energy;     /* E of this frame's lights, from their parameters */
-    lpv_propagate_desc propagate; /* blockers, absorption, scattering, pool (source and
-                                     step are the frame's) */
+    lpv_propagate_desc propagate; /* blockers, absorption, scattering, pool */
 } ilpv_frame_desc;
 
 int ilpv_init(ilpv *s, const lattice_desc *lat);
@@ -65,16 +70,20 @@ void ilpv_reset(ilpv *s);                 /* forget the history */
 lpv_volume *ilpv_injection(ilpv *s);      /* cleared by ilpv_begin_frame() */
 lpv_volume *ilpv_origin(ilpv *s);         /* cleared by ilpv_begin_frame() */
 void ilpv_begin_frame(ilpv *s);
-/* Returns 0, or -1 when the splat ran out of memory (the frame is then black). */
+/* Returns 0, or -1 when the splat ran out of memory (the frame then shows its history). */
 int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc);
 const lpv_volume *ilpv_result(const ilpv *s);
 
-/* This frame's merge factor from the history, lambda_incr, whether a light moved and the
- * lights' emitted energy. */
-ilpv_merge ilpv_merge_factors(const ilpv_history *h, float lambda_incr, int lights_moved,
-                              double emitted_energy);
-/* After a frame of `steps` steps merged with m: the history exists and was made with
- * emitted_energy. */
-void ilpv_history_advance(ilpv_history *h, ilpv_merge m, int steps, double emitted_energy);
+/* The injection's key: what a chain depends on (the injected light and its origins, the
+ * absorption and scattering per step). */
+uint64_t ilpv_injection_key(const lpv_volume *injected, const lpv_volume *origin,
+                            float absorption, float scattering);
+/* This frame's rule from the history, lambda_incr, the injection's key and the lights'
+ * emitted energy; ilpv_history_advance() records the frame. */
+ilpv_rule ilpv_history_rule(const ilpv_history *h, float lambda_incr, uint64_t key,
+                            double emitted_energy);
+/* After a frame of `steps` steps under rule r. */
+void ilpv_history_advance(ilpv_history *h, ilpv_rule r, int steps, uint64_t key,
+                          double emitted_energy);
 
 #endif

@@ -36,15 +36,12 @@ int lpv_classic_frame(lpv_classic *c, const lpv_volume *injected, const lpv_volu
     lpv_volume_add(&c->accum, &c->shell);
     fpmode_leave(mode);
     lpv_propagate_desc pd = *propagate;
-    pd.source = NULL;
+    pd.accum = &c->accum;
     const lpv_volume *src = &c->shell;
     for (int step = 0; step < steps; step++) {
         lpv_volume *dst = &c->work[step & 1];
         pd.step = (unsigned)step;
         lpv_propagate_step(&pd, src, dst);
-        mode = fpmode_enter();
-        lpv_volume_add(&c->accum, dst);
-        fpmode_leave(mode);
         src = dst;
     }
     return rc;

@@ -92,8 +92,8 @@ static inline void vf_store(float *p, vf a) { memcpy(p, a.v, sizeof a.v); }
 enum { Z_TILE = 8 };
 
 typedef struct job {
-    const lpv_volume *src, *source;
-    lpv_volume *dst;
+    const lpv_volume *src;
+    lpv_volume *dst, *accum;
     const lpv_blockers *blockers;
     float keep, keep_flux; /* 1 - l_a and (1 - l_a)(1 - l_s) */
     unsigned step;
@@ -246,18 +246,14 @@ static ALWAYS_INLINE void send(const job *jb, int x, int y, int sz, int z0, int 
     }
 }
 
-/* One tile of destination slabs z0 .. z1 - 1: start from the source term (or 0), then add
- * what every source slab z0 - 1 .. z1 sends there, in lattice order. */
+/* One tile of destination slabs z0 .. z1 - 1: start from 0, add what every source slab
+ * z0 - 1 .. z1 sends there, in lattice order, then add the finished rows into accum. */
 static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking)
 {
     const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
     size_t lo = (size_t)z0 * ny * nx, count = (size_t)(z1 - z0) * ny * nx;
-    for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
-        if (jb->source)
-            memcpy(jb->dst->ch[k] + lo, jb->source->ch[k] + lo, count * sizeof(float));
-        else
-            memset(jb->dst->ch[k] + lo, 0, count * sizeof(float));
-    }
+    for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
+        memset(jb->dst->ch[k] + lo, 0, count * sizeof(float));
     for (int sz = z0 - 1; sz <= z1; sz++) {
         if (sz < 0 || sz >= nz)
             continue;
@@ -265,6 +261,13 @@ static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking)
             for (int x = 0; x < nx; x += 8)
                 send(jb, x, y, sz, z0, z1, blocking);
     }
+    if (jb->accum)
+        for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
+            float *a = jb->accum->ch[k] + lo;
+            const float *d = jb->dst->ch[k] + lo;
+            for (size_t i = 0; i < count; i++)
+                a[i] += d[i];
+        }
 }
 
 static void tile(void *ctx, int item)
@@ -294,13 +297,14 @@ static int same_light(const lpv_volume *a, const lpv_volume *b)
 void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst)
 {
     if (!desc || !same_light(src, dst) || src == dst ||
-        (desc->source && (!same_light(desc->source, dst) || desc->source == dst)) ||
+        (desc->accum && (!same_light(desc->accum, dst) || desc->accum == dst ||
+                         desc->accum == src)) ||
         (desc->blockers && memcmp(desc->blockers->n, src->n, sizeof src->n) != 0))
         return;
     job jb;
     jb.src = src;
     jb.dst = dst;
-    jb.source = desc->source;
+    jb.accum = desc->accum;
     jb.blockers = desc->blockers && desc->blockers->mask ? desc->blockers : NULL;
     float la = unit_clamp(desc->absorption), ls = unit_clamp(desc->scattering);
     jb.keep = 1.0f - la;

@@ -1,6 +1,7 @@
 /* lpv_propagate: one propagation step (the rule in lpv_transfer.h) over a whole lattice.
  *
- *   dst = source + sum over cells of what each sends to itself and its 26 neighbours
+ *   dst = sum over cells of what each sends to itself and its 26 neighbours
+ *   accum += dst   (when an accumulation volume is given)
  *
  * A cell's light in each colour moves as two beams one cell further, spread over the 27
  * targets by the per-axis weights of lpv_transfer.h; a target's share is dropped when the
@@ -17,15 +18,15 @@
 
 typedef struct lpv_propagate_desc {
     const lpv_blockers *blockers; /* NULL: nothing blocks */
-    const lpv_volume *source;     /* 12 channels added to the result, or NULL */
+    lpv_volume *accum;            /* 12 channels the result is added into, or NULL */
     float absorption;             /* l_a per step (lpv_transfer_step_probability) */
     float scattering;             /* l_s per step */
-    unsigned step;                /* steps since the light started: picks the split axis */
+    unsigned step;                /* steps since the light's chain started: the split axis */
     workpool *pool;               /* NULL = run on the calling thread */
 } lpv_propagate_desc;
 
-/* src and dst must have the same shape and 12 channels, and must differ (so must source
- * and dst); blockers, when given, the same shape. Otherwise dst is left alone. */
+/* src, dst and accum must have the same shape and 12 channels, and must all differ;
+ * blockers, when given, the same shape. Otherwise dst is left alone. */
 void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);
 
 /* Floating-point operations of one step on a lattice of `cells` cells, as counted for the

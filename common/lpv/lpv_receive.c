@@ -46,7 +46,7 @@ void lpv_receive_irradiance(const lpv_volume *field, const lattice_desc *lat, co
         i0[a] = (int)floorf(q[a]);
         q[a] -= (float)i0[a];
     }
-    float L[3][4] = {{0}}, wsum = 0.0f;
+    float L[3][4] = {{0}}, wsum = 0.0f, layer = lpv_own_layer(n) * lat->cell;
     for (int k = 0; k < 8; k++) {
         int c[3] = {i0[0] + (k & 1), i0[1] + ((k >> 1) & 1), i0[2] + ((k >> 2) & 1)};
         float w = 1.0f, behind = 0.0f;
@@ -55,7 +55,8 @@ void lpv_receive_irradiance(const lpv_volume *field, const lattice_desc *lat, co
             float centre = lat->origin[a] + ((float)c[a] + 0.5f) * lat->cell;
             behind += (centre - p[a]) * n[a];
         }
-        if ((on_surface && behind < 0.0f) || !(w > 0.0f))
+        if ((on_surface && (behind < -LPV_RECEIVE_BEHIND * lat->cell || behind >= layer)) ||
+            !(w > 0.0f))
             continue;
         /* GL textures clamp to the edge */
         for (int a = 0; a < 3; a++)

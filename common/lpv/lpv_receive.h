@@ -21,6 +21,24 @@
 #include "lpv/lattice.h"
 #include "lpv/lpv_volume.h"
 
+/* A cell centre is behind the surface when it lies more than this many cells behind the
+ * plane: rounding must not decide for a centre on the plane (a wall through cell
+ * centres). The shader gets it as LPV_BEHIND. */
+#define LPV_RECEIVE_BEHIND 1e-4f
+
+/* A surface point with unit normal n reads the cells whose centre lies in front of its
+ * plane by less than this (in cells): 1 for an axis-aligned surface, whose first layer of
+ * cells in front is always within one cell, and 0.5 more per unit of |n_x|+|n_y|+|n_z|
+ * beyond 1 for slanted ones, less LPV_RECEIVE_BEHIND so that rounding does not decide for
+ * a centre exactly one layer out. lpv_splat.h keeps a surface's own light out of that
+ * layer, so that a lit surface sees what arrives, not its own outgoing light. The shader
+ * has the same formula. */
+static inline float lpv_own_layer(const float n[3])
+{
+    float l1 = (n[0] < 0 ? -n[0] : n[0]) + (n[1] < 0 ? -n[1] : n[1]) + (n[2] < 0 ? -n[2] : n[2]);
+    return 0.5f * l1 + 0.5f - LPV_RECEIVE_BEHIND;
+}
+
 /* Irradiance per unit area (W/m^2 for a field in W/sr) from one colour's coefficients L of
  * a cell of edge `cell`, on a surface with unit normal n. */
 float lpv_receive_closure(const float L[4], const float n[3], float cell);

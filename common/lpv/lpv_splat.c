@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/fpmode.h"
+#include "lpv/lpv_receive.h"
 #include "lpv/lpv_transfer.h"
 #include "lpv/sh.h"
 
@@ -149,6 +150,15 @@ static void add_beam(lpv_volume *v, size_t i, int c, float e, const float w[3])
     v->ch[4 * c + 3][i] += -e * w[0] * (float)SH_Y1;
 }
 
+/* The cells whose centre lies within lpv_own_layer() of the emitting surface's plane
+ * are the ones its own receivers read (lpv_receive.h): its light must not be there, or a
+ * lit surface would see its own outgoing light instead of what arrives. */
+static int in_own_layer(const lpv_splat_source *src, const float r[3])
+{
+    const float *n = src->plane;
+    return r[0] * n[0] + r[1] * n[1] + r[2] * n[2] < lpv_own_layer(n);
+}
+
 static void splat_tile(void *ctx, int item)
 {
     const job *jb = ctx;
@@ -168,7 +178,7 @@ static void splat_tile(void *ctx, int item)
                 continue;
             float r[3] = {c3[0] - src->origin[0], c3[1] - src->origin[1], c3[2] - src->origin[2]};
             float r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2], dist = sqrtf(r2);
-            if (dist >= R + 1.0f)
+            if (dist >= R + 1.0f || in_own_layer(src, r))
                 continue;
             /* Every hop of the walk must stay inside the lattice and unblocked. */
             int inside = 1;
@@ -217,6 +227,8 @@ static void shell_norm(const lpv_splat_source *src, const table *tb, float out[3
         float r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2], dist = sqrtf(r2);
         if (dist < R || dist >= R + 1.0f)
             continue;
+        if (in_own_layer(src, r))
+            continue;
         float w[3] = {r[0] / dist, r[1] / dist, r[2] / dist};
         for (int c = 0; c < 3; c++)
             sum[c] += density(src, c, w) / r2;
@@ -261,11 +273,18 @@ int lpv_splat_run(lpv_splat *s, const lpv_splat_desc *d, lpv_volume *near, lpv_v
                 float w = o && o->channels == LPV_GEOMETRY_CHANNELS ? o->ch[3][i] : 0.0f;
                 for (int a = 0; a < 3; a++)
                     src->origin[a] = w > 0.0f && isfinite(w) ? o->ch[a][i] / w : (float)src->cell[a];
+                float f[3] = {0, 0, 0};
                 for (int c = 0; c < 3; c++) {
                     float L[4] = {in->ch[4 * c][i], in->ch[4 * c + 1][i], in->ch[4 * c + 2][i],
                                   in->ch[4 * c + 3][i]};
                     closure(L, src, c);
+                    f[0] -= L[3];
+                    f[1] -= L[1];
+                    f[2] += L[2];
                 }
+                float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+                for (int a = 0; a < 3; a++)
+                    src->plane[a] = len > 0.0f && isfinite(len) ? f[a] / len : 0.0f;
             }
     table tb;
     float (*norm)[3] = s->count ? malloc(s->count * sizeof *norm) : NULL;

@@ -31,6 +31,7 @@ enum { LPV_SPLAT_RADIUS = 2 };
 typedef struct lpv_splat_source {
     int cell[3];
     float origin[3];  /* lattice units */
+    float plane[3];   /* unit normal of the emitting surface (mean flux direction), or 0 */
     float energy[3], dir[3][3], cosine[3], hemi[3], iso[3]; /* per colour */
 } lpv_splat_source;
 

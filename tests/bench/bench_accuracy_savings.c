@@ -15,7 +15,7 @@
 #include "bench_accuracy.h"
 #include "base/clock.h"
 #include "lpv/lpv_propagate.h"
-#include "lpv/lpv_transfer.h"
+#include "lpv/lpv_propagate.h"
 #include "base/workpool.h"
 
 enum { REPEATS = 7 };
@@ -49,15 +49,16 @@ static int static_run(acc_setup *s, int skip, int frames, int lattice, double *t
 }
 
 /* Median ms of one propagation step on an n[0] x n[1] x n[2] lattice with blocking. */
-static double step_ms(const lpv_transfer *t, const int n[3], workpool *pool)
+static double step_ms(const int n[3], workpool *pool)
 {
-    lpv_volume a, b, g;
+    lpv_volume a, b;
+    lpv_blockers g;
     if (lpv_volume_init(&a, n, LPV_LIGHT_CHANNELS) || lpv_volume_init(&b, n, LPV_LIGHT_CHANNELS) ||
-        lpv_volume_init(&g, n, LPV_GEOMETRY_CHANNELS))
+        lpv_blockers_init(&g, n))
         return NAN;
     for (size_t i = 0; i < a.cells; i++)
         a.ch[0][i] = a.ch[4][i] = a.ch[8][i] = 1.0f;
-    lpv_propagate_desc pd = {.transfer = t, .geometry = &g, .use_blocking = 1, .pool = pool};
+    lpv_propagate_desc pd = {.blockers = &g, .pool = pool};
     double ms[REPEATS];
     lpv_propagate_step(&pd, &a, &b);
     for (int k = 0; k < REPEATS; k++) {
@@ -67,7 +68,7 @@ static double step_ms(const lpv_transfer *t, const int n[3], workpool *pool)
     }
     lpv_volume_free(&a);
     lpv_volume_free(&b);
-    lpv_volume_free(&g);
+    lpv_blockers_free(&g);
     return acc_median(ms, REPEATS);
 }
 
@@ -107,17 +108,15 @@ int accuracy_savings(int argc, char **argv)
     /* Fitted against cubic lattice, the CPU core alone. */
     acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = lattice};
     renderer *r = rc == 0 ? acc_renderer_create(&s, &d) : NULL;
-    lpv_transfer_desc td = {0};
-    lpv_transfer t;
     workpool *pool = workpool_create(o.threads);
-    if (!r || !pool || lpv_transfer_compute(&td, &t) != 0)
+    if (!r || !pool)
         rc = 1;
     if (rc == 0) {
         const int *fit = renderer_get_lattice(r)->n;
         int longest = fit[0] > fit[1] ? fit[0] : fit[1];
         longest = fit[2] > longest ? fit[2] : longest;
         const int cube[3] = {longest, longest, longest};
-        double fit_ms = step_ms(&t, fit, pool), cube_ms = step_ms(&t, cube, pool);
+        double fit_ms = step_ms(fit, pool), cube_ms = step_ms(cube, pool);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"savings\",\"scene\":\"%s\","
                "\"static_frames\":%d,\"lambda\":0.8,\"steps\":%d,\"frame_pass_ms_total_skip\":%.1f,"
                "\"frame_pass_ms_total_no_skip\":%.1f,\"frames_skipped\":%ld,"

@@ -13,7 +13,6 @@
 #include "lpv/lpv_inject.h"
 #include "lpv/lpv_propagate.h"
 #include "lpv_reference.h"
-#include "lpv/lpv_transfer.h"
 #include "lpv/lpv_volume.h"
 #include "base/workpool.h"
 
@@ -139,14 +138,14 @@ int bench_lpv(int argc, char **argv)
     threads = workpool_threads(pool);
 
     lattice_desc lat = {{0, 0, 0}, 1.0f, {res, res, res}};
-    lpv_transfer tr;
-    lpv_volume inj, a, b, ref_a, ref_b, geo;
+    lpv_volume inj, a, b, ref_a, ref_b;
+    lpv_blockers geo;
     int n[3] = {res, res, res};
-    if (lpv_transfer_compute(NULL, &tr) != 0 || lpv_volume_init(&inj, n, LPV_LIGHT_CHANNELS) ||
+    if (lpv_volume_init(&inj, n, LPV_LIGHT_CHANNELS) ||
         lpv_volume_init(&a, n, LPV_LIGHT_CHANNELS) || lpv_volume_init(&b, n, LPV_LIGHT_CHANNELS) ||
         lpv_volume_init(&ref_a, n, LPV_LIGHT_CHANNELS) ||
         lpv_volume_init(&ref_b, n, LPV_LIGHT_CHANNELS) ||
-        lpv_volume_init(&geo, n, LPV_GEOMETRY_CHANNELS)) {
+        lpv_blockers_init(&geo, n)) {
         fprintf(stderr, "bench lpv: out of memory for a %d^3 lattice\n", res);
         return 1;
     }
@@ -160,15 +159,15 @@ int bench_lpv(int argc, char **argv)
             vpls[i].flux[k] = rnd();
         }
     }
-    lpv_inject_vpls(&inj, &lat, vpls, vpl_count, NULL);
+    lpv_inject_vpls(&inj, NULL, &lat, vpls, vpl_count, NULL);
     free(vpls);
     float r = (float)res;
     float walls[] = {0.3f * r, 0, 0, 0.3f * r, r, 0, 0.3f * r, r, r, 0.3f * r, 0, 0, 0.3f * r, r, r, 0.3f * r, 0, r,
                      0, 0.6f * r, 0, r, 0.6f * r, r, r, 0.6f * r, 0, 0, 0.6f * r, 0, 0, 0.6f * r, r, r, 0.6f * r, r};
     lpv_geometry_add_triangles(&geo, &lat, walls, 12, NULL, 4, NULL);
 
-    lpv_propagate_desc pd = {.transfer = &tr, .geometry = &geo, .absorption = 0.05f,
-                             .scattering = 0.02f, .pool = pool};
+    lpv_propagate_desc pd = {.blockers = &geo, .absorption = 0.05f, .scattering = 0.02f,
+                             .pool = pool};
     int repeats = MIN_REPEATS;
     double *times = malloc((size_t)repeats * sizeof *times);
     for (int rep = -1; rep < repeats; rep++) { /* rep -1 warms the caches up */
@@ -176,7 +175,6 @@ int bench_lpv(int argc, char **argv)
         lpv_volume *s = &a, *d = &b;
         double t0 = clock_now_ms() * 1e-3;
         for (int k = 0; k < steps; k++) {
-            pd.use_blocking = k > 0;
             lpv_propagate_step(&pd, s, d);
             lpv_volume *t = s;
             s = d;
@@ -188,18 +186,16 @@ int bench_lpv(int argc, char **argv)
     const lpv_volume *fast = steps % 2 ? &b : &a;
     size_t cells = lattice_cell_count(&lat);
     double fast_s = median(times, repeats);
-    double flops = lpv_propagate_flops(cells, 0) + (steps - 1) * lpv_propagate_flops(cells, 1);
+    double flops = steps * lpv_propagate_flops(cells);
 
     /* The scalar reference: same steps, same settings, fewer repeats (it is slow). */
     double *naive_times = malloc((size_t)naive_repeats * sizeof *naive_times);
-    lpv_reference_desc rd = {.transfer = &tr, .geometry = &geo, .absorption = pd.absorption,
-                             .scattering = pd.scattering};
+    lpv_propagate_desc rd = pd;
     for (int rep = 0; rep < naive_repeats; rep++) {
         lpv_volume_copy(&ref_a, &inj);
         lpv_volume *s = &ref_a, *d = &ref_b;
         double t0 = clock_now_ms() * 1e-3;
         for (int k = 0; k < steps; k++) {
-            rd.use_blocking = k > 0;
             lpv_reference_step(&rd, s, d);
             lpv_volume *t = s;
             s = d;
@@ -237,7 +233,7 @@ int bench_lpv(int argc, char **argv)
     lpv_volume_free(&b);
     lpv_volume_free(&ref_a);
     lpv_volume_free(&ref_b);
-    lpv_volume_free(&geo);
+    lpv_blockers_free(&geo);
     workpool_destroy(pool);
     return max_rel < 1e-4 ? 0 : 1;
 }

@@ -1,5 +1,6 @@
-/* Units of the frame pass (docs/node.md): with no propagation and no history the lattice's
- * energy <L|1> is exactly the flux injected, so it can be checked against closed forms.
+/* Units of the frame pass (docs/node.md): the injection's energy <L|1> is exactly the flux
+ * the VPLs carry (renderer_lpv_stats.injected_energy), so it can be checked against closed
+ * forms.
  *   - a spot straight down onto the floor: the floor reflects albedo * I * integral of
  *     the cone factor over solid angle (the RSM's per-texel solid angles must add up);
  *   - the emissive panel alone (a surface light): pi * L_e * area. */
@@ -16,9 +17,10 @@ static const double PI = 3.14159265358979323846;
 static void lattice_energy_after_injection(gltest *t, double e[3])
 {
     t->params.lpv_steps = 0;
-    t->params.lambda_incr = 0.0f;
     renderer_frame_pass(t->r, &t->params);
-    lpv_volume_energy(renderer_get_lpv(t->r), e);
+    renderer_lpv_stats st;
+    renderer_get_lpv_stats(t->r, &st);
+    memcpy(e, st.injected_energy, sizeof st.injected_energy);
 }
 
 static void test_spot_flux_on_floor(void **state)

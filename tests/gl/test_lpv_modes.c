@@ -1,6 +1,6 @@
 /* The renderer's LPV modes and frame skipping on real contexts:
- * - classic LPV: the GL accumulation agrees with the CPU one within 1e-3 relative; 0 steps
- *   are black, also right after a lit frame; the indirect scale is 1;
+ * - classic LPV: the GL accumulation agrees with the CPU one within 1e-3 relative, also
+ *   with 0 steps (the splat alone) right after a lit frame;
  * - skipping: with static lights and lambda 0 frames are skipped from the third on, with
  *   the same checksum and bit-identical images as a run that never skips; a moved light is
  *   computed on that very frame; lambda 0.9 converges, then skips, and its images stay
@@ -42,7 +42,6 @@ static void classic_gl_matches_cpu(int steps)
     open_with(&cpu, RENDERER_LPV_CPU, RENDERER_LPV_CLASSIC, -1);
     open_with(&gpu, RENDERER_LPV_GL, RENDERER_LPV_CLASSIC, -1);
     assert_int_equal(renderer_get_lpv_mode(gpu.r), RENDERER_LPV_CLASSIC);
-    assert_true(renderer_get_indirect_scale(cpu.r) == 1.0f);
     gltest *both[2] = {&cpu, &gpu};
     for (int k = 0; k < 2; k++) {
         both[k]->params.lambda_incr = 0.8f; /* ignored by classic */
@@ -64,9 +63,7 @@ static void classic_gl_matches_cpu(int steps)
             peak = fmax(peak, fabs(a->ch[c][i]));
             diff = fmax(diff, fabs((double)a->ch[c][i] - b->ch[c][i]));
         }
-        if (steps == 0)
-            assert_true(peak == 0 && diff == 0);
-        else
+        if (peak > 0)
             worst = fmax(worst, diff / peak);
     }
     lpv_volume_energy(a, ea);
@@ -86,14 +83,15 @@ static void test_classic_gl_matches_cpu(void **state)
     classic_gl_matches_cpu(6);
 }
 
-static void test_classic_zero_steps_black(void **state)
+static void test_classic_zero_steps(void **state)
 {
     (void)state;
     classic_gl_matches_cpu(0);
 }
 
-/* Classic with S steps holds more light than one incremental frame with lambda 0 and S
- * steps (which is just the last of the S terms the classic sum adds). */
+/* Classic with S steps sums the light of ages 0 .. S past the splat; one incremental frame
+ * with lambda 0 and S steps the ages 0 .. S - 1: the classic one holds more, by no more than
+ * one age's worth (the shell's energy). */
 static void test_classic_sums_steps(void **state)
 {
     (void)state;
@@ -107,8 +105,9 @@ static void test_classic_sums_steps(void **state)
     double ei[3], ec[3];
     lpv_volume_energy(renderer_get_lpv(inc.r), ei);
     lpv_volume_energy(renderer_get_lpv(cla.r), ec);
-    printf("energy: incremental (lambda 0, last step) %.6g, classic (sum of 8) %.6g\n", ei[0], ec[0]);
-    assert_true(ec[0] > 3.0 * ei[0]);
+    printf("energy: incremental (lambda 0, 8 steps) %.6g, classic (8 steps) %.6g\n", ei[0], ec[0]);
+    assert_true(ec[0] > ei[0]);
+    assert_true(ec[0] - ei[0] < 0.5 * ei[0]);
     gltest_close(&cla);
     gltest_close(&inc);
 }
@@ -282,7 +281,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_classic_gl_matches_cpu),
-        cmocka_unit_test(test_classic_zero_steps_black),
+        cmocka_unit_test(test_classic_zero_steps),
         cmocka_unit_test(test_classic_sums_steps),
         cmocka_unit_test(test_static_lambda0_skips_exactly),
         cmocka_unit_test(test_lambda09_converges_then_skips),

@@ -57,8 +57,10 @@ void lpv_reference_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
                 }
             }
     for (size_t i = 0; i < cells; i++)
-        for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
-            dst->ch[k][i] = (float)(acc[i * LPV_LIGHT_CHANNELS + k] +
-                                    (desc->source ? desc->source->ch[k][i] : 0.0f));
+        for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
+            dst->ch[k][i] = (float)acc[i * LPV_LIGHT_CHANNELS + k];
+            if (desc->accum)
+                desc->accum->ch[k][i] += dst->ch[k][i];
+        }
     free(acc);
 }

@@ -14,7 +14,6 @@
 #include "lpv/lattice.h"
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_inject.h"
-#include "lpv/lpv_transfer.h"
 #include "lpv/lpv_volume.h"
 #include "frame/offaxis.h"
 #include "renderer.h"
@@ -152,8 +151,7 @@ static inline size_t stab_floor_vpls(const scene_light *l, float x0, float x1, f
 typedef struct stab_cpu {
     scene scene;
     lattice_desc lattice;
-    lpv_transfer transfer;
-    lpv_volume geometry;
+    lpv_blockers blockers;
     lpv_vpl *vpls;
     size_t vpl_count;
     ilpv ilpv;
@@ -172,11 +170,10 @@ static inline int stab_cpu_open(stab_cpu *c, int cells)
     memcpy(fit.bounds_min, s->bounds_min, sizeof fit.bounds_min);
     memcpy(fit.bounds_max, s->bounds_max, sizeof fit.bounds_max);
     if (lattice_fit(&fit, &c->lattice, err, sizeof err) != 0 ||
-        lpv_transfer_compute(NULL, &c->transfer) != 0 ||
-        lpv_volume_init(&c->geometry, c->lattice.n, LPV_GEOMETRY_CHANNELS) != 0 ||
+        lpv_blockers_init(&c->blockers, c->lattice.n) != 0 ||
         ilpv_init(&c->ilpv, &c->lattice) != 0)
         return -1;
-    lpv_geometry_add_triangles(&c->geometry, &c->lattice, s->positions, 3 * s->triangle_count,
+    lpv_geometry_add_triangles(&c->blockers, &c->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
     const int grid = 80;
     c->vpls = calloc((size_t)grid * grid, sizeof *c->vpls);
@@ -189,21 +186,22 @@ static inline int stab_cpu_open(stab_cpu *c, int cells)
 static inline void stab_cpu_close(stab_cpu *c)
 {
     ilpv_free(&c->ilpv);
-    lpv_volume_free(&c->geometry);
+    lpv_blockers_free(&c->blockers);
     free(c->vpls);
     scene_free(&c->scene);
 }
 
-/* One frame: inject the VPLs, merge, propagate `steps` steps with blocking. */
+/* One frame: inject the VPLs, splat, merge, propagate `steps` steps with blocking. */
 static inline void stab_cpu_frame(stab_cpu *c, float lambda, int steps, double emitted)
 {
     ilpv_begin_frame(&c->ilpv);
-    lpv_inject_vpls(ilpv_injection(&c->ilpv), &c->lattice, c->vpls, c->vpl_count, NULL);
+    lpv_inject_vpls(ilpv_injection(&c->ilpv), ilpv_origin(&c->ilpv), &c->lattice, c->vpls,
+                    c->vpl_count, NULL);
     ilpv_frame_desc fd = {
         .steps = steps,
         .lambda_incr = lambda,
         .emitted_energy = emitted,
-        .propagate = {.transfer = &c->transfer, .geometry = &c->geometry, .use_blocking = 1},
+        .propagate = {.blockers = &c->blockers},
     };
     ilpv_frame(&c->ilpv, &fd);
 }

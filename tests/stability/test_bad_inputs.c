@@ -181,7 +181,7 @@ static void test_ilpv_bad_energy_and_vpls(void **state)
     };
     lpv_inject_stats st = {0};
     ilpv_begin_frame(&c.ilpv);
-    lpv_inject_vpls(ilpv_injection(&c.ilpv), &c.lattice, bad, 4, &st);
+    lpv_inject_vpls(ilpv_injection(&c.ilpv), ilpv_origin(&c.ilpv), &c.lattice, bad, 4, &st);
     assert_int_equal(st.invalid, 4);
     assert_int_equal(lpv_volume_count_nonfinite(ilpv_injection(&c.ilpv)), 0);
     stab_cpu_close(&c);

@@ -82,10 +82,8 @@ static double dark_over_lit(const lpv_volume *v, const lattice_desc *lat)
  * without the blocking lattice. */
 static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking, float S)
 {
-    lpv_transfer tr;
-    assert_int_equal(lpv_transfer_compute(NULL, &tr), 0);
-    lpv_volume geo;
-    assert_int_equal(lpv_volume_init(&geo, lat->n, LPV_GEOMETRY_CHANNELS), 0);
+    lpv_blockers geo;
+    assert_int_equal(lpv_blockers_init(&geo, lat->n), 0);
     lpv_geometry_add_triangles(&geo, lat, s->positions, 3 * s->triangle_count, NULL,
                                s->triangle_count, NULL);
     enum { GRID = 60 };
@@ -97,16 +95,15 @@ static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking, fl
     assert_int_equal(ilpv_init(&il, lat), 0);
     for (int f = 0; f < FRAMES; f++) {
         ilpv_begin_frame(&il);
-        lpv_inject_vpls(ilpv_injection(&il), lat, vpls, n, NULL);
+        lpv_inject_vpls(ilpv_injection(&il), ilpv_origin(&il), lat, vpls, n, NULL);
         ilpv_frame_desc fd = {.steps = STEPS, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                              .propagate = {.transfer = &tr, .geometry = blocking ? &geo : NULL,
-                                            .use_blocking = blocking}};
+                              .propagate = {.blockers = blocking ? &geo : NULL}};
         ilpv_frame(&il, &fd);
     }
     double leak = dark_over_lit(ilpv_result(&il), lat);
     ilpv_free(&il);
     free(vpls);
-    lpv_volume_free(&geo);
+    lpv_blockers_free(&geo);
     return leak;
 }
 

@@ -1,3 +1,7 @@
+/* The incremental core (ilpv.h): a chain sums the ages of this frame's splat, so after k
+ * steps in all it equals the classic LPV with k steps, whatever the steps per frame, and it
+ * converges (stops changing) once the light has left; a changed injection restarts the
+ * chain and fades what was shown by lambda_incr E_now / E_prev; the rule itself. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -5,223 +9,153 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "lpv/ilpv.h"
+#include "lpv/lpv_classic.h"
 #include "lpv/lpv_inject.h"
 #include "lpv_testutil.h"
 
-static lpv_transfer tr;
-
-static int setup(void **state)
+static void inject(ilpv *s, float r, float shift)
 {
-    (void)state;
-    return lpv_transfer_compute(NULL, &tr);
-}
-
-static void inject(lpv_volume *v, const lattice_desc *lat, float r, float g, float b)
-{
-    lpv_volume_clear(v);
+    const lattice_desc *lat = &s->lattice;
     float mid = 0.5f * lat->n[0] * lat->cell;
     lpv_vpl vpls[] = {
-        {.position = {mid, mid, mid}, .normal = {0.2f, 1, 0.1f}, .flux = {r, g, b}},
-        {.position = {mid + 0.3f, mid, mid - 0.4f}, .normal = {-1, 0.3f, 0}, .flux = {r, g, b}},
+        {.position = {mid + shift, mid, mid}, .normal = {0.2f, 1, 0.1f}, .flux = {r, 2 * r, 3 * r}},
+        {.position = {mid + 0.3f, mid, mid - 0.4f}, .normal = {-1, 0.3f, 0}, .flux = {r, 2 * r, 3 * r}},
     };
-    lpv_inject_vpls(v, lat, vpls, 2, NULL);
+    ilpv_begin_frame(s);
+    lpv_inject_vpls(ilpv_injection(s), ilpv_origin(s), lat, vpls, 2, NULL);
 }
 
-/* T: `steps` propagation steps, the first without blocking (none here anyway). */
-static void propagate(lpv_volume *v, lpv_volume *tmp, int steps)
+static void frame(ilpv *s, int steps, float lambda, double energy, float r, float shift)
 {
-    lpv_propagate_desc pd = {.transfer = &tr};
-    for (int s = 0; s < steps; s++) {
-        lpv_propagate_step(&pd, v, tmp);
-        lpv_volume_copy(v, tmp);
-    }
+    inject(s, r, shift);
+    assert_int_equal(ilpv_frame(s, &(ilpv_frame_desc){.steps = steps, .lambda_incr = lambda,
+                                                      .emitted_energy = energy}), 0);
 }
 
-static void test_first_frame_ignores_lambda(void **state)
+/* k steps in all, 1, 4 or 8 per frame: the classic LPV's k-step sum, bit for bit. */
+static void test_chain_equals_classic_whatever_the_steps_per_frame(void **state)
 {
     (void)state;
-    lattice_desc lat = {{0, 0, 0}, 1.0f, {9, 10, 11}};
+    lattice_desc lat = {{0, 0, 0}, 0.5f, {12, 9, 10}};
+    const int per_frame[3] = {1, 4, 8};
+    lpv_classic c;
+    assert_int_equal(lpv_classic_init(&c, &lat), 0);
+    for (int k = 0; k < 3; k++) {
+        ilpv s;
+        assert_int_equal(ilpv_init(&s, &lat), 0);
+        for (int f = 0; f < 24 / per_frame[k]; f++)
+            frame(&s, per_frame[k], 0.8f, 1.0, 1.0f, 0.0f);
+        lpv_propagate_desc pd = {0};
+        assert_int_equal(lpv_classic_frame(&c, ilpv_injection(&s), ilpv_origin(&s), 24, &pd), 0);
+        assert_true(lpv_volume_checksum(ilpv_result(&s)) ==
+                    lpv_volume_checksum(lpv_classic_result(&c)));
+        ilpv_free(&s);
+    }
+    lpv_classic_free(&c);
+}
+
+/* Static lights: the result stops changing once the front's light has left the lattice. */
+static void test_converges(void **state)
+{
+    (void)state;
+    lattice_desc lat = {{0, 0, 0}, 0.5f, {12, 9, 10}};
     ilpv s;
     assert_int_equal(ilpv_init(&s, &lat), 0);
-    ilpv_begin_frame(&s);
-    inject(ilpv_injection(&s), &lat, 1, 2, 3);
-    lpv_volume expect, tmp;
-    assert_int_equal(lpv_volume_init(&expect, lat.n, LPV_LIGHT_CHANNELS), 0);
-    assert_int_equal(lpv_volume_init(&tmp, lat.n, LPV_LIGHT_CHANNELS), 0);
-    lpv_volume_copy(&expect, ilpv_injection(&s));
-    propagate(&expect, &tmp, 3);
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 3, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                                      .propagate = {.transfer = &tr}});
-    for (int c = 0; c < 12; c++)
-        assert_memory_equal(ilpv_result(&s)->ch[c], expect.ch[c], expect.cells * sizeof(float));
-    /* After frames with history, a reset gives the first frame's result again. */
+    uint64_t last = 0;
+    int same = 0;
+    for (int f = 0; f < 60 && same < 3; f++) {
+        frame(&s, 4, 0.8f, 1.0, 1.0f, 0.0f);
+        uint64_t sum = lpv_volume_checksum(ilpv_result(&s));
+        same = sum == last ? same + 1 : 0;
+        last = sum;
+    }
+    assert_int_equal(same, 3);
+    ilpv_free(&s);
+}
+
+/* The first frame, a reset and lambda 0 show no history; a moved VPL restarts the chain and
+ * fades the last result by lambda E_now / E_prev; an unchanged injection keeps the chain
+ * and fades only what earlier chains left. */
+static void test_restart_and_fade(void **state)
+{
+    (void)state;
+    lattice_desc lat = {{0, 0, 0}, 1.0f, {10, 10, 10}};
+    ilpv s;
+    assert_int_equal(ilpv_init(&s, &lat), 0);
+    frame(&s, 3, 0.8f, 1.0, 1.0f, 0.0f);
+    lpv_volume first;
+    assert_int_equal(lpv_volume_init(&first, lat.n, LPV_LIGHT_CHANNELS), 0);
+    lpv_volume_copy(&first, ilpv_result(&s));
     for (int f = 0; f < 3; f++)
-        ilpv_frame(&s, &(ilpv_frame_desc){.steps = 3, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                                          .propagate = {.transfer = &tr}});
-    assert_true(lpv_volume_checksum(ilpv_result(&s)) != lpv_volume_checksum(&expect));
+        frame(&s, 3, 0.8f, 1.0, 1.0f, 0.0f);
     ilpv_reset(&s);
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 3, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                                      .propagate = {.transfer = &tr}});
-    assert_true(lpv_volume_checksum(ilpv_result(&s)) == lpv_volume_checksum(&expect));
-    /* No energy last frame (lights off) also forces lambda to 0. */
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 3, .lambda_incr = 0.8f, .emitted_energy = 0.0,
-                                      .propagate = {.transfer = &tr}});
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 3, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                                      .propagate = {.transfer = &tr}});
-    assert_true(lpv_volume_checksum(ilpv_result(&s)) == lpv_volume_checksum(&expect));
-    lpv_volume_free(&expect);
-    lpv_volume_free(&tmp);
+    frame(&s, 3, 0.8f, 1.0, 1.0f, 0.0f);
+    assert_true(lpv_volume_checksum(ilpv_result(&s)) == lpv_volume_checksum(&first));
+    /* Move a VPL with twice the power: faded = 0.5 * 2 * the last result. */
+    lpv_volume shown;
+    assert_int_equal(lpv_volume_init(&shown, lat.n, LPV_LIGHT_CHANNELS), 0);
+    lpv_volume_copy(&shown, ilpv_result(&s));
+    frame(&s, 3, 0.5f, 2.0, 1.0f, 0.7f);
+    for (size_t i = 0; i < shown.cells; i++)
+        assert_float_equal(s.faded.ch[4][i], shown.ch[4][i], 1e-6f * fabsf(shown.ch[4][i]) + 1e-12f);
+    /* Unchanged: only the faded part fades (energy ratio 1, lambda 0.5). */
+    lpv_volume_copy(&shown, &s.faded);
+    frame(&s, 3, 0.5f, 2.0, 1.0f, 0.7f);
+    for (size_t i = 0; i < shown.cells; i++)
+        assert_float_equal(s.faded.ch[4][i], 0.5f * shown.ch[4][i], 1e-6f * fabsf(shown.ch[4][i]) + 1e-12f);
+    /* lambda 0: nothing faded is kept. */
+    frame(&s, 3, 0.0f, 2.0, 1.0f, 0.0f);
+    assert_true(testutil_energy(&s.faded) == 0.0);
+    lpv_volume_free(&shown);
+    lpv_volume_free(&first);
     ilpv_free(&s);
 }
 
-/* With static lights the frames converge to L* = (1 - l) sum_k l^k T^(k+1) I. */
-static void test_converges_to_geometric_series(void **state)
+static void test_history_rule(void **state)
 {
     (void)state;
-    lattice_desc lat = {{0, 0, 0}, 1.0f, {12, 12, 12}};
-    const float lambdas[] = {0.0f, 0.5f, 0.8f, 0.9f};
-    const int steps = 2;
-    lpv_volume series, term, tmp;
-    assert_int_equal(lpv_volume_init(&series, lat.n, LPV_LIGHT_CHANNELS), 0);
-    assert_int_equal(lpv_volume_init(&term, lat.n, LPV_LIGHT_CHANNELS), 0);
-    assert_int_equal(lpv_volume_init(&tmp, lat.n, LPV_LIGHT_CHANNELS), 0);
-    for (size_t k = 0; k < sizeof lambdas / sizeof lambdas[0]; k++) {
-        double l = lambdas[k];
-        ilpv s;
-        assert_int_equal(ilpv_init(&s, &lat), 0);
-        int frames = l > 0.0 ? (int)ceil(log(1e-7) / log(l)) + 5 : 3;
-        for (int f = 0; f < frames; f++) {
-            ilpv_begin_frame(&s);
-            inject(ilpv_injection(&s), &lat, 1, 0.5f, 0.25f);
-            ilpv_frame(&s, &(ilpv_frame_desc){.steps = steps, .lambda_incr = (float)l,
-                                              .emitted_energy = 7.0, .propagate = {.transfer = &tr}});
-        }
-        /* The explicit series, truncated where l^k < 1e-8. */
-        inject(&term, &lat, 1, 0.5f, 0.25f);
-        lpv_volume_clear(&series);
-        double w = 1.0 - l;
-        for (int i = 0; i < 400 && w > 1e-8; i++, w *= l) {
-            propagate(&term, &tmp, steps);
-            for (int c = 0; c < 12; c++)
-                for (size_t x = 0; x < series.cells; x++)
-                    series.ch[c][x] += (float)w * term.ch[c][x];
-            if (l == 0.0)
-                break;
-        }
-        double d = testutil_rel_diff(ilpv_result(&s), &series);
-        assert_true(d < 1e-4);
-        ilpv_free(&s);
-    }
-    lpv_volume_free(&series);
-    lpv_volume_free(&term);
-    lpv_volume_free(&tmp);
-}
-
-/* Switch the light from red to green with the same emitted energy: the red (stale) energy
- * decays as l^k exactly, the green one grows as 1 - l^k, the total stays. Frames to fall
- * below 1% match ln(0.01) / ln(l). The lattice leaves room so that no light leaves. */
-static void test_history_decays_at_the_predicted_rate(void **state)
-{
-    (void)state;
-    lattice_desc lat = {{0, 0, 0}, 1.0f, {45, 45, 45}};
-    const float lambdas[] = {0.5f, 0.8f, 0.9f};
-    for (size_t k = 0; k < sizeof lambdas / sizeof lambdas[0]; k++) {
-        double l = lambdas[k];
-        ilpv s;
-        assert_int_equal(ilpv_init(&s, &lat), 0);
-        ilpv_frame_desc fd = {.steps = 1, .lambda_incr = (float)l, .emitted_energy = 3.0,
-                              .propagate = {.transfer = &tr}};
-        ilpv_begin_frame(&s);
-        inject(ilpv_injection(&s), &lat, 1, 0, 0);
-        ilpv_frame(&s, &fd);
-        double e0[3];
-        lpv_volume_energy(ilpv_result(&s), e0);
-        int below = -1, predicted = (int)ceil(log(0.01) / log(l));
-        for (int f = 1; f <= 20; f++) {
-            ilpv_begin_frame(&s);
-            inject(ilpv_injection(&s), &lat, 0, 1, 0);
-            ilpv_frame(&s, &fd);
-            double e[3];
-            lpv_volume_energy(ilpv_result(&s), e);
-            double decay = pow(l, f);
-            assert_true(fabs(e[0] / e0[0] - decay) < 1e-4);
-            assert_true(fabs(e[1] / e0[0] - (1.0 - decay)) < 1e-4);
-            if (below < 0 && e[0] < 0.01 * e0[0])
-                below = f;
-        }
-        if (predicted <= 20)
-            assert_int_equal(below, predicted);
-        else
-            assert_int_equal(below, -1);
-        ilpv_free(&s);
-    }
-}
-
-/* Lights twice as strong: the merge scales the history with E_now / E_prev, so the total
- * energy follows the lights at once instead of lagging. */
-static void test_merge_follows_emitted_energy(void **state)
-{
-    (void)state;
-    lattice_desc lat = {{0, 0, 0}, 1.0f, {21, 21, 21}};
+    ilpv_history h = {0};
+    ilpv_rule r = ilpv_history_rule(&h, 0.8f, 7, 2.0);
+    assert_true(r.restart && r.fade == 0.0f); /* no history yet */
+    ilpv_history_advance(&h, r, 4, 7, 2.0);
+    assert_true(h.chain_steps == 4u);
+    r = ilpv_history_rule(&h, 0.8f, 7, 3.0);
+    assert_true(!r.restart);
+    ilpv_history_advance(&h, r, 4, 7, 3.0);
+    assert_true(h.chain_steps == 8u); /* the chain goes on */
+    assert_float_equal(r.fade, 1.2f, 1e-6f);
+    r = ilpv_history_rule(&h, 0.8f, 8, 3.0);
+    assert_true(r.restart);
+    assert_true(ilpv_history_rule(&h, 0.0f, 7, 3.0).fade == 0.0f);
+    const double untrusted[] = {-1.0, NAN, INFINITY};
+    for (int i = 0; i < 3; i++)
+        assert_true(ilpv_history_rule(&h, 0.8f, 7, untrusted[i]).fade == 0.0f);
+    ilpv_history_advance(&h, r, 4, 8, NAN); /* no usable energy: nothing faded next time */
+    assert_true(h.chain_steps == 4u);         /* a new chain */
+    assert_true(ilpv_history_rule(&h, 0.8f, 8, 3.0).fade == 0.0f);
+    /* The key follows the injection and the step probabilities. */
+    lattice_desc lat = {{0, 0, 0}, 1.0f, {4, 4, 4}};
     ilpv s;
     assert_int_equal(ilpv_init(&s, &lat), 0);
-    ilpv_begin_frame(&s);
-    inject(ilpv_injection(&s), &lat, 1, 1, 1);
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 2, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                                      .propagate = {.transfer = &tr}});
-    double e1 = testutil_energy(ilpv_result(&s));
-    ilpv_begin_frame(&s);
-    inject(ilpv_injection(&s), &lat, 2, 2, 2);
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 2, .lambda_incr = 0.8f, .emitted_energy = 2.0,
-                                      .propagate = {.transfer = &tr}});
-    double e2 = testutil_energy(ilpv_result(&s));
-    assert_true(fabs(e2 - 2.0 * e1) < 1e-5 * e1);
-    /* Zero steps: the result is the merge itself. */
-    ilpv_begin_frame(&s);
-    inject(ilpv_injection(&s), &lat, 2, 2, 2);
-    ilpv_frame(&s, &(ilpv_frame_desc){.steps = 0, .lambda_incr = 0.5f, .emitted_energy = 2.0,
-                                      .propagate = {.transfer = &tr}});
-    assert_true(fabs(testutil_energy(ilpv_result(&s)) - e2) < 1e-5 * e2);
+    uint64_t k0 = ilpv_injection_key(&s.injected, &s.origin, 0.0f, 0.0f);
+    assert_true(ilpv_injection_key(&s.injected, &s.origin, 0.1f, 0.0f) != k0);
+    assert_true(ilpv_injection_key(&s.injected, &s.origin, 0.0f, 0.1f) != k0);
+    s.origin.ch[0][3] = 1.0f;
+    assert_true(ilpv_injection_key(&s.injected, &s.origin, 0.0f, 0.0f) != k0);
     ilpv_free(&s);
-    lattice_desc bad = {{0, 0, 0}, 0.0f, {4, 4, 4}};
-    assert_int_equal(ilpv_init(&s, &bad), -1);
-    lattice_desc bad2 = {{0, 0, 0}, 1.0f, {4, 0, 4}};
-    assert_int_equal(ilpv_init(&s, &bad2), -1);
-}
-
-/* The merge rule both the CPU core and the GL path use: no history, no previous energy, or
- * an energy that cannot be trusted (negative, NaN, inf) mean lambda 0. */
-static void test_merge_factors(void **state)
-{
-    ilpv_history h = {0};
-    ilpv_merge m = ilpv_merge_factors(&h, 0.8f, 2.0);
-    assert_int_equal(m.with_history, 0);
-    assert_true(m.a == 0.0f && m.b == 1.0f);
-    ilpv_history_advance(&h, 2.0);
-    m = ilpv_merge_factors(&h, 0.8f, 3.0);
-    assert_int_equal(m.with_history, 1);
-    assert_true(m.a == (float)(3.0 / 2.0 * (double)0.8f) && m.b == (float)(1.0 - (double)0.8f));
-    const double untrusted[3] = {-1.0, NAN, INFINITY};
-    for (int i = 0; i < 3; i++) {
-        m = ilpv_merge_factors(&h, 0.8f, untrusted[i]);
-        assert_int_equal(m.with_history, 0);
-        assert_true(m.a == 0.0f && m.b == 1.0f);
-    }
-    ilpv_history_advance(&h, NAN); /* no usable energy: the next frame starts over */
-    assert_int_equal(ilpv_merge_factors(&h, 0.8f, 3.0).with_history, 0);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_first_frame_ignores_lambda),
-        cmocka_unit_test(test_converges_to_geometric_series),
-        cmocka_unit_test(test_history_decays_at_the_predicted_rate),
-        cmocka_unit_test(test_merge_follows_emitted_energy),
-        cmocka_unit_test(test_merge_factors),
+        cmocka_unit_test(test_chain_equals_classic_whatever_the_steps_per_frame),
+        cmocka_unit_test(test_converges),
+        cmocka_unit_test(test_restart_and_fade),
+        cmocka_unit_test(test_history_rule),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,3 +1,5 @@
+/* The step's rule (lpv_transfer.h): offsets, per-axis weights, the basis around a
+ * direction, the split of a cell's light, and the step probability. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -5,118 +7,127 @@
 #include <cmocka.h>
 
 #include <math.h>
-#include <string.h>
 
-#include "lpv/lpv_propagate.h"
-#include "lpv_testutil.h"
 #include "lpv/lpv_transfer.h"
 #include "lpv/sh.h"
+#include "lpv_testutil.h"
 
-static lpv_transfer tr;
-
-static int setup(void **state)
+static void test_offsets_are_antipodal_and_z_major(void **state)
 {
     (void)state;
-    return lpv_transfer_compute(NULL, &tr);
+    int k = 0;
+    for (int z = -1; z <= 1; z++)
+        for (int y = -1; y <= 1; y++)
+            for (int x = -1; x <= 1; x++) {
+                if (!x && !y && !z)
+                    continue;
+                const int *o = lpv_transfer_offsets[k], *a = lpv_transfer_offsets[25 - k];
+                assert_true(o[0] == x && o[1] == y && o[2] == z);
+                assert_true(a[0] == -x && a[1] == -y && a[2] == -z);
+                k++;
+            }
+    assert_int_equal(k, LPV_NEIGHBOURS);
 }
 
-static void test_scale_matches_the_analytic_factor(void **state)
+/* Positive, sum 1, mean v (the light moves v per step along the axis), spread (1 - v^2)/2. */
+static void test_axis_weights_move_one_cell_per_step(void **state)
 {
     (void)state;
-    double kappa = 1.0 / sqrt(26.0 * 3.14159265358979 / 4.0); /* LPV-MATH.md */
-    assert_true(fabs(tr.kappa - kappa) < 1e-5);
-    for (int j = 0; j < LPV_NEIGHBOURS; j++)
-        assert_true(fabs(tr.gamma[j][0] - 1.0 / sqrt(26.0)) < 1e-5);
-    assert_true(tr.energy_error < 1e-4);
-    assert_in_range(tr.search_probes, 10, 60);
-}
-
-static void test_outscattering_fractions_are_uniform(void **state)
-{
-    (void)state;
-    double sum = 0.0;
-    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-        assert_true(fabs(tr.outscatter[j] - 1.0 / 26.0) < 1e-6);
-        sum += tr.outscatter[j];
+    for (int i = -100; i <= 100; i++) {
+        float v = i / 100.0f, w[3];
+        lpv_transfer_axis_weights(v, w);
+        for (int k = 0; k < 3; k++)
+            assert_true(w[k] >= 0.0f);
+        assert_float_equal(w[0] + w[1] + w[2], 1.0f, 1e-6f);
+        assert_float_equal(w[2] - w[0], v, 1e-6f);
+        assert_float_equal(w[2] + w[0] - v * v, 0.5f * (1.0f - v * v), 1e-6f);
     }
-    assert_true(fabs(sum - 1.0) < 1e-6);
+    float w[3];
+    lpv_transfer_axis_weights(1.0000002f, w); /* rounding of a unit vector: still >= 0 */
+    assert_true(w[0] >= 0.0f && w[1] >= 0.0f && w[2] == 1.0f);
 }
 
-static void test_vectors_point_at_their_neighbours_and_are_deterministic(void **state)
+static void test_basis_is_orthonormal(void **state)
 {
     (void)state;
-    lpv_transfer again;
-    assert_int_equal(lpv_transfer_compute(&(lpv_transfer_desc){0}, &again), 0);
-    assert_memory_equal(again.gamma, tr.gamma, sizeof tr.gamma);
-    for (int j = 0; j < LPV_NEIGHBOURS; j++) {
-        const int *o = lpv_transfer_offsets[j];
-        float dir[3] = {(float)o[0], (float)o[1], (float)o[2]};
-        /* The lobe's direction (SH_cos convention) is close to the neighbour's. */
-        float lx = -tr.gamma[j][3], ly = -tr.gamma[j][1], lz = tr.gamma[j][2];
-        float len = sqrtf(lx * lx + ly * ly + lz * lz);
-        float olen = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-        float cosang = (lx * dir[0] + ly * dir[1] + lz * dir[2]) / (len * olen);
-        assert_true(cosang > 0.999f);
-        /* Antipodal neighbours have mirrored vectors. */
-        const float *m = tr.gamma[LPV_NEIGHBOURS - 1 - j];
-        assert_true(m[0] == tr.gamma[j][0] && m[1] == -tr.gamma[j][1] &&
-                    m[2] == -tr.gamma[j][2] && m[3] == -tr.gamma[j][3]);
-    }
-    lpv_transfer other;
-    assert_int_equal(lpv_transfer_compute(&(lpv_transfer_desc){.seed = 12345}, &other), 0);
-    assert_memory_not_equal(other.gamma, tr.gamma, sizeof tr.gamma);
-    assert_true(fabs(other.kappa - tr.kappa) < 1e-5);
-}
-
-/* The lower 3x3 block of sum_j G_j G_j^T is a multiple of the identity (LPV-MATH.md). */
-static void test_directional_part_decays_isotropically(void **state)
-{
-    (void)state;
-    double m[4][4] = {{0}};
-    for (int j = 0; j < LPV_NEIGHBOURS; j++)
-        for (int r = 0; r < 4; r++)
-            for (int c = 0; c < 4; c++)
-                m[r][c] += (double)tr.gamma[j][r] * tr.gamma[j][c];
-    assert_true(fabs(m[0][0] - 1.0) < 1e-5);
-    for (int r = 1; r < 4; r++) {
-        assert_true(fabs(m[0][r]) < 1e-6);
-        assert_in_range((long)(m[r][r] * 1000), 300, 700);
-        assert_true(fabs(m[r][r] - m[1][1]) < 0.02 * m[1][1]);
-        for (int c = 1; c < 4; c++)
-            if (c != r)
-                assert_true(fabs(m[r][c]) < 0.01 * m[1][1]);
+    uint64_t rng = 5;
+    for (int i = 0; i < 1000; i++) {
+        float d[3] = {testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f};
+        if (i == 0)
+            d[0] = 0, d[1] = 0, d[2] = -1; /* the branch's edge */
+        if (i == 1)
+            d[0] = 0, d[1] = 0, d[2] = -0.0f;
+        if (i == 1)
+            d[1] = 1;
+        float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int a = 0; a < 3; a++)
+            d[a] /= len;
+        float t1[3], t2[3];
+        lpv_transfer_basis(d, t1, t2);
+        const float *v[3] = {d, t1, t2};
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                float dot = v[a][0] * v[b][0] + v[a][1] * v[b][1] + v[a][2] * v[b][2];
+                assert_float_equal(dot, a == b ? 1.0f : 0.0f, 2e-6f);
+            }
     }
 }
 
-/* One unblocked step out of a single interior cell keeps the energy of any distribution. */
-static void test_one_step_conserves_energy(void **state)
+/* The two directions are unit vectors whose mean is the light's mean direction u = F/E:
+ * energy and flux are kept. */
+static void test_split_keeps_energy_and_flux(void **state)
 {
     (void)state;
-    int n[3] = {5, 5, 5};
-    lpv_volume src, dst;
-    assert_int_equal(lpv_volume_init(&src, n, LPV_LIGHT_CHANNELS), 0);
-    assert_int_equal(lpv_volume_init(&dst, n, LPV_LIGHT_CHANNELS), 0);
-    uint64_t rng = 99;
-    lpv_propagate_desc pd = {.transfer = &tr};
-    for (int trial = 0; trial < 20; trial++) {
-        lpv_volume_clear(&src);
-        size_t centre = 2 + 5 * (2 + 5 * 2);
-        for (int c = 0; c < 3; c++) {
-            float dir[3] = {testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f};
-            float lobe[4];
-            sh_cosine_lobe(dir, lobe);
-            for (int s = 0; s < 4; s++) /* directional enough to send negative light back */
-                src.ch[4 * c + s][centre] = (1.0f + testutil_rand(&rng)) * lobe[s] * (s ? 1.5f : 1.0f);
-        }
-        lpv_propagate_step(&pd, &src, &dst);
-        double before[3], after[3];
-        lpv_volume_energy(&src, before);
-        lpv_volume_energy(&dst, after);
-        for (int c = 0; c < 3; c++)
-            assert_true(fabs(after[c] - before[c]) < 1e-5 * before[c]);
+    uint64_t rng = 11;
+    for (int i = 0; i < 2000; i++) {
+        float n[3] = {testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f};
+        float L[4], beam = testutil_rand(&rng), iso = testutil_rand(&rng);
+        sh_eval(n, L); /* a beam along n, plus isotropic light */
+        for (int s = 0; s < 4; s++)
+            L[s] *= beam;
+        L[0] += iso * (float)SH_Y0;
+        float e, sp[3], sm[3];
+        assert_int_equal(lpv_transfer_split(L, 0.0f, 0.0f, (unsigned)i, &e, sp, sm), 1);
+        assert_float_equal(e, (float)SH_ENERGY * L[0], 1e-5f * e);
+        float f[3] = {-L[3] / (float)SH_Y1, -L[1] / (float)SH_Y1, L[2] / (float)SH_Y1};
+        for (int a = 0; a < 3; a++)
+            assert_float_equal(0.5f * (sp[a] + sm[a]) * e, f[a], 1e-5f * e);
+        assert_float_equal(sp[0] * sp[0] + sp[1] * sp[1] + sp[2] * sp[2], 1.0f, 1e-5f);
+        assert_float_equal(sm[0] * sm[0] + sm[1] * sm[1] + sm[2] * sm[2], 1.0f, 1e-5f);
     }
-    lpv_volume_free(&src);
-    lpv_volume_free(&dst);
+}
+
+static void test_split_absorbs_scatters_and_refuses_bad_light(void **state)
+{
+    (void)state;
+    float L[4], e, sp[3], sm[3];
+    sh_eval((float[3]){0, 0, 1}, L); /* a beam along +z */
+    assert_int_equal(lpv_transfer_split(L, 0.25f, 0.0f, 0, &e, sp, sm), 1);
+    assert_float_equal(e, 0.75f, 1e-6f);
+    assert_float_equal(sp[2], 1.0f, 1e-6f); /* a beam stays a beam */
+    assert_float_equal(sm[2], 1.0f, 1e-6f);
+    assert_int_equal(lpv_transfer_split(L, 0.0f, 0.5f, 0, &e, sp, sm), 1);
+    assert_float_equal(e, 1.0f, 1e-6f);        /* scattering keeps the energy */
+    assert_float_equal(0.5f * (sp[2] + sm[2]), 0.5f, 1e-6f); /* and halves the flux */
+    /* No flux: the two directions are opposite, perpendicular to the lattice axis
+     * (x + y + z) mod 3. */
+    float iso[4] = {(float)SH_Y0, 0, 0, 0};
+    for (unsigned parity = 0; parity < 6; parity++) {
+        assert_int_equal(lpv_transfer_split(iso, 0.0f, 0.0f, parity, &e, sp, sm), 1);
+        for (int a = 0; a < 3; a++)
+            assert_float_equal(sp[a] + sm[a], 0.0f, 1e-6f);
+        assert_float_equal(sp[parity % 3], 0.0f, 1e-6f);
+    }
+    const float bad[][4] = {{0, 0, 0, 0}, {-1, 0, 0, 0}, {NAN, 0, 0, 0}, {1, NAN, 0, 0},
+                            {INFINITY, 0, 0, 0}, {1, INFINITY, 0, 0}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(lpv_transfer_split(bad[i], 0.0f, 0.0f, 0, &e, sp, sm), 0);
+        assert_true(e == 0.0f);
+    }
+    /* More flux than energy allows (not a distribution): read as a beam. */
+    float over[4] = {(float)SH_Y0, 0, 3.0f * (float)SH_Y1, 0};
+    assert_int_equal(lpv_transfer_split(over, 0.0f, 0.0f, 0, &e, sp, sm), 1);
+    assert_float_equal(sp[2], 1.0f, 1e-6f);
 }
 
 static void test_step_probability_limits(void **state)
@@ -126,8 +137,8 @@ static void test_step_probability_limits(void **state)
     assert_true(lpv_transfer_step_probability(0.3f, 1e-6f) < 1e-6f); /* small cells: -> 0 */
     assert_float_equal(lpv_transfer_step_probability(1.0f, 0.2f), 1.0f, 0.0f);
     assert_float_equal(lpv_transfer_step_probability(0.0f, 0.2f), 0.0f, 0.0f);
-    /* One step of exactly one metre keeps sigma. */
-    assert_float_equal(lpv_transfer_step_probability(0.5f, 1.0f / LPV_MEAN_NEIGHBOUR_DISTANCE), 0.5f, 1e-6f);
+    /* A step of one metre keeps sigma: light moves one cell per step. */
+    assert_float_equal(lpv_transfer_step_probability(0.5f, 1.0f), 0.5f, 1e-6f);
     float prev = 0.0f;
     for (int k = 1; k <= 10; k++) { /* grows with the cell and stays a probability */
         float p = lpv_transfer_step_probability(0.2f, 0.25f * k);
@@ -140,24 +151,15 @@ static void test_step_probability_limits(void **state)
     assert_float_equal(lpv_transfer_step_probability(0.5f, NAN), 0.0f, 0.0f);
 }
 
-static void test_bad_search_interval_is_refused(void **state)
-{
-    (void)state;
-    lpv_transfer t;
-    assert_int_equal(lpv_transfer_compute(&(lpv_transfer_desc){.search_lo = 0.5, .search_hi = 0.1}, &t), -1);
-    assert_int_equal(lpv_transfer_compute(&(lpv_transfer_desc){.search_lo = -1, .search_hi = 0.4}, &t), -1);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_scale_matches_the_analytic_factor),
-        cmocka_unit_test(test_outscattering_fractions_are_uniform),
-        cmocka_unit_test(test_vectors_point_at_their_neighbours_and_are_deterministic),
-        cmocka_unit_test(test_directional_part_decays_isotropically),
-        cmocka_unit_test(test_one_step_conserves_energy),
+        cmocka_unit_test(test_offsets_are_antipodal_and_z_major),
+        cmocka_unit_test(test_axis_weights_move_one_cell_per_step),
+        cmocka_unit_test(test_basis_is_orthonormal),
+        cmocka_unit_test(test_split_keeps_energy_and_flux),
+        cmocka_unit_test(test_split_absorbs_scatters_and_refuses_bad_light),
         cmocka_unit_test(test_step_probability_limits),
-        cmocka_unit_test(test_bad_search_interval_is_refused),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, NULL, NULL);
 }
