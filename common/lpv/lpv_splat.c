@@ -178,7 +178,7 @@ static void splat_tile(void *ctx, int item)
                 continue;
             float r[3] = {c3[0] - src->origin[0], c3[1] - src->origin[1], c3[2] - src->origin[2]};
             float r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2], dist = sqrtf(r2);
-            if (dist >= R + 1.0f || in_own_layer(src, r))
+            if (dist >= R + 1.0f || (dist < R && in_own_layer(src, r)))
                 continue;
             /* Every hop of the walk must stay inside the lattice and unblocked. */
             int inside = 1;
@@ -226,8 +226,6 @@ static void shell_norm(const lpv_splat_source *src, const table *tb, float out[3
                       src->cell[2] + g->t[2] - src->origin[2]};
         float r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2], dist = sqrtf(r2);
         if (dist < R || dist >= R + 1.0f)
-            continue;
-        if (in_own_layer(src, r))
             continue;
         float w[3] = {r[0] / dist, r[1] / dist, r[2] / dist};
         for (int c = 0; c < 3; c++)
