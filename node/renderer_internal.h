@@ -85,11 +85,10 @@ struct renderer {
     GLuint prog_propagate, prog_accumulate;
     GLuint gl_near[3], gl_shell[3], gl_front[2][3], gl_blockers;
     GLuint gl_sum[3];        /* near + the chain's ages so far (classic: this frame's) */
-    GLuint gl_faded[3];      /* what earlier chains left (ilpv.h) */
-    GLuint gl_result[3];     /* sum + faded: what the shading samples */
+    GLuint gl_result[3];     /* sum + w faded, composed on the host: what the shading samples */
     int gl_current;
     ilpv_history gl_history; /* the GL path's own history (ilpv_history_rule()) */
-    lpv_volume gl_readback;  /* the GL result, read back for the checksum */
+    lpv_volume gl_readback;  /* the GL path's result on the host (read back or composed) */
 
     /* HUD: one program, three meshes in one buffer */
     GLuint prog_hud, hud_vao, hud_vbo;

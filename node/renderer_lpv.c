@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/fpmode.h"
 #include "lpv/lpv_geometry.h"
 #include "renderer_internal.h"
 
@@ -146,7 +147,7 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
         return -1;
     }
     GLuint *all[] = {r->gl_near, r->gl_shell, r->gl_front[0], r->gl_front[1], r->gl_sum,
-                     r->gl_faded, r->gl_result};
+                     r->gl_result};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
         for (int c = 0; c < 3; c++)
             all[i][c] = renderer_texture3d(r, r->lattice.n);
@@ -213,9 +214,9 @@ void renderer_lpv_free(renderer *r)
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
-        GLuint t[8] = {r->lpv_tex[c],     r->gl_near[c], r->gl_shell[c], r->gl_front[0][c],
-                       r->gl_front[1][c], r->gl_sum[c],  r->gl_faded[c], r->gl_result[c]};
-        for (int i = 0; i < 8; i++)
+        GLuint t[7] = {r->lpv_tex[c],     r->gl_near[c], r->gl_shell[c], r->gl_front[0][c],
+                       r->gl_front[1][c], r->gl_sum[c],  r->gl_result[c]};
+        for (int i = 0; i < 7; i++)
             if (t[i])
                 gl->DeleteTextures(1, &t[i]);
     }
@@ -403,26 +404,37 @@ static void gl_classic_frame(renderer *r, const frame_params *p, float absorptio
     download_volume(r, r->gl_sum, &r->gl_readback);
 }
 
-/* ilpv_frame() on the GPU. */
+/* ilpv_frame() on the GPU; the result is composed on the host from the chain's sum (read
+ * back for the checksum anyway) and the faded light, and uploaded for the shading. */
 static void gl_frame(renderer *r, const frame_params *p, uint64_t key, double energy,
                      float absorption, float scattering)
 {
     ilpv_rule rule = ilpv_history_rule(&r->gl_history, p->lambda_incr, key, energy);
-    if (!r->gl_history.have_history || rule.fade == 0.0f) {
-        gl_combine(r, r->gl_faded, 0.0f, r->gl_faded, 0.0f);
-    } else {
-        if (rule.restart)
-            gl_combine(r, r->gl_faded, 1.0f, r->gl_sum, 1.0f);
-        gl_combine(r, r->gl_faded, rule.fade, r->gl_faded, 0.0f);
-    }
-    if (rule.restart)
+    double faded_energy = r->gl_history.faded_energy;
+    lpv_volume *faded = &r->cpu.faded, *sum = &r->cpu.sum, *result = &r->gl_readback;
+    if (rule.restart) {
+        fpmode mode = fpmode_enter();
+        lpv_volume_copy(faded, result);
+        lpv_volume_scale(faded, rule.keep);
+        double e[3];
+        lpv_volume_energy(faded, e);
+        faded_energy = rule.keep > 0.0f ? e[0] + e[1] + e[2] : 0.0;
+        fpmode_leave(mode);
         gl_start_chain(r, absorption);
+    }
     gl_steps(r, p->lpv_steps, rule.restart ? 0u : r->gl_history.chain_steps, absorption,
              scattering);
-    gl_combine(r, r->gl_result, 0.0f, r->gl_sum, 1.0f);
-    gl_combine(r, r->gl_result, 1.0f, r->gl_faded, 1.0f);
-    ilpv_history_advance(&r->gl_history, rule, p->lpv_steps, key, energy);
-    download_volume(r, r->gl_result, &r->gl_readback);
+    ilpv_history_advance(&r->gl_history, rule, p->lpv_steps, key, energy, faded_energy);
+    download_volume(r, r->gl_sum, sum);
+    fpmode mode = fpmode_enter();
+    double e[3];
+    lpv_volume_energy(sum, e);
+    float w = ilpv_faded_weight(&r->gl_history, p->lambda_incr, e[0] + e[1] + e[2]);
+    lpv_volume_copy(result, sum);
+    if (w > 0.0f)
+        lpv_volume_add_scaled(result, faded, w);
+    fpmode_leave(mode);
+    upload_volume(r, result, r->gl_result);
 }
 
 uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)

@@ -71,22 +71,40 @@ ilpv_rule ilpv_history_rule(const ilpv_history *h, float lambda_incr, uint64_t k
                             double emitted_energy)
 {
     ilpv_rule r = {1, 0.0f};
-    if (!h->have_history)
-        return r;
+    if (!h->have_history || !(lambda_incr > 0.0f))
+        return r; /* lambda 0: no temporal reuse at all, every frame a new chain */
     r.restart = key != h->key;
-    if (lambda_incr > 0.0f && h->previous_energy > 0.0 && emitted_energy >= 0.0 &&
-        isfinite(emitted_energy)) /* a negative or NaN energy: no scale can be trusted */
-        r.fade = (float)(emitted_energy / h->previous_energy * lambda_incr);
+    if (h->previous_energy > 0.0 && emitted_energy >= 0.0 && isfinite(emitted_energy))
+        r.keep = (float)(emitted_energy / h->previous_energy); /* else no scale can be trusted */
     return r;
 }
 
 void ilpv_history_advance(ilpv_history *h, ilpv_rule r, int steps, uint64_t key,
-                          double emitted_energy)
+                          double emitted_energy, double faded_energy)
 {
-    h->chain_steps = (r.restart ? 0u : h->chain_steps) + (unsigned)(steps > 0 ? steps : 0);
+    unsigned n = (unsigned)(steps > 0 ? steps : 0);
+    h->chain_steps = r.restart ? n : h->chain_steps + n;
+    h->chain_frames = r.restart ? 0u : h->chain_frames + 1u;
     h->have_history = 1;
     h->key = key;
     h->previous_energy = isfinite(emitted_energy) && emitted_energy > 0.0 ? emitted_energy : 0.0;
+    h->faded_energy = faded_energy > 0.0 && isfinite(faded_energy) ? faded_energy : 0.0;
+}
+
+float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_energy)
+{
+    if (!(h->faded_energy > 0.0) || !(lambda_incr > 0.0f))
+        return 0.0f;
+    double w = 1.0 - sum_energy / h->faded_energy;
+    w = fmin(w, pow(lambda_incr, (double)h->chain_frames));
+    return w > 0.0 ? (float)fmin(w, 1.0) : 0.0f;
+}
+
+static double total_energy(const lpv_volume *v)
+{
+    double e[3];
+    lpv_volume_energy(v, e);
+    return e[0] + e[1] + e[2];
 }
 
 int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
@@ -94,17 +112,18 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     const lpv_propagate_desc *p = &desc->propagate;
     uint64_t key = ilpv_injection_key(&s->injected, &s->origin, p->absorption, p->scattering);
     ilpv_rule rule = ilpv_history_rule(&s->history, desc->lambda_incr, key, desc->emitted_energy);
+    double faded_energy = s->history.faded_energy;
     int rc = 0;
-    fpmode mode = fpmode_enter();
-    if (!s->history.have_history || rule.fade == 0.0f) {
-        lpv_volume_clear(&s->faded); /* never read a stale history: it may hold anything */
-    } else {
-        if (rule.restart)
-            lpv_volume_add(&s->faded, &s->sum);
-        lpv_volume_scale(&s->faded, rule.fade);
-    }
-    fpmode_leave(mode);
     if (rule.restart) {
+        fpmode mode = fpmode_enter();
+        if (rule.keep > 0.0f) { /* the picture shown last, in this frame's power */
+            lpv_volume_copy(&s->faded, &s->result);
+            lpv_volume_scale(&s->faded, rule.keep);
+        } else {
+            lpv_volume_clear(&s->faded); /* never read a stale history: it may hold anything */
+        }
+        faded_energy = rule.keep > 0.0f ? total_energy(&s->faded) : 0.0;
+        fpmode_leave(mode);
         lpv_splat_desc sd = {&s->injected, &s->origin, p->blockers, p->absorption, p->pool};
         rc = lpv_splat_run(&s->splat, &sd, &s->near, &s->shell);
         mode = fpmode_enter();
@@ -122,11 +141,14 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
         lpv_propagate_step(&pd, &s->front[s->current], &s->front[1 - s->current]);
         s->current = 1 - s->current;
     }
-    mode = fpmode_enter();
+    ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy,
+                         faded_energy);
+    fpmode mode = fpmode_enter();
+    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, total_energy(&s->sum));
     lpv_volume_copy(&s->result, &s->sum);
-    lpv_volume_add(&s->result, &s->faded);
+    if (w > 0.0f)
+        lpv_volume_add_scaled(&s->result, &s->faded, w);
     fpmode_leave(mode);
-    ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy);
     return rc;
 }
 

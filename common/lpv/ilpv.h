@@ -14,13 +14,20 @@
  *
  * A chain restarts when this frame's injection differs from the last one's (a light
  * moved, turned, changed, the absorption or scattering changed: lpv_volume_checksum() of
- * the injected light and its origins, with the step probabilities). What the frames before
- * showed then fades: faded <- f (faded + sum) at a restart and faded <- f faded otherwise,
- * f = lambda_incr E_now / E_prev (ilpv_history_rule(), the lights' emitted energy from their
- * parameters). The result is sum + faded. No history (faded = 0) on the first frame, after
+ * the injected light and its origins, with the step probabilities), and every frame when
+ * lambda_incr is 0 (no temporal reuse: the classic sum of `steps` steps). The light shown
+ * before then fades out while the new chain builds up: at a restart
+ *   faded = (E_now / E_prev) x the last result        (E: the lights' emitted energy)
+ * and every frame shows result = sum + w faded, with
+ *   w = min(1 - <sum|1> / <faded|1>, lambda_incr^k)  (clamped to [0, 1]),
+ * k the frames since the restart: the old light fills in what the new chain has not
+ * reached yet, in proportion to the energy still missing, so the picture keeps its level
+ * while a light moves (a restart every frame), and it is gone at least as fast as
+ * lambda_incr^k once the lights stop. No history (faded = 0) on the first frame, after
  * ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or E_now is negative or not
- * finite. ilpv_history_rule() is that rule, once, for this core and the GL path
- * (node/renderer_lpv.c). lambda_incr's range [0,1) is the caller's (frame_params_sanitize()). */
+ * finite. ilpv_history_rule() and ilpv_faded_weight() are that rule, once, for this core
+ * and the GL path (node/renderer_lpv.c). lambda_incr's range [0,1) is the caller's
+ * (frame_params_sanitize()). */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
 
@@ -37,11 +44,13 @@ typedef struct ilpv_history {
     double previous_energy; /* emitted energy of the last frame */
     uint64_t key;           /* of the last frame's injection (ilpv_injection_key()) */
     unsigned chain_steps;   /* steps since the chain started (lpv_propagate_desc.step) */
+    unsigned chain_frames;  /* frames since the chain started */
+    double faded_energy;    /* <faded|1>, all colours */
 } ilpv_history;
 
 typedef struct ilpv_rule {
     int restart;  /* start a new chain from this frame's splat */
-    float fade;   /* factor of the faded light (0: none kept) */
+    float keep;   /* at a restart, faded = keep x the last result (0: nothing kept) */
 } ilpv_rule;
 
 typedef struct ilpv {
@@ -50,8 +59,8 @@ typedef struct ilpv {
     lpv_volume near, shell;      /* lpv_splat.h */
     lpv_volume front[2];         /* the chain's oldest light, ping-pong */
     lpv_volume sum;              /* near + every age of the chain so far */
-    lpv_volume faded;            /* what earlier chains left */
-    lpv_volume result;           /* sum + faded */
+    lpv_volume faded;            /* the light shown when the chain started */
+    lpv_volume result;           /* sum + w faded */
     lpv_splat splat;
     int current;                 /* index of the front volume */
     ilpv_history history;
@@ -82,8 +91,11 @@ uint64_t ilpv_injection_key(const lpv_volume *injected, const lpv_volume *origin
  * emitted energy; ilpv_history_advance() records the frame. */
 ilpv_rule ilpv_history_rule(const ilpv_history *h, float lambda_incr, uint64_t key,
                             double emitted_energy);
-/* After a frame of `steps` steps under rule r. */
+/* After a frame of `steps` steps under rule r, faded holding faded_energy. */
 void ilpv_history_advance(ilpv_history *h, ilpv_rule r, int steps, uint64_t key,
-                          double emitted_energy);
+                          double emitted_energy, double faded_energy);
+/* w of this frame, from the history (after ilpv_history_advance()), lambda_incr and the
+ * energy of the chain's sum (all colours). */
+float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_energy);
 
 #endif

@@ -83,6 +83,18 @@ void lpv_volume_add(lpv_volume *dst, const lpv_volume *src)
     }
 }
 
+void lpv_volume_add_scaled(lpv_volume *dst, const lpv_volume *src, float a)
+{
+    if (dst == src || dst->cells != src->cells || dst->channels != src->channels)
+        return;
+    for (int c = 0; c < src->channels; c++) {
+        float *d = dst->ch[c];
+        const float *s = src->ch[c];
+        for (size_t i = 0; i < src->cells; i++)
+            d[i] += a * s[i];
+    }
+}
+
 void lpv_volume_scale(lpv_volume *v, float a)
 {
     for (int c = 0; c < v->channels; c++) {

