@@ -233,6 +233,11 @@ void scene_default_view(const scene *s, float position[3], float target[3])
     position[2] = target[2] + 1.5f * size;
 }
 
+float scene_default_yfov(const scene *s)
+{
+    return s->camera.valid ? s->camera.yfov : 60.0f * 3.14159265f / 180.0f;
+}
+
 int scene_load(const char *path, scene *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
