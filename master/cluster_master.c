@@ -7,6 +7,8 @@
 #include <zmq.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
+#include "cluster_auth.h"
 
 typedef struct peer {
     cluster_peer_stats s;
@@ -19,6 +21,8 @@ typedef struct peer {
 struct cluster_master {
     const cluster_config *cfg;
     void *ctx, *sock;
+    cluster_auth *auth;
+    ratelog unknown_log, malformed_log;
     params_store params;
     int barrier_timeout_ms;
     int quiet;
@@ -29,10 +33,6 @@ struct cluster_master {
     uint8_t buf[WIRE_MAX_MESSAGE];
     uint8_t params_buf[PARAMS_ENCODED_MAX];
 };
-
-/* Problems caused by peers are logged, but only the first few of each kind and then one
- * per 1000, so a flood cannot fill the disk. */
-static int should_log(uint64_t count) { return count <= 5 || count % 1000 == 0; }
 
 static int send_to(cluster_master *m, int node, const wire_msg *msg)
 {
@@ -135,16 +135,22 @@ static int handle_one(cluster_master *m)
         name[idlen] = 0;
     }
     int node = idlen <= WIRE_NAME_MAX && wire_name_valid(name) ? cluster_config_find_node(m->cfg, name) : -1;
+    /* A node's name is only believed from the peer that authenticated with its key. */
+    if (node >= 0 && !cluster_auth_is(m->auth, &body, name))
+        node = -1;
     size_t len = zmq_msg_size(&body);
     m->st.messages_received++;
     m->st.bytes_received += len;
     wire_msg msg;
     wire_error e = WIRE_OK;
+    uint64_t skipped = 0;
     if (node < 0) {
-        if (should_log(++m->st.unknown_peers))
-            fprintf(stderr, "cavelight-master: message from unknown peer '%s' dropped (%llu so far): only "
-                    "nodes named in %s may connect\n", node < 0 && wire_name_valid(name) ? name : "?",
-                    (unsigned long long)m->st.unknown_peers, m->cfg->path);
+        m->st.unknown_peers++;
+        if (ratelog_event(&m->unknown_log, clock_now_ms(), &skipped))
+            fprintf(stderr, "cavelight-master: message from unknown or unauthenticated peer '%s' dropped "
+                    "(%llu so far, %llu not logged): only nodes named in %s may connect\n",
+                    wire_name_valid(name) ? name : "?", (unsigned long long)m->st.unknown_peers,
+                    (unsigned long long)skipped, m->cfg->path);
         goto done;
     }
     e = parts == 2 ? wire_decode(zmq_msg_data(&body), len, &msg) : WIRE_E_PAYLOAD;
@@ -153,9 +159,11 @@ static int handle_one(cluster_master *m)
     if (e == WIRE_OK && strcmp(msg.name, name) != 0)
         e = WIRE_E_PAYLOAD; /* a node speaking for another */
     if (e != WIRE_OK) {
-        if (should_log(++m->st.malformed))
-            fprintf(stderr, "cavelight-master: malformed message from node %s dropped (%s; %llu so far)\n",
-                    name, wire_error_string(e), (unsigned long long)m->st.malformed);
+        m->st.malformed++;
+        if (ratelog_event(&m->malformed_log, clock_now_ms(), &skipped))
+            fprintf(stderr, "cavelight-master: malformed message from node %s dropped (%s; %llu so far, "
+                    "%llu not logged)\n", name, wire_error_string(e), (unsigned long long)m->st.malformed,
+                    (unsigned long long)skipped);
         goto done;
     }
     peer *p = &m->peers[node];
@@ -229,14 +237,20 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
         cluster_master_destroy(m);
         return NULL;
     }
-    int one = 1, zero = 0, hwm = 1000;
+    int zero = 0, hwm = 1000;
     int64_t maxmsg = WIRE_MAX_MESSAGE;
     zmq_setsockopt(m->sock, ZMQ_LINGER, &zero, sizeof zero);
     zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
-    /* A restarted node reuses its name: its new connection takes over the routing id. */
-    zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    /* No ZMQ_ROUTER_HANDOVER: a second connection with a live node's name is refused, not
+     * handed the node's traffic. A restarted node gets its name back as soon as its old
+     * connection is closed (at once when the process dies). */
+    m->auth = cluster_auth_start(m->ctx, m->sock, m->cfg, m->quiet, err, errlen);
+    if (!m->auth) {
+        cluster_master_destroy(m);
+        return NULL;
+    }
     if (zmq_bind(m->sock, ep) != 0) {
         snprintf(err, errlen, "cluster master: cannot bind %s (%s, from %s): free the port or pass --bind",
                  ep, zmq_strerror(errno), desc->bind ? "--bind" : m->cfg->path);
@@ -270,6 +284,7 @@ void cluster_master_destroy(cluster_master *m)
         zmq_setsockopt(m->sock, ZMQ_LINGER, &linger, sizeof linger);
         zmq_close(m->sock);
     }
+    cluster_auth_stop(m->auth);
     if (m->ctx)
         zmq_ctx_term(m->ctx);
     free(m);
@@ -398,7 +413,11 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
     return 0;
 }
 
-void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out) { *out = m->st; }
+void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out)
+{
+    *out = m->st;
+    out->refused = m->auth ? cluster_auth_refused(m->auth) : 0;
+}
 
 void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out)
 {

@@ -48,6 +48,7 @@ typedef struct cluster_master_stats {
     uint64_t malformed, unknown_peers, stale;
     uint64_t bytes_sent, bytes_received, messages_sent, messages_received;
     uint64_t joins, drops;
+    uint64_t refused;        /* connections refused for an unknown CURVE key */
 } cluster_master_stats;
 
 typedef struct cluster_frame_result {

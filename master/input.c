@@ -96,6 +96,7 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
             out->dt = s->step_dt;
             out->finished |= s->finished;
         }
+        out->failed |= s->failed;
     }
     double axes_time = -1.0;
     for (int i = 0; i < in->count; i++) {

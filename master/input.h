@@ -57,6 +57,8 @@ typedef struct input_state {
     float axes[INPUT_AXIS_COUNT];
     double axes_time;
     int finished;         /* a stepped playback source has reached its end */
+    int failed;           /* a playback source stopped on a malformed file: the session
+                             must end with an error (input_poll's message says where) */
 } input_state;
 
 typedef struct input_desc {

@@ -28,6 +28,7 @@ typedef struct playback_source {
     char path[4096];
     FILE *f;
     int line;
+    int polls;           /* poll records read since the file's start */
     int eof;
     int pending;         /* realtime: a block read but not yet due */
     block next;
@@ -127,7 +128,14 @@ static int read_block(playback_source *pb, block *b, char *err, size_t errlen)
         } else if (strcmp(tok[0], "poll") == 0) {
             if (n != 3 || parse_double(tok[1], &b->time) || parse_double(tok[2], &b->dt)) {
                 bad = 1;
+            } else if (!(b->dt > 0 || (b->dt == 0 && pb->polls == 0)) ||
+                       b->dt > INPUT_PLAYBACK_MAX_DT) {
+                snprintf(err, errlen, "input playback %s:%d: poll dt %s out of range (0 < dt <= "
+                         "%g s; 0 only on the first poll)", pb->path, pb->line, tok[2],
+                         INPUT_PLAYBACK_MAX_DT);
+                return -1;
             } else {
+                pb->polls++;
                 return 1;
             }
         } else if (strcmp(tok[0], "cavelight-input") == 0 && pb->line == 1) {
@@ -173,6 +181,7 @@ static void rewind_file(playback_source *pb)
 {
     rewind(pb->f);
     pb->line = 0;
+    pb->polls = 0;
     pb->eof = 0;
 }
 
@@ -187,6 +196,7 @@ static int playback_poll(input_source *s, double now, char *err, size_t errlen)
         if (r <= 0) {
             pb->eof = 1;
             s->finished = 1;
+            s->failed = r < 0;
             s->step_dt = 0.0;
             return r;
         }
@@ -202,6 +212,7 @@ static int playback_poll(input_source *s, double now, char *err, size_t errlen)
             int r = read_block(pb, &pb->next, err, errlen);
             if (r < 0) {
                 pb->eof = 1;
+                s->failed = 1;
                 return -1;
             }
             if (r == 0) {

@@ -8,7 +8,9 @@
  *   wand <t> <x y z> <r0 .. r8>                column-major 3x3 rotation, CAVE space)
  *   buttons <t> <held> <pressed>             logical button masks, hexadecimal
  *   axes <t> <a0 a1 a2 a3>                   logical axes in [-1, 1]
- *   poll <time> <dt>                         closes the block of one input_poll()
+ *   poll <time> <dt>                         closes the block of one input_poll();
+ *                                            0 < dt <= INPUT_PLAYBACK_MAX_DT (dt = 0
+ *                                            only on the first poll: nothing elapsed)
  *
  * A block holds only what changed since the previous poll. Playback is either stepped
  * (each input_poll() consumes one block and takes its clock: deterministic, the default)
@@ -21,6 +23,8 @@
 #include "input_source.h"
 
 #define INPUT_PLAYBACK_MAGIC "cavelight-input 1"
+/* Longest step a recording may hold, seconds: a poll gap beyond it is no frame step. */
+#define INPUT_PLAYBACK_MAX_DT 10.0
 
 typedef struct input_playback_desc {
     const char *name;

@@ -28,6 +28,7 @@ struct input_source {
     int cave_space;            /* poses already in CAVE space (no tracker transform) */
     int stepped;               /* stepped playback: drives the input clock */
     int finished;              /* stepped playback ran out */
+    int failed;                /* playback stopped on a malformed file */
     double step_time;          /* stepped playback: clock of the current step */
     double step_dt;
     input_source_state st;

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "base/clock.h"
+#include "cluster_auth.h"
 #include "cluster_master.h"
 #include "overview.h"
 #include "session.h"
@@ -32,12 +33,13 @@ static void usage(void)
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
             "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n");
+            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n"
+            "       cavelight-master --config FILE --keygen   (CURVE keys into the config's security.keys)\n");
 }
 
 typedef struct options {
     const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input;
-    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet;
+    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen;
     double dt, fps;
 } options;
 
@@ -51,6 +53,7 @@ static int parse_args(int argc, char **argv, options *o)
         if (strcmp(a, "--spawn-local") == 0) { o->spawn_local = 1; continue; }
         if (strcmp(a, "--spawn-remote") == 0) { o->spawn_remote = 1; continue; }
         if (strcmp(a, "--quiet") == 0) { o->quiet = 1; continue; }
+        if (strcmp(a, "--keygen") == 0) { o->keygen = 1; continue; }
         if (!v) {
             fprintf(stderr, "cavelight-master: unknown or incomplete option %s\n", a);
             return -1;
@@ -206,6 +209,10 @@ static int run_frames(session *s, const options *o, double *wall_s)
         session_step step = session_frame(s, &r);
         if (step == SESSION_INPUT_ENDED)
             break;
+        if (step == SESSION_INPUT_FAILED) {
+            rc = 1; /* a recording with errors is no session to report as done */
+            break;
+        }
         if (step == SESSION_NO_NODES) {
             fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", o->wait_ms);
             if (session_wait_nodes(s, 1, o->wait_ms, &stop_requested) == 0) {
@@ -256,6 +263,18 @@ static void handle_signals(void)
     signal(SIGPIPE, SIG_IGN);
 }
 
+static int keygen(const cluster_config *cfg)
+{
+    char err[1024];
+    if (cluster_keygen(cfg, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        return 1;
+    }
+    fprintf(stderr, "cavelight-master: wrote master.key/.pub and one pair per node into %s; give "
+            "each host its own .key and master.pub\n", cfg->keys_dir);
+    return 0;
+}
+
 static int master_run(const options *o)
 {
     static cluster_config cfg;
@@ -265,6 +284,8 @@ static int master_run(const options *o)
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
+    if (o->keygen)
+        return keygen(&cfg);
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt};

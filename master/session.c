@@ -106,22 +106,24 @@ int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomi
     return live;
 }
 
-/* Live or recorded input through the interaction layouts into the store. Returns 0, or
- * 1 when a stepped recording has ended. */
-static int apply_input(session *s, params_store *store)
+/* Live or recorded input through the interaction layouts into the store. Returns
+ * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
+static session_step apply_input(session *s, params_store *store)
 {
     input_state ist;
     char err[512];
     if (input_poll(s->in, &ist, err, sizeof err) != 0)
         fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+    if (ist.failed)
+        return SESSION_INPUT_FAILED;
     if (ist.finished)
-        return 1;
+        return SESSION_INPUT_ENDED;
     interaction_update(&s->ia, &ist, ist.dt, &s->frame);
     s->frame.time = ist.time;
     s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
     params_set_from_frame(store, &s->frame);
     params_set_i32(store, PARAMS_LPV_RESOLUTION, interaction_pipeline(&s->ia) ? 64 : 0);
-    return 0;
+    return SESSION_FRAME_DONE;
 }
 
 static void record(session *s, const cluster_frame_result *r)
@@ -157,8 +159,9 @@ session_step session_frame(session *s, cluster_frame_result *result)
     if (s->frames == 0 && s->start_ms == 0)
         s->start_ms = clock_now_ms();
     if (s->in) {
-        if (apply_input(s, store))
-            return SESSION_INPUT_ENDED;
+        session_step step = apply_input(s, store);
+        if (step != SESSION_FRAME_DONE)
+            return step;
     } else {
         double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
         script_apply(&s->script, t, store);
@@ -230,6 +233,7 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "drops", (double)st.drops);
     cJSON_AddNumberToObject(root, "malformed_messages", (double)st.malformed);
     cJSON_AddNumberToObject(root, "unknown_peer_messages", (double)st.unknown_peers);
+    cJSON_AddNumberToObject(root, "refused_connections", (double)st.refused);
     cJSON_AddNumberToObject(root, "bytes_sent", (double)st.bytes_sent);
     cJSON_AddNumberToObject(root, "bytes_received", (double)st.bytes_received);
     cJSON_AddNumberToObject(root, "messages_sent", (double)st.messages_sent);

@@ -39,6 +39,7 @@ typedef enum session_step {
     SESSION_FRAME_DONE = 0, /* committed, barrier passed, SWAP sent */
     SESSION_NO_NODES,       /* no node is live: nothing was sent; wait and try again */
     SESSION_INPUT_ENDED,    /* a stepped recording has ended: the session is over */
+    SESSION_INPUT_FAILED,   /* a recording with errors: the session is over, not done */
 } session_step;
 
 /* Returns NULL with one line in err (bind, scene or input failed). */

@@ -7,6 +7,8 @@
 #include <zmq.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
+#include "cluster/cluster_keys.h"
 
 typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
 
@@ -19,6 +21,9 @@ struct cluster_client {
     int quiet;
     client_state state;
     params_store params;
+    /* curve: this node's key pair and the one master key it accepts */
+    char public_key[CLUSTER_KEY_Z85 + 1], secret_key[CLUSTER_KEY_Z85 + 1], master_key[CLUSTER_KEY_Z85 + 1];
+    ratelog malformed_log, refused_log;
     double last_heard, last_sent, last_hello;
     cluster_client_stats st;
     uint8_t buf[WIRE_MAX_MESSAGE];
@@ -63,6 +68,16 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
     zmq_setsockopt(c->sock, ZMQ_IMMEDIATE, &one, sizeof one);
     zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL, &ivl, sizeof ivl);
     zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL_MAX, &ivl_max, sizeof ivl_max);
+    /* curve: the handshake fails against any master without the configured key. */
+    if (c->cfg->security == CLUSTER_SECURITY_CURVE &&
+        (zmq_setsockopt(c->sock, ZMQ_CURVE_SERVERKEY, c->master_key, CLUSTER_KEY_Z85) != 0 ||
+         zmq_setsockopt(c->sock, ZMQ_CURVE_PUBLICKEY, c->public_key, CLUSTER_KEY_Z85) != 0 ||
+         zmq_setsockopt(c->sock, ZMQ_CURVE_SECRETKEY, c->secret_key, CLUSTER_KEY_Z85) != 0)) {
+        snprintf(err, errlen, "cluster node %s: cannot set up CURVE security: %s", c->name, zmq_strerror(errno));
+        zmq_close(c->sock);
+        c->sock = NULL;
+        return -1;
+    }
     if (zmq_connect(c->sock, c->endpoint) != 0) {
         snprintf(err, errlen, "cluster node %s: cannot connect to %s (%s): check master.connect in %s",
                  c->name, c->endpoint, zmq_strerror(errno), c->cfg->path);
@@ -108,6 +123,22 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     params_init(&c->params);
     c->ctx = zmq_ctx_new();
     c->endpoint = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
+    if (c->cfg->security == CLUSTER_SECURITY_CURVE) {
+        if (!zmq_has("curve")) {
+            snprintf(err, errlen, "cluster node %s: this libzmq has no CURVE security", c->name);
+            cluster_client_destroy(c);
+            return NULL;
+        }
+        if (cluster_key_read(c->cfg, c->name, CLUSTER_KEY_PUBLIC, c->public_key, err, errlen) != 0 ||
+            cluster_key_read(c->cfg, c->name, CLUSTER_KEY_SECRET, c->secret_key, err, errlen) != 0 ||
+            cluster_key_read(c->cfg, "master", CLUSTER_KEY_PUBLIC, c->master_key, err, errlen) != 0) {
+            cluster_client_destroy(c);
+            return NULL;
+        }
+    } else if (!c->quiet) {
+        fprintf(stderr, "cavelight-node %s: security \"insecure\" in %s: the master is not "
+                "authenticated (local runs and tests only)\n", c->name, c->cfg->path);
+    }
     if (!c->ctx || open_socket(c, err, errlen) != 0) {
         cluster_client_destroy(c);
         return NULL;
@@ -158,6 +189,17 @@ static void housekeeping(cluster_client *c, double now)
     } else if (now - c->last_hello >= (period > 500 ? period : 500)) {
         send_hello(c);
     }
+}
+
+/* Parameters that fail params_apply() (non-finite values, bad layout) change nothing. */
+static void refuse_params(cluster_client *c, const char *what, uint64_t version)
+{
+    c->st.malformed++;
+    uint64_t skipped = 0;
+    if (ratelog_event(&c->refused_log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-node %s: %s %llu from the master refused (invalid values; %llu so far, "
+                "%llu not logged)\n", c->name, what, (unsigned long long)version,
+                (unsigned long long)c->refused_log.count, (unsigned long long)skipped);
 }
 
 /* At most one HELLO per 100 ms however many reasons arrive together. */
@@ -211,9 +253,11 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             e = WIRE_E_TYPE; /* node-to-master messages */
         if (e != WIRE_OK) {
             c->st.malformed++;
-            if (c->st.malformed <= 5 || c->st.malformed % 1000 == 0)
-                fprintf(stderr, "cavelight-node %s: malformed message from the master dropped (%s; %llu so far)\n",
-                        c->name, wire_error_string(e), (unsigned long long)c->st.malformed);
+            uint64_t skipped = 0;
+            if (ratelog_event(&c->malformed_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-node %s: malformed message from the master dropped (%s; %llu so far, "
+                        "%llu not logged)\n", c->name, wire_error_string(e), (unsigned long long)c->st.malformed,
+                        (unsigned long long)skipped);
             /* Drain the rest of a multipart message. */
             while (zmq_msg_more(&msg)) {
                 zmq_msg_close(&msg);
@@ -247,7 +291,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                 zmq_msg_close(&msg);
                 return ev->type;
             }
-            c->st.malformed++;
+            refuse_params(c, "snapshot", m.version);
             break;
         }
         case WIRE_FRAME:
@@ -264,7 +308,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             }
             double t0 = clock_now_ms();
             if (params_apply(&c->params, m.version, m.params, m.params_len) != 0) {
-                c->st.malformed++;
+                refuse_params(c, "frame", m.version);
                 ask_snapshot(c);
                 pending = 0;
                 break;

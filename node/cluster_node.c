@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
 #include "cluster_client.h"
 #include "cluster_view.h"
 #include "cluster/params.h"
@@ -38,6 +39,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     }
     int rc = 0, lost_reported = 0;
     uint64_t pending_swap = 0;
+    ratelog range_log = {0};
     while (!(d->stop && *d->stop)) {
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
@@ -46,10 +48,24 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             const params_store *ps = cluster_client_params(client);
             frame_params f;
             params_to_frame(ps, &f);
+            /* Whatever the master sends is range-checked, never a reason to stop: the
+             * renderer clamps the frame (frame_params_sanitize), the lattice is clamped here. */
+            frame_params check = f;
+            int fixed = frame_params_sanitize(&check);
+            int lattice = params_get_i32(ps, PARAMS_LPV_RESOLUTION);
+            if (lattice < 0 || lattice > PARAMS_LPV_RESOLUTION_MAX) {
+                lattice = lattice < 0 ? 0 : PARAMS_LPV_RESOLUTION_MAX;
+                fixed++;
+            }
+            uint64_t skipped = 0;
+            if (fixed && ratelog_event(&range_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-node %s: frame %llu: %d parameters from the master out of range, "
+                        "clamped (%llu frames so far, %llu not logged)\n", d->name,
+                        (unsigned long long)ev.version, fixed, (unsigned long long)range_log.count,
+                        (unsigned long long)skipped);
             uint64_t checksum = params_checksum(ps);
             float timings[WIRE_TIMING_COUNT] = {0};
-            if (view && cluster_view_render(view, &f, params_get_i32(ps, PARAMS_LPV_RESOLUTION), &checksum, timings,
-                                            err, errlen) != 0) {
+            if (view && cluster_view_render(view, &f, lattice, &checksum, timings, err, errlen) != 0) {
                 rc = 1;
                 goto out;
             }

@@ -23,7 +23,7 @@ struct cluster_view {
     int node;
     cluster_output output;
     char out_dir[1024];
-    int lpv_threads, rsm_size, lattice_desc, lattice_now, lpv_mode;
+    int lpv_threads, rsm_size, lattice_desc, lattice_now, lattice_refused, lpv_mode;
     double converge_threshold;
     scene sc;
     int scene_loaded;
@@ -276,8 +276,16 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
                         float timings[WIRE_TIMING_COUNT], char *err, size_t errlen)
 {
     int want = lattice_cells > 0 ? lattice_cells : v->lattice_desc;
-    if (want != v->lattice_now && make_renderer(v, want, err, errlen) != 0)
-        return -1;
+    if (want != v->lattice_now && want != v->lattice_refused) {
+        /* A lattice the node cannot build (memory) keeps the current one: the checksums
+         * then tell the master if the nodes disagree. */
+        char why[256];
+        if (make_renderer(v, want, why, sizeof why) != 0) {
+            fprintf(stderr, "cavelight-node %s: lattice %d refused (%s): keeping %d\n",
+                    v->cfg->nodes[v->node].name, want, why, v->lattice_now);
+            v->lattice_refused = want;
+        }
+    }
     *checksum = renderer_frame_pass(v->r, f);
     renderer_timings t;
     renderer_get_timings(v->r, &t);

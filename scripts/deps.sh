@@ -25,8 +25,11 @@ cavelight_install_deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# cavelight_build ROOT [DIR [CMAKE-ARGS...]]: configures and builds ROOT into ROOT/DIR
+# (default build/, Release).
 cavelight_build() {
-  local root=$1
-  cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$root/build" -j "$(nproc)"
+  local root=$1 dir=${2:-build}
+  shift $(( $# < 2 ? $# : 2 ))
+  cmake -S "$root" -B "$root/$dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$root/$dir" -j "$(nproc)"
 }

@@ -33,6 +33,7 @@ static void fail(parse_ctx *c, const char *field, const char *fmt, ...)
 static const char *const eyes_names[] = {"mono", "stereo", "left", "right"};
 static const char *const output_names[] = {"window", "headless", "png"};
 static const char *const stereo_names[] = {"quad", "side-by-side", "top-bottom", "window-per-eye", "anaglyph"};
+static const char *const security_names[] = {"curve", "insecure"};
 
 static int lookup(const char *s, const char *const *names, int n)
 {
@@ -45,6 +46,7 @@ static int lookup(const char *s, const char *const *names, int n)
 const char *cluster_eyes_name(cluster_eyes e) { return (unsigned)e < 4 ? eyes_names[e] : "?"; }
 const char *cluster_output_name(cluster_output o) { return (unsigned)o < 3 ? output_names[o] : "?"; }
 const char *cluster_stereo_name(cluster_stereo s) { return (unsigned)s < 5 ? stereo_names[s] : "?"; }
+const char *cluster_security_name(cluster_security s) { return (unsigned)s < 2 ? security_names[s] : "?"; }
 int cluster_output_parse(const char *s) { return lookup(s, output_names, 3); }
 int cluster_stereo_parse(const char *s) { return lookup(s, stereo_names, 5); }
 
@@ -188,6 +190,34 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
     }
 }
 
+/* Relative key folders are relative to the config file's folder, like a scene would be
+ * to its glTF. The default is NAME.keys beside the config (NAME: file name less .json). */
+static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
+{
+    if (o && !cJSON_IsObject(o)) {
+        fail(c, "security", "must be an object ({\"mode\": \"curve\", \"keys\": DIR} or {\"mode\": \"insecure\"})");
+        return;
+    }
+    cfg->security = (cluster_security)get_enum(c, o, "mode", "security.mode", security_names, 2,
+                                               CLUSTER_SECURITY_CURVE);
+    const char *slash = strrchr(c->path, '/');
+    int folder = slash ? (int)(slash - c->path) + 1 : 0;
+    const char *base = c->path + folder;
+    int stem = (int)strlen(base);
+    if (stem > 5 && strcmp(base + stem - 5, ".json") == 0)
+        stem -= 5;
+    char keys[CLUSTER_TEXT_MAX], def[CLUSTER_TEXT_MAX];
+    snprintf(def, sizeof def, "%.*s.keys", stem, base);
+    get_string(c, o, "keys", "security.keys", keys, sizeof keys, def);
+    if (c->failed)
+        return;
+    if (keys[0] == '/')
+        snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%s", keys);
+    else if (snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%.*s%s", folder, c->path, keys) >=
+             (int)sizeof cfg->keys_dir)
+        fail(c, "security.keys", "the key folder's path is longer than %d characters", CLUSTER_TEXT_MAX - 1);
+}
+
 static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config *cfg)
 {
     char field[96];
@@ -280,6 +310,10 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         return;
     if (!wire_name_valid(node->name)) {
         fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", node->name, WIRE_NAME_MAX);
+        return;
+    }
+    if (strcmp(node->name, "master") == 0) {
+        fail(c, field, "'master' is the master's own name (its key file is master.key): pick another");
         return;
     }
     for (int i = 0; i < index; i++)
@@ -401,6 +435,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
 
     parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
+    parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);
 
     const cJSON *screens = cJSON_GetObjectItemCaseSensitive(root, "screens");
     if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||

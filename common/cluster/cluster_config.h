@@ -10,7 +10,11 @@
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
  *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
- *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms"}
+ *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms"},
+ *             "security": {"mode": "curve" (default) | "insecure", "keys": DIR}
+ *             (curve: every connection authenticated and encrypted with the key files
+ *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
+ *             no authentication, for local runs and tests only)
  * Loading validates everything; a failure is one line naming the file and the field. */
 #ifndef CAVELIGHT_CLUSTER_CONFIG_H
 #define CAVELIGHT_CLUSTER_CONFIG_H
@@ -46,6 +50,11 @@ typedef enum cluster_stereo {
     CLUSTER_STEREO_WINDOW_PER_EYE,
     CLUSTER_STEREO_ANAGLYPH,     /* red-cyan, for a desk */
 } cluster_stereo;
+
+typedef enum cluster_security {
+    CLUSTER_SECURITY_CURVE = 0,  /* CurveZMQ: configured keys only, encrypted */
+    CLUSTER_SECURITY_INSECURE,   /* anyone who reaches the port; local runs and tests */
+} cluster_security;
 
 typedef struct cluster_screen {
     char name[CLUSTER_NAME_MAX + 1];
@@ -84,6 +93,8 @@ typedef struct cluster_config {
     char master_bind[CLUSTER_TEXT_MAX];
     char master_connect[CLUSTER_TEXT_MAX];
     char launch[CLUSTER_TEXT_MAX];         /* {host} and {command} are substituted */
+    cluster_security security;
+    char keys_dir[CLUSTER_TEXT_MAX];       /* curve: key folder, relative to the cwd */
     int barrier_timeout_ms;  /* a node not READY by then is dropped (default 2000) */
     int heartbeat_ms;        /* idle heartbeat period (default 250) */
     int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
@@ -105,6 +116,7 @@ int cluster_config_find_screen(const cluster_config *c, const char *name);
 const char *cluster_eyes_name(cluster_eyes e);
 const char *cluster_output_name(cluster_output o);
 const char *cluster_stereo_name(cluster_stereo s);
+const char *cluster_security_name(cluster_security s);
 /* Parse names as in the file; return -1 when unknown. */
 int cluster_output_parse(const char *s);
 int cluster_stereo_parse(const char *s);

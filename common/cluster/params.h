@@ -36,7 +36,8 @@ enum {
     PARAMS_LAMBDA_INCR,    /* f32 */
     PARAMS_ABSORPTION,     /* f32 */
     PARAMS_SCATTERING,     /* f32 */
-    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default) */
+    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default),
+                              at most PARAMS_LPV_RESOLUTION_MAX */
     PARAMS_ENVIRONMENT,    /* i32, frame_environment */
     PARAMS_DISPLAY_GAMMA,  /* f32 */
     PARAMS_EXPOSURE,       /* f32 */
@@ -60,6 +61,10 @@ enum {
     /* Largest encoding: every key with its id. */
     PARAMS_ENCODED_MAX = PARAMS_KEY_COUNT * (2 + PARAMS_VALUE_MAX),
 };
+
+/* Largest lattice a node builds when the master asks: 128^3 cells of the node's volumes
+ * are about 0.5 GB; a larger request is clamped to it by the node. */
+enum { PARAMS_LPV_RESOLUTION_MAX = 128 };
 
 typedef struct params_store {
     uint64_t version;                          /* last committed (or applied) version */

@@ -138,6 +138,7 @@ int bench_cluster(int argc, char **argv)
     static char json[16384];
     int n = snprintf(json, sizeof json,
                      "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+                     " \"security\": {\"mode\": \"insecure\"},"
                      " \"timeouts\": {\"barrier_ms\": 5000, \"heartbeat_ms\": 250, \"master_ms\": 10000},"
                      " \"screens\": [{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0],"
                      " \"top_left\": [0,1,0]}], \"nodes\": [");

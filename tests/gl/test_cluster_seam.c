@@ -17,6 +17,7 @@
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:1\", \"connect\": \"tcp://127.0.0.1:1\"},"
+    " \"security\": {\"mode\": \"insecure\"},"
     " \"observer\": {\"eye_separation\": 0.064, \"head_to_eye\": [0, -0.06, -0.08]},"
     " \"screens\": ["
     "  {\"name\": \"front-l\", \"bottom_left\": [-1.5,0,-1.5], \"bottom_right\": [0,0,-1.5], \"top_left\": [-1.5,3,-1.5]},"

@@ -22,6 +22,7 @@ make_config() {
   done
   cat > "$file" <<JSON
 {"name": "test", "master": {"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"},
+ "security": {"mode": "${CLUSTER_SECURITY:-insecure}"},
  "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100, "master_ms": 3000},
  "observer": {"eye_separation": 0.064, "home": [0, 1.7, 0]},
  "screens": [

@@ -31,4 +31,11 @@ if cmp -s "$out/early/monitor-mono.png" "$out/full/monitor-mono.png"; then
 fi
 cmp "$out/full/monitor-mono.png" "$out/again/monitor-mono.png" ||
   { echo "two replays of the same session ended on different images"; exit 1; }
+# A recording with an error ends the session with a non-zero exit and the file:line.
+{ head -n 20 "$root/configs/input/demo-session.txt"; echo "poll 9 -1"; } > "$out/bad.txt"
+if "$master" --config "$root/configs/clusters/desktop-local.json" --bind 'tcp://127.0.0.1:*' --spawn-local \
+     --quiet --render none --input "$out/bad.txt" > "$out/bad.log" 2>&1; then
+  echo "a recording with a bad dt exited 0"; cat "$out/bad.log"; exit 1
+fi
+grep -q "bad.txt:21: poll dt -1 out of range" "$out/bad.log" || { echo "no file:line for the bad dt"; cat "$out/bad.log"; exit 1; }
 echo "input replay: image changed over the session; replays identical"

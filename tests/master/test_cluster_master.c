@@ -21,6 +21,7 @@
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+    " \"security\": {\"mode\": \"insecure\"},"
     " \"timeouts\": {\"barrier_ms\": 300, \"heartbeat_ms\": 50, \"master_ms\": 2000},"
     " \"screens\": [{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0], \"top_left\": [0,1,0]}],"
     " \"nodes\": [{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4]},"

@@ -210,6 +210,11 @@ static void test_bad_recordings(void **state)
         {INPUT_PLAYBACK_MAGIC "\naxes 1 nan 0 0 0\npoll 1 0\n", ":2: malformed \"axes\""},
         {INPUT_PLAYBACK_MAGIC "\naxes 1 2 0 0 0\npoll 1 0\n", ":2: malformed \"axes\""},
         {INPUT_PLAYBACK_MAGIC "\nbuttons 1 zz 0\npoll 1 0\n", ":2: malformed \"buttons\""},
+        {INPUT_PLAYBACK_MAGIC "\npoll 1 nan\n", ":2: malformed \"poll\""},
+        {INPUT_PLAYBACK_MAGIC "\npoll 0 0\npoll 1 -0.5\n", ":3: poll dt -0.5 out of range"},
+        {INPUT_PLAYBACK_MAGIC "\npoll 0 0\npoll 0 0\n", ":3: poll dt 0 out of range"},
+        {INPUT_PLAYBACK_MAGIC "\npoll 0 1e300\n", ":2: poll dt 1e300 out of range"},
+        {INPUT_PLAYBACK_MAGIC "\npoll 0 0.1\n# a comment\npoll 11 10.5\n", ":4: poll dt 10.5 out of range"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         write_file(path, cases[i][0]);
@@ -223,6 +228,7 @@ static void test_bad_recordings(void **state)
         if (!strstr(err, cases[i][1]) || !strstr(err, path))
             fail_msg("case %zu: \"%s\" lacks \"%s\"", i, err, cases[i][1]);
         assert_true(st.finished);
+        assert_true(st.failed);
         input_close(in);
     }
     /* Not a recording, not JSON: one clear line. */

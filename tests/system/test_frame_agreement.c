@@ -18,6 +18,7 @@
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+    " \"security\": {\"mode\": \"insecure\"},"
     " \"timeouts\": {\"barrier_ms\": 5000, \"heartbeat_ms\": 50, \"master_ms\": 5000},"
     " \"screens\": [{\"name\": \"s\", \"bottom_left\": [-1,0,-1], \"bottom_right\": [1,0,-1], \"top_left\": [-1,2,-1]}],"
     " \"nodes\": [{\"name\": \"n\", \"screens\": [\"s\"], \"resolution\": [8,8]}]}";

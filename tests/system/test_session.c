@@ -21,6 +21,7 @@
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+    " \"security\": {\"mode\": \"insecure\"},"
     " \"timeouts\": {\"barrier_ms\": 10000, \"heartbeat_ms\": 50, \"master_ms\": 10000},"
     " \"observer\": {\"home\": [0, 1.7, 0]},"
     " \"screens\": [{\"name\": \"s\", \"bottom_left\": [-1,0,-1], \"bottom_right\": [1,0,-1], \"top_left\": [-1,2,-1]}],"

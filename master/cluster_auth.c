@@ -1,0 +1,229 @@
+#include "cluster_auth.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/clock.h"
+#include "base/ratelog.h"
+#include "cluster/cluster_keys.h"
+
+#define ZAP_ENDPOINT "inproc://zeromq.zap.01"
+#define ZAP_DOMAIN "cavelight"
+
+struct cluster_auth {
+    const cluster_config *cfg;
+    void *ctx, *zap;
+    int quiet, running;
+    pthread_t thread;
+    uint8_t node_key[CLUSTER_MAX_NODES][32];
+    atomic_uint_fast64_t refused;
+    ratelog refused_log;
+};
+
+static int recv_frame(void *sock, char *buf, size_t cap, size_t *len, int *more)
+{
+    int n = zmq_recv(sock, buf, cap, 0);
+    if (n < 0)
+        return -1;
+    *len = (size_t)n < cap ? (size_t)n : cap;
+    int m = 0;
+    size_t ms = sizeof m;
+    zmq_getsockopt(sock, ZMQ_RCVMORE, &m, &ms);
+    *more = m;
+    return 0;
+}
+
+/* One ZAP request: version, request id, domain, address, routing id, mechanism, then the
+ * credentials (CURVE: the client's 32-byte public key). */
+static void answer(cluster_auth *a, void *zap)
+{
+    enum { FRAMES = 7 };
+    char f[FRAMES][256];
+    size_t len[FRAMES] = {0};
+    int more = 1, n = 0;
+    while (more) {
+        char scratch[256];
+        size_t l;
+        char *dst = n < FRAMES ? f[n] : scratch;
+        if (recv_frame(zap, dst, sizeof f[0], &l, &more) != 0)
+            return;
+        if (n < FRAMES)
+            len[n] = l;
+        n++;
+    }
+    int node = -1;
+    if (n == FRAMES && len[5] == 5 && memcmp(f[5], "CURVE", 5) == 0 && len[6] == 32)
+        for (int i = 0; i < a->cfg->node_count && node < 0; i++)
+            if (memcmp(a->node_key[i], f[6], 32) == 0)
+                node = i;
+    const char *status = node >= 0 ? "200" : "400";
+    const char *text = node >= 0 ? "OK" : "unknown key";
+    const char *user = node >= 0 ? a->cfg->nodes[node].name : "";
+    zmq_send(zap, "1.0", 3, ZMQ_SNDMORE);
+    zmq_send(zap, f[1], n > 1 ? len[1] : 0, ZMQ_SNDMORE);
+    zmq_send(zap, status, 3, ZMQ_SNDMORE);
+    zmq_send(zap, text, strlen(text), ZMQ_SNDMORE);
+    zmq_send(zap, user, strlen(user), ZMQ_SNDMORE);
+    zmq_send(zap, "", 0, 0);
+    if (node >= 0)
+        return;
+    atomic_fetch_add(&a->refused, 1);
+    uint64_t skipped = 0;
+    if (ratelog_event(&a->refused_log, clock_now_ms(), &skipped)) {
+        char addr[64];
+        snprintf(addr, sizeof addr, "%.*s", n > 3 ? (int)(len[3] < 63 ? len[3] : 63) : 0, f[3]);
+        fprintf(stderr, "cavelight-master: connection from %s refused: its key is none of the nodes' "
+                "in %s (%llu refused so far, %llu not logged)\n", addr[0] ? addr : "?", a->cfg->path,
+                (unsigned long long)a->refused_log.count, (unsigned long long)skipped);
+    }
+}
+
+/* Owns a->zap from its start (bound before, so no handshake can come first). */
+static void *zap_thread(void *arg)
+{
+    cluster_auth *a = arg;
+    void *zap = a->zap;
+    for (;;) {
+        zmq_pollitem_t item = {.socket = zap, .events = ZMQ_POLLIN};
+        if (zmq_poll(&item, 1, -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            break; /* ETERM: the context is shutting down */
+        }
+        answer(a, zap);
+    }
+    zmq_close(zap);
+    return NULL;
+}
+
+cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cfg, int quiet,
+                                 char *err, size_t errlen)
+{
+    cluster_auth *a = calloc(1, sizeof *a);
+    if (!a) {
+        snprintf(err, errlen, "cluster master: out of memory");
+        return NULL;
+    }
+    a->cfg = cfg;
+    a->ctx = ctx;
+    a->quiet = quiet;
+    if (cfg->security == CLUSTER_SECURITY_INSECURE) {
+        if (!quiet)
+            fprintf(stderr, "cavelight-master: security \"insecure\" in %s: any peer that reaches %s "
+                    "may join as a node (local runs and tests only)\n", cfg->path, cfg->master_bind);
+        return a;
+    }
+    if (!zmq_has("curve")) {
+        snprintf(err, errlen, "cluster master: this libzmq has no CURVE security; install one that "
+                 "has (Debian's libzmq5 does)");
+        free(a);
+        return NULL;
+    }
+    char secret[CLUSTER_KEY_Z85 + 1], pub[CLUSTER_KEY_Z85 + 1];
+    if (cluster_key_read(cfg, "master", CLUSTER_KEY_SECRET, secret, err, errlen) != 0) {
+        free(a);
+        return NULL;
+    }
+    for (int i = 0; i < cfg->node_count; i++)
+        if (cluster_key_read(cfg, cfg->nodes[i].name, CLUSTER_KEY_PUBLIC, pub, err, errlen) != 0 ||
+            !zmq_z85_decode(a->node_key[i], pub)) {
+            free(a);
+            return NULL;
+        }
+    int one = 1, zero = 0;
+    a->zap = zmq_socket(ctx, ZMQ_REP);
+    if (!a->zap || zmq_setsockopt(a->zap, ZMQ_LINGER, &zero, sizeof zero) != 0 ||
+        zmq_bind(a->zap, ZAP_ENDPOINT) != 0 || pthread_create(&a->thread, NULL, zap_thread, a) != 0) {
+        snprintf(err, errlen, "cluster master: cannot start the authentication handler: %s",
+                 zmq_strerror(errno));
+        if (a->zap)
+            zmq_close(a->zap);
+        free(a);
+        return NULL;
+    }
+    a->running = 1;
+    /* libzmq admits any CURVE key when no handler is bound (ZMQ_ZAP_ENFORCE_DOMAIN is a
+     * draft option Debian's build lacks): the handler is bound before sock and lives until
+     * after it is closed. */
+    if (zmq_setsockopt(sock, ZMQ_CURVE_SERVER, &one, sizeof one) != 0 ||
+        zmq_setsockopt(sock, ZMQ_CURVE_SECRETKEY, secret, CLUSTER_KEY_Z85) != 0 ||
+        zmq_setsockopt(sock, ZMQ_ZAP_DOMAIN, ZAP_DOMAIN, strlen(ZAP_DOMAIN)) != 0) {
+        snprintf(err, errlen, "cluster master: cannot set up CURVE security: %s", zmq_strerror(errno));
+        zmq_ctx_shutdown(ctx);
+        cluster_auth_stop(a);
+        return NULL;
+    }
+    return a;
+}
+
+int cluster_auth_is(const cluster_auth *a, zmq_msg_t *msg, const char *name)
+{
+    if (a->cfg->security == CLUSTER_SECURITY_INSECURE)
+        return 1;
+    const char *user = zmq_msg_gets(msg, "User-Id");
+    return user && strcmp(user, name) == 0;
+}
+
+uint64_t cluster_auth_refused(const cluster_auth *a) { return atomic_load(&a->refused); }
+
+void cluster_auth_stop(cluster_auth *a)
+{
+    if (!a)
+        return;
+    if (a->running) {
+        zmq_ctx_shutdown(a->ctx); /* wakes the handler with ETERM */
+        pthread_join(a->thread, NULL);
+    }
+    free(a);
+}
+
+static int write_key(const char *path, const char *z85, int secret, char *err, size_t errlen)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, secret ? 0600 : 0644);
+    if (fd < 0) {
+        snprintf(err, errlen, "cluster keygen %s: %s%s", path, strerror(errno),
+                 errno == EEXIST ? " (remove the old keys first to make new ones)" : "");
+        return -1;
+    }
+    char line[CLUSTER_KEY_Z85 + 2];
+    snprintf(line, sizeof line, "%s\n", z85);
+    int ok = write(fd, line, strlen(line)) == (ssize_t)strlen(line);
+    ok &= close(fd) == 0;
+    if (!ok)
+        snprintf(err, errlen, "cluster keygen %s: write failed: %s", path, strerror(errno));
+    return ok ? 0 : -1;
+}
+
+int cluster_keygen(const cluster_config *cfg, char *err, size_t errlen)
+{
+    if (!zmq_has("curve")) {
+        snprintf(err, errlen, "cluster keygen: this libzmq has no CURVE security");
+        return -1;
+    }
+    if (mkdir(cfg->keys_dir, 0700) != 0 && errno != EEXIST) {
+        snprintf(err, errlen, "cluster keygen %s: %s", cfg->keys_dir, strerror(errno));
+        return -1;
+    }
+    for (int i = -1; i < cfg->node_count; i++) {
+        const char *who = i < 0 ? "master" : cfg->nodes[i].name;
+        char pub[CLUSTER_KEY_Z85 + 1], secret[CLUSTER_KEY_Z85 + 1];
+        char pub_path[CLUSTER_TEXT_MAX + 64], secret_path[CLUSTER_TEXT_MAX + 64];
+        if (zmq_curve_keypair(pub, secret) != 0 ||
+            cluster_key_path(cfg, who, CLUSTER_KEY_PUBLIC, pub_path, sizeof pub_path) != 0 ||
+            cluster_key_path(cfg, who, CLUSTER_KEY_SECRET, secret_path, sizeof secret_path) != 0) {
+            snprintf(err, errlen, "cluster keygen %s: cannot make a key pair for %s", cfg->keys_dir, who);
+            return -1;
+        }
+        if (write_key(secret_path, secret, 1, err, errlen) != 0 ||
+            write_key(pub_path, pub, 0, err, errlen) != 0)
+            return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,36 @@
+/* cluster_auth: the master's CurveZMQ security (cluster_config.security == curve).
+ *
+ * cluster_auth_start() reads master.key and every node's public key (cluster_keys.h),
+ * makes the ROUTER a CURVE server and answers ZeroMQ's authentication requests (ZAP,
+ * RFC 27) on a thread of its own: a peer is admitted only with a configured node's public
+ * key, and every message it sends then carries that node's name as its "User-Id". The
+ * master takes a message as a node's only when the routing id and the User-Id both name
+ * it, so a name cannot be borrowed. Refused keys are counted and logged, rate-limited.
+ * In insecure mode nothing is set up and every routing id is believed.
+ * cluster_keygen() writes a fresh key pair for the master and each node. */
+#ifndef CAVELIGHT_CLUSTER_AUTH_H
+#define CAVELIGHT_CLUSTER_AUTH_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <zmq.h>
+
+#include "cluster/cluster_config.h"
+
+typedef struct cluster_auth cluster_auth;
+
+/* Call before binding sock. Returns NULL with one line in err. */
+cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cfg, int quiet,
+                                 char *err, size_t errlen);
+/* 1 when the message's authenticated peer is the node called name (always 1 when insecure). */
+int cluster_auth_is(const cluster_auth *a, zmq_msg_t *msg, const char *name);
+/* Connections refused for an unknown key so far. */
+uint64_t cluster_auth_refused(const cluster_auth *a);
+/* Call after closing every socket of ctx, before zmq_ctx_term(ctx). NULL is fine. */
+void cluster_auth_stop(cluster_auth *a);
+
+/* Writes master.{key,pub} and NODE.{key,pub} for every node into cfg->keys_dir (created if
+ * missing). Refuses to overwrite a secret key. Returns 0, or -1 with one line in err. */
+int cluster_keygen(const cluster_config *cfg, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,199 @@
+/* cluster_stranger: a hostile peer for the security tests and measurements. It knows the
+ * cluster config (names, config hash) and the master's public key, but holds no node key:
+ * it connects without CURVE or with a key pair of its own and tries one attack N times,
+ * then prints one line: what it tried and how many messages it got back.
+ *
+ *   takeover   a new connection per attempt under the victim's name, saying HELLO
+ *   read       one connection under the victim's name, HELLO, then listen for --listen-ms
+ *   ready      forged READY messages for versions 1..N under the victim's name
+ *   hello      a HELLO flood under the victim's name
+ *   master     binds --endpoint as a fake master (own CURVE key, or none) and answers any
+ *              message with a SNAPSHOT of hostile parameters for --listen-ms
+ * Every loop is bounded by --count and --listen-ms. Only loopback endpoints are meant. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zmq.h>
+
+#include "base/clock.h"
+#include "cluster/cluster_config.h"
+#include "cluster/cluster_keys.h"
+#include "cluster/params.h"
+#include "cluster/wire.h"
+
+typedef struct stranger {
+    cluster_config cfg;
+    const char *endpoint, *victim, *endpoint_file;
+    int curve, count, listen_ms;
+    char master_key[CLUSTER_KEY_Z85 + 1];
+    void *ctx;
+    long attempts, replies, received;
+} stranger;
+
+static void *open_dealer(stranger *s)
+{
+    void *sock = zmq_socket(s->ctx, ZMQ_DEALER);
+    int zero = 0;
+    zmq_setsockopt(sock, ZMQ_LINGER, &zero, sizeof zero);
+    zmq_setsockopt(sock, ZMQ_ROUTING_ID, s->victim, strlen(s->victim));
+    if (s->curve) { /* a key pair of its own, and the master's real public key */
+        char pub[41], secret[41];
+        zmq_curve_keypair(pub, secret);
+        zmq_setsockopt(sock, ZMQ_CURVE_SERVERKEY, s->master_key, CLUSTER_KEY_Z85);
+        zmq_setsockopt(sock, ZMQ_CURVE_PUBLICKEY, pub, CLUSTER_KEY_Z85);
+        zmq_setsockopt(sock, ZMQ_CURVE_SECRETKEY, secret, CLUSTER_KEY_Z85);
+    }
+    zmq_connect(sock, s->endpoint);
+    return sock;
+}
+
+static void send_wire(void *sock, const wire_msg *m)
+{
+    uint8_t buf[WIRE_MAX_MESSAGE];
+    size_t len = wire_encode(m, buf, sizeof buf);
+    zmq_send(sock, buf, len, ZMQ_DONTWAIT);
+}
+
+static void hello(stranger *s, void *sock)
+{
+    wire_msg m = {.type = WIRE_HELLO, .config_hash = s->cfg.hash};
+    snprintf(m.name, sizeof m.name, "%s", s->victim);
+    send_wire(sock, &m);
+}
+
+/* Counts what arrives on sock within ms. */
+static long drain(void *sock, int ms)
+{
+    long n = 0;
+    double end = clock_now_ms() + ms;
+    for (double left = ms; left > 0; left = end - clock_now_ms()) {
+        zmq_pollitem_t it = {.socket = sock, .events = ZMQ_POLLIN};
+        if (zmq_poll(&it, 1, (long)left) <= 0)
+            continue;
+        char buf[WIRE_MAX_MESSAGE];
+        while (zmq_recv(sock, buf, sizeof buf, ZMQ_DONTWAIT) >= 0)
+            n++;
+    }
+    return n;
+}
+
+static void fake_master(stranger *s)
+{
+    void *sock = zmq_socket(s->ctx, ZMQ_ROUTER);
+    int zero = 0, one = 1;
+    zmq_setsockopt(sock, ZMQ_LINGER, &zero, sizeof zero);
+    if (s->curve) {
+        char pub[41], secret[41];
+        zmq_curve_keypair(pub, secret);
+        zmq_setsockopt(sock, ZMQ_CURVE_SERVER, &one, sizeof one);
+        zmq_setsockopt(sock, ZMQ_CURVE_SECRETKEY, secret, CLUSTER_KEY_Z85);
+    }
+    if (zmq_bind(sock, s->endpoint) != 0) {
+        fprintf(stderr, "cluster_stranger: cannot bind %s\n", s->endpoint);
+        exit(1);
+    }
+    if (s->endpoint_file) {
+        char ep[256];
+        size_t len = sizeof ep;
+        zmq_getsockopt(sock, ZMQ_LAST_ENDPOINT, ep, &len);
+        FILE *f = fopen(s->endpoint_file, "w");
+        fprintf(f, "%s\n", ep);
+        fclose(f);
+    }
+    /* Parameters no node should take: a huge lattice and step count, a blinding light. */
+    params_store p;
+    params_init(&p);
+    params_set_i32(&p, PARAMS_LPV_RESOLUTION, 100000);
+    params_set_f32(&p, params_light_key(0, PARAMS_LIGHT_INTENSITY), 1e30f);
+    params_set_i32(&p, PARAMS_LPV_STEPS, 1 << 30);
+    uint64_t v = params_commit(&p) + 1000000;
+    uint8_t enc[PARAMS_ENCODED_MAX];
+    size_t n = params_encode_snapshot(&p, enc, sizeof enc);
+    double end = clock_now_ms() + s->listen_ms;
+    while (clock_now_ms() < end) {
+        zmq_pollitem_t it = {.socket = sock, .events = ZMQ_POLLIN};
+        if (zmq_poll(&it, 1, 50) <= 0)
+            continue;
+        char id[256], body[WIRE_MAX_MESSAGE];
+        int idlen = zmq_recv(sock, id, sizeof id, ZMQ_DONTWAIT);
+        if (idlen < 0)
+            continue;
+        zmq_recv(sock, body, sizeof body, ZMQ_DONTWAIT);
+        s->received++;
+        wire_msg m = {.type = WIRE_SNAPSHOT, .version = v, .params = enc, .params_len = n};
+        uint8_t buf[WIRE_MAX_MESSAGE];
+        size_t len = wire_encode(&m, buf, sizeof buf);
+        zmq_send(sock, id, (size_t)(idlen < (int)sizeof id ? idlen : (int)sizeof id), ZMQ_SNDMORE | ZMQ_DONTWAIT);
+        zmq_send(sock, buf, len, ZMQ_DONTWAIT);
+        /* and a frame on top of it, so that a node that took the snapshot renders it */
+        wire_msg f = {.type = WIRE_FRAME, .version = v + 1, .base_version = v, .params = enc, .params_len = 0};
+        len = wire_encode(&f, buf, sizeof buf);
+        zmq_send(sock, id, (size_t)(idlen < (int)sizeof id ? idlen : (int)sizeof id), ZMQ_SNDMORE | ZMQ_DONTWAIT);
+        zmq_send(sock, buf, len, ZMQ_DONTWAIT);
+        s->attempts++;
+    }
+    zmq_close(sock);
+}
+
+int main(int argc, char **argv)
+{
+    static stranger s = {.count = 100, .listen_ms = 1000};
+    const char *config = NULL, *attack = NULL, *key = "none";
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const char *a = argv[i], *v = argv[i + 1];
+        if (strcmp(a, "--config") == 0) config = v;
+        else if (strcmp(a, "--endpoint") == 0) s.endpoint = v;
+        else if (strcmp(a, "--attack") == 0) attack = v;
+        else if (strcmp(a, "--victim") == 0) s.victim = v;
+        else if (strcmp(a, "--key") == 0) key = v;
+        else if (strcmp(a, "--count") == 0) s.count = atoi(v);
+        else if (strcmp(a, "--listen-ms") == 0) s.listen_ms = atoi(v);
+        else if (strcmp(a, "--endpoint-file") == 0) s.endpoint_file = v;
+    }
+    char err[512];
+    if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
+        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|master "
+                "[--victim NAME] [--key none|wrong] [--count N] [--listen-ms MS]\n");
+        return 2;
+    }
+    if (!s.victim)
+        s.victim = s.cfg.nodes[0].name;
+    s.curve = strcmp(key, "wrong") == 0;
+    if (s.curve && strcmp(attack, "master") != 0 &&
+        cluster_key_read(&s.cfg, "master", CLUSTER_KEY_PUBLIC, s.master_key, err, sizeof err) != 0) {
+        fprintf(stderr, "cluster_stranger: %s\n", err);
+        return 1;
+    }
+    s.ctx = zmq_ctx_new();
+    if (strcmp(attack, "master") == 0) {
+        fake_master(&s);
+    } else if (strcmp(attack, "takeover") == 0) {
+        for (int i = 0; i < s.count; i++, s.attempts++) {
+            void *sock = open_dealer(&s);
+            hello(&s, sock);
+            s.replies += drain(sock, 5);
+            zmq_close(sock);
+        }
+    } else {
+        void *sock = open_dealer(&s);
+        drain(sock, 100); /* let the handshake run */
+        for (int i = 0; i < s.count; i++, s.attempts++) {
+            if (strcmp(attack, "ready") == 0) {
+                wire_msg m = {.type = WIRE_READY, .version = (uint64_t)i + 1, .checksum = 0xbad0bad0ull + i};
+                snprintf(m.name, sizeof m.name, "%s", s.victim);
+                send_wire(sock, &m);
+            } else {
+                hello(&s, sock); /* read, hello */
+            }
+            if (i % 100 == 99)
+                s.replies += drain(sock, 1);
+        }
+        s.replies += drain(sock, strcmp(attack, "read") == 0 ? s.listen_ms : 200);
+        zmq_close(sock);
+    }
+    zmq_ctx_term(s.ctx);
+    printf("stranger %s key=%s attempts=%ld replies=%ld received=%ld\n", attack, key, s.attempts,
+           s.replies, s.received);
+    return 0;
+}

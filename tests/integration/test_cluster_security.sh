@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# A 2-node cluster in curve mode against a stranger who has the config file and the
+# master's public key but no node key (tests/cluster/cluster_stranger.c): without CURVE
+# and with a key of its own it tries a routing-id takeover, reading the stream, forged
+# READYs and a HELLO flood while frames run, then poses as the master to nodes waiting
+# for one. Nothing may change: same frames, same final parameters (the nodes' checksums
+# equal a run without the stranger), no join, drop or desync, and the stranger gets no
+# message. In insecure mode a fake master's hostile parameters are clamped, not fatal.
+# (The same attacks 10,000 times each are a measurement: docs/cluster.md.)
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/cluster_lib.sh"
+stranger=$build/cluster_stranger
+frames=60
+attempts=${STRANGER_ATTEMPTS:-150}
+
+CLUSTER_SECURITY=curve make_config "$tmp/c.json" 3000 a b
+"$build/cavelight-master" --config "$tmp/c.json" --keygen 2> "$tmp/keygen.log" || { cat "$tmp/keygen.log"; fail "keygen failed"; }
+[ "$(stat -c %a "$tmp/c.keys/a.key")" = 600 ] || fail "a secret key is readable by others"
+"$build/cavelight-master" --config "$tmp/c.json" --keygen 2> "$tmp/keygen2.log" && fail "keygen overwrote keys"
+grep -q "remove the old keys" "$tmp/keygen2.log" || fail "keygen refusal unclear: $(cat "$tmp/keygen2.log")"
+
+# run NAME [attack...]: one session of $frames frames, nodes a and b, attacks while it runs.
+run() {
+  local name=$1; shift
+  rm -f "$tmp/ep"
+  "$build/cavelight-master" --config "$tmp/c.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" \
+    --frames $frames --fps 15 --report "$tmp/$name.json" 2> "$tmp/$name-master.log" &
+  local master=$!; pids+=($master)
+  wait_for_file "$tmp/ep" 20
+  local ep; ep=$(cat "$tmp/ep")
+  for n in a b; do
+    "$build/cavelight-node" --cluster "$tmp/c.json" --name $n --master "$ep" --render none --exit-with-master \
+      2> "$tmp/$name-node-$n.log" &
+    pids+=($!)
+  done
+  for _ in $(seq 200); do grep -q "running" "$tmp/$name-master.log" && break; sleep 0.1; done
+  for attack in "$@"; do
+    for key in none wrong; do
+      "$stranger" --config "$tmp/c.json" --endpoint "$ep" --attack $attack --key $key --victim a \
+        --count $attempts --listen-ms 1500 >> "$tmp/$name-stranger.log" 2>&1 || fail "stranger $attack failed"
+    done
+  done
+  wait $master || { cat "$tmp/$name-master.log"; fail "master of run $name failed"; }
+}
+run quiet
+run attacked takeover read ready hello
+cat "$tmp/attacked-stranger.log"
+
+for r in quiet attacked; do
+  [ "$(json 'r["frames"]' "$tmp/$r.json")" = $frames ] || fail "$r: frames $(json 'r["frames"]' "$tmp/$r.json")"
+  [ "$(json '(r["joins"], r["drops"], r["desyncs"], r["nodes_live_min"])' "$tmp/$r.json")" = "(2, 0, 0, 2)" ] \
+    || { cat "$tmp/$r-master.log"; fail "$r: joins, drops, desyncs, live: $(json '(r["joins"], r["drops"], r["desyncs"], r["nodes_live_min"])' "$tmp/$r.json")"; }
+done
+want=$(json 'r["per_node"][0]["last_checksum"]' "$tmp/quiet.json")
+[ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json")" = "['$want', '$want']" ] \
+  || fail "parameters changed under attack: $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json") vs $want"
+grep -q "replies=[1-9]\|received=[1-9]" "$tmp/attacked-stranger.log" && fail "the stranger got messages from the cluster"
+[ "$(grep -c "attempts=$attempts " "$tmp/attacked-stranger.log")" = 8 ] || fail "not every attack ran"
+[ "$(json 'r["refused_connections"] > 0' "$tmp/attacked.json")" = True ] || fail "no wrong key was refused"
+lines=$(grep -c "refused\|unauthenticated" "$tmp/attacked-master.log" || true)
+[ "$lines" -le 20 ] || fail "$lines log lines for the stranger: not rate-limited"
+echo "stranger in the stream: $(json 'r["refused_connections"]' "$tmp/attacked.json") keys refused, $lines log lines, nothing changed"
+
+# A fake master (its own key, or none) where the nodes look for theirs: they never take its
+# parameters, and join the real master once it binds the same endpoint.
+for key in wrong none; do
+  rm -f "$tmp/fep"
+  "$stranger" --config "$tmp/c.json" --endpoint 'tcp://127.0.0.1:*' --endpoint-file "$tmp/fep" --attack master \
+    --key $key --listen-ms 3000 > "$tmp/fake-$key.log" 2>&1 &
+  fake=$!; pids+=($fake)
+  wait_for_file "$tmp/fep" 20
+  fep=$(cat "$tmp/fep")
+  node_pids=()
+  for n in a b; do
+    "$build/cavelight-node" --cluster "$tmp/c.json" --name $n --master "$fep" --render none --exit-with-master \
+      2> "$tmp/fake-$key-node-$n.log" &
+    node_pids+=($!); pids+=($!)
+  done
+  wait $fake
+  grep -q "received=0" "$tmp/fake-$key.log" || fail "the fake master ($key) heard from a node: $(cat "$tmp/fake-$key.log")"
+  grep -q "joined" "$tmp/fake-$key-node-a.log" && fail "node a joined the fake master ($key)"
+  "$build/cavelight-master" --config "$tmp/c.json" --bind "$fep" --frames $frames --fps 15 \
+    --report "$tmp/after-$key.json" 2> "$tmp/after-$key.log" || { cat "$tmp/after-$key.log"; fail "real master failed"; }
+  [ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json")" = "['$want', '$want']" ] \
+    || fail "after the fake master ($key): $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json") vs $want"
+  for p in "${node_pids[@]}"; do wait $p || fail "a node failed after the fake master ($key)"; done
+done
+echo "fake master: no node took its parameters; the real master got both"
+
+# Insecure mode trusts any master: hostile parameters are clamped and logged, never fatal.
+make_config "$tmp/i.json" 3000 a
+rm -f "$tmp/fep"
+"$stranger" --config "$tmp/i.json" --endpoint 'tcp://127.0.0.1:*' --endpoint-file "$tmp/fep" --attack master \
+  --key none --listen-ms 2000 > "$tmp/fake-i.log" 2>&1 &
+fake=$!; pids+=($fake)
+wait_for_file "$tmp/fep" 20
+"$build/cavelight-node" --cluster "$tmp/i.json" --name a --master "$(cat "$tmp/fep")" --render none \
+  2> "$tmp/fake-i-node.log" &
+node=$!; pids+=($node)
+wait $fake
+kill -0 $node || { cat "$tmp/fake-i-node.log"; fail "the node exited on hostile parameters"; }
+grep -q "out of range, clamped" "$tmp/fake-i-node.log" || { cat "$tmp/fake-i-node.log"; fail "no clamp logged"; }
+grep -q 'security "insecure"' "$tmp/fake-i-node.log" || fail "insecure mode not named in the node's log"
+echo "insecure mode: hostile parameters clamped, the node stays up"
