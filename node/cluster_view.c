@@ -11,6 +11,7 @@
 #include "glctx.h"
 #include "image/image.h"
 #include "base/mat4.h"
+#include "base/vec3.h"
 #include "scene/scene.h"
 
 typedef struct eye_image {
@@ -69,9 +70,9 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
      * right axis (the pose's first column). */
     float mid[3], right[3], eye_cave[3];
     mat4_transform_point(f->head, o->head_to_eye, mid);
-    float len = sqrtf(f->head[0] * f->head[0] + f->head[1] * f->head[1] + f->head[2] * f->head[2]);
-    for (int i = 0; i < 3; i++)
-        right[i] = len > 0 ? f->head[i] / len : (i == 0);
+    memcpy(right, f->head, sizeof right);
+    if (!(vec3_normalize(right) > 0))
+        memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     frame_view_eye(mid, right, o->eye_separation, side, eye_cave);
     float corner[3][3], eye[3];
     mat4_transform_point(f->navigation, s->bottom_left, corner[0]);
