@@ -1,5 +1,7 @@
 #include "cluster/wire.h"
 
+#include "base/byteorder.h"
+
 #include <pthread.h>
 #include <string.h>
 
@@ -65,8 +67,8 @@ static void put(cursor *c, uint64_t v, int bytes)
         c->bad = 1;
         return;
     }
-    for (int i = 0; i < bytes; i++)
-        c->w[c->pos++] = (uint8_t)(v >> (8 * i));
+    le_put(c->w + c->pos, v, bytes);
+    c->pos += (size_t)bytes;
 }
 
 static void put_bytes(cursor *c, const void *p, size_t n)
@@ -97,9 +99,8 @@ static uint64_t get(cursor *c, int bytes)
         c->bad = 1;
         return 0;
     }
-    uint64_t v = 0;
-    for (int i = 0; i < bytes; i++)
-        v |= (uint64_t)c->r[c->pos++] << (8 * i);
+    uint64_t v = le_get(c->r + c->pos, bytes);
+    c->pos += (size_t)bytes;
     return v;
 }
 
