@@ -395,10 +395,7 @@ static void vrpn_close(input_source *s)
 
 input_source *input_vrpn_open(const input_vrpn_desc *desc, char *err, size_t errlen)
 {
-    vrpn_source *v = input_source_alloc(sizeof *v, desc->name, "vrpn", vrpn_poll, vrpn_close,
-                                        err, errlen);
-    if (!v)
-        return NULL;
+    vrpn_source *v = input_source_alloc(sizeof *v, desc->name, "vrpn", vrpn_poll, vrpn_close);
     v->desc = *desc;
     snprintf(v->host, sizeof v->host, "%s", desc->host ? desc->host : "localhost");
     snprintf(v->tracker, sizeof v->tracker, "%s", tracker_name(desc));

@@ -1,4 +1,5 @@
 #include "cluster_view.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -193,11 +194,7 @@ static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen)
 {
-    cluster_view *v = calloc(1, sizeof *v);
-    if (!v) {
-        snprintf(err, errlen, "cluster view: out of memory");
-        return NULL;
-    }
+    cluster_view *v = xcalloc(1, sizeof *v);
     v->cfg = desc->config;
     v->node = desc->node;
     v->output = desc->output;

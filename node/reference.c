@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/xalloc.h"
 #include "base/vec3.h"
 #include "reference_internal.h"
 
@@ -125,11 +126,7 @@ reference *reference_create(const scene *s, int threads, char *err, size_t errle
         snprintf(err, errlen, "reference: the scene has no triangles or materials (load it first)");
         return NULL;
     }
-    reference *ref = calloc(1, sizeof *ref);
-    if (!ref) {
-        snprintf(err, errlen, "reference: out of memory");
-        return NULL;
-    }
+    reference *ref = xcalloc(1, sizeof *ref);
     ref->scene = s;
     if (build_tables(ref) != 0) {
         snprintf(err, errlen, "reference: out of memory for %zu triangles", s->triangle_count);

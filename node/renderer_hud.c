@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "base/mat4.h"
+#include "base/xalloc.h"
 #include "base/vec3.h"
 #include "renderer_hud.h"
 #include "renderer_internal.h"
@@ -172,11 +173,7 @@ int renderer_hud_init(renderer *r, char *err, size_t errlen)
     r->hud_loc_gamma = gl->GetUniformLocation(r->prog_hud, "u_encoding_gamma");
 
     mesh_builder b = {.capacity = 36 + SEGMENTS * 6 + SEGMENTS * TORUS_RINGS * 6};
-    b.v = malloc((size_t)b.capacity * 6 * sizeof(float));
-    if (!b.v) {
-        snprintf(err, errlen, "renderer: out of memory for the HUD meshes");
-        return -1;
-    }
+    b.v = xmalloc((size_t)b.capacity * 6 * sizeof(float));
     void (*build[RENDERER_HUD_MESHES])(mesh_builder *) = {build_box, build_cone, build_torus};
     for (int m = 0; m < RENDERER_HUD_MESHES; m++) {
         r->hud_first[m] = b.count;
