@@ -160,7 +160,8 @@ enum { MAX_SAMPLES = 100000 };
 
 typedef struct run_stats {
     int n;
-    double round_trip[MAX_SAMPLES], barrier[MAX_SAMPLES], frame_bytes[MAX_SAMPLES];
+    double round_trip[MAX_SAMPLES], barrier[MAX_SAMPLES], frame_bytes[MAX_SAMPLES], timeout[MAX_SAMPLES];
+    double nodes_wait_ms;    /* start to every node live */
     int node_n[CLUSTER_MAX_NODES];
     double ready_ms[CLUSTER_MAX_NODES][MAX_SAMPLES / 10];
     double pass_sum[CLUSTER_MAX_NODES][WIRE_TIMING_COUNT];
@@ -176,6 +177,7 @@ static void record(run_stats *rs, cluster_master *m, const cluster_config *cfg, 
         rs->round_trip[rs->n] = r->round_trip_ms;
         rs->barrier[rs->n] = r->barrier_ms;
         rs->frame_bytes[rs->n] = (double)r->frame_bytes;
+        rs->timeout[rs->n] = r->timeout_ms;
         rs->n++;
     }
     if (rs->n == 1 || r->live < rs->live_min)
@@ -235,6 +237,10 @@ static int write_report(const char *path, const cluster_config *cfg, cluster_mas
     cJSON_AddItemToObject(root, "frame_bytes", stat_obj(rs->frame_bytes, rs->n));
     cJSON_AddItemToObject(root, "round_trip_ms", stat_obj(rs->round_trip, rs->n));
     cJSON_AddItemToObject(root, "barrier_wait_ms", stat_obj(rs->barrier, rs->n));
+    cJSON_AddItemToObject(root, "stall_timeout_ms", stat_obj(rs->timeout, rs->n));
+    cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
+    cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
+    cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {
@@ -378,6 +384,7 @@ int main(int argc, char **argv)
     int exit_code = 0;
     /* Wait in short steps so that SIGTERM is honoured while nodes are still missing. */
     int live = 0;
+    double wait_start = clock_now_ms();
     for (double until = clock_now_ms() + o.wait_ms; !stop_requested && clock_now_ms() < until && live < cfg.node_count;)
         live = cluster_master_wait_nodes(m, cfg.node_count, 200);
     if (live < cfg.node_count)
@@ -388,6 +395,7 @@ int main(int argc, char **argv)
                 o.frames ? "" : "until stopped, ", o.frames);
 
     static run_stats rs;
+    rs.nodes_wait_ms = clock_now_ms() - wait_start;
     script sc;
     script_init(&sc, &cfg, cluster_master_params(m));
     /* Live or recorded input (docs/input.md) replaces the scripted path. */

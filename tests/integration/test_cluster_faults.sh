@@ -24,7 +24,7 @@ start_node a; start_node b; start_node c
 sleep 2
 kill -9 "$pid_c"
 sleep 2.5
-grep -q "node c not ready" "$tmp/master.log" || { cat "$tmp/master.log"; fail "killed node c was not dropped"; }
+grep -q "node c disconnected: dropped" "$tmp/master.log" || { cat "$tmp/master.log"; fail "killed node c was not dropped at its disconnect"; }
 start_node c
 sleep 2
 kill -STOP "$pid_b"
