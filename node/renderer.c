@@ -524,11 +524,10 @@ void renderer_destroy(renderer *r)
 
 /* ---- frame pass ------------------------------------------------------------------- */
 
-/* The shadow map's near plane and the shadow test's normal offset follow the scene's size
- * (as the falloff bound does, scene_min_light_distance()), so that a 4 cm model and a
- * 4 km site render alike (docs/stability.md): fixed 5 cm and 1 cm made a 40 m hall's
- * shadow depth bias metres long and a 4 cm model's RSM empty. These fractions of the
- * bounds' diagonal give the 6.4 m default room the former values. */
+/* The shadow map's near plane follows the scene's size (as the falloff bound does,
+ * scene_min_light_distance()), so that a 4 cm model and a 4 km site render alike
+ * (docs/stability.md): a fixed 5 cm left a 4 cm model's RSM empty. D / 128 gives the 6.4 m
+ * default room the former value. The shadow test's offset is in texels (shade.frag). */
 static void render_rsms(renderer *r, const frame_params *p)
 {
     const gl_functions *gl = r->gl;
@@ -674,6 +673,9 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->ActiveTexture(GL_TEXTURE4);
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
     gl->Uniform1i(loc(r, prog, "u_shadow"), 4);
+    gl->ActiveTexture(GL_TEXTURE8);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_normal);
+    gl->Uniform1i(loc(r, prog, "u_rsm_normal"), 8);
     GLuint lpv[3];
     renderer_lpv_textures(r, lpv);
     const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
@@ -711,10 +713,9 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->Uniform1fv(loc(r, prog, "u_cos_inner"), nl, cos_inner);
         gl->UniformMatrix4fv(loc(r, prog, "u_light_view_projection"), nl, GL_FALSE,
                              r->light_view_projection[0]);
+        gl->Uniform1fv(loc(r, prog, "u_light_tan_half_fov"), nl, r->rsm_tan_half_fov);
     }
     gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
-    float diagonal = scene_diagonal(r->scene);
-    gl->Uniform1f(loc(r, prog, "u_shadow_offset"), diagonal / 640.0f);
     gl->Uniform1f(loc(r, prog, "u_min_light_distance"), scene_min_light_distance(r->scene));
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);

@@ -24,7 +24,9 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: cavelight-node --standalone [options]\n"
         "  --gl egl|osmesa|glfw         GL context (default egl)\n"
-        "  --scene FILE|default|corridor  glTF 2.0 (.gltf/.glb) or a built-in scene\n"
+        "  --scene FILE|NAME            glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
+        "                               corridor, doorway, courtyard, leak-lid, leak-panel,\n"
+        "                               leak-wall (docs/node.md)\n"
         "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
         "  --pfm                        also write linear final/direct/indirect PFMs\n"
         "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"

@@ -1,8 +1,8 @@
 // Reflective shadow map of one spotlight: position, normal and the flux each texel
 // reflects (paper 3.3, [KD10]). A texel subtends solid angle d_omega from the light; the
 // flux arriving through it is I(omega) d_omega whatever the distance and slant, and a
-// Lambertian surface reflects albedo times that. Depth goes to the depth attachment and
-// doubles as the shadow map.
+// Lambertian surface reflects albedo times that. Depth and the plane (normal, offset) are
+// the shadow map (shade.frag).
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
@@ -39,6 +39,6 @@ void main()
     float spot = spot_factor(-to_light / r, u_light_direction, u_cos_outer, u_cos_inner);
     vec3 flux = albedo.rgb * u_light_radiance * spot * d_omega * transmittance(u_absorption, r);
     out_position = vec4(v_position, 1.0);
-    out_normal = vec4(n, 0.0);
+    out_normal = vec4(n, -dot(n, v_position));   // the plane, for the shadow test
     out_flux = vec4(flux, 0.0);
 }

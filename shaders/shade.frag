@@ -1,5 +1,5 @@
 // Deferred shading (paper 3.3.3 and 3.3.4): direct light of every spot with normalized
-// Blinn-Phong, the D3D cone, inverse-square falloff and 3x3 PCF against the RSM depth;
+// Blinn-Phong, the D3D cone, inverse-square falloff and 3x3 PCF against the RSM;
 // indirect light from the LPV; emitted radiance of surface lights. HDR out, linear.
 in vec2 v_uv;
 
@@ -7,7 +7,9 @@ uniform sampler2D u_position;
 uniform sampler2D u_normal;
 uniform sampler2D u_albedo;
 uniform sampler2D u_emissive;
-uniform sampler2DArrayShadow u_shadow;
+uniform sampler2DArrayShadow u_shadow;  // RSM depth, compared (LEQUAL)
+uniform sampler2DArray u_rsm_normal;     // RSM planes: unit normal n turned to the light,
+                                         // w = -n . position (0 where no geometry)
 
 uniform int u_light_count;
 uniform vec3 u_light_position[MAX_LIGHTS];
@@ -16,9 +18,9 @@ uniform vec3 u_light_radiance[MAX_LIGHTS];
 uniform float u_cos_outer[MAX_LIGHTS];
 uniform float u_cos_inner[MAX_LIGHTS];
 uniform mat4 u_light_view_projection[MAX_LIGHTS];
-uniform float u_shadow_texel;
-uniform float u_shadow_offset;       // normal offset, metres (scales with the scene)
-uniform float u_min_light_distance;  // falloff bound near a light, metres (ditto)
+uniform float u_light_tan_half_fov[MAX_LIGHTS]; // the RSM's half field of view
+uniform float u_shadow_texel;        // 1 / RSM size
+uniform float u_min_light_distance;  // falloff bound near a light, metres (scales with the scene)
 uniform float u_absorption;
 uniform vec3 u_eye;
 uniform float u_exposure;
@@ -36,20 +38,51 @@ layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
 layout(location = 2) out vec4 out_indirect;
 
+// Shadow test against the RSM: a texel blocks p when its depth is nearer the light than
+// p's and p lies behind the texel's plane (its normal faces the light). The
+// plane test tells a true occluder from the other face of a concave corner, which is
+// nearer the light too, and needs no depth bias: a bias lets a zero-thickness wall or lid
+// closer than it to the receiver cast no shadow (docs/stability.md, leaks). p itself moves
+// along its normal, which faces the eye and (where lit) the light, never through its own
+// surface: in light space (depth z along the spot's axis a, a texel spanning
+// t = 2 z tan(fov/2) / size) a plane whose normal makes angle alpha with a changes depth
+// by up to t sin(alpha) / |n . ray| per texel, and the filter below reads texels up to
+// 2 sqrt(2) texels from the lookup; moving p by o along n puts it o / |n . ray| in front
+// of the plane, so o = 2 sqrt(2) t sin(alpha) keeps a plane from shadowing itself, and
+// 1/8 texel more covers float rounding (about 1e-3 texel). The filter is 3x3 bilinear PCF
+// written out: the 4x4 texels around the lookup (four depth-compare gathers), weights
+// (1-w, 1, 1, w) / 3 per axis.
 float shadow(int i, vec3 p, vec3 n)
 {
-    // Normal offset plus a small constant bias against self-shadowing (paper: ~5e-4); the
-    // RSM's near plane scales with the scene, so the bias does too.
-    vec4 q = u_light_view_projection[i] * vec4(p + n * u_shadow_offset, 1.0);
-    vec3 s = q.xyz / q.w * 0.5 + 0.5;
-    if (q.w <= 0.0 || any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0))))
+    vec3 a = u_light_direction[i], lp = u_light_position[i];
+    float texel = 2.0 * dot(p - lp, a) * u_light_tan_half_fov[i] * u_shadow_texel;
+    float cos_a = dot(n, a);
+    float sin_a = sqrt(max(1.0 - cos_a * cos_a, 0.0));
+    vec3 q = p + n * (texel * (2.828427 * sin_a + 0.125));
+    vec4 c = u_light_view_projection[i] * vec4(q, 1.0);
+    vec2 s = c.xy / c.w * 0.5 + 0.5;
+    if (c.w <= 0.0 || any(lessThan(s, vec2(0.0))) || any(greaterThan(s, vec2(1.0))))
         return 0.0;
-    float sum = 0.0;
-    for (int y = -1; y <= 1; y++)
-        for (int x = -1; x <= 1; x++)
-            sum += texture(u_shadow, vec4(s.xy + vec2(x, y) * u_shadow_texel, float(i),
-                                          s.z - 5e-4));
-    return sum / 9.0;
+    float depth = c.z / c.w * 0.5 + 0.5;
+    // textureGather's texels: (i, j+1), (i+1, j+1), (i+1, j), (i, j) of the 2x2 block.
+    vec2 f = s / u_shadow_texel - 0.5;
+    vec2 w = fract(f);
+    ivec2 t0 = ivec2(floor(f)) - 1, last = ivec2(round(1.0 / u_shadow_texel)) - 1;
+    vec4 wx = vec4(1.0 - w.x, 1.0, 1.0, w.x), wy = vec4(1.0 - w.y, 1.0, 1.0, w.y);
+    const ivec2 corner[4] = ivec2[4](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
+    float lit = 0.0;
+    for (int by = 0; by < 4; by += 2)
+        for (int bx = 0; bx < 4; bx += 2) {
+            vec2 centre = (vec2(t0 + ivec2(bx, by)) + 1.0) * u_shadow_texel;
+            vec4 farther = textureGather(u_shadow, vec3(centre, float(i)), depth);
+            for (int k = 0; k < 4; k++) {
+                ivec2 xy = ivec2(bx, by) + corner[k];
+                vec4 plane = texelFetch(u_rsm_normal, ivec3(clamp(t0 + xy, ivec2(0), last), i), 0);
+                bool blocks = farther[k] == 0.0 && dot(plane.xyz, q) + plane.w < 0.0;
+                lit += blocks ? 0.0 : wx[xy.x] * wy[xy.y];
+            }
+        }
+    return lit / 9.0;
 }
 
 void main()

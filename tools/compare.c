@@ -1,8 +1,10 @@
 /* cavelight-compare: error metrics of one image against a reference, as one JSON line.
  *
  * PFM files are linear radiance; PNG files are display images, read as 8-bit values / 255
- * with no linearisation (compare PNGs only with PNGs). Exit 0, or 2 with one line on
- * stderr naming the file or argument at fault. */
+ * with no linearisation (compare PNGs only with PNGs). Exit 0; 2 with one line on stderr
+ * naming the file or argument at fault; 3 when the reference has no signal (black over the
+ * compared pixels: relative RMSE and SSIM are undefined, printed as null) unless
+ * --allow-no-signal. */
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <stdio.h>
@@ -15,14 +17,16 @@
 static void usage(FILE *f)
 {
     fprintf(f, "usage: cavelight-compare IMAGE REFERENCE [--mask-background] "
-               "[--ssim-range L] [--crop x,y,w,h]\n"
+               "[--ssim-range L] [--crop x,y,w,h] [--allow-no-signal]\n"
                "  IMAGE, REFERENCE  PFM (linear) or PNG (8-bit display values / 255, "
                "not linearised)\n"
                "  --mask-background count only pixels where the reference is not 0 in "
                "all channels\n"
                "  --ssim-range L    SSIM dynamic range (default: max reference luminance)\n"
                "  --crop x,y,w,h    compare only this rectangle (top-left origin)\n"
-               "Prints one JSON object with the metrics of common/image/image_metrics.h.\n");
+               "  --allow-no-signal exit 0 even when the reference is black (no signal)\n"
+               "Prints one JSON object with the metrics of common/image/image_metrics.h.\n"
+               "Exit 0; 2 on bad input; 3 when the reference has no signal.\n");
 }
 
 /* Reads a PFM or PNG (told apart by their magic bytes) into linear-layout floats. */
@@ -76,6 +80,7 @@ int main(int argc, char **argv)
 {
     const char *paths[2] = {NULL, NULL};
     int npaths = 0, mask_background = 0, crop[4] = {0, 0, 0, 0}, cropping = 0;
+    int allow_no_signal = 0;
     image_metrics_desc desc = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -85,6 +90,8 @@ int main(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--mask-background") == 0) {
             mask_background = 1;
+        } else if (strcmp(a, "--allow-no-signal") == 0) {
+            allow_no_signal = 1;
         } else if (strcmp(a, "--ssim-range") == 0 && i + 1 < argc) {
             if (sscanf(argv[++i], "%lf%c", &desc.ssim_range, &extra) != 1 ||
                 !(desc.ssim_range > 0)) {
@@ -160,9 +167,11 @@ int main(int argc, char **argv)
             goto done;
         }
         const float *r = rgb[1];
+        size_t kept = 0;
         for (size_t i = 0; i < n; i++)
-            mask[i] = r[i * 3] != 0 || r[i * 3 + 1] != 0 || r[i * 3 + 2] != 0;
-        desc.mask = mask;
+            kept += mask[i] = r[i * 3] != 0 || r[i * 3 + 1] != 0 || r[i * 3 + 2] != 0;
+        /* A black reference leaves no pixel: compare them all, which reports no signal. */
+        desc.mask = kept ? mask : NULL;
     }
 
     image_metrics m;
@@ -187,10 +196,18 @@ int main(int argc, char **argv)
     cJSON_AddNumberToObject(o, "reference_mean", m.reference_mean);
     cJSON_AddNumberToObject(o, "best_scale", m.best_scale);
     cJSON_AddNumberToObject(o, "mae_scaled", m.mae_scaled);
+    cJSON_AddBoolToObject(o, "signal", !m.no_signal);
     char *text = cJSON_PrintUnformatted(o);
     if (text) {
         printf("%s\n", text);
         rc = 0;
+        if (m.no_signal && !allow_no_signal) {
+            fprintf(stderr, "cavelight-compare: no signal: reference %s is black over the %zu "
+                            "compared pixels (image mean %g), so relative RMSE and SSIM are "
+                            "undefined; give --allow-no-signal to accept\n",
+                    paths[1], m.pixels, m.mean);
+            rc = 3;
+        }
     } else {
         fprintf(stderr, "cavelight-compare: out of memory printing JSON\n");
     }

@@ -153,11 +153,8 @@ int image_metrics_compare(const float *img, const float *ref, int width, int hei
     out->relmse = rel_sum / samples;
     out->mean = img_sum / samples;
     out->reference_mean = ref_sum / samples;
-    double rmse = sqrt(sq_sum / samples);
-    if (out->reference_mean != 0)
-        out->rmse_rel = rmse / out->reference_mean;
-    else
-        out->rmse_rel = rmse == 0 ? 0 : INFINITY;
+    out->no_signal = ref_sum == 0;
+    out->rmse_rel = out->no_signal ? NAN : sqrt(sq_sum / samples) / out->reference_mean;
     out->best_scale = img_sq > 0 ? cross / img_sq : 1.0;
 
     double scaled_sum = 0;
@@ -168,7 +165,9 @@ int image_metrics_compare(const float *img, const float *ref, int width, int hei
     out->mae_scaled = scaled_sum / samples;
 
     double range = d.ssim_range > 0 ? d.ssim_range : (max_lum > 0 ? max_lum : 1.0);
-    out->ssim = ssim_mean(img, ref, counted, width, height, range, scratch) / (double)pixels;
+    out->ssim = out->no_signal
+                    ? NAN
+                    : ssim_mean(img, ref, counted, width, height, range, scratch) / (double)pixels;
     free(counted);
     free(scratch);
     return 0;

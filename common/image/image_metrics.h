@@ -6,8 +6,7 @@
  * Means below run over counted pixels and the 3 channels unless said otherwise.
  *
  *   mae        = mean |img - ref|
- *   rmse_rel   = sqrt(mean (img - ref)^2) / mean(ref)       (INFINITY if mean(ref) is 0
- *                                                           and the images differ, 0 if equal)
+ *   rmse_rel   = sqrt(mean (img - ref)^2) / mean(ref)
  *   relmse     = mean (img - ref)^2 / (ref^2 + epsilon)     (per channel, Rousselle et al.)
  *   ssim       = mean over counted pixels of SSIM (Wang et al. 2004) on Rec. 709 luminance
  *   mean, reference_mean = mean img, mean ref
@@ -18,7 +17,13 @@
  * centred on every counted pixel, loses the taps that fall outside the image or on uncounted
  * pixels, and is renormalised to weigh 1 (so borders and mask edges need no padding).
  * Local means, variances and covariance are the window-weighted moments (no Bessel term).
- * L defaults to the maximum reference luminance over counted pixels (1 if that is 0).
+ * L defaults to the maximum reference luminance over counted pixels (1 if that is not
+ * positive).
+ *
+ * No signal: when the reference's mean over counted pixels is 0 (both images black, or a
+ * black reference) there is nothing for rmse_rel and ssim to be relative to; no_signal is
+ * set and both are NAN rather than a "perfect" 0 and 1. The absolute figures (mae, means,
+ * relmse) stay defined and say how much light the image has where the reference has none.
  *
  * Allocates a width*height byte map of counted pixels and (6 * 11 + 3) * width doubles of
  * filter scratch, and frees both before returning. */
@@ -44,6 +49,7 @@ typedef struct image_metrics {
     double mae_scaled;     /* MAE of best_scale * img */
     size_t pixels;         /* counted pixels */
     size_t nonfinite;      /* pixels of img or ref with a NaN/inf channel: excluded, and counted */
+    int no_signal;         /* the reference's mean is 0: rmse_rel and ssim are NAN */
 } image_metrics;
 
 /* img and ref: width*height*3 linear floats (same layout as image_read_pfm). NULL desc = defaults.

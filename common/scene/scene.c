@@ -83,35 +83,68 @@ long scene_add_triangle(scene *s, const float p[9], const float *normals, const 
     return (long)n;
 }
 
+int scene_add_quad(scene *s, const float a[3], const float b[3], const float c[3],
+                   const float d[3], const float n[3], uint32_t material)
+{
+    float p1[9], p2[9], nn[9];
+    memcpy(p1, a, 12); memcpy(p1 + 3, b, 12); memcpy(p1 + 6, c, 12);
+    memcpy(p2, a, 12); memcpy(p2 + 3, c, 12); memcpy(p2 + 6, d, 12);
+    for (int k = 0; k < 3; k++)
+        memcpy(nn + 3 * k, n, 12);
+    const float uv1[6] = {0, 0, 1, 0, 1, 1}, uv2[6] = {0, 0, 1, 1, 0, 1};
+    return scene_add_triangle(s, p1, nn, uv1, material) < 0 ||
+                   scene_add_triangle(s, p2, nn, uv2, material) < 0
+               ? -1
+               : 0;
+}
+
+int scene_add_rect(scene *s, const float lo[3], const float hi[3], int facing,
+                   uint32_t material)
+{
+    int axis = -1;
+    for (int a = 0; a < 3; a++)
+        if (lo[a] == hi[a])
+            axis = axis < 0 ? a : 3;
+    if (axis < 0 || axis > 2 || facing == 0)
+        return -1;
+    /* Corners in the (u, v) = (axis + 1, axis + 2) plane, two triangles. */
+    int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    float c[4][3];
+    const float us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
+    for (int k = 0; k < 4; k++) {
+        c[k][axis] = lo[axis];
+        c[k][u] = us[k] ? hi[u] : lo[u];
+        c[k][v] = vs[k] ? hi[v] : lo[v];
+    }
+    float n[3] = {0, 0, 0};
+    n[axis] = facing > 0 ? 1.0f : -1.0f;
+    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int t = 0; t < 2; t++) {
+        float p[9], nn[9], uv[6];
+        for (int k = 0; k < 3; k++) {
+            int ci = tri[t][k];
+            memcpy(p + 3 * k, c[ci], sizeof c[ci]);
+            memcpy(nn + 3 * k, n, sizeof n);
+            uv[2 * k] = us[ci];
+            uv[2 * k + 1] = vs[ci];
+        }
+        if (scene_add_triangle(s, p, nn, uv, material) < 0)
+            return -1;
+    }
+    return 0;
+}
+
 int scene_add_box(scene *s, const float lo[3], const float hi[3], int inward, uint32_t material)
 {
-    /* Each face: axis, side, and the two in-plane axes in counter-clockwise order seen
-     * from outside. */
     for (int axis = 0; axis < 3; axis++)
         for (int side = 0; side < 2; side++) {
-            int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            float c[4][3];
-            const float us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
-            for (int k = 0; k < 4; k++) {
-                c[k][axis] = side ? hi[axis] : lo[axis];
-                c[k][u] = us[k] ? hi[u] : lo[u];
-                c[k][v] = vs[k] ? hi[v] : lo[v];
-            }
-            float n[3] = {0, 0, 0};
-            n[axis] = (side ? 1.0f : -1.0f) * (inward ? -1.0f : 1.0f);
-            const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-            for (int t = 0; t < 2; t++) {
-                float p[9], nn[9], uv[6];
-                for (int k = 0; k < 3; k++) {
-                    int ci = tri[t][k];
-                    memcpy(p + 3 * k, c[ci], sizeof c[ci]);
-                    memcpy(nn + 3 * k, n, sizeof n);
-                    uv[2 * k] = us[ci];
-                    uv[2 * k + 1] = vs[ci];
-                }
-                if (scene_add_triangle(s, p, nn, uv, material) < 0)
-                    return -1;
-            }
+            float flo[3], fhi[3];
+            memcpy(flo, lo, sizeof flo);
+            memcpy(fhi, hi, sizeof fhi);
+            flo[axis] = fhi[axis] = side ? hi[axis] : lo[axis];
+            int facing = (side ? 1 : -1) * (inward ? -1 : 1);
+            if (scene_add_rect(s, flo, fhi, facing, material) != 0)
+                return -1;
         }
     return 0;
 }
@@ -233,19 +266,42 @@ void scene_default_view(const scene *s, float position[3], float target[3])
     position[2] = target[2] + 1.5f * size;
 }
 
+static const struct {
+    const char *name;
+    int (*build)(scene *s, char *err, size_t errlen);
+} builtin[] = {
+    {"default", scene_default_build},
+    {"corridor", scene_corridor_build},
+    {"doorway", scene_doorway_build},
+    {"courtyard", scene_courtyard_build},
+    {"leak-lid", scene_leak_lid_build},
+    {"leak-panel", scene_leak_panel_build},
+    {"leak-wall", scene_leak_wall_build},
+};
+
+const char *scene_builtin_name(int i)
+{
+    return i >= 0 && i < (int)(sizeof builtin / sizeof builtin[0]) ? builtin[i].name : NULL;
+}
+
 int scene_load(const char *path, scene *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    int rc;
-    if (strcmp(path, "default") == 0) {
-        rc = scene_default_build(out, err, errlen);
-    } else if (strcmp(path, "corridor") == 0) {
-        rc = scene_corridor_build(out, err, errlen);
+    int rc, found = -1;
+    for (int i = 0; scene_builtin_name(i); i++)
+        if (strcmp(path, scene_builtin_name(i)) == 0)
+            found = i;
+    if (found >= 0) {
+        rc = builtin[found].build(out, err, errlen);
     } else if (ends_with(path, ".gltf") || ends_with(path, ".glb")) {
         rc = gltf_import(path, out, err, errlen);
     } else {
-        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, "
-                 "\"default\" or \"corridor\")", path);
+        char names[200] = "";
+        for (int i = 0; scene_builtin_name(i); i++)
+            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "",
+                     scene_builtin_name(i));
+        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, or a "
+                 "built-in scene: %s)", path, names);
         return -1;
     }
     if (rc == 0) {

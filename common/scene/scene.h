@@ -5,9 +5,11 @@
  * linear base colour factor, an optional base colour texture (RGBA8, sRGB-encoded as in
  * glTF) and emitted radiance (emissive surfaces are surface lights). Lights are spots.
  *
- * scene_load() picks the loader: "default" builds the built-in room (scene_default.c),
- * *.gltf / *.glb go through tinygltf (gltf_import.cpp). The scene owns its arrays;
- * scene_free() releases them. The scene_add_* builders are what the loaders use. */
+ * scene_load() picks the loader: a built-in scene's name (scene_builtin_name(): the chart's
+ * rooms in scene_default.c, scene_corridor.c, scene_doorway.c, scene_courtyard.c and the
+ * leak tests' boxes in scene_leaks.c) builds it in code, *.gltf / *.glb go through tinygltf
+ * (gltf_import.cpp). The scene owns its arrays; scene_free() releases them. The scene_add_*
+ * builders are what the loaders use. */
 #ifndef CAVELIGHT_SCENE_H
 #define CAVELIGHT_SCENE_H
 
@@ -60,8 +62,11 @@ typedef struct scene {
     float bounds_min[3], bounds_max[3]; /* valid after scene_finish() */
 } scene;
 
-/* "default", "corridor" or a .gltf/.glb path. Returns 0, or -1 with one line in err (and *out empty). */
+/* A built-in scene's name or a .gltf/.glb path. Returns 0, or -1 with one line in err (and
+ * *out empty). */
 int scene_load(const char *path, scene *out, char *err, size_t errlen);
+/* The i-th built-in scene's name ("default", "corridor", ...), NULL past the last. */
+const char *scene_builtin_name(int i);
 void scene_free(scene *s);
 
 /* Builders. Each returns the new index (>= 0) or -1 when out of memory. */
@@ -71,7 +76,15 @@ int scene_add_texture(scene *s, int width, int height, uint8_t *rgba);
 /* normals: 9 floats or NULL for the face normal; uvs: 6 floats or NULL for zeros. */
 long scene_add_triangle(scene *s, const float positions[9], const float *normals,
                         const float *uvs, uint32_t material);
-/* Appends an axis-aligned box with outward (or inward, for a room) faces. */
+/* A single-sided, zero-thickness quad abcd (triangles abc, acd) with normal n at every
+ * vertex and uvs from 0 to 1, as glTF exporters write walls. */
+int scene_add_quad(scene *s, const float a[3], const float b[3], const float c[3],
+                   const float d[3], const float n[3], uint32_t material);
+/* An axis-aligned, zero-thickness rectangle from lo to hi (equal on exactly one axis), its
+ * normal along that axis, positive if facing > 0; -1 if it is not flat or facing is 0. */
+int scene_add_rect(scene *s, const float lo[3], const float hi[3], int facing,
+                   uint32_t material);
+/* Appends an axis-aligned box with outward (or inward, for a room) faces: six rectangles. */
 int scene_add_box(scene *s, const float min[3], const float max[3], int inward, uint32_t material);
 int scene_add_light(scene *s, const scene_light *l);
 /* Points the light's axis from its position at target (unchanged if they coincide). */
@@ -99,6 +112,17 @@ int scene_default_build(scene *s, char *err, size_t errlen);
 /* Built-in corridor: 12 x 2.6 x 2.4 m, a spot at the near end, pillars, the far end lit
  * only indirectly (scene_corridor.c). */
 int scene_corridor_build(scene *s, char *err, size_t errlen);
+/* Built-in pair of rooms joined by a doorway; the spot lights the first, the second is lit
+ * only indirectly (scene_doorway.c). */
+int scene_doorway_build(scene *s, char *err, size_t errlen);
+/* Built-in open-top courtyard with tall walls, lit from above (scene_courtyard.c). */
+int scene_courtyard_build(scene *s, char *err, size_t errlen);
+/* Leak tests of single-sided, zero-thickness walls (scene_leaks.c; docs/stability.md):
+ * a spot above a closed box with a zero-thickness lid, an emissive panel flush with the
+ * ceiling of a closed room, a single-sided wall between a lit and a dark room. */
+int scene_leak_lid_build(scene *s, char *err, size_t errlen);
+int scene_leak_panel_build(scene *s, char *err, size_t errlen);
+int scene_leak_wall_build(scene *s, char *err, size_t errlen);
 /* glTF 2.0 via tinygltf (gltf_import.cpp). */
 int gltf_import(const char *path, scene *out, char *err, size_t errlen);
 

@@ -4,25 +4,9 @@
  * z in [-2, 2] (back wall at -2). A tall blue box and a low yellow box stand on the floor,
  * a small warm emissive panel hangs on the back wall, and a spotlight near the ceiling
  * points at the floor beside the red wall, so colour bleeding is easy to see. */
-#include <string.h>
 #include <stdio.h>
 
 #include "scene/scene.h"
-
-static int quad(scene *s, const float a[3], const float b[3], const float c[3],
-                const float d[3], const float n[3], uint32_t material)
-{
-    float p1[9], p2[9], nn[9];
-    memcpy(p1, a, 12); memcpy(p1 + 3, b, 12); memcpy(p1 + 6, c, 12);
-    memcpy(p2, a, 12); memcpy(p2 + 3, c, 12); memcpy(p2 + 6, d, 12);
-    for (int k = 0; k < 3; k++)
-        memcpy(nn + 3 * k, n, 12);
-    const float uv1[6] = {0, 0, 1, 0, 1, 1}, uv2[6] = {0, 0, 1, 1, 0, 1};
-    return scene_add_triangle(s, p1, nn, uv1, material) < 0 ||
-                   scene_add_triangle(s, p2, nn, uv2, material) < 0
-               ? -1
-               : 0;
-}
 
 int scene_default_build(scene *s, char *err, size_t errlen)
 {
@@ -45,12 +29,12 @@ int scene_default_build(scene *s, char *err, size_t errlen)
     };
     const float up[3] = {0, 1, 0}, down[3] = {0, -1, 0}, px[3] = {1, 0, 0},
                 nx[3] = {-1, 0, 0}, pz[3] = {0, 0, 1}, nz[3] = {0, 0, -1};
-    if (quad(s, v[0], v[3], v[2], v[1], up, 0) ||   /* floor */
-        quad(s, v[4], v[5], v[6], v[7], down, 0) || /* ceiling */
-        quad(s, v[0], v[4], v[7], v[3], px, 1) ||   /* left wall, red */
-        quad(s, v[1], v[2], v[6], v[5], nx, 2) ||   /* right wall, green */
-        quad(s, v[0], v[1], v[5], v[4], pz, 0) ||   /* back wall */
-        quad(s, v[3], v[7], v[6], v[2], nz, 0))     /* front wall */
+    if (scene_add_quad(s, v[0], v[3], v[2], v[1], up, 0) ||   /* floor */
+        scene_add_quad(s, v[4], v[5], v[6], v[7], down, 0) || /* ceiling */
+        scene_add_quad(s, v[0], v[4], v[7], v[3], px, 1) ||   /* left wall, red */
+        scene_add_quad(s, v[1], v[2], v[6], v[5], nx, 2) ||   /* right wall, green */
+        scene_add_quad(s, v[0], v[1], v[5], v[4], pz, 0) ||   /* back wall */
+        scene_add_quad(s, v[3], v[7], v[6], v[2], nz, 0))     /* front wall */
         goto oom;
 
     const float tall_lo[3] = {0.5f, 0.0f, -1.4f}, tall_hi[3] = {1.2f, 1.6f, -0.7f};
@@ -60,7 +44,7 @@ int scene_default_build(scene *s, char *err, size_t errlen)
     /* Emissive panel 2 cm in front of the back wall, facing the room. */
     const float e0[3] = {-0.4f, 2.1f, -1.98f}, e1[3] = {0.4f, 2.1f, -1.98f},
                 e2[3] = {0.4f, 2.5f, -1.98f}, e3[3] = {-0.4f, 2.5f, -1.98f};
-    if (quad(s, e0, e1, e2, e3, pz, 5))
+    if (scene_add_quad(s, e0, e1, e2, e3, pz, 5))
         goto oom;
 
     /* Spot from near the ceiling towards the floor beside the red wall. */

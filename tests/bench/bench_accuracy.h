@@ -15,7 +15,7 @@
 #include "scene/scene.h"
 
 typedef struct acc_options {
-    const char *scene;      /* "default", "corridor" or a glTF path */
+    const char *scene;      /* a built-in scene's name or a glTF path */
     const char *out;        /* folder for CSVs and the cached reference */
     int width, height;
     int ref_samples;        /* paths per pixel of each of the two reference halves */

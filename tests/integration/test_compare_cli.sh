@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # cavelight-compare end to end: PFM and PNG inputs, --mask-background, --crop and
 # --ssim-range checked against an independent direct (non-separable) Python evaluation of
-# the metric definitions, and one-line exit-2 errors naming the file at fault.
+# the metric definitions, a black reference reported as no signal (exit 3 unless
+# --allow-no-signal), and one-line exit-2 errors naming the file at fault.
 set -euo pipefail
 build=$1
 tool="$build/cavelight-compare"
@@ -125,6 +126,47 @@ check png "$line" 24 18
 line=$("$tool" "$out/ref.pfm" "$out/ref.pfm") || fail "self compare failed"
 python3 -c 'import json,sys; m=json.loads(sys.argv[1]); assert m["mae"]==0 and abs(m["ssim"]-1)<1e-12, m' \
     "$line" || fail "an image against itself is not a perfect match: $line"
+
+# No signal: a black reference (with a black image, or one that leaks light) is not a
+# perfect match. Exit 3, one line naming the reference, null relative RMSE and SSIM, and
+# "signal": false; --allow-no-signal prints the same and exits 0. --mask-background on a
+# black reference would leave no pixel: every pixel is compared and no signal reported.
+python3 - "$out" <<'PY'
+import struct, sys
+d = sys.argv[1]
+W, H = 8, 6
+def write_pfm(path, px):
+    with open(path, 'wb') as f:
+        f.write(b'PF\n%d %d\n-1.0\n' % (W, H))
+        for p in px:
+            f.write(struct.pack('<3f', *p))
+write_pfm(d + '/black.pfm', [(0.0, 0.0, 0.0)] * (W * H))
+write_pfm(d + '/leak.pfm', [(0.0, 0.0, 0.0)] * (W * H - 1) + [(0.48, 0.48, 0.48)])
+PY
+for img in black leak; do
+    for mask in "" --mask-background; do
+        rc=0
+        "$tool" "$out/$img.pfm" "$out/black.pfm" $mask > "$out/stdout" 2> "$out/stderr" || rc=$?
+        [ "$rc" -eq 3 ] || fail "$img against black $mask exited $rc, expected 3"
+        [ "$(wc -l < "$out/stderr")" -eq 1 ] && grep -qF "no signal: reference $out/black.pfm" \
+            "$out/stderr" || fail "$img against black: stderr is not the no-signal line: $(cat "$out/stderr")"
+        python3 - "$(cat "$out/stdout")" "$img" <<'PY' || fail "$img against black: JSON wrong"
+import json, sys
+m = json.loads(sys.argv[1])
+assert m['signal'] is False and m['rmse_rel'] is None and m['ssim'] is None, m
+assert m['pixels'] == 48 and m['reference_mean'] == 0, m
+assert abs(m['mae'] - (0.01 if sys.argv[2] == 'leak' else 0)) < 1e-7, m
+PY
+    done
+    line=$("$tool" "$out/$img.pfm" "$out/black.pfm" --allow-no-signal 2> "$out/stderr") \
+        || fail "--allow-no-signal exited non-zero"
+    [ ! -s "$out/stderr" ] || fail "--allow-no-signal printed to stderr: $(cat "$out/stderr")"
+    python3 -c 'import json,sys; m=json.loads(sys.argv[1]); assert m["signal"] is False and m["ssim"] is None, m' \
+        "$line" || fail "--allow-no-signal JSON wrong: $line"
+done
+line=$("$tool" "$out/black.pfm" "$out/leak.pfm") || fail "a black image against a lit reference is signal"
+python3 -c 'import json,sys; m=json.loads(sys.argv[1]); assert m["signal"] is True and abs(m["rmse_rel"] - 48 ** 0.5) < 1e-5, m' \
+    "$line" || fail "black image against a lit reference: $line"
 
 # Errors: exit 2 and one line on stderr that names the file at fault.
 expect_error() { # substring command...

@@ -25,9 +25,9 @@ typedef struct stab_gl {
     renderer *r;
 } stab_gl;
 
-/* A renderer on the CPU LPV backend for a finished scene the caller owns; small RSM and
- * lattice for llvmpipe. Returns 0 or prints why and returns -1. */
-static inline int stab_open(stab_gl *g, const scene *s, int lattice_cells)
+/* A renderer on the CPU LPV backend for a finished scene the caller owns, with this RSM
+ * size and lattice (0: the renderer's defaults). Returns 0 or prints why and returns -1. */
+static inline int stab_open_rsm(stab_gl *g, const scene *s, int lattice_cells, int rsm_size)
 {
     char err[512];
     memset(g, 0, sizeof *g);
@@ -37,12 +37,18 @@ static inline int stab_open(stab_gl *g, const scene *s, int lattice_cells)
         return -1;
     }
     renderer_desc rd = {.gl = glctx_gl(g->ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 64, .lattice_cells = lattice_cells, .threads = 2};
+                        .rsm_size = rsm_size, .lattice_cells = lattice_cells, .threads = 2};
     if (!(g->r = renderer_create(&rd, err, sizeof err))) {
         fprintf(stderr, "%s\n", err);
         return -1;
     }
     return 0;
+}
+
+/* The same with a small RSM (64) for llvmpipe. */
+static inline int stab_open(stab_gl *g, const scene *s, int lattice_cells)
+{
+    return stab_open_rsm(g, s, lattice_cells, 64);
 }
 
 static inline void stab_close(stab_gl *g)

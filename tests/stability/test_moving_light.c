@@ -8,15 +8,19 @@
  * Measured (build/stability_moving_light), lattice 20, RSM 64, 30 warm-up frames:
  *   static light, lambda 0.8:  frame-to-frame mean |diff| / mean 0 (the renderer skips converged
  *                              frames; 2e-8 when it computes them after 30 frames), 8-bit jump 0
- *   0.5 m/s, lambda 0:         0.0053, jump 9 (at the spot's cone edge and shadows)
- *   0.5 m/s, lambda 0.8:       0.0051, jump 9
+ *   0.5 m/s, lambda 0:         0.0044, jump 22 (at the spot's cone edge and shadows)
+ *   0.5 m/s, lambda 0.8:       0.0042, jump 21
  *   lambda 0.8, last moving frame vs the light converged where it stopped: 1.7e-4 (the
  *   history trails little: blocking and the open lattice faces remove most of a frame's
  *   light within its 8 steps, so the history decays much faster than lambda^k; the
  *   figure was 1.7e-5 before the indirect level followed the injected energy, which made
  *   the indirect light, and so its trail, several times brighter).
+ * The jumps above 12 are one pixel on the first moving frame: the low box's top corner,
+ * whose front face lies in the plane of the spot (lit at exactly 90 degrees), where one
+ * RSM texel of the box's edge changes hands; with the former constant depth bias (which
+ * let zero-thickness walls leak, test_leaks.c) it measured 9.
  * A renderer that dropped its history every other frame measured 0.045 and failed.
- * Bounds: static 1e-8 and jump <= 1; moving 0.0065 and jump <= 16 for both lambdas and
+ * Bounds: static 1e-8 and jump <= 1; moving 0.0065 and jump <= 26 for both lambdas and
  * at least 100 x the static figure; trailing 2.5e-4. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -109,7 +113,7 @@ static void test_walking_speed_is_smooth(void **state)
     assert_true(still.mad <= 1e-8 && still.jump <= 1);
     assert_true(l0.mad > 100 * still.mad && l8.mad > 100 * still.mad); /* it did move */
     assert_true(l0.mad <= 0.0065 && l8.mad <= 0.0065);
-    assert_true(l0.jump <= 16 && l8.jump <= 16);
+    assert_true(l0.jump <= 26 && l8.jump <= 26);
     assert_true(lag <= 2.5e-4);
     free(end.last);
     free(still.last);

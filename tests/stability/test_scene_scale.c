@@ -11,9 +11,12 @@
  *               the falloff was clamped at 10 cm in a 4 cm room)
  *     s = 1000: energy 1.0006, final 0.0054, direct 0.0055, indirect 0.0011, 8-bit 0.12
  *               (the shadow depth bias was kilometres long: no shadows at all)
- *   after (those lengths are fractions of the scene's diagonal, node/renderer.c):
- *     s = 0.01: energy 1.0005, final 2.4e-4, direct 8.3e-6, indirect 1.4e-3, 8-bit 0.011
- *     s = 1000: energy 1.0012, final 1.9e-4, direct 5.5e-5, indirect 9.5e-4, 8-bit 0.008
+ *   after (those lengths are fractions of the scene's diagonal, node/renderer.c; the
+ *   shadow test's offset is in RSM texels, shade.frag):
+ *     s = 0.01: energy 1.0005, final 2.3e-4, direct 3.2e-7, indirect 1.4e-3, 8-bit 0.010
+ *     s = 1000: energy 1.0012, final 1.6e-4, direct 3.8e-6, indirect 9.5e-4, 8-bit 0.007
+ *   (direct was 8.3e-6 and 5.5e-5 with the diagonal-relative normal offset and constant
+ *   depth bias)
  *   (final was 4.1e-5 and 8.0e-5 before the indirect level followed the injected energy,
  *   which made the indirect share of the image, and so its difference, larger).
  * Bounds: |energy - 1| <= 0.003; final <= 4e-4, direct <= 3e-4, indirect <= 0.003;

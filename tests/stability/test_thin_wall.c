@@ -11,14 +11,15 @@
  *   renderer lattice energy, cells beyond the wall's cell / before it           0.188
  *   CPU core, floor VPLs of the lit half: same ratio with blocking              0.169
  *                                         and with blocking off                 0.268
- *   direct light, mean dark-half view / mean lit-half view                      0.0069
+ *   direct light, mean dark-half view / mean lit-half view                      0.0067
  * So about a fifth to a third of the indirect light leaks: the known LPV failure, and
- * fuzzy blocking removes about 37% of the leak. The direct leak is a bright line along
- * the foot of the wall on the dark side: the shadow test's depth bias (5e-4 of the [0,1]
- * depth; with the RSM near plane at 5 cm about 9 cm of distance at 3 m) lets an occluder
- * closer than that to the receiver cast no shadow. With the near plane fixed at 5 cm the
- * same room scaled by 10 leaked 0.060 and by 100 0.118 (no shadow at all); the near plane
- * now follows the scene's size and the 400 m hall measures the same 0.0069.
+ * fuzzy blocking removes about 37% of the leak. The direct leak is a line along the foot
+ * of the wall on the dark side, as wide as the shadow filter's reach: its texels across
+ * the wall see the lit floor, the receiver's own plane (2 sqrt(2) texels of the 64-texel
+ * RSM, about 18 cm here; shade.frag). It measured 0.0069 with the former constant depth
+ * bias (about 9 cm of distance at 3 m), which is gone (test_leaks.c). With the near plane
+ * fixed at 5 cm the same room scaled by 10 leaked 0.060 and by 100 0.118 (no shadow at
+ * all); the near plane follows the scene's size and the 400 m hall measures the same.
  * Bounds: 0.33, 0.21, blocking on <= 0.19 and < 0.7 x off, direct 0.008; the 400 m hall
  * within 0.002 (direct) and 0.01 (indirect) of the 4 m room. */
 #include <setjmp.h>

@@ -1,6 +1,6 @@
 /* image_metrics: closed-form checks of every metric (identity, offset, scale, constant
  * images for SSIM), SSIM's response to noise and to structure at equal MAE, masks, NaN/inf
- * pixels and invalid sizes. */
+ * pixels, a black reference (no signal) and invalid sizes. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -227,6 +227,45 @@ static void test_nonfinite(void **state)
     free(img);
 }
 
+/* A black reference has no signal: relative RMSE and SSIM are NAN, never a perfect 0 and
+ * 1, whether the image is black too or leaks light; the absolute figures stay defined.
+ * One lit pixel in the reference is signal again. */
+static void test_no_signal(void **state)
+{
+    (void)state;
+    float *ref = image_alloc(), *img = image_alloc();
+    memset(ref, 0, sizeof(float) * N * 3);
+    memset(img, 0, sizeof(float) * N * 3);
+    image_metrics m;
+    assert_int_equal(image_metrics_compare(img, ref, W, H, NULL, &m), 0);
+    assert_int_equal(m.no_signal, 1);
+    assert_true(isnan(m.rmse_rel) && isnan(m.ssim));
+    assert_true(m.mae == 0 && m.mean == 0 && m.reference_mean == 0 && m.relmse == 0);
+    assert_int_equal(m.pixels, N);
+
+    img[42 * 3 + 1] = 0.3f; /* a leak where the truth is black */
+    assert_int_equal(image_metrics_compare(img, ref, W, H, NULL, &m), 0);
+    assert_int_equal(m.no_signal, 1);
+    assert_true(isnan(m.rmse_rel) && isnan(m.ssim));
+    assert_true(fabs(m.mae - 0.3 / (3.0 * N)) < 1e-9 && m.mean > 0);
+
+    ref[7 * 3] = 0.5f;
+    assert_int_equal(image_metrics_compare(img, ref, W, H, NULL, &m), 0);
+    assert_int_equal(m.no_signal, 0);
+    assert_true(isfinite(m.rmse_rel) && m.rmse_rel > 0 && isfinite(m.ssim) && m.ssim < 1);
+
+    /* Black where the mask looks, lit elsewhere: no signal in what is compared. */
+    uint8_t mask[N];
+    memset(mask, 1, sizeof mask);
+    mask[7] = 0;
+    image_metrics_desc desc = {.mask = mask};
+    assert_int_equal(image_metrics_compare(img, ref, W, H, &desc, &m), 0);
+    assert_int_equal(m.no_signal, 1);
+    assert_true(isnan(m.ssim));
+    free(ref);
+    free(img);
+}
+
 static void test_bad_sizes(void **state)
 {
     (void)state;
@@ -250,6 +289,7 @@ int main(void)
         cmocka_unit_test(test_ssim_constant),
         cmocka_unit_test(test_mask),
         cmocka_unit_test(test_nonfinite),
+        cmocka_unit_test(test_no_signal),
         cmocka_unit_test(test_bad_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,4 +1,4 @@
-/* scene: the built-in room, glTF import (transforms, materials, spot lights) and clean
+/* scene: the built-in scenes, glTF import (transforms, materials, spot lights) and clean
  * rejection of missing, malformed and unsupported files. */
 #include <math.h>
 #include <setjmp.h>
@@ -39,6 +39,85 @@ static void test_corridor(void **state)
     /* The spot sits inside and points down the corridor's near end. */
     assert_true(s.lights[0].position[0] < 1 && s.lights[0].direction[1] < -0.5f);
     assert_true(s.lights[0].direction[0] > 0.2f);
+    scene_free(&s);
+}
+
+/* Every built-in scene loads by name with a camera and a light source; the list ends. */
+static void test_builtin_scenes(void **state)
+{
+    (void)state;
+    int count = 0;
+    for (int i = 0; scene_builtin_name(i); i++, count++) {
+        scene s;
+        char err[256];
+        assert_int_equal(scene_load(scene_builtin_name(i), &s, err, sizeof err), 0);
+        assert_true(s.triangle_count >= 10 && s.camera.valid);
+        int emitters = 0;
+        for (size_t m = 0; m < s.material_count; m++)
+            emitters += s.materials[m].emissive[0] > 0;
+        assert_true(s.light_count + emitters >= 1);
+        scene_free(&s);
+    }
+    assert_int_equal(count, 7);
+    assert_null(scene_builtin_name(count));
+    assert_null(scene_builtin_name(-1));
+}
+
+/* Room B of the doorway scene is out of the spot's cone: points along the edges of the
+ * doorway (x = 4, z in [-1.5, -0.5], y in [0, 2.1]) lie outside its outer angle. The
+ * courtyard has no roof: nothing at the walls' top faces down. */
+static void test_doorway_and_courtyard(void **state)
+{
+    (void)state;
+    scene s;
+    char err[256];
+    assert_int_equal(scene_load("doorway", &s, err, sizeof err), 0);
+    const scene_light *l = &s.lights[0];
+    for (int k = 0; k <= 40; k++) {
+        float u = (float)k / 40.0f;
+        const float edge[4][3] = {{4, 0, -1.5f + u}, {4, 2.1f, -1.5f + u},
+                                  {4, 2.1f * u, -1.5f}, {4, 2.1f * u, -0.5f}};
+        for (int e = 0; e < 4; e++) {
+            float d[3], len = 0, c = 0;
+            for (int a = 0; a < 3; a++) {
+                d[a] = edge[e][a] - l->position[a];
+                len += d[a] * d[a];
+            }
+            for (int a = 0; a < 3; a++)
+                c += d[a] / sqrtf(len) * l->direction[a];
+            assert_true(c < cosf(l->outer_angle));
+        }
+    }
+    scene_free(&s);
+    assert_int_equal(scene_load("courtyard", &s, err, sizeof err), 0);
+    assert_true(s.bounds_max[1] - s.bounds_min[1] > s.bounds_max[0] - s.bounds_min[0]);
+    for (size_t t = 0; t < s.triangle_count; t++)
+        assert_false(s.positions[9 * t + 1] == s.bounds_max[1] &&
+                     s.positions[9 * t + 4] == s.bounds_max[1] &&
+                     s.positions[9 * t + 7] == s.bounds_max[1]);
+    assert_true(s.lights[0].position[1] > s.bounds_max[1]);
+    scene_free(&s);
+}
+
+/* scene_add_rect: two triangles with the normal along the flat axis, signed by facing;
+ * refused when no axis or two axes are flat, or facing is 0. */
+static void test_rect(void **state)
+{
+    (void)state;
+    scene s;
+    memset(&s, 0, sizeof s);
+    const float lo[3] = {0, 1, 0}, hi[3] = {2, 1, 3};
+    assert_int_equal(scene_add_rect(&s, lo, hi, -1, 0), 0);
+    assert_int_equal(s.triangle_count, 2);
+    for (int v = 0; v < 6; v++) {
+        assert_true(s.normals[3 * v + 1] == -1.0f && s.positions[3 * v + 1] == 1.0f);
+        assert_true(s.normals[3 * v] == 0 && s.normals[3 * v + 2] == 0);
+    }
+    const float line[3] = {2, 1, 0}, box[3] = {2, 2, 3};
+    assert_int_equal(scene_add_rect(&s, lo, line, 1, 0), -1);
+    assert_int_equal(scene_add_rect(&s, lo, box, 1, 0), -1);
+    assert_int_equal(scene_add_rect(&s, lo, hi, 0, 0), -1);
+    assert_int_equal(s.triangle_count, 2);
     scene_free(&s);
 }
 
@@ -236,6 +315,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_room),
         cmocka_unit_test(test_corridor),
+        cmocka_unit_test(test_builtin_scenes),
+        cmocka_unit_test(test_doorway_and_courtyard),
+        cmocka_unit_test(test_rect),
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),
         cmocka_unit_test(test_far_plane_and_default_view),
