@@ -330,14 +330,13 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
-    /* No ZMQ_ROUTER_HANDOVER: a second connection with a live node's name is refused, not
-     * handed the node's traffic. A restarted node gets its name back as soon as its old
-     * connection is closed (at once when the process dies). */
-    /* Heartbeats close a connection whose peer stopped answering (network loss, a frozen
-     * host); closing shows up as a disconnect event like a killed process. */
-    int hb = m->cfg->heartbeat_ms, hb_timeout = 4 * m->cfg->heartbeat_ms;
-    zmq_setsockopt(m->sock, ZMQ_HEARTBEAT_IVL, &hb, sizeof hb);
-    zmq_setsockopt(m->sock, ZMQ_HEARTBEAT_TIMEOUT, &hb_timeout, sizeof hb_timeout);
+    /* A restarted node reuses its name: its new connection takes over the routing id. In
+     * curve mode only a peer holding that node's key gets that far (cluster_auth). */
+    int one = 1;
+    zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    /* No ZMTP heartbeats (ZMQ_HEARTBEAT_IVL): with them libzmq 4.3.4 aborts
+     * (stream_engine_base.cpp:331 !_io_error) when a peer sends garbage. A peer that goes
+     * silent without closing is caught by the stall timeout and the protocol's HEARTBEAT. */
     m->auth = cluster_auth_start(m->ctx, m->sock, m->cfg, m->quiet, err, errlen);
     if (!m->auth) {
         cluster_master_destroy(m);

@@ -90,9 +90,6 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         return -1;
     }
     int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 250;
-    int hb = c->cfg->heartbeat_ms, hb_timeout = 4 * c->cfg->heartbeat_ms;
-    zmq_setsockopt(c->sock, ZMQ_HEARTBEAT_IVL, &hb, sizeof hb);
-    zmq_setsockopt(c->sock, ZMQ_HEARTBEAT_TIMEOUT, &hb_timeout, sizeof hb_timeout);
     int64_t maxmsg = WIRE_MAX_MESSAGE;
     zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
     zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
