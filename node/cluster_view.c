@@ -11,7 +11,6 @@
 #include "glctx.h"
 #include "image/image.h"
 #include "base/mat4.h"
-#include "frame/offaxis.h"
 #include "scene/scene.h"
 
 typedef struct eye_image {
@@ -73,18 +72,13 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     float len = sqrtf(f->head[0] * f->head[0] + f->head[1] * f->head[1] + f->head[2] * f->head[2]);
     for (int i = 0; i < 3; i++)
         right[i] = len > 0 ? f->head[i] / len : (i == 0);
-    for (int i = 0; i < 3; i++)
-        eye_cave[i] = mid[i] + side * 0.5f * o->eye_separation * right[i];
-    offaxis_screen_desc d = {.near_plane = 0.05f, .far_plane = far_plane};
-    mat4_transform_point(f->navigation, s->bottom_left, d.bottom_left);
-    mat4_transform_point(f->navigation, s->bottom_right, d.bottom_right);
-    mat4_transform_point(f->navigation, s->top_left, d.top_left);
-    mat4_transform_point(f->navigation, eye_cave, d.eye);
-    memset(out, 0, sizeof *out);
-    out->width = width;
-    out->height = height;
-    memcpy(out->eye_position, d.eye, sizeof d.eye);
-    return offaxis_screen(&d, out->view, out->projection);
+    frame_view_eye(mid, right, o->eye_separation, side, eye_cave);
+    float corner[3][3], eye[3];
+    mat4_transform_point(f->navigation, s->bottom_left, corner[0]);
+    mat4_transform_point(f->navigation, s->bottom_right, corner[1]);
+    mat4_transform_point(f->navigation, s->top_left, corner[2]);
+    mat4_transform_point(f->navigation, eye_cave, eye);
+    return frame_view_screen(corner[0], corner[1], corner[2], eye, far_plane, width, height, out);
 }
 
 /* Window output: one window (or one per eye) sized for the node's screens in its stereo mode. */

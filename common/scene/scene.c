@@ -266,6 +266,11 @@ void scene_default_view(const scene *s, float position[3], float target[3])
     position[2] = target[2] + 1.5f * size;
 }
 
+float scene_default_yfov(const scene *s)
+{
+    return s->camera.valid ? s->camera.yfov : 60.0f * 3.14159265f / 180.0f;
+}
+
 static const struct {
     const char *name;
     int (*build)(scene *s, char *err, size_t errlen);

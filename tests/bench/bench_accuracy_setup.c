@@ -8,7 +8,7 @@
 
 #include "bench_accuracy.h"
 #include "image/image.h"
-#include "frame/offaxis.h"
+#include "frame/frame_view.h"
 #include "reference.h"
 #include "image/tonemap.h"
 
@@ -54,13 +54,8 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
     }
     float eye[3], target[3];
     scene_default_view(&s->sc, eye, target);
-    renderer_view *v = &s->view;
-    v->width = o->width;
-    v->height = o->height;
-    memcpy(v->eye_position, eye, sizeof eye);
-    offaxis_look_at(eye, target, s->sc.camera.valid ? s->sc.camera.yfov : 1.0f,
-                    (float)o->width / (float)o->height, 0.02f, scene_far_plane(&s->sc),
-                    v->view, v->projection);
+    frame_view_camera(eye, target, scene_default_yfov(&s->sc), scene_far_plane(&s->sc), o->width,
+                      o->height, &s->view);
     frame_params_default(&s->base);
     frame_params_lights_from_scene(&s->base, &s->sc);
     s->encoding_gamma = frame_params_e2e_gamma(s->base.environment) / s->base.display_gamma;
