@@ -296,8 +296,9 @@ int reference_render(reference *ref, const reference_render_desc *d, reference_i
     out->direct = job.direct = malloc(n * sizeof(float));
     out->indirect1 = job.indirect1 = malloc(n * sizeof(float));
     out->indirect = job.indirect = malloc(n * sizeof(float));
+    out->coverage = job.coverage = malloc(n / 3);
     job.row_rays = calloc((size_t)job.height, sizeof *job.row_rays);
-    if (!job.direct || !job.indirect1 || !job.indirect || !job.row_rays) {
+    if (!job.direct || !job.indirect1 || !job.indirect || !job.coverage || !job.row_rays) {
         free(job.row_rays);
         reference_images_free(out);
         snprintf(err, errlen, "reference: out of memory for a %dx%d image", job.width, job.height);
@@ -318,7 +319,9 @@ void reference_images_free(reference_images *img)
     free(img->direct);
     free(img->indirect1);
     free(img->indirect);
+    free(img->coverage);
     img->direct = img->indirect1 = img->indirect = NULL;
+    img->coverage = NULL;
 }
 
 static double half_difference(const float *a, const float *b, size_t n)

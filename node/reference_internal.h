@@ -46,6 +46,7 @@ typedef struct reference_job {
     int width, height, samples, max_bounces;
     uint64_t seed;
     float *direct, *indirect1, *indirect;
+    uint8_t *coverage;
     uint64_t *row_rays;             /* per row, summed after the run (no atomics) */
 } reference_job;
 

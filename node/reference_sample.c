@@ -231,6 +231,7 @@ void reference_sample_row(void *ctx, int row)
         float *dst[3] = {job->direct + 3 * pix, job->indirect1 + 3 * pix, job->indirect + 3 * pix};
         for (int i = 0; i < 3; i++)
             dst[i][0] = dst[i][1] = dst[i][2] = 0;
+        job->coverage[pix] = 0;
         /* Pixel centre -> clip space at the near and far planes -> world. */
         double ndc[2] = {2.0 * (x + 0.5) / job->width - 1.0, 1.0 - 2.0 * (row + 0.5) / job->height};
         double w[2][3];
@@ -255,6 +256,7 @@ void reference_sample_row(void *ctx, int row)
         struct RTCRayHit rh;
         if (!reference_sample_trace(job, o, d, len, &rh, &rays))
             continue;
+        job->coverage[pix] = 1;
         hit x0;
         float toward_eye[3] = {-d[0], -d[1], -d[2]};
         reference_sample_hit(job->ref, &rh.hit, toward_eye, &x0);

@@ -33,11 +33,11 @@ wait_log() {
 start_node a; start_node b; start_node c
 wait_log "running until stopped" 1
 kill -9 "$pid_c"
-wait_log "node c not ready" 1
+wait_log "node c \(disconnected: dropped\|not ready\)" 1
 start_node c
 wait_log "node c rejoined" 1
 kill -STOP "$pid_b"
-wait_log "node b not ready" 1
+wait_log "node b \(disconnected: dropped\|not ready\)" 1
 kill -CONT "$pid_b"
 wait_log "node b rejoined" 1
 sleep 1 # a few frames with all three
