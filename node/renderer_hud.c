@@ -10,6 +10,7 @@
 #include "base/xalloc.h"
 #include "base/vec3.h"
 #include "renderer_hud.h"
+#include "gltools.h"
 #include "renderer_internal.h"
 
 /* Panel layout in the wand's frame, metres (see renderer_hud.h). */
@@ -164,7 +165,7 @@ static void build_torus(mesh_builder *b)
 int renderer_hud_init(renderer *r, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
-    if (!(r->prog_hud = renderer_program(r, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen)))
+    if (!(r->prog_hud = gltools_program(r->gl, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen)))
         return -1;
     r->hud_loc_model = gl->GetUniformLocation(r->prog_hud, "u_model");
     r->hud_loc_view_projection = gl->GetUniformLocation(r->prog_hud, "u_view_projection");

@@ -106,11 +106,6 @@ struct renderer {
     char error[256];         /* why the last eye pass failed */
 };
 
-/* renderer.c */
-GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *defines, const char *comp_body, char *err, size_t errlen);
-GLuint renderer_texture3d(renderer *r, const int n[3]);
-
 /* renderer_lpv.c */
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err, size_t errlen);
 void renderer_lpv_free(renderer *r);
