@@ -305,7 +305,8 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen) || renderer_hud_init(r, err, errlen)) {
+        renderer_lpv_init(r, desc, software, err, errlen) ||
+        !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
     }
@@ -326,7 +327,7 @@ void renderer_destroy(renderer *r)
         return;
     const gl_functions *gl = r->gl;
     renderer_lpv_free(r);
-    renderer_hud_free(r);
+    renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
     for (int i = 0; i < 4; i++)
@@ -572,7 +573,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
-    renderer_hud_draw(r, p, vp, view->eye_position, encoding);
+    int cells = r->lattice.n[0];
+    for (int a = 1; a < 3; a++)
+        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
+    renderer_hud_draw(r->hud, p, cells, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
