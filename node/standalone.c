@@ -12,7 +12,8 @@
 #include "image/image.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_budget.h"
-#include "frame/offaxis.h"
+#include "base/vec3.h"
+#include "frame/frame_view.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
@@ -123,7 +124,7 @@ int standalone_parse(int argc, char **argv, node_options *o)
 {
     *o = (node_options){
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
-        .fov_deg = -1, .eye_separation = 0.065f, .seed = 1,
+        .yfov = -1, .eye_separation = 0.065f, .seed = 1,
     };
     frame_params_default(&o->frame);
     frame_params *fp = &o->frame;
@@ -155,7 +156,11 @@ int standalone_parse(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &fp->exposure, 1);
         else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
         else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
-        else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
+        else if (strcmp(a, "--fov") == 0) {
+            float deg;
+            bad = parse_floats(v, &deg, 1) || deg <= 0 || deg >= 179;
+            o->yfov = deg * 3.14159265f / 180.0f;
+        }
         else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
         else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &fp->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
@@ -237,59 +242,36 @@ typedef struct eye_setup {
 static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
 {
     float right[3], head[3];
-    float aspect = (float)o->width / (float)o->height;
     if (o->have_screen) {
-        float len = 0;
-        for (int i = 0; i < 3; i++) {
-            right[i] = o->screen[3 + i] - o->screen[i];
-            len += right[i] * right[i];
-        }
-        len = sqrtf(len);
-        for (int i = 0; i < 3; i++)
-            right[i] = len > 0 ? right[i] / len : 0;
+        vec3_sub(o->screen + 3, o->screen, right);
+        vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
         memcpy(head, o->position, sizeof head);
         float f[3], up[3] = {0, 1, 0};
-        for (int i = 0; i < 3; i++)
-            f[i] = o->target[i] - o->position[i];
-        right[0] = f[1] * up[2] - f[2] * up[1];
-        right[1] = f[2] * up[0] - f[0] * up[2];
-        right[2] = f[0] * up[1] - f[1] * up[0];
-        float len = sqrtf(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
-        for (int i = 0; i < 3; i++)
-            right[i] = len > 0 ? right[i] / len : (i == 0);
+        vec3_sub(o->target, o->position, f);
+        vec3_cross(f, up, right);
+        if (!(vec3_normalize(right) > 0)) /* looking straight up or down */
+            memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
-    float pos[2][3];
+    static const char *const names[3] = {"left", "mono", "right"};
     *count = o->stereo ? 2 : 1;
-    if (o->stereo) {
-        offaxis_stereo_eyes(head, right, o->eye_separation, pos[0], pos[1]);
-        eyes[0].name = "left";
-        eyes[1].name = "right";
-    } else {
-        memcpy(pos[0], head, sizeof head);
-        eyes[0].name = "mono";
-    }
     float far_plane = scene_far_plane(s);
     for (int e = 0; e < *count; e++) {
-        renderer_view *v = &eyes[e].view;
-        v->width = o->width;
-        v->height = o->height;
-        memcpy(v->eye_position, pos[e], sizeof pos[e]);
+        int side = o->stereo ? 2 * e - 1 : 0;
+        float eye[3];
+        frame_view_eye(head, right, o->eye_separation, side, eye);
+        eyes[e].name = names[side + 1];
         int rc;
         if (o->have_screen) {
-            offaxis_screen_desc sd = {.near_plane = 0.02f, .far_plane = far_plane};
-            memcpy(sd.bottom_left, o->screen, 12);
-            memcpy(sd.bottom_right, o->screen + 3, 12);
-            memcpy(sd.top_left, o->screen + 6, 12);
-            memcpy(sd.eye, pos[e], 12);
-            rc = offaxis_screen(&sd, v->view, v->projection);
+            rc = frame_view_screen(o->screen, o->screen + 3, o->screen + 6, eye, far_plane,
+                                   o->width, o->height, &eyes[e].view);
         } else {
             float target[3];
             for (int i = 0; i < 3; i++)
-                target[i] = o->target[i] + pos[e][i] - head[i];
-            rc = offaxis_look_at(pos[e], target, o->fov_deg * 3.14159265f / 180.0f, aspect,
-                                 0.02f, far_plane, v->view, v->projection);
+                target[i] = o->target[i] + eye[i] - head[i];
+            rc = frame_view_camera(eye, target, o->yfov, far_plane, o->width, o->height,
+                                   &eyes[e].view);
         }
         if (rc != 0) {
             fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
@@ -420,8 +402,8 @@ int standalone_run(const node_options *o)
         memcpy(opt.position, view_position, sizeof view_position);
     if (!opt.have_target)
         memcpy(opt.target, view_target, sizeof view_target);
-    if (opt.fov_deg <= 0)
-        opt.fov_deg = sc.camera.valid ? sc.camera.yfov * 180.0f / 3.14159265f : 60.0f;
+    if (opt.yfov <= 0)
+        opt.yfov = scene_default_yfov(&sc);
     eye_setup eyes[2];
     int eye_count;
     if (make_views(&opt, &sc, eyes, &eye_count) != 0) {

@@ -27,7 +27,7 @@ typedef struct node_options {
     int pfm;
     /* camera: look-at unless a screen is given */
     int have_position, have_target, have_screen, have_eye;
-    float position[3], target[3], fov_deg;
+    float position[3], target[3], yfov; /* radians, <= 0: the scene's */
     float screen[9], eye[3];
     int stereo;
     float eye_separation;

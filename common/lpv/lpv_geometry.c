@@ -1,4 +1,5 @@
 #include "lpv/lpv_geometry.h"
+#include "base/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -40,33 +41,15 @@ int lpv_blockers_blocked(const lpv_blockers *b, int x, int y, int z, int k)
     return (int)((b->mask[i] >> k) & 1u);
 }
 
-static void sub(const double a[3], const double b[3], double out[3])
-{
-    for (int k = 0; k < 3; k++)
-        out[k] = a[k] - b[k];
-}
-
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Does the segment p -> q cross triangle v (plane normal n)? A point on the plane counts
  * as in front; the crossing point may lie on an edge (closed meshes then leave no gap). */
 static int crosses(const double v[3][3], const double n[3], const double p[3],
                    const double q[3])
 {
     double dp[3], dq[3];
-    sub(p, v[0], dp);
-    sub(q, v[0], dq);
-    double sp = dot(n, dp), sq = dot(n, dq);
+    vec3d_sub(p, v[0], dp);
+    vec3d_sub(q, v[0], dq);
+    double sp = vec3d_dot(n, dp), sq = vec3d_dot(n, dq);
     if ((sp >= 0.0) == (sq >= 0.0))
         return 0;
     double t = sp / (sp - sq), x[3];
@@ -74,10 +57,10 @@ static int crosses(const double v[3][3], const double n[3], const double p[3],
         x[k] = p[k] + t * (q[k] - p[k]);
     for (int e = 0; e < 3; e++) {
         double edge[3], rel[3], c[3];
-        sub(v[(e + 1) % 3], v[e], edge);
-        sub(x, v[e], rel);
-        cross(edge, rel, c);
-        if (dot(c, n) < 0.0)
+        vec3d_sub(v[(e + 1) % 3], v[e], edge);
+        vec3d_sub(x, v[e], rel);
+        vec3d_cross(edge, rel, c);
+        if (vec3d_dot(c, n) < 0.0)
             return 0;
     }
     return 1;
@@ -112,10 +95,10 @@ void lpv_geometry_add_triangles(lpv_blockers *b, const lattice_desc *lat,
             continue;
         }
         double e1[3], e2[3], n[3];
-        sub(v[1], v[0], e1);
-        sub(v[2], v[0], e2);
-        cross(e1, e2, n);
-        if (!(dot(n, n) > 0.0) || !isfinite(dot(n, n))) {
+        vec3d_sub(v[1], v[0], e1);
+        vec3d_sub(v[2], v[0], e2);
+        vec3d_cross(e1, e2, n);
+        if (!(vec3d_dot(n, n) > 0.0) || !isfinite(vec3d_dot(n, n))) {
             st.degenerate++;
             continue;
         }

@@ -105,6 +105,8 @@ float scene_far_plane(const scene *s);
  * from in front of the bounds' centre (+0.3 x the largest extent up, +1.5 x towards +z),
  * looking at the centre. Needs scene_finish(). */
 void scene_default_view(const scene *s, float position[3], float target[3]);
+/* The vertical field of view that goes with it: the scene camera's, else 60 degrees. */
+float scene_default_yfov(const scene *s);
 
 /* Built-in room: 4 x 3 x 4 m, red left wall, green right wall, white rest, two boxes,
  * a small emissive panel and one spotlight. Needs no files. */

@@ -19,7 +19,9 @@
 
 #include "base/clock.h"
 #include "base/fpmode.h"
+#include "base/vec3.h"
 #include "lpv/lpv_geometry.h"
+#include "gltools.h"
 #include "renderer_internal.h"
 
 static const double PI = 3.14159265358979323846;
@@ -44,15 +46,9 @@ static int build_emitters(renderer *r)
         if (!(e[0] > 0 || e[1] > 0 || e[2] > 0))
             continue;
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
-        float a[3], b[3], f[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = p[3 + k] - p[k];
-            b[k] = p[6 + k] - p[k];
-        }
-        f[0] = a[1] * b[2] - a[2] * b[1];
-        f[1] = a[2] * b[0] - a[0] * b[2];
-        f[2] = a[0] * b[1] - a[1] * b[0];
-        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        float f[3];
+        vec3_triangle_normal(p, f);
+        float len = vec3_length(f);
         if (!(len > 0))
             continue;
         float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
@@ -134,10 +130,10 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
     gather_body(body, sizeof body);
     r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
                                                             : desc->lpv_gl_tiles == RENDERER_TILES_ON;
-    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
+    r->prog_propagate = gltools_program(r->gl, NULL, NULL, "propagate.comp",
                                          r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
                                          err, errlen);
-    r->prog_accumulate = r->prog_propagate ? renderer_program(r, NULL, NULL, "accumulate.comp",
+    r->prog_accumulate = r->prog_propagate ? gltools_program(r->gl, NULL, NULL, "accumulate.comp",
                                                               NULL, NULL, err, errlen)
                                            : 0;
     if (!r->prog_accumulate)
@@ -150,7 +146,7 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
                      r->gl_result};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
         for (int c = 0; c < 3; c++)
-            all[i][c] = renderer_texture3d(r, r->lattice.n);
+            all[i][c] = gltools_texture3d(r->gl, r->lattice.n);
         upload_volume(r, &r->gl_readback, all[i]); /* defined contents: zeros */
     }
     r->gl_blockers = blockers_texture(r);
@@ -206,7 +202,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     if (r->backend == RENDERER_LPV_GL)
         return init_gl_backend(r, software, desc, err, errlen);
     for (int c = 0; c < 3; c++)
-        r->lpv_tex[c] = renderer_texture3d(r, r->lattice.n);
+        r->lpv_tex[c] = gltools_texture3d(r->gl, r->lattice.n);
     return 0;
 }
 
