@@ -426,6 +426,7 @@ static void gl_frame(renderer *r, const frame_params *p, uint64_t key, double en
     double e[3];
     lpv_volume_energy(sum, e);
     float w = ilpv_faded_weight(&r->gl_history, p->lambda_incr, e[0] + e[1] + e[2]);
+    ilpv_history_settle(&r->gl_history, rule, p->lambda_incr, e[0] + e[1] + e[2], w);
     lpv_volume_copy(result, sum);
     if (w > 0.0f)
         lpv_volume_add_scaled(result, faded, w);
@@ -469,7 +470,10 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
     r->checksum = lpv_volume_checksum(result);
     if (r->backend != RENDERER_LPV_GL)
         upload_volume(r, result, r->lpv_tex);
-    lpv_converge_end(&r->converge, result, r->pool);
+    double pending = r->mode == RENDERER_LPV_CLASSIC ? 0.0
+                     : r->backend == RENDERER_LPV_GL ? r->gl_history.pending
+                                                     : ilpv_pending(&r->cpu);
+    lpv_converge_end(&r->converge, result, pending, r->pool);
     r->timings.inject_ms = t1 - t0;
     r->timings.propagate_ms = clock_now_ms() - t1;
     r->frames++;

@@ -95,9 +95,24 @@ float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_ene
 {
     if (!(h->faded_energy > 0.0) || !(lambda_incr > 0.0f))
         return 0.0f;
-    double w = 1.0 - sum_energy / h->faded_energy;
-    w = fmin(w, pow(lambda_incr, (double)h->chain_frames));
-    return w > 0.0 ? (float)fmin(w, 1.0) : 0.0f;
+    double missing = fmin(fmax(1.0 - sum_energy / h->faded_energy, 0.0), 1.0);
+    return (float)(pow(lambda_incr, (double)h->chain_frames) * missing);
+}
+
+void ilpv_history_settle(ilpv_history *h, ilpv_rule r, float lambda_incr, double sum_energy,
+                         float w)
+{
+    /* lambda 0: every frame is a whole new chain, the same one for the same injection */
+    double added = !(lambda_incr > 0.0f) ? 0.0 : r.restart ? sum_energy : sum_energy - h->sum_energy;
+    double shown = w > 0.0f ? w * h->faded_energy : 0.0;
+    double result = sum_energy + shown;
+    h->sum_energy = sum_energy;
+    h->pending = result != 0.0 ? (fabs(added) + shown) / fabs(result) : 0.0;
+}
+
+double ilpv_pending(const ilpv *s)
+{
+    return s->history.pending;
 }
 
 static double total_energy(const lpv_volume *v)
@@ -144,7 +159,9 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy,
                          faded_energy);
     fpmode mode = fpmode_enter();
-    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, total_energy(&s->sum));
+    double sum_energy = total_energy(&s->sum);
+    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, sum_energy);
+    ilpv_history_settle(&s->history, rule, desc->lambda_incr, sum_energy, w);
     lpv_volume_copy(&s->result, &s->sum);
     if (w > 0.0f)
         lpv_volume_add_scaled(&s->result, &s->faded, w);

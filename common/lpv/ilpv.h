@@ -19,14 +19,16 @@
  * before then fades out while the new chain builds up: at a restart
  *   faded = (E_now / E_prev) x the last result        (E: the lights' emitted energy)
  * and every frame shows result = sum + w faded, with
- *   w = min(1 - <sum|1> / <faded|1>, lambda_incr^k)  (clamped to [0, 1]),
+ *   w = lambda_incr^k (1 - <sum|1> / <faded|1>)  (the bracket clamped to [0, 1]),
  * k the frames since the restart: the old light fills in what the new chain has not
  * reached yet, in proportion to the energy still missing, so the picture keeps its level
- * while a light moves (a restart every frame), and it is gone at least as fast as
- * lambda_incr^k once the lights stop. No history (faded = 0) on the first frame, after
+ * while a light moves (a restart every frame), and it fades at least as fast as
+ * lambda_incr^k once the lights stop -- also when the energy ratio misjudges the old
+ * light's level (one of two lights changed), so nothing of it stays for good. No history
+ * (faded = 0) on the first frame, after
  * ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or E_now is negative or not
  * finite. ilpv_history_rule() and ilpv_faded_weight() are that rule, once, for this core
- * and the GL path (node/renderer_lpv.c). lambda_incr's range [0,1) is the caller's
+ * and the GL path (node/gi_ilpv.c). lambda_incr's range [0,1) is the caller's
  * (frame_params_sanitize()). */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
@@ -46,6 +48,8 @@ typedef struct ilpv_history {
     unsigned chain_steps;   /* steps since the chain started (lpv_propagate_desc.step) */
     unsigned chain_frames;  /* frames since the chain started */
     double faded_energy;    /* <faded|1>, all colours */
+    double sum_energy;      /* <sum|1> after the last frame */
+    double pending;         /* share of the result the next frames may still change */
 } ilpv_history;
 
 typedef struct ilpv_rule {
@@ -97,5 +101,12 @@ void ilpv_history_advance(ilpv_history *h, ilpv_rule r, int steps, uint64_t key,
 /* w of this frame, from the history (after ilpv_history_advance()), lambda_incr and the
  * energy of the chain's sum (all colours). */
 float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_energy);
+/* After the frame's result: records the sum's energy and the pending share, what this
+ * frame's steps added plus the faded light still shown, over the result's energy (with
+ * lambda_incr 0 only the faded light: the next frame computes the same chain again). */
+void ilpv_history_settle(ilpv_history *h, ilpv_rule r, float lambda_incr, double sum_energy,
+                         float w);
+/* The pending share of the last frame (lpv_converge_end()). */
+double ilpv_pending(const ilpv *s);
 
 #endif

@@ -95,7 +95,8 @@ static void residual_slice(void *ctx, int z)
     fpmode_leave(mode);
 }
 
-double lpv_converge_end(lpv_converge *c, const lpv_volume *result, workpool *pool)
+double lpv_converge_end(lpv_converge *c, const lpv_volume *result, double pending,
+                        workpool *pool)
 {
     residual_job j = {result, &c->previous, c->slice_sums, c->have_previous};
     workpool_run(pool, result->n[2], residual_slice, &j);
@@ -110,6 +111,8 @@ double lpv_converge_end(lpv_converge *c, const lpv_volume *result, workpool *poo
         c->residual = isfinite(total) ? 0.0 : NAN; /* also a black result after a black one */
     else
         c->residual = diff / total; /* NaN stays NaN: never below the threshold */
+    if (pending > c->residual || pending != pending)
+        c->residual = pending;
     c->have_previous = 1;
     return c->residual;
 }

@@ -41,8 +41,11 @@ int lpv_converge_begin(lpv_converge *c, const frame_params *p);
 /* The last result is gone (overwritten): the next frame is computed, and so is the one
  * after it (no residual until then). */
 void lpv_converge_forget(lpv_converge *c);
-/* After a computed frame: the residual against the previous result; result becomes the
- * previous one. */
-double lpv_converge_end(lpv_converge *c, const lpv_volume *result, workpool *pool);
+/* After a computed frame: the residual against the previous result, or `pending` when
+ * that is larger (the share of the result its source says the next frame may still change:
+ * light still in flight, an old picture still fading; 0 when nothing is pending); result
+ * becomes the previous one. */
+double lpv_converge_end(lpv_converge *c, const lpv_volume *result, double pending,
+                        workpool *pool);
 
 #endif

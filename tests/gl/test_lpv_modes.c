@@ -1,9 +1,10 @@
 /* The renderer's LPV modes and frame skipping on real contexts:
  * - classic LPV: the GL accumulation agrees with the CPU one within 1e-3 relative, also
- *   with 0 steps (the splat alone) right after a lit frame;
+ *   with 0 steps (the splat alone) right after a lit frame; one incremental frame with
+ *   lambda 0 is the classic sum, bit for bit;
  * - skipping: with static lights and lambda 0 frames are skipped from the third on, with
  *   the same checksum and bit-identical images as a run that never skips; a moved light is
- *   computed on that very frame; lambda 0.9 converges, then skips, and its images stay
+ *   computed on that very frame; lambda 0.9 converges (its ages summed), then skips, and its images stay
  *   within 1e-3 of the never-skipping run; a NaN or an ever-changing input never skips;
  *   the GL backend skips like the CPU one. */
 #include <setjmp.h>
@@ -89,9 +90,8 @@ static void test_classic_zero_steps(void **state)
     classic_gl_matches_cpu(0);
 }
 
-/* Classic with S steps sums the light of ages 0 .. S past the splat; one incremental frame
- * with lambda 0 and S steps the ages 0 .. S - 1: the classic one holds more, by no more than
- * one age's worth (the shell's energy). */
+/* Classic with S steps and one incremental frame with lambda 0 and S steps are the same
+ * sum (the splat and the light of ages 1 .. S): the same bits. */
 static void test_classic_sums_steps(void **state)
 {
     (void)state;
@@ -102,12 +102,14 @@ static void test_classic_sums_steps(void **state)
     inc.params.lambda_incr = 0;
     renderer_frame_pass(inc.r, &inc.params);
     renderer_frame_pass(cla.r, &cla.params);
+    const lpv_volume *vi = renderer_get_lpv(inc.r), *vc = renderer_get_lpv(cla.r);
     double ei[3], ec[3];
-    lpv_volume_energy(renderer_get_lpv(inc.r), ei);
-    lpv_volume_energy(renderer_get_lpv(cla.r), ec);
+    lpv_volume_energy(vi, ei);
+    lpv_volume_energy(vc, ec);
     printf("energy: incremental (lambda 0, 8 steps) %.6g, classic (8 steps) %.6g\n", ei[0], ec[0]);
-    assert_true(ec[0] > ei[0]);
-    assert_true(ec[0] - ei[0] < 0.5 * ei[0]);
+    assert_true(ei[0] > 0);
+    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++)
+        assert_memory_equal(vi->ch[c], vc->ch[c], sizeof(float) * vi->cells);
     gltest_close(&cla);
     gltest_close(&inc);
 }
@@ -198,7 +200,9 @@ static void test_lambda09_converges_then_skips(void **state)
             first_skip = f;
     }
     printf("lambda 0.9: first skipped frame %d\n", first_skip);
-    assert_true(first_skip > 20); /* 0.9^k must fall well below 1e-4 first */
+    /* Static lights: the chain sums the light's ages until the newest is below the
+     * threshold, however large lambda is (at 2 steps a frame that takes some 30 steps). */
+    assert_true(first_skip > 5 && first_skip < 100);
     assert_int_equal(run(&s, 3, &cs, img_skip), 3);
     run(&n, first_skip + 3, &cn, img_full);
     double d = image_rel_diff(img_skip, img_full);

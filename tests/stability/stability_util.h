@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/vec3.h"
 #include "frame/frame_params.h"
 #include "glctx.h"
 #include "lpv/ilpv.h"
@@ -98,6 +99,18 @@ static inline double stab_spot_energy(const frame_light *l)
     double outer = fmin(fmax(l->outer_angle, 0.01), 1.45);
     return l->intensity * (l->color[0] + l->color[1] + l->color[2]) / 3.0 * 2.0 *
            3.14159265358979323846 * (1.0 - cos(outer));
+}
+
+/* The mean chord of the scene's bounds, 4 V / A (A: the scene's surface area), in cells:
+ * about how many steps light lives in a closed room before a wall takes it. */
+static inline double stab_mean_chord_cells(const scene *s, float cell)
+{
+    double volume = 1.0, area = 0.0;
+    for (int a = 0; a < 3; a++)
+        volume *= (double)s->bounds_max[a] - s->bounds_min[a];
+    for (size_t t = 0; t < s->triangle_count; t++)
+        area += vec3_triangle_area(s->positions + 9 * t);
+    return area > 0.0 ? 4.0 * volume / area / cell : 0.0;
 }
 
 /* Mean of a linear RGB image (all pixels, all colours). */

@@ -9,10 +9,13 @@
  * values) and lpv_steps = INT_MAX hung the frame pass; the LPV itself stayed finite in
  * every case (ilpv and lpv_inject already skip bad energies and VPLs). With it: 0
  * non-finite values in every case. Recovery without a reset: 20 valid frames after the
- * bad one, the linear final image differs from the converged one by at most 1.35e-5
- * (mean |difference| / mean). The renderer stops computing once a frame changes the
- * lattice by less than 1e-4, so a small remainder of each disturbance stays: with
- * skipping off the figure is 9.1e-8. Bounds: 0 non-finite values; recovery <= 3e-5. */
+ * bad one, the linear final image differs from the converged one by at most 4.4e-4
+ * (mean |difference| / mean; 13 of the 26 cases, the same figure with skipping off).
+ * A bad light changes the injection, so the ILPV restarts twice (at the bad frame and
+ * at the next valid one) and fades the light shown before by lambda^k (ilpv.h); the
+ * energy ratio that scales it misjudges a half-built picture (one of the two lights
+ * dropped), so 0.8^20 = 1.2% of that error is still there. Bounds: 0 non-finite values;
+ * recovery <= 1e-3. (Before the chain scheme: 1.35e-5, bound 3e-5.) */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -130,7 +133,7 @@ static void test_bad_frame_params(void **state)
     printf("cases with non-finite output: %zu; worst recovery difference %.3g\n", bad_cases,
            worst);
     assert_int_equal(bad_cases, 0);
-    assert_true(worst <= 3e-5);
+    assert_true(worst <= 1e-3);
     free(steady);
     stab_close(&g);
     scene_free(&s);
@@ -156,22 +159,34 @@ static void test_nan_vertex_scene(void **state)
     scene_free(&s);
 }
 
-/* The CPU core: NaN, infinite and negative emitted energies force lambda to 0 (the frame
- * equals a first frame), and NaN VPLs are skipped and counted. */
+static void scale_vpls(stab_cpu *c, float k)
+{
+    for (size_t i = 0; i < c->vpl_count; i++)
+        for (int ch = 0; ch < 3; ch++)
+            c->vpls[i].flux[ch] *= k;
+}
+
+/* The CPU core: a NaN, infinite or negative emitted energy when the injection changes
+ * keeps nothing of the old light (its level cannot be trusted): the frame equals a first
+ * frame of the new injection. NaN VPLs are skipped and counted. */
 static void test_ilpv_bad_energy_and_vpls(void **state)
 {
     (void)state;
-    stab_cpu c;
+    stab_cpu c, fresh;
     assert_int_equal(stab_cpu_open(&c, 12), 0);
-    stab_cpu_frame(&c, 0.0f, 4, 1.0);
-    uint64_t first = lpv_volume_checksum(ilpv_result(&c.ilpv));
+    assert_int_equal(stab_cpu_open(&fresh, 12), 0);
+    scale_vpls(&fresh, 2.0f);
+    stab_cpu_frame(&fresh, 0.8f, 4, 2.0);
+    uint64_t first = lpv_volume_checksum(ilpv_result(&fresh.ilpv));
     const double energies[3] = {NAN, INFINITY, -1.0};
     for (int i = 0; i < 3; i++) {
         for (int f = 0; f < 3; f++)
             stab_cpu_frame(&c, 0.8f, 4, 1.0);
+        scale_vpls(&c, 2.0f); /* exact: the same bits as fresh's */
         stab_cpu_frame(&c, 0.8f, 4, energies[i]);
         assert_int_equal(lpv_volume_count_nonfinite(ilpv_result(&c.ilpv)), 0);
         assert_true(lpv_volume_checksum(ilpv_result(&c.ilpv)) == first);
+        scale_vpls(&c, 0.5f);
     }
     lpv_vpl bad[4] = {
         {.position = {NAN, 1, 0}, .normal = {0, 1, 0}, .flux = {1, 1, 1}},
@@ -184,6 +199,7 @@ static void test_ilpv_bad_energy_and_vpls(void **state)
     lpv_inject_vpls(ilpv_injection(&c.ilpv), ilpv_origin(&c.ilpv), &c.lattice, bad, 4, &st);
     assert_int_equal(st.invalid, 4);
     assert_int_equal(lpv_volume_count_nonfinite(ilpv_injection(&c.ilpv)), 0);
+    stab_cpu_close(&fresh);
     stab_cpu_close(&c);
 }
 

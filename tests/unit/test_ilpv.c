@@ -147,12 +147,13 @@ static void test_history_rule(void **state)
     ilpv_history_advance(&h, ilpv_history_rule(&h, 0.8f, 8, 3.0), 4, 8, NAN, 10.0);
     assert_true(h.chain_steps == 4u && h.faded_energy == 10.0);
     assert_true(ilpv_history_rule(&h, 0.8f, 8, 3.0).keep == 0.0f); /* no usable energy */
-    /* The faded weight: the energy the chain still lacks, at most lambda^k. */
+    /* The faded weight: lambda^k times the share of the energy the chain still lacks. */
     assert_float_equal(ilpv_faded_weight(&h, 0.8f, 4.0), 0.6f, 1e-6f);
     assert_float_equal(ilpv_faded_weight(&h, 0.8f, 12.0), 0.0f, 0.0f);
     assert_float_equal(ilpv_faded_weight(&h, 0.0f, 4.0), 0.0f, 0.0f);
     h.chain_frames = 3;
     assert_float_equal(ilpv_faded_weight(&h, 0.5f, 0.0), 0.125f, 1e-6f);
+    assert_float_equal(ilpv_faded_weight(&h, 0.5f, 4.0), 0.075f, 1e-6f);
     /* The key follows the injection and the step probabilities. */
     lattice_desc lat = {{0, 0, 0}, 1.0f, {4, 4, 4}};
     ilpv s;
