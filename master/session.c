@@ -69,7 +69,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
         goto fail;
     script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
-        input_desc idesc = {.path = d->input};
+        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))

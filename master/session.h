@@ -32,6 +32,8 @@ typedef struct session_desc {
     int quiet;              /* 1: log only errors */
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
+    const char *record;     /* record the merged input there; NULL = the input config's */
+    const char *out_dir;    /* the session's output folder; NULL = CLUSTER_DEFAULT_OUT */
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
 } session_desc;
 

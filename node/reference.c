@@ -285,8 +285,8 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
     memcpy(job->eye, v->eye_position, sizeof job->eye);
     job->width = v->width;
     job->height = v->height;
-    job->samples = d->samples > 0 ? d->samples : 64;
-    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : 8;
+    job->samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES;
+    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : REFERENCE_DEFAULT_BOUNCES;
     job->seed = d->seed;
     return 0;
 }

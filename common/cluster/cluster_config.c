@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/textfile.h"
+#include "frame/frame_view.h"
 #include "cluster/wire.h"
 
 typedef struct parse_ctx {
@@ -157,7 +158,7 @@ static void rigid_transform(const float t[3], const float deg[3], float scale, f
 
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
 {
-    obs->eye_separation = 0.064f;
+    obs->eye_separation = FRAME_VIEW_EYE_SEPARATION;
     obs->home[1] = 1.7f;
     identity(obs->tracker_to_cave);
     if (!o)
@@ -166,7 +167,7 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         fail(c, "observer", "must be an object");
         return;
     }
-    obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", 0.064, 0, 0, 0.2);
+    obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", FRAME_VIEW_EYE_SEPARATION, 0, 0, 0.2);
     const cJSON *h = cJSON_GetObjectItemCaseSensitive(o, "head_to_eye");
     if (h)
         get_vector(c, h, "observer.head_to_eye", obs->head_to_eye, 3, -1, 1);
@@ -433,6 +434,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
     cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 250, 0, 10, 60000);
     cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
+    cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 
     parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
     parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);

@@ -10,7 +10,7 @@
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
  *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
- *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms"},
+ *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "join_ms"},
  *             "security": {"mode": "curve" (default) | "insecure", "keys": DIR}
  *             (curve: every connection authenticated and encrypted with the key files
  *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
@@ -29,6 +29,10 @@ enum {
     CLUSTER_NAME_MAX = 32,
     CLUSTER_TEXT_MAX = 256,
 };
+
+/* Where the master and the nodes write what they make (images, overview, report, logs,
+ * recordings) unless told otherwise: relative to each program's working folder. */
+#define CLUSTER_DEFAULT_OUT "out"
 
 typedef enum cluster_eyes {
     CLUSTER_EYES_MONO = 0, /* one centre eye */
@@ -98,6 +102,7 @@ typedef struct cluster_config {
     int barrier_timeout_ms;  /* a node not READY by then is dropped (default 2000) */
     int heartbeat_ms;        /* idle heartbeat period (default 250) */
     int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
+    int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
     cluster_observer observer;
     int screen_count;
     cluster_screen screens[CLUSTER_MAX_SCREENS];

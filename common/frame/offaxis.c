@@ -83,6 +83,28 @@ int offaxis_screen(const offaxis_screen_desc *d, float view[16], float projectio
     return 0;
 }
 
+int offaxis_eye_in_front(const float bottom_left[3], const float bottom_right[3],
+                         const float top_left[3], const float eye[3], float min_distance,
+                         float out[3], float *distance)
+{
+    float vr[3], vu[3], vn[3], rel[3];
+    sub(bottom_right, bottom_left, vr);
+    sub(top_left, bottom_left, vu);
+    cross(vr, vu, vn);
+    if (normalize(vn) || !isfinite(eye[0]) || !isfinite(eye[1]) || !isfinite(eye[2]))
+        return -1;
+    sub(eye, bottom_left, rel);
+    float d = dot(rel, vn);
+    memcpy(out, eye, 3 * sizeof(float));
+    if (distance)
+        *distance = d;
+    if (d >= min_distance)
+        return 0;
+    for (int i = 0; i < 3; i++)
+        out[i] = eye[i] + (min_distance - d) * vn[i];
+    return 1;
+}
+
 int offaxis_look_at(const float position[3], const float target[3], float yfov, float aspect,
                     float near_plane, float far_plane, float view[16], float projection[16])
 {
