@@ -311,10 +311,7 @@ static void dtrack_close(input_source *s)
 
 input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t errlen)
 {
-    dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close,
-                                          err, errlen);
-    if (!d)
-        return NULL;
+    dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close);
     d->desc = *desc;
     d->desc.name = NULL;
     d->fd = socket(AF_INET, SOCK_DGRAM, 0);

@@ -1,4 +1,5 @@
 #include "session.h"
+#include "base/xalloc.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -18,7 +19,8 @@ enum { MAX_SAMPLES = 100000 };
 /* What the report is made of, gathered frame by frame. */
 typedef struct run_stats {
     int n;
-    double round_trip[MAX_SAMPLES], barrier[MAX_SAMPLES], frame_bytes[MAX_SAMPLES];
+    double round_trip[MAX_SAMPLES], barrier[MAX_SAMPLES], frame_bytes[MAX_SAMPLES], timeout[MAX_SAMPLES];
+    double nodes_wait_ms;   /* bound to the first wait for nodes ending (-1: not yet) */
     int node_n[CLUSTER_MAX_NODES];
     double ready_ms[CLUSTER_MAX_NODES][MAX_SAMPLES / 10];
     double pass_sum[CLUSTER_MAX_NODES][WIRE_TIMING_COUNT];
@@ -34,7 +36,7 @@ struct session {
     script script;
     input *in;              /* NULL: the scripted path */
     interaction ia;
-    double dt, start_ms;
+    double dt, start_ms, created_ms;
     int frames;
     uint64_t last_version;
     run_stats rs;
@@ -55,11 +57,7 @@ static int seed(session *s, const char *scene_path, char *err, size_t errlen)
 
 session *session_create(const session_desc *d, char *err, size_t errlen)
 {
-    session *s = calloc(1, sizeof *s); /* large (the statistics): never on the stack */
-    if (!s) {
-        snprintf(err, errlen, "session: out of memory");
-        return NULL;
-    }
+    session *s = xcalloc(1, sizeof *s); /* large (the statistics): never on the stack */
     s->cfg = d->config;
     s->dt = d->dt;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
@@ -67,6 +65,8 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
     if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, err, errlen) != 0)
         goto fail;
+    s->created_ms = clock_now_ms();
+    s->rs.nodes_wait_ms = -1;
     script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
         input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
@@ -103,6 +103,8 @@ int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomi
     for (double until = clock_now_ms() + timeout_ms;
          !(stop && *stop) && clock_now_ms() < until && live < count;)
         live = cluster_master_wait_nodes(s->m, count, 200);
+    if (s->rs.nodes_wait_ms < 0)
+        s->rs.nodes_wait_ms = clock_now_ms() - s->created_ms;
     return live;
 }
 
@@ -133,6 +135,7 @@ static void record(session *s, const cluster_frame_result *r)
         rs->round_trip[rs->n] = r->round_trip_ms;
         rs->barrier[rs->n] = r->barrier_ms;
         rs->frame_bytes[rs->n] = (double)r->frame_bytes;
+        rs->timeout[rs->n] = r->timeout_ms;
         rs->n++;
     }
     if (rs->n == 1 || r->live < rs->live_min)
@@ -241,6 +244,10 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddItemToObject(root, "frame_bytes", stat_obj(rs->frame_bytes, rs->n));
     cJSON_AddItemToObject(root, "round_trip_ms", stat_obj(rs->round_trip, rs->n));
     cJSON_AddItemToObject(root, "barrier_wait_ms", stat_obj(rs->barrier, rs->n));
+    cJSON_AddItemToObject(root, "stall_timeout_ms", stat_obj(rs->timeout, rs->n));
+    cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
+    cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
+    cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {
