@@ -224,10 +224,16 @@ static int master_run(const master_options *o)
     }
     if (o->keygen)
         return keygen(&cfg);
+    for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
+        if (cfg.screens[i].fit_mm >= 0.05f)
+            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
+                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
+                    cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
-                       .record = o->record, .out_dir = o->out_dir};
+                       .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
+                       .print_poses = o->print_poses};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);

@@ -5,9 +5,11 @@
 
 #include "cluster/cluster_config.h"
 
-enum group { G_CLUSTER, G_NODES, G_FRAMES, G_OUTPUT, G_INPUT, G_COUNT };
+enum group { G_CLUSTER, G_NODES, G_FRAMES, G_OUTPUT, G_INPUT, G_CALIBRATION, G_COUNT };
 
-static const char *const groups[G_COUNT] = {"Cluster", "Nodes", "Frames", "Output", "Input"};
+static const char *const groups[G_COUNT] = {
+    "Cluster", "Nodes", "Frames", "Output", "Input", "Calibration (docs/calibration.md)",
+};
 
 enum id {
     O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN,
@@ -15,6 +17,7 @@ enum id {
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_QUIET,
     O_INPUT, O_RECORD,
+    O_PATTERN, O_PRINT_POSES,
 };
 
 static const cli_option options[] = {
@@ -37,7 +40,7 @@ static const cli_option options[] = {
      "how long to wait for the nodes to join"},
     {O_RENDER, "render", "gl|none", "gl", G_NODES, 0, "started nodes: none renders nothing (tests)"},
     {O_SCENE, "scene", "FILE|NAME", "the config's scene", G_NODES, 0, "the scene every node loads"},
-    {O_FRAMES, "frames", "N", "0: until stopped", G_FRAMES, 0, "frames to run"},
+    {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
     {O_FPS, "fps", "F", "0: as fast as the nodes go", G_FRAMES, 0, "frames per second at most"},
@@ -55,6 +58,10 @@ static const cli_option options[] = {
      "trackers and wand (configs/input/), or a recording\nto replay (docs/input.md)"},
     {O_RECORD, "record", "FILE", "the input config's \"record\", in --out", G_INPUT, 0,
      "record the merged input there"},
+    {O_PATTERN, "pattern", NULL, NULL, G_CALIBRATION, 0,
+     "every screen shows a calibration pattern: a grid in CAVE\ncoordinates, screen names and corners, head and wand"},
+    {O_PRINT_POSES, "print-poses", NULL, NULL, G_CALIBRATION, 0,
+     "print the head and wand poses (CAVE and tracker space,\npointing direction) and the buttons on stdout, 4 a second"},
 };
 
 static const char *set(void *user, int id, const char *v)
@@ -94,6 +101,8 @@ static const char *set(void *user, int id, const char *v)
     case O_QUIET: o->quiet = 1; break;
     case O_INPUT: o->input = v; break;
     case O_RECORD: o->record = v; break;
+    case O_PATTERN: o->pattern = 1; break;
+    case O_PRINT_POSES: o->print_poses = 1; break;
     }
     return why;
 }
@@ -124,6 +133,14 @@ cli_result master_cli_parse(int argc, char **argv, master_options *o)
         fprintf(stderr, "cavelight-master: choose one of --spawn-local and --spawn-remote\n");
         return CLI_ERROR;
     }
+    if (o->print_poses && !o->input) {
+        fprintf(stderr, "cavelight-master: --print-poses prints what the trackers deliver: add --input "
+                "CONFIG (e.g. configs/input/art-dtrack.json)\n");
+        return CLI_ERROR;
+    }
+    /* A still pattern written to files needs one frame; on screens it stays until stopped. */
+    if (o->pattern && o->output && strcmp(o->output, "png") == 0 && !cli_was_given(&p, &given, O_FRAMES))
+        o->frames = 1;
     const int spawn_only[] = {O_NODE_EXE, O_NODE_ARGS, O_RENDER, O_OUTPUT, O_KEEP_FRAMES};
     for (size_t i = 0; i < sizeof spawn_only / sizeof *spawn_only; i++)
         if (!o->spawn_local && !o->spawn_remote && cli_was_given(&p, &given, spawn_only[i])) {

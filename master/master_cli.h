@@ -17,7 +17,7 @@ typedef struct master_options {
     const char *node_exe, *render, *output, *node_args, *scene;
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
-    int keep_frames;
+    int keep_frames, pattern, print_poses;
     const char *input, *record;
 } master_options;
 

@@ -10,6 +10,7 @@
 #include "base/clock.h"
 #include "base/folder.h"
 #include "base/ratelog.h"
+#include "frame/pattern.h"
 #include "cluster_window.h"
 #include "glctx.h"
 #include "image/image.h"
@@ -325,6 +326,14 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
     for (int s = 0; s < n->screen_count; s++)
         for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
             eye_image *im = &v->img[s][e];
+            if (f->pattern) { /* on the screen's surface: the same for both eyes */
+                const cluster_screen *sc = &v->cfg->screens[n->screens[s].screen];
+                pattern_desc pd = {.bottom_left = sc->bottom_left, .bottom_right = sc->bottom_right,
+                                   .top_left = sc->top_left, .name = sc->name, .head = f->head,
+                                   .wand = f->wand};
+                pattern_draw(&pd, im->width, im->height, im->rgb);
+                continue;
+            }
             renderer_view view;
             float distance = 0;
             int placed = cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f,

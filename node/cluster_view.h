@@ -5,6 +5,8 @@
  * node, with an off-axis projection from the tracked head: the eyes sit at the head pose
  * times observer.head_to_eye, offset by +-eye_separation/2 along the head's right axis;
  * screens and eyes go from CAVE space to world space through the navigation transform.
+ * While the frame asks for the calibration pattern (frame_params.pattern), every screen
+ * shows it (frame/pattern.h) instead of the scene; the frame pass still runs.
  * cluster_view_present() shows the images of the last rendered frame: PNG files
  * (DIR/SCREEN-EYE.png, replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png
  * numbered by the frame's version, so that a replay can be reviewed frame by frame), a GLFW window in the node's stereo mode

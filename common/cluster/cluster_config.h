@@ -3,8 +3,11 @@
  *   master    {"bind": "tcp://0.0.0.0:5570", "connect": "tcp://host:5570"}
  *   observer  {"eye_separation": m, "head_to_eye": [x,y,z] (head space), "home": [x,y,z],
  *              "tracker_to_cave": {"translation": [..], "rotation_deg": [x,y,z], "scale": s}}
- *   screens   [{"name", "bottom_left", "bottom_right", "top_left" (CAVE space),
+ *   screens   [{"name", "bottom_left", "bottom_right", "top_left" (CAVE space, metres),
+ *               "top_right" (optional, when measured too),
  *               "overview": [x, y] (pixel offset in the unfolded overview, optional)}]
+ *             Measured corners are fitted to the nearest rectangle (screen_fit.h) and
+ *             refused when one moves more than "corner_tolerance_mm" (top level, 20).
  *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution"}],
  *               "resolution": [w, h], "eyes": "mono|stereo|left|right",
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
@@ -61,9 +64,14 @@ typedef enum cluster_security {
     CLUSTER_SECURITY_INSECURE,   /* anyone who reaches the port; local runs and tests */
 } cluster_security;
 
+/* Corners nearer a rectangle than this (1 micrometre, float rounding at CAVE sizes) are
+ * kept as written. */
+#define SCREEN_EXACT_M 1e-6
+
 typedef struct cluster_screen {
     char name[CLUSTER_NAME_MAX + 1];
-    float bottom_left[3], bottom_right[3], top_left[3];
+    float bottom_left[3], bottom_right[3], top_left[3]; /* a rectangle (fitted, see below) */
+    float fit_mm;    /* how far the fit moved the furthest measured corner, millimetres */
     int overview[2]; /* pixel offset in the overview; -1 = not shown */
 } cluster_screen;
 
@@ -105,6 +113,7 @@ typedef struct cluster_config {
     int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
     int stall_min_ms;        /* floor of the adaptive stall timeout (default 250) */
     int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
+    double corner_tolerance_mm; /* measured corners further from a rectangle are refused (20) */
     cluster_observer observer;
     int screen_count;
     cluster_screen screens[CLUSTER_MAX_SCREENS];

@@ -72,13 +72,13 @@ int offaxis_eye_in_front(const float bottom_left[3], const float bottom_right[3]
                          float out[3], float *distance)
 {
     float vr[3], vu[3], vn[3], rel[3];
-    sub(bottom_right, bottom_left, vr);
-    sub(top_left, bottom_left, vu);
-    cross(vr, vu, vn);
+    vec3_sub(bottom_right, bottom_left, vr);
+    vec3_sub(top_left, bottom_left, vu);
+    vec3_cross(vr, vu, vn);
     if (normalize(vn) || !isfinite(eye[0]) || !isfinite(eye[1]) || !isfinite(eye[2]))
         return -1;
-    sub(eye, bottom_left, rel);
-    float d = dot(rel, vn);
+    vec3_sub(eye, bottom_left, rel);
+    float d = vec3_dot(rel, vn);
     memcpy(out, eye, 3 * sizeof(float));
     if (distance)
         *distance = d;
