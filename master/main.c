@@ -331,6 +331,11 @@ int main(int argc, char **argv)
         cluster_master_destroy(m);
         return 1;
     }
+    if (sc_start.light_added) {
+        char note[400];
+        scene_light_added_note(&sc_start, scene_path, note, sizeof note);
+        fprintf(stderr, "cavelight-master: warning: %s\n", note);
+    }
     frame_params fp;
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc_start);
