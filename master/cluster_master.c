@@ -1,4 +1,5 @@
 #include "cluster_master.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -16,13 +17,20 @@ typedef struct peer {
     int ready;               /* sent READY(v) for it */
     double frame_sent;       /* ms clock */
     double last_heard;
+    int fd;                  /* connection its last message came on (-1 unknown) */
 } peer;
+
+/* The stall timeout adapts to the READY latencies of recent frames (ring of samples). */
+enum { STALL_SAMPLES = 64, STALL_MIN_SAMPLES = 16, STALL_FACTOR = 4 };
 
 struct cluster_master {
     const cluster_config *cfg;
-    void *ctx, *sock;
+    void *ctx, *sock, *monitor;
     cluster_auth *auth;
-    ratelog unknown_log, malformed_log;
+    ratelog unknown_log, malformed_log, handshake_log;
+    int closing;             /* destroy() runs: a HELLO gets BYE(shutdown), not a snapshot */
+    double ready_ring[STALL_SAMPLES];
+    int ready_count;
     params_store params;
     int barrier_timeout_ms;
     int quiet;
@@ -168,9 +176,13 @@ static int handle_one(cluster_master *m)
     }
     peer *p = &m->peers[node];
     p->last_heard = clock_now_ms();
+    p->fd = (int)zmq_msg_get(&body, ZMQ_SRCFD);
     switch (msg.type) {
     case WIRE_HELLO:
-        join(m, node, &msg);
+        if (m->closing)
+            send_bye(m, node, WIRE_BYE_SHUTDOWN); /* no new session with a master that is leaving */
+        else
+            join(m, node, &msg);
         break;
     case WIRE_READY:
         if (p->s.state == CLUSTER_PEER_LIVE && p->in_barrier && !p->ready && msg.version == m->params.version) {
@@ -180,6 +192,7 @@ static int handle_one(cluster_master *m)
             p->s.frames_ready++;
             memcpy(p->s.timings, msg.timings, sizeof p->s.timings);
             p->s.ready_ms = p->last_heard - p->frame_sent;
+            m->ready_ring[m->ready_count++ % STALL_SAMPLES] = p->s.ready_ms;
         } else {
             m->st.stale++;
         }
@@ -199,12 +212,64 @@ done:
     return 1;
 }
 
-/* Handles messages until the deadline or until done(m) holds. */
+/* A node whose connection closed (process killed or crashed, heartbeat timed out) leaves
+ * the barrier at once instead of after the timeout. */
+static void drop_disconnected(cluster_master *m, int fd)
+{
+    for (int i = 0; i < m->cfg->node_count; i++) {
+        peer *p = &m->peers[i];
+        if (p->fd != fd)
+            continue;
+        p->fd = -1;
+        if (p->s.state != CLUSTER_PEER_LIVE)
+            continue;
+        p->s.state = CLUSTER_PEER_DROPPED;
+        p->s.drops++;
+        m->st.drops++;
+        m->st.disconnects++;
+        fprintf(stderr, "cavelight-master: node %s disconnected: dropped, the others go on\n",
+                m->cfg->nodes[i].name);
+    }
+}
+
+/* Socket events: [u16 event, u32 value] then the endpoint. */
+static int handle_event(cluster_master *m)
+{
+    zmq_msg_t ev, ep;
+    zmq_msg_init(&ev);
+    zmq_msg_init(&ep);
+    int got = zmq_msg_recv(&ev, m->monitor, ZMQ_DONTWAIT) >= 0;
+    if (got && zmq_msg_more(&ev))
+        zmq_msg_recv(&ep, m->monitor, 0);
+    if (got && zmq_msg_size(&ev) >= 6) {
+        uint16_t event;
+        uint32_t value;
+        memcpy(&event, zmq_msg_data(&ev), 2);
+        memcpy(&value, (const uint8_t *)zmq_msg_data(&ev) + 2, 4);
+        uint64_t skipped = 0;
+        if (event == ZMQ_EVENT_DISCONNECTED) {
+            drop_disconnected(m, (int)value);
+        } else if (event & (ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                            ZMQ_EVENT_HANDSHAKE_FAILED_AUTH)) {
+            m->st.handshakes_failed++;
+            if (ratelog_event(&m->handshake_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-master: a connection failed its handshake (%s; %llu so far, %llu "
+                        "not logged): a peer without this cluster's security settings\n",
+                        event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH ? "authentication" : "protocol or mechanism",
+                        (unsigned long long)m->st.handshakes_failed, (unsigned long long)skipped);
+        }
+    }
+    zmq_msg_close(&ev);
+    zmq_msg_close(&ep);
+    return got;
+}
+
+/* Handles messages and socket events until the deadline or until done(m) holds. */
 static void pump(cluster_master *m, double deadline, int (*done)(cluster_master *, void *), void *arg)
 {
     for (;;) {
         /* The deadline holds even under a flood of messages. */
-        while (handle_one(m))
+        while (handle_event(m) || handle_one(m))
             if ((done && done(m, arg)) || clock_now_ms() >= deadline)
                 return;
         if (done && done(m, arg))
@@ -212,19 +277,38 @@ static void pump(cluster_master *m, double deadline, int (*done)(cluster_master 
         double left = deadline - clock_now_ms();
         if (left <= 0)
             return;
-        zmq_pollitem_t item = {.socket = m->sock, .events = ZMQ_POLLIN};
-        if (zmq_poll(&item, 1, (long)(left + 0.999)) < 0 && errno != EINTR)
+        zmq_pollitem_t items[2] = {{.socket = m->sock, .events = ZMQ_POLLIN},
+                                   {.socket = m->monitor, .events = ZMQ_POLLIN}};
+        if (zmq_poll(items, 2, (long)(left + 0.999)) < 0 && errno != EINTR)
             return;
     }
 }
 
+/* How long the barrier waits: STALL_FACTOR x the p99 READY latency of recent frames,
+ * at least stall_min_ms and at most barrier_ms; barrier_ms until there are samples. */
+static int stall_timeout_ms(const cluster_master *m)
+{
+    int n = m->ready_count < STALL_SAMPLES ? m->ready_count : STALL_SAMPLES;
+    if (n < STALL_MIN_SAMPLES)
+        return m->barrier_timeout_ms;
+    double v[STALL_SAMPLES];
+    memcpy(v, m->ready_ring, (size_t)n * sizeof *v);
+    for (int i = 1; i < n; i++) /* insertion sort: 64 values */
+        for (int k = i; k > 0 && v[k - 1] > v[k]; k--) {
+            double t = v[k];
+            v[k] = v[k - 1];
+            v[k - 1] = t;
+        }
+    double p99 = v[(int)(0.99 * (n - 1) + 0.5)];
+    double t = STALL_FACTOR * p99;
+    if (t < m->cfg->stall_min_ms)
+        t = m->cfg->stall_min_ms;
+    return t < m->barrier_timeout_ms ? (int)t : m->barrier_timeout_ms;
+}
+
 cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen)
 {
-    cluster_master *m = calloc(1, sizeof *m);
-    if (!m) {
-        snprintf(err, errlen, "cluster master: out of memory");
-        return NULL;
-    }
+    cluster_master *m = xcalloc(1, sizeof *m);
     m->cfg = desc->config;
     m->quiet = desc->quiet;
     m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;
@@ -243,14 +327,30 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
-    /* No ZMQ_ROUTER_HANDOVER: a second connection with a live node's name is refused, not
-     * handed the node's traffic. A restarted node gets its name back as soon as its old
-     * connection is closed (at once when the process dies). */
+    /* A restarted node reuses its name: its new connection takes over the routing id. In
+     * curve mode only a peer holding that node's key gets that far (cluster_auth). */
+    int one = 1;
+    zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    /* No ZMTP heartbeats (ZMQ_HEARTBEAT_IVL): with them libzmq 4.3.4 aborts
+     * (stream_engine_base.cpp:331 !_io_error) when a peer sends garbage. A peer that goes
+     * silent without closing is caught by the stall timeout and the protocol's HEARTBEAT. */
     m->auth = cluster_auth_start(m->ctx, m->sock, m->cfg, m->quiet, err, errlen);
     if (!m->auth) {
         cluster_master_destroy(m);
         return NULL;
     }
+    char mon[64];
+    snprintf(mon, sizeof mon, "inproc://cavelight-master-monitor-%p", (void *)m);
+    if (zmq_socket_monitor(m->sock, mon, ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
+                                             ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) != 0 ||
+        !(m->monitor = zmq_socket(m->ctx, ZMQ_PAIR)) || zmq_setsockopt(m->monitor, ZMQ_LINGER, &zero, sizeof zero) != 0 ||
+        zmq_connect(m->monitor, mon) != 0) {
+        snprintf(err, errlen, "cluster master: cannot watch the socket's connections: %s", zmq_strerror(errno));
+        cluster_master_destroy(m);
+        return NULL;
+    }
+    for (int i = 0; i < CLUSTER_MAX_NODES; i++)
+        m->peers[i].fd = -1;
     if (zmq_bind(m->sock, ep) != 0) {
         snprintf(err, errlen, "cluster master: cannot bind %s (%s, from %s): free the port or pass --bind",
                  ep, zmq_strerror(errno), desc->bind ? "--bind" : m->cfg->path);
@@ -278,12 +378,16 @@ void cluster_master_destroy(cluster_master *m)
          * here under load: the last SWAP and the BYE never reached a node). Live nodes
          * answer the BYE with theirs, so wait for that, briefly, before closing. */
         m->quiet = 1;
-        if (m->cfg)
+        m->closing = 1;
+        if (m->cfg && m->monitor)
             pump(m, clock_now_ms() + 1000, no_live_node, NULL);
         int linger = 200;
         zmq_setsockopt(m->sock, ZMQ_LINGER, &linger, sizeof linger);
+        zmq_socket_monitor(m->sock, NULL, 0);
         zmq_close(m->sock);
     }
+    if (m->monitor)
+        zmq_close(m->monitor);
     cluster_auth_stop(m->auth);
     if (m->ctx)
         zmq_ctx_term(m->ctx);
@@ -367,7 +471,9 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         }
     }
     double tb = clock_now_ms();
-    pump(m, tb + m->barrier_timeout_ms, all_ready, NULL);
+    int timeout = stall_timeout_ms(m);
+    out->timeout_ms = timeout;
+    pump(m, tb + timeout, all_ready, NULL);
     out->barrier_ms = clock_now_ms() - tb;
 
     uint64_t first = 0;
@@ -379,7 +485,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         if (!p->ready) {
             if (p->s.state == CLUSTER_PEER_LIVE) {
                 fprintf(stderr, "cavelight-master: node %s not ready for frame %llu within %d ms: dropped, "
-                        "the others go on\n", m->cfg->nodes[i].name, (unsigned long long)v, m->barrier_timeout_ms);
+                        "the others go on\n", m->cfg->nodes[i].name, (unsigned long long)v, timeout);
                 p->s.state = CLUSTER_PEER_DROPPED;
                 p->s.drops++;
                 m->st.drops++;

@@ -4,8 +4,11 @@
  * the current version; the next commit raises the history-reset epoch so every node's
  * incremental LPV restarts from the same frame. cluster_master_frame() commits the
  * parameter store as version v, sends FRAME(v, delta since each node's version), waits
- * for READY(v) from every live node until the barrier timeout, drops the late ones,
+ * for READY(v) from every live node until the stall timeout, drops the late ones,
  * compares LPV checksums (a difference is a desync) and sends SWAP(v).
+ * The stall timeout adapts: 4 x the p99 READY latency of the last 64 frames, at least
+ * timeouts.stall_min_ms and at most barrier_ms. A node whose connection closes (killed,
+ * crashed, heartbeats unanswered) is dropped at once from the socket's disconnect event.
  * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
  * Queues are bounded by high-water marks and a maximum message size; every wait times out. */
 #ifndef CAVELIGHT_CLUSTER_MASTER_H
@@ -49,6 +52,8 @@ typedef struct cluster_master_stats {
     uint64_t bytes_sent, bytes_received, messages_sent, messages_received;
     uint64_t joins, drops;
     uint64_t refused;        /* connections refused for an unknown CURVE key */
+    uint64_t disconnects;    /* live nodes dropped when their connection closed */
+    uint64_t handshakes_failed;
 } cluster_master_stats;
 
 typedef struct cluster_frame_result {
@@ -59,6 +64,7 @@ typedef struct cluster_frame_result {
     int desync;              /* 1 when READY checksums differed */
     uint32_t epoch;          /* history-reset epoch of this version */
     double barrier_ms;       /* FRAME sends to the last READY (or the timeout) */
+    int timeout_ms;          /* the stall timeout this barrier used (adaptive) */
     double round_trip_ms;    /* commit to SWAP sent */
     size_t frame_bytes;      /* bytes of one FRAME message (to a node at v-1) */
 } cluster_frame_result;

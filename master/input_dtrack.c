@@ -292,9 +292,10 @@ static int dtrack_poll(input_source *s, double now, char *err, size_t errlen)
         if (n < 0) {
             if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
                 return 0;
-            snprintf(err, errlen, "input %s: DTrack receive on UDP port %d failed: %s",
-                     s->name, d->port, strerror(errno));
-            return -1;
+            char why[256];
+            snprintf(why, sizeof why, "DTrack receive on UDP port %d failed: %s", d->port,
+                     strerror(errno));
+            return input_source_lost(s, now, why, err, errlen);
         }
         input_dtrack_parse(d->buf, (size_t)n, &d->frame);
         input_dtrack_apply(&d->desc, &d->frame, &s->st, now);
@@ -310,14 +311,9 @@ static void dtrack_close(input_source *s)
 
 input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t errlen)
 {
-    dtrack_source *d = calloc(1, sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "input: out of memory for the DTrack source");
-        return NULL;
-    }
+    dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close);
     d->desc = *desc;
     d->desc.name = NULL;
-    snprintf(d->base.name, sizeof d->base.name, "%s", desc->name ? desc->name : "dtrack");
     d->fd = socket(AF_INET, SOCK_DGRAM, 0);
     struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)desc->port),
                             .sin_addr.s_addr = htonl(INADDR_ANY)};
@@ -338,8 +334,6 @@ input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t
     socklen_t alen = sizeof a;
     getsockname(d->fd, (struct sockaddr *)&a, &alen);
     d->port = ntohs(a.sin_port);
-    d->base.poll = dtrack_poll;
-    d->base.close = dtrack_close;
     return &d->base;
 }
 

@@ -1,8 +1,45 @@
 /* input_source: helpers shared by the input sources, and pose maths. */
 #include "input_source.h"
+#include "base/xalloc.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+void *input_source_alloc(size_t size, const char *name, const char *fallback,
+                         input_source_poll_fn poll, input_source_close_fn close)
+{
+    input_source *s = xcalloc(1, size);
+    snprintf(s->name, sizeof s->name, "%s", name ? name : fallback);
+    s->poll = poll;
+    s->close = close;
+    return s;
+}
+
+int input_source_lost(input_source *s, double now, const char *why, char *err, size_t errlen)
+{
+    input_source_set_buttons(&s->st, 0, now);
+    s->next_attempt = now + s->retry_interval;
+    if (s->outage_reported)
+        return 0;
+    s->outage_reported = 1;
+    if (s->retry_interval > 0)
+        snprintf(err, errlen, "input %s: %s; retrying every %g s", s->name, why, s->retry_interval);
+    else
+        snprintf(err, errlen, "input %s: %s", s->name, why);
+    return -1;
+}
+
+int input_source_retry_due(const input_source *s, double now)
+{
+    return s->retry_interval > 0 && now >= s->next_attempt;
+}
+
+void input_source_up(input_source *s)
+{
+    s->outage_reported = 0;
+}
 
 void input_source_set_buttons(input_source_state *st, uint32_t held, double t)
 {

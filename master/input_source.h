@@ -1,9 +1,16 @@
-/* input_source: what every input source implements, and helpers they share.
+/* input_source: what every input source implements, and the skeleton they share.
  *
  * A source keeps its own input_source_state (poses, held buttons, press edges, axes, each
  * with the input clock time of its last change). input_poll() calls poll() on every
  * source, then merges their states (see input.h) and clears each source's press edges.
- * A source never blocks in poll(): it reads what has arrived and returns. */
+ * A source never blocks in poll(): it reads what has arrived and returns.
+ *
+ * The skeleton of a device source (DTrack, VRPN, USB), once: input_source_alloc() makes
+ * it (name from the config or a fallback, poll and close); when its device goes away,
+ * input_source_lost() releases its buttons (nothing stays held, e.g. C = fly), schedules
+ * the next attempt retry_interval seconds later (0: the source does not retry) and reports
+ * the first loss of an outage in one line; input_source_retry_due() says when to try
+ * again and input_source_up() ends the outage. */
 #ifndef CAVELIGHT_INPUT_SOURCE_H
 #define CAVELIGHT_INPUT_SOURCE_H
 
@@ -31,11 +38,29 @@ struct input_source {
     int failed;                /* playback stopped on a malformed file */
     double step_time;          /* stepped playback: clock of the current step */
     double step_dt;
+    double retry_interval;     /* seconds between attempts after a loss; 0 = no retry */
+    double next_attempt;       /* input clock of the next attempt */
+    int outage_reported;       /* the current outage was reported: stay quiet until up */
     input_source_state st;
     /* now: input clock, seconds. Returns 0, or -1 with a one-line reason in err. */
     int (*poll)(input_source *s, double now, char *err, size_t errlen);
     void (*close)(input_source *s);
 };
+
+typedef int (*input_source_poll_fn)(input_source *s, double now, char *err, size_t errlen);
+typedef void (*input_source_close_fn)(input_source *s);
+
+/* A zeroed source of `size` bytes (a struct that starts with its input_source), named
+ * `name` or else `fallback` (xcalloc(): never NULL). */
+void *input_source_alloc(size_t size, const char *name, const char *fallback,
+                         input_source_poll_fn poll, input_source_close_fn close);
+/* The device went away (why: what happened). Returns -1 with "input NAME: WHY[; retrying
+ * every S s]" for the first loss of an outage, 0 for the later ones. */
+int input_source_lost(input_source *s, double now, const char *why, char *err, size_t errlen);
+/* 1 when a retrying source may try to reach its device again. */
+int input_source_retry_due(const input_source *s, double now);
+/* The device answers again: the next loss is reported. */
+void input_source_up(input_source *s);
 
 /* Sets the held buttons at time t and records press edges. */
 void input_source_set_buttons(input_source_state *st, uint32_t held, double t);

@@ -53,7 +53,7 @@ typedef struct usb_source {
     libusb_device_handle *dev;
     struct libusb_transfer *xfer;
     int kernel_detached;
-    int failed;               /* transfer error to report once */
+    int failed;               /* the transfer failed: the device is lost */
     int error_code;
     int fresh;                /* a report arrived since the last poll */
     int report_len;
@@ -90,13 +90,12 @@ static int usb_poll(input_source *s, double now, char *err, size_t errlen)
         input_source_set_axes(&s->st, axes, INPUT_AXIS_COUNT, now);
         u->fresh = 0;
     }
-    if (u->failed == 1) {
-        u->failed = 2;
-        input_source_set_buttons(&s->st, 0, now);
-        snprintf(err, errlen, "input %s: USB device %04x:%04x stopped reporting (transfer status "
-                 "%d); unplugged? restart the master after reconnecting it", s->name,
-                 u->desc.vendor, u->desc.product, u->error_code);
-        return -1;
+    if (u->failed) {
+        char why[256];
+        snprintf(why, sizeof why, "USB device %04x:%04x stopped reporting (transfer status %d); "
+                 "unplugged? restart the master after reconnecting it", u->desc.vendor,
+                 u->desc.product, u->error_code);
+        return input_source_lost(s, now, why, err, errlen);
     }
     return 0;
 }
@@ -153,16 +152,9 @@ static uint8_t find_endpoint(libusb_device *dev, int iface, int *max_packet)
 
 input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errlen)
 {
-    usb_source *u = calloc(1, sizeof *u);
-    if (!u) {
-        snprintf(err, errlen, "input: out of memory for the USB source");
-        return NULL;
-    }
+    usb_source *u = input_source_alloc(sizeof *u, desc->name, "usb", usb_poll, usb_close);
     u->desc = *desc;
     u->desc.name = NULL;
-    snprintf(u->base.name, sizeof u->base.name, "%s", desc->name ? desc->name : "usb");
-    u->base.poll = usb_poll;
-    u->base.close = usb_close;
     int rc = libusb_init(&u->ctx);
     if (rc != 0) {
         u->ctx = NULL;

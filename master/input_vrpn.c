@@ -1,6 +1,8 @@
 /* input_vrpn: VRPN client, TCP-only connection mode, with reconnection. */
 #include "input_vrpn.h"
 
+#include "base/byteorder.h"
+
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -16,25 +18,15 @@
 #include <netinet/tcp.h>
 #include <unistd.h>
 
-static uint32_t be32(const uint8_t *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
+static uint32_t be32(const uint8_t *p) { return (uint32_t)be_get(p, 4); }
+static void put32(uint8_t *p, uint32_t v) { be_put(p, v, 4); }
 
 static double bef64(const uint8_t *p)
 {
-    uint64_t u = (uint64_t)be32(p) << 32 | be32(p + 4);
+    uint64_t u = be_get(p, 8);
     double d;
     memcpy(&d, &u, sizeof d);
     return d;
-}
-
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v >> 24);
-    p[1] = (uint8_t)(v >> 16);
-    p[2] = (uint8_t)(v >> 8);
-    p[3] = (uint8_t)v;
 }
 
 void input_vrpn_write_cookie(uint8_t cookie[INPUT_VRPN_COOKIE_SIZE])
@@ -252,9 +244,7 @@ typedef struct vrpn_source {
     char host[256], tracker[64], buttons[64], analog[64];
     int fd;
     vrpn_state state;
-    double next_attempt;
     int connections;
-    int failing;               /* a failure was reported; stay quiet until connected */
     input_vrpn_session session;
     uint8_t out[4096];
     size_t out_len, out_off;
@@ -272,29 +262,18 @@ static void queue_description(vrpn_source *v, int32_t id, int32_t kind, const ch
                                    body, 4 + n);
 }
 
-static void drop(vrpn_source *v, double now)
+/* Closes the connection and starts an outage (input_source_lost()). */
+static int fail(vrpn_source *v, double now, char *err, size_t errlen, const char *what)
 {
     if (v->fd >= 0)
         close(v->fd);
     v->fd = -1;
     v->state = VRPN_IDLE;
-    v->next_attempt = now + v->desc.reconnect_interval;
     memset(&v->session, 0, sizeof v->session);
-    /* Never leave a button held (e.g. C = fly) while the wand cannot release it. */
-    input_source_set_buttons(&v->base.st, 0, now);
     v->in_len = v->out_len = v->out_off = 0;
-}
-
-/* Reports the first failure of a series; later ones are silent until a connection works. */
-static int fail(vrpn_source *v, double now, char *err, size_t errlen, const char *what)
-{
-    drop(v, now);
-    if (v->failing)
-        return 0;
-    v->failing = 1;
-    snprintf(err, errlen, "input %s: VRPN server %s:%d: %s; retrying every %g s", v->base.name,
-             v->host, v->desc.port, what, v->desc.reconnect_interval);
-    return -1;
+    char why[sizeof v->host + 384]; /* host, port and a reason of up to 300 bytes */
+    snprintf(why, sizeof why, "VRPN server %s:%d: %s", v->host, v->desc.port, what);
+    return input_source_lost(&v->base, now, why, err, errlen);
 }
 
 static int start_connect(vrpn_source *v, double now, char *err, size_t errlen)
@@ -341,7 +320,7 @@ static int vrpn_poll(input_source *s, double now, char *err, size_t errlen)
     vrpn_source *v = (vrpn_source *)s;
     char why[300];
     if (v->state == VRPN_IDLE) {
-        if (now < v->next_attempt)
+        if (!input_source_retry_due(s, now))
             return 0;
         if (start_connect(v, now, err, errlen))
             return -1;
@@ -392,7 +371,7 @@ static int vrpn_poll(input_source *s, double now, char *err, size_t errlen)
                 return fail(v, now, err, errlen, "bad cookie, not a VRPN 07 server");
             v->state = VRPN_OPEN;
             v->connections++;
-            v->failing = 0;
+            input_source_up(s);
             used = INPUT_VRPN_COOKIE_SIZE;
         }
         long c = input_vrpn_decode(&v->desc, &v->session, v->in + used, v->in_len - used,
@@ -416,13 +395,8 @@ static void vrpn_close(input_source *s)
 
 input_source *input_vrpn_open(const input_vrpn_desc *desc, char *err, size_t errlen)
 {
-    vrpn_source *v = calloc(1, sizeof *v);
-    if (!v) {
-        snprintf(err, errlen, "input: out of memory for the VRPN source");
-        return NULL;
-    }
+    vrpn_source *v = input_source_alloc(sizeof *v, desc->name, "vrpn", vrpn_poll, vrpn_close);
     v->desc = *desc;
-    snprintf(v->base.name, sizeof v->base.name, "%s", desc->name ? desc->name : "vrpn");
     snprintf(v->host, sizeof v->host, "%s", desc->host ? desc->host : "localhost");
     snprintf(v->tracker, sizeof v->tracker, "%s", tracker_name(desc));
     snprintf(v->buttons, sizeof v->buttons, "%s", buttons_name(desc));
@@ -436,9 +410,8 @@ input_source *input_vrpn_open(const input_vrpn_desc *desc, char *err, size_t err
         v->desc.port = INPUT_VRPN_DEFAULT_PORT;
     if (v->desc.reconnect_interval <= 0)
         v->desc.reconnect_interval = 1.0;
+    v->base.retry_interval = v->desc.reconnect_interval;
     v->fd = -1;
-    v->base.poll = vrpn_poll;
-    v->base.close = vrpn_close;
     return &v->base;
 }
 

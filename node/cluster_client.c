@@ -1,4 +1,5 @@
 #include "cluster_client.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -15,7 +16,9 @@ typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state
 struct cluster_client {
     const cluster_config *cfg;
     char name[WIRE_NAME_MAX + 1];
-    void *ctx, *sock;
+    void *ctx, *sock, *monitor;
+    int monitors;            /* sockets opened so far: names each one's monitor */
+    int link_down;           /* the connection closed and no handshake has succeeded since */
     const char *endpoint;
     double opened;
     int quiet;
@@ -51,6 +54,35 @@ static void send_hello(cluster_client *c)
         c->last_hello = clock_now_ms();
 }
 
+static void close_socket(cluster_client *c)
+{
+    if (c->sock) {
+        zmq_socket_monitor(c->sock, NULL, 0);
+        zmq_close(c->sock);
+        c->sock = NULL;
+    }
+    if (c->monitor) {
+        zmq_close(c->monitor);
+        c->monitor = NULL;
+    }
+}
+
+/* Connection events: a closed connection (master killed, heartbeats unanswered) means the
+ * master is lost now, not after master_ms; a new handshake means one answers: say HELLO. */
+static int watch_socket(cluster_client *c)
+{
+    char ep[96];
+    snprintf(ep, sizeof ep, "inproc://cavelight-node-monitor-%p-%d", (void *)c, c->monitors++);
+    int zero = 0;
+    if (zmq_socket_monitor(c->sock, ep, ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_SUCCEEDED) != 0)
+        return -1;
+    c->monitor = zmq_socket(c->ctx, ZMQ_PAIR);
+    if (!c->monitor)
+        return -1;
+    zmq_setsockopt(c->monitor, ZMQ_LINGER, &zero, sizeof zero);
+    return zmq_connect(c->monitor, ep);
+}
+
 static int open_socket(cluster_client *c, char *err, size_t errlen)
 {
     c->sock = zmq_socket(c->ctx, ZMQ_DEALER);
@@ -58,7 +90,7 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         snprintf(err, errlen, "cluster node: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
         return -1;
     }
-    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 1000;
+    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 250;
     int64_t maxmsg = WIRE_MAX_MESSAGE;
     zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
     zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
@@ -78,11 +110,15 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         c->sock = NULL;
         return -1;
     }
+    if (watch_socket(c) != 0) {
+        snprintf(err, errlen, "cluster node %s: cannot watch the connection: %s", c->name, zmq_strerror(errno));
+        close_socket(c);
+        return -1;
+    }
     if (zmq_connect(c->sock, c->endpoint) != 0) {
         snprintf(err, errlen, "cluster node %s: cannot connect to %s (%s): check master.connect in %s",
                  c->name, c->endpoint, zmq_strerror(errno), c->cfg->path);
-        zmq_close(c->sock);
-        c->sock = NULL;
+        close_socket(c);
         return -1;
     }
     c->opened = clock_now_ms();
@@ -96,7 +132,7 @@ static void reopen_if_dead(cluster_client *c, double now)
     if (now - c->last_heard < c->cfg->master_timeout_ms || now - c->opened < c->cfg->master_timeout_ms)
         return;
     char err[256];
-    zmq_close(c->sock);
+    close_socket(c);
     if (open_socket(c, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return;
@@ -112,11 +148,7 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
                  desc->name, desc->config->path);
         return NULL;
     }
-    cluster_client *c = calloc(1, sizeof *c);
-    if (!c) {
-        snprintf(err, errlen, "cluster node: out of memory");
-        return NULL;
-    }
+    cluster_client *c = xcalloc(1, sizeof *c);
     c->cfg = desc->config;
     c->quiet = desc->quiet;
     snprintf(c->name, sizeof c->name, "%s", desc->name);
@@ -158,8 +190,8 @@ void cluster_client_destroy(cluster_client *c)
         send_msg(c, &bye);
         int linger = 200; /* let the BYE leave, but never wait long for a dead master */
         zmq_setsockopt(c->sock, ZMQ_LINGER, &linger, sizeof linger);
-        zmq_close(c->sock);
     }
+    close_socket(c);
     if (c->ctx)
         zmq_ctx_term(c->ctx);
     free(c);
@@ -210,6 +242,33 @@ static void ask_snapshot(cluster_client *c)
         send_hello(c);
 }
 
+/* Reads one connection event; returns 1 if there was one. */
+static int connection_event(cluster_client *c)
+{
+    zmq_msg_t ev, ep;
+    zmq_msg_init(&ev);
+    zmq_msg_init(&ep);
+    int got = 0;
+    if (c->monitor && zmq_msg_recv(&ev, c->monitor, ZMQ_DONTWAIT) >= 0) {
+        got = 1;
+        if (zmq_msg_more(&ev))
+            zmq_msg_recv(&ep, c->monitor, 0);
+        uint16_t event = 0;
+        if (zmq_msg_size(&ev) >= 2)
+            memcpy(&event, zmq_msg_data(&ev), 2);
+        if (event == ZMQ_EVENT_DISCONNECTED) {
+            c->link_down = 1;
+        } else if (event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
+            c->link_down = 0;
+            if (c->state != STATE_JOINED && clock_now_ms() - c->last_hello >= 100)
+                send_hello(c); /* unless one just went out on this connection */
+        }
+    }
+    zmq_msg_close(&ev);
+    zmq_msg_close(&ep);
+    return got;
+}
+
 cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
 {
     memset(ev, 0, sizeof *ev);
@@ -218,6 +277,14 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
     for (;;) {
         double now = clock_now_ms();
         housekeeping(c, now);
+        for (int k = 0; k < 8 && connection_event(c); k++) /* a few at a time: never starves messages */
+            ;
+        if (c->link_down && c->state == STATE_JOINED && !pending) {
+            c->state = STATE_LOST;
+            c->st.lost++;
+            ev->type = CLUSTER_EVENT_LOST;
+            return ev->type;
+        }
         zmq_msg_t msg;
         zmq_msg_init(&msg);
         if (zmq_msg_recv(&msg, c->sock, ZMQ_DONTWAIT) < 0) {
@@ -241,8 +308,9 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             double wait = deadline - now;
             if (wait > c->cfg->heartbeat_ms)
                 wait = c->cfg->heartbeat_ms;
-            zmq_pollitem_t item = {.socket = c->sock, .events = ZMQ_POLLIN};
-            zmq_poll(&item, 1, (long)(wait + 0.999));
+            zmq_pollitem_t items[2] = {{.socket = c->sock, .events = ZMQ_POLLIN},
+                                       {.socket = c->monitor, .events = ZMQ_POLLIN}};
+            zmq_poll(items, c->monitor ? 2 : 1, (long)(wait + 0.999));
             continue;
         }
         size_t len = zmq_msg_size(&msg);

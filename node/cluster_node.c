@@ -100,8 +100,8 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             break;
         case CLUSTER_EVENT_LOST:
             if (!lost_reported && !d->quiet)
-                fprintf(stderr, "cavelight-node %s: master lost (nothing heard for %d ms): keeping the output up "
-                        "and reconnecting\n", d->name, d->config->master_timeout_ms);
+                fprintf(stderr, "cavelight-node %s: master lost (its connection closed, or nothing heard for %d ms): "
+                        "keeping the output up and reconnecting\n", d->name, d->config->master_timeout_ms);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:

@@ -47,6 +47,8 @@ typedef struct reference_images {
     float *direct;    /* linear RGB, top row first, same layout as renderer_image.direct */
     float *indirect1; /* one diffuse bounce: what the LPV models */
     float *indirect;  /* many bounces */
+    uint8_t *coverage; /* 1 where the pixel's primary ray meets geometry, else 0 (the mask
+                          of "masked to geometry"; a black surface is still covered) */
     double render_ms; /* wall time of reference_render() */
     uint64_t rays;    /* rays traced (intersection + shadow) */
 } reference_images;

@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "reference.h"
+#include "base/vec3.h"
 #include "base/workpool.h"
 
 struct reference {
@@ -51,6 +52,7 @@ typedef struct reference_job {
     int width, height, samples, max_bounces;
     uint64_t seed;
     float *direct, *indirect1, *indirect;
+    uint8_t *coverage;
     uint64_t *row_rays;             /* per row, summed after the run (no atomics) */
 } reference_job;
 
@@ -77,19 +79,6 @@ typedef struct hit {
     float albedo[3];
     uint32_t tri;
 } hit;
-
-static inline float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static inline void normalize3(float v[3])
-{
-    float len = sqrtf(dot3(v, v));
-    if (len > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= len;
-}
 
 static inline float transmittance(float sigma, float r)
 {

@@ -15,6 +15,7 @@
 
 #include <stdint.h>
 #include "frame/frame_params.h"
+#include "frame/frame_view.h"
 #include "gl_functions.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_volume.h"
@@ -57,12 +58,8 @@ typedef struct renderer_desc {
                                   inputs; 0 = 1e-4, negative = never skip */
 } renderer_desc;
 
-typedef struct renderer_view {
-    float view[16];       /* world-to-eye, column-major */
-    float projection[16]; /* eye-to-clip (off-axis or symmetric) */
-    float eye_position[3];/* world space */
-    int width, height;
-} renderer_view;
+/* What an eye pass renders from: built by frame_view_screen() or frame_view_camera(). */
+typedef frame_view renderer_view;
 
 typedef struct renderer_image {
     int width, height;

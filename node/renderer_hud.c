@@ -7,8 +7,21 @@
 #include <string.h>
 
 #include "base/mat4.h"
+#include "base/xalloc.h"
+#include "base/vec3.h"
 #include "renderer_hud.h"
-#include "renderer_internal.h"
+#include "gltools.h"
+
+enum { RENDERER_HUD_BOX, RENDERER_HUD_CONE, RENDERER_HUD_TORUS, RENDERER_HUD_MESHES };
+
+/* One program, three meshes in one buffer. */
+struct renderer_hud {
+    const gl_functions *gl;
+    GLuint prog_hud, hud_vao, hud_vbo;
+    GLint hud_first[RENDERER_HUD_MESHES];
+    GLsizei hud_count[RENDERER_HUD_MESHES];
+    GLint hud_loc_model, hud_loc_view_projection, hud_loc_color, hud_loc_eye, hud_loc_gamma;
+};
 
 /* Panel layout in the wand's frame, metres (see renderer_hud.h). */
 static const float INDICATOR_X = -0.07f;
@@ -24,14 +37,6 @@ enum { SEGMENTS = 24, TORUS_RINGS = 8 };
 static const float PI = 3.14159265f;
 
 /* ---- small maths -------------------------------------------------------------------- */
-
-static void normalize3(float v[3])
-{
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= l;
-}
 
 /* Local matrix from three (scaled) axis columns and a translation. */
 static void columns(const float x[3], const float y[3], const float z[3], const float t[3],
@@ -57,7 +62,7 @@ void renderer_hud_layout(const hud *h, renderer_hud_places *out)
         mat4_transform_point(w, (const float[3]){BAR_X, BAR_Y[i], z}, out->bar_start[i]);
     for (int r = 0; r < 3; r++)
         out->bar_axis[r] = w[r];
-    normalize3(out->bar_axis);
+    vec3_normalize(out->bar_axis);
     for (int k = 0; k < 8; k++) {
         const float p[3] = {k & 1 ? PANEL_MAX[0] : PANEL_MIN[0], k & 2 ? PANEL_MAX[1] : PANEL_MIN[1],
                             k & 4 ? PANEL_MAX[2] : PANEL_MIN[2]};
@@ -167,11 +172,14 @@ static void build_torus(mesh_builder *b)
         }
 }
 
-int renderer_hud_init(renderer *r, char *err, size_t errlen)
+renderer_hud *renderer_hud_create(const gl_functions *gl, char *err, size_t errlen)
 {
-    const gl_functions *gl = r->gl;
-    if (!(r->prog_hud = renderer_program(r, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen)))
-        return -1;
+    renderer_hud *r = xcalloc(1, sizeof *r);
+    r->gl = gl;
+    if (!(r->prog_hud = gltools_program(gl, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen))) {
+        renderer_hud_destroy(r);
+        return NULL;
+    }
     r->hud_loc_model = gl->GetUniformLocation(r->prog_hud, "u_model");
     r->hud_loc_view_projection = gl->GetUniformLocation(r->prog_hud, "u_view_projection");
     r->hud_loc_color = gl->GetUniformLocation(r->prog_hud, "u_color");
@@ -179,11 +187,7 @@ int renderer_hud_init(renderer *r, char *err, size_t errlen)
     r->hud_loc_gamma = gl->GetUniformLocation(r->prog_hud, "u_encoding_gamma");
 
     mesh_builder b = {.capacity = 36 + SEGMENTS * 6 + SEGMENTS * TORUS_RINGS * 6};
-    b.v = malloc((size_t)b.capacity * 6 * sizeof(float));
-    if (!b.v) {
-        snprintf(err, errlen, "renderer: out of memory for the HUD meshes");
-        return -1;
-    }
+    b.v = xmalloc((size_t)b.capacity * 6 * sizeof(float));
     void (*build[RENDERER_HUD_MESHES])(mesh_builder *) = {build_box, build_cone, build_torus};
     for (int m = 0; m < RENDERER_HUD_MESHES; m++) {
         r->hud_first[m] = b.count;
@@ -203,11 +207,13 @@ int renderer_hud_init(renderer *r, char *err, size_t errlen)
     }
     gl->BindVertexArray(0);
     free(b.v);
-    return 0;
+    return r;
 }
 
-void renderer_hud_free(renderer *r)
+void renderer_hud_destroy(renderer_hud *r)
 {
+    if (!r)
+        return;
     const gl_functions *gl = r->gl;
     if (r->prog_hud)
         gl->DeleteProgram(r->prog_hud);
@@ -215,12 +221,12 @@ void renderer_hud_free(renderer *r)
         gl->DeleteBuffers(1, &r->hud_vbo);
     if (r->hud_vao)
         gl->DeleteVertexArrays(1, &r->hud_vao);
-    r->prog_hud = r->hud_vbo = r->hud_vao = 0;
+    free(r);
 }
 
 /* ---- drawing ------------------------------------------------------------------------ */
 
-static void draw(renderer *r, int mesh, const float model[16], const float color[3])
+static void draw(renderer_hud *r, int mesh, const float model[16], const float color[3])
 {
     const gl_functions *gl = r->gl;
     gl->UniformMatrix4fv(r->hud_loc_model, 1, GL_FALSE, model);
@@ -229,7 +235,7 @@ static void draw(renderer *r, int mesh, const float model[16], const float color
 }
 
 /* A mesh placed in the wand's frame: model = wand_world * local. */
-static void draw_local(renderer *r, const hud *h, int mesh, const float x[3], const float y[3],
+static void draw_local(renderer_hud *r, const hud *h, int mesh, const float x[3], const float y[3],
                        const float z[3], const float t[3], const float color[3])
 {
     float local[16], model[16];
@@ -239,7 +245,7 @@ static void draw_local(renderer *r, const hud *h, int mesh, const float x[3], co
 }
 
 /* Axis-aligned box in the wand's frame. */
-static void draw_box(renderer *r, const hud *h, const float centre[3], const float size[3],
+static void draw_box(renderer_hud *r, const hud *h, const float centre[3], const float size[3],
                      const float color[3])
 {
     draw_local(r, h, RENDERER_HUD_BOX, (const float[3]){size[0], 0, 0},
@@ -247,7 +253,7 @@ static void draw_box(renderer *r, const hud *h, const float centre[3], const flo
 }
 
 /* A stroke of a letter, from a to b in the panel plane (wand x, y at depth z). */
-static void draw_stroke(renderer *r, const hud *h, const float a[2], const float b[2], float z,
+static void draw_stroke(renderer_hud *r, const hud *h, const float a[2], const float b[2], float z,
                         const float color[3])
 {
     float d[2] = {b[0] - a[0], b[1] - a[1]};
@@ -273,7 +279,7 @@ static const letter_strokes LETTERS[HUD_BAR_COUNT] = {
     {'P', 4, {{0, 0, 0, 2}, {0, 2, 2, 2}, {2, 2, 2, 1}, {2, 1, 0, 1}}},
 };
 
-static void draw_letter(renderer *r, const hud *h, char letter, float cx, float cy, float z,
+static void draw_letter(renderer_hud *r, const hud *h, char letter, float cx, float cy, float z,
                         const float color[3])
 {
     float unit = 0.5f * LETTER_SIZE;
@@ -291,18 +297,16 @@ static void draw_letter(renderer *r, const hud *h, char letter, float cx, float 
 
 /* Cone with its apex at apex, opening along axis (unit) by half angle a, length len:
  * placed through the world matrix base (wand_world, or identity for world space). */
-static void draw_cone(renderer *r, const float base[16], const float apex[3],
+static void draw_cone(renderer_hud *r, const float base[16], const float apex[3],
                       const float axis[3], float angle, float len, const float color[3])
 {
     float u[3], helper[3] = {1, 0, 0};
     if (fabsf(axis[0]) > 0.9f)
         helper[0] = 0, helper[1] = 1;
-    u[0] = axis[1] * helper[2] - axis[2] * helper[1];
-    u[1] = axis[2] * helper[0] - axis[0] * helper[2];
-    u[2] = axis[0] * helper[1] - axis[1] * helper[0];
-    normalize3(u);
-    float v[3] = {axis[1] * u[2] - axis[2] * u[1], axis[2] * u[0] - axis[0] * u[2],
-                  axis[0] * u[1] - axis[1] * u[0]};
+    vec3_cross(axis, helper, u);
+    vec3_normalize(u);
+    float v[3];
+    vec3_cross(axis, u, v);
     float rad = len * tanf(angle);
     float x[3], y[3], z[3], local[16], model[16];
     for (int k = 0; k < 3; k++) {
@@ -320,14 +324,14 @@ static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ?
 /* Light 0 at its real pose, in world space, RENDERER_HUD_LIGHT_MARKER long: a spot's cone
  * (opened by angle), a point light's star of three bars (light goes every way), a
  * directional light's arrow along its direction (where it comes from does not matter). */
-static void draw_light_marker(renderer *r, const hud *h, float angle, const float color[3])
+static void draw_light_marker(renderer_hud *r, const hud *h, float angle, const float color[3])
 {
     static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     const float len = RENDERER_HUD_LIGHT_MARKER, thick = 0.12f * RENDERER_HUD_LIGHT_MARKER;
     const float *p = h->light_position;
     float axis[3], local[16];
     memcpy(axis, h->light_direction, sizeof axis);
-    normalize3(axis);
+    vec3_normalize(axis);
     if (h->light_type == SCENE_LIGHT_POINT) {
         for (int a = 0; a < 3; a++) {
             float c[3][3] = {{thick, 0, 0}, {0, thick, 0}, {0, 0, thick}};
@@ -339,13 +343,9 @@ static void draw_light_marker(renderer *r, const hud *h, float angle, const floa
         float u[3], v[3], helper[3] = {1, 0, 0}, mid[3], apex[3];
         if (fabsf(axis[0]) > 0.9f)
             helper[0] = 0, helper[1] = 1;
-        u[0] = axis[1] * helper[2] - axis[2] * helper[1];
-        u[1] = axis[2] * helper[0] - axis[0] * helper[2];
-        u[2] = axis[0] * helper[1] - axis[1] * helper[0];
-        normalize3(u);
-        v[0] = axis[1] * u[2] - axis[2] * u[1];
-        v[1] = axis[2] * u[0] - axis[0] * u[2];
-        v[2] = axis[0] * u[1] - axis[1] * u[0];
+        vec3_cross(axis, helper, u);
+        vec3_normalize(u);
+        vec3_cross(axis, u, v);
         float x[3], y[3], z[3];
         for (int k = 0; k < 3; k++) {
             x[k] = u[k] * thick;
@@ -363,12 +363,9 @@ static void draw_light_marker(renderer *r, const hud *h, float angle, const floa
     }
 }
 
-void renderer_hud_draw(renderer *r, const frame_params *p, const float view_projection[16],
-                       const float eye[3], float encoding_gamma)
+void renderer_hud_draw(renderer_hud *r, const frame_params *p, int cells,
+                       const float view_projection[16], const float eye[3], float encoding_gamma)
 {
-    int cells = r->lattice.n[0];
-    for (int a = 1; a < 3; a++)
-        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
     hud h;
     hud_describe(p, cells, &h);
     if (!h.visible)

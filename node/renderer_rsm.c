@@ -9,24 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gltools.h"
 #include "renderer_internal.h"
 
 static const GLenum rsm_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                       GL_COLOR_ATTACHMENT2};
-
-static GLuint layered(renderer *r, GLenum format, int layers, GLenum filter)
-{
-    const gl_functions *gl = r->gl;
-    GLuint t;
-    gl->GenTextures(1, &t);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, t);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, r->rsm_size, r->rsm_size, layers);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, (GLint)filter);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, (GLint)filter);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
 
 static void release(renderer *r)
 {
@@ -48,10 +35,13 @@ static int reserve(renderer *r, int layers, char *err, size_t errlen)
         return 0;
     const gl_functions *gl = r->gl;
     release(r);
-    r->rsm_position = layered(r, GL_RGBA32F, layers, GL_NEAREST);
-    r->rsm_normal = layered(r, GL_RGBA32F, layers, GL_NEAREST);
-    r->rsm_flux = layered(r, GL_RGBA32F, layers, GL_NEAREST);
-    r->rsm_depth = layered(r, GL_DEPTH_COMPONENT32F, layers, GL_LINEAR);
+    int size = r->rsm_size;
+    r->rsm_position = gltools_texture_array(gl, GL_RGBA32F, size, layers);
+    r->rsm_normal = gltools_texture_array(gl, GL_RGBA32F, size, layers);
+    r->rsm_flux = gltools_texture_array(gl, GL_RGBA32F, size, layers);
+    r->rsm_depth = gltools_texture_array(gl, GL_DEPTH_COMPONENT32F, size, layers);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     gl->GenFramebuffers(layers, r->rsm_fbo);
@@ -63,10 +53,7 @@ static int reserve(renderer *r, int layers, char *err, size_t errlen)
         gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->rsm_flux, 0, i);
         gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->rsm_depth, 0, i);
         gl->DrawBuffers(3, rsm_buffers);
-        GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
-        if (st != GL_FRAMEBUFFER_COMPLETE) {
-            snprintf(err, errlen, "RSM framebuffer incomplete (status 0x%x): the driver lacks "
-                     "float render targets", (unsigned)st);
+        if (gltools_fbo_complete(gl, "RSM", err, errlen)) {
             gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
             return -1;
         }

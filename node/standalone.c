@@ -12,6 +12,8 @@
 #include "image/image.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_budget.h"
+#include "base/vec3.h"
+#include "frame/frame_view.h"
 #include "frame/offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
@@ -125,7 +127,7 @@ int standalone_parse(int argc, char **argv, node_options *o)
 {
     *o = (node_options){
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
-        .fov_deg = -1, .eye_separation = 0.065f, .seed = 1,
+        .yfov = -1, .eye_separation = 0.065f, .seed = 1,
     };
     frame_params_default(&o->frame);
     frame_params *fp = &o->frame;
@@ -159,7 +161,11 @@ int standalone_parse(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &fp->exposure, 1);
         else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
         else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
-        else if (strcmp(a, "--fov") == 0) bad = parse_floats(v, &o->fov_deg, 1) || o->fov_deg <= 0 || o->fov_deg >= 179;
+        else if (strcmp(a, "--fov") == 0) {
+            float deg;
+            bad = parse_floats(v, &deg, 1) || deg <= 0 || deg >= 179;
+            o->yfov = deg * 3.14159265f / 180.0f;
+        }
         else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
         else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
         else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &fp->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
@@ -243,14 +249,8 @@ static int make_views(const node_options *o, const scene *s, const scene_camera 
 {
     float right[3], head[3];
     if (o->have_screen) {
-        float len = 0;
-        for (int i = 0; i < 3; i++) {
-            right[i] = o->screen[3 + i] - o->screen[i];
-            len += right[i] * right[i];
-        }
-        len = sqrtf(len);
-        for (int i = 0; i < 3; i++)
-            right[i] = len > 0 ? right[i] / len : 0;
+        vec3_sub(o->screen + 3, o->screen, right);
+        vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
         memcpy(head, cam->position, sizeof head);
@@ -259,35 +259,23 @@ static int make_views(const node_options *o, const scene *s, const scene_camera 
             for (int i = 0; i < 3; i++)
                 right[i] = view[4 * i]; /* the view's first row */
         else
-            right[0] = 1, right[1] = right[2] = 0;
+            memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
-    float pos[2][3];
+    static const char *const names[3] = {"left", "mono", "right"};
     *count = o->stereo ? 2 : 1;
-    if (o->stereo) {
-        offaxis_stereo_eyes(head, right, o->eye_separation, pos[0], pos[1]);
-        eyes[0].name = "left";
-        eyes[1].name = "right";
-    } else {
-        memcpy(pos[0], head, sizeof head);
-        eyes[0].name = "mono";
-    }
     float far_plane = scene_far_plane(s);
     for (int e = 0; e < *count; e++) {
-        renderer_view *v = &eyes[e].view;
-        v->width = o->width;
-        v->height = o->height;
-        memcpy(v->eye_position, pos[e], sizeof pos[e]);
+        int side = o->stereo ? 2 * e - 1 : 0;
+        float eye[3];
+        frame_view_eye(head, right, o->eye_separation, side, eye);
+        eyes[e].name = names[side + 1];
         int rc;
         if (o->have_screen) {
-            offaxis_screen_desc sd = {.near_plane = 0.02f, .far_plane = far_plane};
-            memcpy(sd.bottom_left, o->screen, 12);
-            memcpy(sd.bottom_right, o->screen + 3, 12);
-            memcpy(sd.top_left, o->screen + 6, 12);
-            memcpy(sd.eye, pos[e], 12);
-            rc = offaxis_screen(&sd, v->view, v->projection);
+            rc = frame_view_screen(o->screen, o->screen + 3, o->screen + 6, eye, far_plane,
+                                   o->width, o->height, &eyes[e].view);
         } else {
-            rc = offaxis_camera(cam, pos[e], far_plane, (float)o->width / (float)o->height,
-                                v->view, v->projection);
+            rc = frame_view_scene_camera(cam, eye, far_plane, o->width, o->height,
+                                         &eyes[e].view);
         }
         if (rc != 0) {
             fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
@@ -424,19 +412,16 @@ int standalone_run(const node_options *o)
     node_options opt = *o;
     /* The scene's camera (the file's first, or --camera's), else the default view; the
      * command line's position, target and field of view win. */
-    scene_camera cam = sc.camera;
-    if (!cam.valid) {
-        cam = (scene_camera){.valid = 1, .yfov = 60.0f * 3.14159265f / 180.0f};
-        scene_default_view(&sc, cam.position, cam.target);
-    }
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
     if (opt.have_position)
         memcpy(cam.position, opt.position, sizeof opt.position);
     if (opt.have_target)
         memcpy(cam.target, opt.target, sizeof opt.target);
     if (opt.have_position || opt.have_target)
         memset(cam.up, 0, sizeof cam.up);
-    if (opt.fov_deg > 0) {
-        cam.yfov = opt.fov_deg * 3.14159265f / 180.0f;
+    if (opt.yfov > 0) {
+        cam.yfov = opt.yfov;
         cam.orthographic = 0;
     }
     if (!opt.have_height && cam.aspect > 0 && !opt.have_screen)

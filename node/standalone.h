@@ -29,7 +29,7 @@ typedef struct node_options {
      * given; without --height, a file camera's aspect ratio sets the height */
     const char *camera;
     int have_position, have_target, have_screen, have_eye, have_height;
-    float position[3], target[3], fov_deg;
+    float position[3], target[3], yfov; /* radians, <= 0: the scene's */
     float screen[9], eye[3];
     int stereo;
     float eye_separation;

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# Speed against accuracy of the LPV on the built-in scenes (default room and corridor):
-# sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and the
-# classic accumulating LPV against a path-traced (Embree) reference; measures the error
-# after an abrupt light move and the frame-to-frame change along a light path; writes
-# CSVs and PNG charts to OUT (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
+# Speed against accuracy of the LPV on the built-in chart scenes (default room, corridor,
+# doorway, courtyard) and any glTF file given with --scene: sweeps lattice size, steps per
+# frame, lambda_incr, the CPU and GL backends and the classic accumulating LPV against a
+# path-traced (Embree) reference, every scene with the same settings. Accuracy is the
+# indirect image's relative RMSE and SSIM against the reference's one-bounce image over
+# the pixels that meet geometry. Also measures the error after an abrupt light move and
+# the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
+# (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
 # The path-traced reference is cached in OUT as ref_*.pfm; --reuse-reference keeps it
 # between runs (only when the scene, camera and reference code are unchanged).
 # Usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference]
+#                         [--scene FILE.gltf]...
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 . "$root/scripts/deps.sh"
@@ -14,24 +18,29 @@ cavelight_install_deps
 cavelight_build "$root" >/dev/null
 
 quick=0 docs=1 reuse=0 out=$root/out/chart
+scenes=(default corridor doorway courtyard)
+usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--scene FILE]..."
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
     --no-docs) docs=0 ;;
     --reuse-reference) reuse=1 ;;
-    --out) out=$2; shift ;;
-    *) echo "usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference]" >&2
-       exit 2 ;;
+    --out) [ $# -ge 2 ] || { echo "$usage" >&2; exit 2; }; out=$2; shift ;;
+    --scene) [ $# -ge 2 ] && [ -f "$2" ] || { echo "chart: --scene needs a glTF file" >&2; exit 2; }
+             scenes+=("$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
+    *) echo "$usage" >&2; exit 2 ;;
   esac
   shift
 done
 mkdir -p "$out"
-rm -rf "$out"/*.csv "$out"/*.json "$out"/*.png "$out"/budget_*
+rm -rf "$out"/*.csv "$out"/*.json "$out"/*.png "$out"/budget_* "$out"/scenes.txt
 [ $reuse = 1 ] || rm -f "$out"/ref_*
+# The name each scene's files carry (the bench's: a file's name without its extension).
+key() { local b; b=$(basename "$1"); echo "${b%%.*}"; }
 
 if [ $quick = 1 ]; then
   size=(--width 160 --height 120) ref=(--ref-samples 32)
-  sweep=(--lattices 16,32,64,fit --gl-max-lattice 16 --timing-frames 3)
+  sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
@@ -40,16 +49,18 @@ else
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
-for scene in default corridor; do
-  echo "chart: $scene: sweep" >&2
-  "$bench" accuracy sweep --scene $scene --out "$out" "${size[@]}" "${ref[@]}" "${sweep[@]}" \
-    > "$out/sweep_$scene.json"
-  echo "chart: $scene: light move and light path" >&2
-  "$bench" accuracy move --scene $scene --out "$out" "${size[@]}" "${ref[@]}" "${motion[@]}" \
-    > "$out/move_$scene.json"
-  "$bench" accuracy path --scene $scene --out "$out" "${size[@]}" "${motion[@]}" \
-    > "$out/path_$scene.json"
-  "$bench" accuracy savings --scene $scene --out "$out" "${size[@]}" > "$out/savings_$scene.json"
+for scene in "${scenes[@]}"; do
+  k=$(key "$scene")
+  echo "$k" >> "$out/scenes.txt"
+  echo "chart: $k: sweep ($((SECONDS - start)) s)" >&2
+  "$bench" accuracy sweep --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${sweep[@]}" \
+    > "$out/sweep_$k.json"
+  echo "chart: $k: light move and light path" >&2
+  "$bench" accuracy move --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${motion[@]}" \
+    > "$out/move_$k.json"
+  "$bench" accuracy path --scene "$scene" --out "$out" "${size[@]}" "${motion[@]}" \
+    > "$out/path_$k.json"
+  "$bench" accuracy savings --scene "$scene" --out "$out" "${size[@]}" > "$out/savings_$k.json"
 done
 echo "chart: frame-time budgets" >&2
 for budget in 5 10 20 40; do
@@ -58,8 +69,9 @@ for budget in 5 10 20 40; do
 done
 echo "chart: measured in $((SECONDS - start)) s" >&2
 
-# Charts. Columns of sweep_*.csv: see the header line.
-for scene in default corridor; do
+# Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
+# 16 rmse_rel_indirect, 24 mae_self32, 25 pareto).
+while read -r scene; do
   csv=$out/sweep_$scene.csv
   gnuplot <<EOF
 set datafile separator ","
@@ -68,30 +80,32 @@ set key outside right top
 set grid
 set logscale x
 set xlabel "propagation ms per frame (median)"
-set ylabel "mean absolute error of the displayed image vs path-traced reference"
+set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
+set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
 front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
 set output "$out/speed_accuracy_$scene.png"
 set title "$scene: speed against accuracy (labels: lattice/steps; fit = 32^3 cells shaped to the scene)"
-plot front using 11:23 with lines lw 2 lc rgb "black" title "Pareto front", \
-     sel("cpu","incremental","0") using 11:23 with points pt 7 ps 1.2 lc rgb "#999999" title "CPU ILPV lambda 0 (plain LPV)", \
-     sel("cpu","incremental","0.5") using 11:23 with points pt 7 lc rgb "#2a9d8f" title "CPU ILPV lambda 0.5", \
-     sel("cpu","incremental","0.8") using 11:23 with points pt 7 lc rgb "#e76f51" title "CPU ILPV lambda 0.8", \
-     sel("cpu","incremental","0.9") using 11:23 with points pt 7 lc rgb "#9b2226" title "CPU ILPV lambda 0.9", \
-     sel("cpu","classic","any") using 11:23 with points pt 5 lc rgb "#264653" title "CPU classic LPV (accumulated)", \
-     sel("gl","incremental","0") using 11:23 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
-     sel("gl","incremental","0.8") using 11:23 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
-     sel("gl","classic","any") using 11:23 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
-     front using 11:23:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
+plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
+     sel("cpu","incremental","0") using 11:16 with points pt 7 ps 1.2 lc rgb "#999999" title "CPU ILPV lambda 0 (plain LPV)", \
+     sel("cpu","incremental","0.5") using 11:16 with points pt 7 lc rgb "#2a9d8f" title "CPU ILPV lambda 0.5", \
+     sel("cpu","incremental","0.8") using 11:16 with points pt 7 lc rgb "#e76f51" title "CPU ILPV lambda 0.8", \
+     sel("cpu","incremental","0.9") using 11:16 with points pt 7 lc rgb "#9b2226" title "CPU ILPV lambda 0.9", \
+     sel("cpu","classic","any") using 11:16 with points pt 5 lc rgb "#264653" title "CPU classic LPV (accumulated)", \
+     sel("gl","incremental","0") using 11:16 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
+     sel("gl","incremental","0.8") using 11:16 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
+     sel("gl","classic","any") using 11:16 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
+     front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
 set xlabel "whole frame ms (frame pass + one eye pass, median)"
 set title "$scene: whole-frame time against accuracy"
-plot sel("cpu","incremental","0") using 14:23 with points pt 7 lc rgb "#999999" title "ILPV lambda 0", \
-     sel("cpu","incremental","0.8") using 14:23 with points pt 7 lc rgb "#e76f51" title "ILPV lambda 0.8", \
-     sel("cpu","incremental","0.9") using 14:23 with points pt 7 lc rgb "#9b2226" title "ILPV lambda 0.9", \
-     sel("cpu","classic","any") using 14:23 with points pt 5 lc rgb "#264653" title "classic LPV", \
-     sel("gl","incremental","any") using 14:23 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)"
+plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" title "ILPV lambda 0", \
+     sel("cpu","incremental","0.8") using 14:16 with points pt 7 lc rgb "#e76f51" title "ILPV lambda 0.8", \
+     sel("cpu","incremental","0.9") using 14:16 with points pt 7 lc rgb "#9b2226" title "ILPV lambda 0.9", \
+     sel("cpu","classic","any") using 14:16 with points pt 5 lc rgb "#264653" title "classic LPV", \
+     sel("gl","incremental","any") using 14:16 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)"
 unset logscale x
+unset logscale y
 set logscale x 2
 set xlabel "propagation steps per frame"
 set ylabel "MAE of the displayed image vs 32 plain steps"
@@ -126,7 +140,7 @@ plot pa("incremental","0") using 3:6 with lines lw 2 lc rgb "black" title "direc
      for [l in "0 0.5 0.8 0.9"] pa("incremental", l) using 3:5 with lines title "indirect, ILPV lambda ".l, \
      pa("classic","0") using 3:5 with lines dt 2 title "indirect, classic LPV"
 EOF
-done
+done < "$out/scenes.txt"
 
 if [ $docs = 1 ]; then
   mkdir -p "$root/docs/accuracy"

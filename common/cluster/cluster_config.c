@@ -433,6 +433,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
     cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 250, 0, 10, 60000);
     cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
+    cfg->stall_min_ms = (int)get_number(&c, t, "stall_min_ms", "timeouts.stall_min_ms", 250, 0, 10, 600000);
 
     parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
     parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);

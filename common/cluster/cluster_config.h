@@ -10,7 +10,7 @@
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
  *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
- *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms"},
+ *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms"},
  *             "security": {"mode": "curve" (default) | "insecure", "keys": DIR}
  *             (curve: every connection authenticated and encrypted with the key files
  *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
@@ -98,6 +98,7 @@ typedef struct cluster_config {
     int barrier_timeout_ms;  /* a node not READY by then is dropped (default 2000) */
     int heartbeat_ms;        /* idle heartbeat period (default 250) */
     int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
+    int stall_min_ms;        /* floor of the adaptive stall timeout (default 250) */
     cluster_observer observer;
     int screen_count;
     cluster_screen screens[CLUSTER_MAX_SCREENS];

@@ -8,7 +8,6 @@
 #ifndef CAVELIGHT_OFFAXIS_H
 #define CAVELIGHT_OFFAXIS_H
 
-#include "scene/scene.h"
 
 typedef struct offaxis_screen_desc {
     float bottom_left[3], bottom_right[3], top_left[3];
@@ -33,13 +32,6 @@ void offaxis_perspective(float yfov, float aspect, float near_plane, float far_p
                          float projection[16]);
 void offaxis_orthographic(float left, float right, float bottom, float top, float near_plane,
                           float far_plane, float projection[16]);
-
-/* A scene camera's view from eye (its own position, or a stereo eye beside it), looking
- * the camera's way with its up: perspective or orthographic, its clip planes where it has
- * them (else 2 cm and far_plane), the image's aspect (the camera's own aspect is the
- * caller's to apply to the image size). Returns -1 for a degenerate camera. */
-int offaxis_camera(const scene_camera *c, const float eye[3], float far_plane, float aspect,
-                   float view[16], float projection[16]);
 
 /* Eye positions for stereo: the head position offset by +-separation/2 along `right`. */
 void offaxis_stereo_eyes(const float head[3], const float right[3], float separation,

@@ -138,6 +138,10 @@ float scene_far_plane(const scene *s);
  * object seen from outside) from in front of the bounds' centre (+0.3 x the largest extent
  * up, +1.5 x towards +z), looking at the centre. Needs scene_finish(). */
 void scene_default_view(const scene *s, float position[3], float target[3]);
+/* The camera to look through when nothing else says: the scene's own (a file's first, or
+ * the one scene_pick_camera() chose), else a 60 degree perspective camera at
+ * scene_default_view(). */
+void scene_default_camera(const scene *s, scene_camera *out);
 /* The light scene_load() gives a scene without lights or emitters: a white point light
  * inside the bounds, three quarters of the way up over the middle (a ceiling lamp),
  * moved to the first free point of a grid over the bounds when that spot lies inside a

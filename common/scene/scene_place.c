@@ -146,6 +146,16 @@ void scene_default_view(const scene *s, float position[3], float target[3])
     position[2] = target[2] + 1.5f * size;
 }
 
+void scene_default_camera(const scene *s, scene_camera *out)
+{
+    if (s->camera.valid) {
+        *out = s->camera;
+        return;
+    }
+    *out = (scene_camera){.valid = 1, .yfov = 60.0f * 3.14159265f / 180.0f};
+    scene_default_view(s, out->position, out->target);
+}
+
 void scene_light_added_note(const scene *s, const char *path, char *out, size_t n)
 {
     const scene_light *l = &s->lights[0];

@@ -34,6 +34,7 @@ typedef struct acc_setup {
 /* The reference for one light setting: linear images and their tone-mapped display. */
 typedef struct acc_reference {
     float *direct, *indirect1, *final1; /* final1 = direct + indirect1: what the LPV models */
+    uint8_t *coverage;                  /* 1 where a pixel meets geometry: the metrics' mask */
     uint8_t *display;                   /* final1 tone-mapped like shaders/final.frag */
     double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
     double mean_indirect1;

@@ -8,7 +8,7 @@
 
 #include "bench_accuracy.h"
 #include "image/image.h"
-#include "frame/offaxis.h"
+#include "frame/frame_view.h"
 #include "reference.h"
 #include "image/tonemap.h"
 
@@ -52,15 +52,10 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
         scene_free(&s->sc);
         return -1;
     }
-    float eye[3], target[3];
-    scene_default_view(&s->sc, eye, target);
-    renderer_view *v = &s->view;
-    v->width = o->width;
-    v->height = o->height;
-    memcpy(v->eye_position, eye, sizeof eye);
-    offaxis_look_at(eye, target, s->sc.camera.valid ? s->sc.camera.yfov : 1.0f,
-                    (float)o->width / (float)o->height, 0.02f, scene_far_plane(&s->sc),
-                    v->view, v->projection);
+    scene_camera cam;
+    scene_default_camera(&s->sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&s->sc), o->width, o->height,
+                            &s->view);
     frame_params_default(&s->base);
     frame_params_lights_from_scene(&s->base, &s->sc);
     s->encoding_gamma = frame_params_e2e_gamma(s->base.environment) / s->base.display_gamma;
@@ -83,6 +78,36 @@ static void ref_path(const acc_setup *s, const char *tag, const char *kind, char
              base, tag, s->opt.width, s->opt.height, s->opt.ref_samples, kind);
 }
 
+/* The coverage mask is cached as a PFM of 0s and 1s. */
+static int read_coverage(const char *path, const acc_setup *s, uint8_t **out)
+{
+    char err[256];
+    int w, h;
+    float *v = NULL;
+    size_t n = (size_t)s->opt.width * s->opt.height;
+    if (image_read_pfm(path, &w, &h, &v, err, sizeof err) != 0)
+        return -1;
+    *out = w == s->opt.width && h == s->opt.height ? malloc(n) : NULL;
+    for (size_t i = 0; *out && i < n; i++)
+        (*out)[i] = v[3 * i] != 0;
+    free(v);
+    return *out ? 0 : -1;
+}
+
+static int write_coverage(const char *path, const acc_setup *s, const uint8_t *coverage)
+{
+    char err[256];
+    size_t n = (size_t)s->opt.width * s->opt.height;
+    float *v = malloc(n * 3 * sizeof *v);
+    if (!v)
+        return -1;
+    for (size_t i = 0; i < 3 * n; i++)
+        v[i] = coverage[i / 3];
+    int rc = image_write_pfm(path, s->opt.width, s->opt.height, v, err, sizeof err);
+    free(v);
+    return rc;
+}
+
 static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
 {
     char path[4200], err[256];
@@ -93,6 +118,9 @@ static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
     ref_path(s, tag, "indirect1.pfm", path, sizeof path);
     if (w != s->opt.width || h != s->opt.height ||
         image_read_pfm(path, &w, &h, &out->indirect1, err, sizeof err) != 0)
+        return -1;
+    ref_path(s, tag, "coverage.pfm", path, sizeof path);
+    if (read_coverage(path, s, &out->coverage) != 0)
         return -1;
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "r");
@@ -127,12 +155,15 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     out->noise_indirect1 = noise.indirect1;
     out->direct = img.direct;       /* the images pass to out; img.indirect is not needed */
     out->indirect1 = img.indirect1;
+    out->coverage = img.coverage;
     free(img.indirect);
     char path[4200];
     ref_path(s, tag, "direct.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->direct, err, sizeof err);
     ref_path(s, tag, "indirect1.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->indirect1, err, sizeof err);
+    ref_path(s, tag, "coverage.pfm", path, sizeof path);
+    rc |= write_coverage(path, s, out->coverage);
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "w");
     if (f) {
@@ -175,6 +206,7 @@ void acc_reference_free(acc_reference *r)
     free(r->indirect1);
     free(r->final1);
     free(r->display);
+    free(r->coverage);
     memset(r, 0, sizeof *r);
 }
 

@@ -13,7 +13,7 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
 #include "glctx.h"
-#include "frame/offaxis.h"
+#include "frame/frame_view.h"
 #include "renderer.h"
 #include "scene/scene.h"
 
@@ -101,17 +101,10 @@ int bench_frame(int argc, char **argv)
     frame_params fp;
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc);
-    renderer_view v = {.width = width, .height = height};
-    float eye[3], target[3], size = 0;
-    scene_default_view(&sc, eye, target);
-    for (int a = 0; a < 3; a++) {
-        float e = sc.bounds_max[a] - sc.bounds_min[a];
-        size = e > size ? e : size;
-    }
-    memcpy(v.eye_position, eye, sizeof v.eye_position);
-    offaxis_look_at(eye, target, sc.camera.valid ? sc.camera.yfov : 1.0f,
-                    (float)width / (float)height, 0.02f, 10.0f * size + 10.0f, v.view,
-                    v.projection);
+    renderer_view v;
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
 
     int n = frames - WARMUP;
     double *s = calloc((size_t)n * PASSES, sizeof *s);

@@ -9,7 +9,7 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
-#include "frame/offaxis.h"
+#include "frame/frame_view.h"
 #include "reference.h"
 #include "scene/scene.h"
 #include "base/workpool.h"
@@ -75,11 +75,10 @@ int bench_reference(int argc, char **argv)
     frame_params p;
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &sc);
-    renderer_view v = {.width = width, .height = height};
-    memcpy(v.eye_position, sc.camera.position, sizeof v.eye_position);
-    offaxis_look_at(sc.camera.position, sc.camera.target, sc.camera.yfov,
-                    (float)width / (float)height, 0.02f, scene_far_plane(&sc), v.view,
-                    v.projection);
+    renderer_view v;
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
     reference_render_desc rd = {.params = &p, .view = &v, .samples = samples,
                                 .max_bounces = bounces, .seed = 1};
     workpool *probe = workpool_create(0);

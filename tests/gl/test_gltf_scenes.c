@@ -219,10 +219,9 @@ static void render(const scene *s, const frame_params *p, rendered *out)
     renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
                         .rsm_size = 256, .lattice_cells = 16};
     assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
-    renderer_view v = {.width = W, .height = H};
-    memcpy(v.eye_position, s->camera.position, sizeof v.eye_position);
-    assert_int_equal(offaxis_camera(&s->camera, s->camera.position, scene_far_plane(s),
-                                    (float)W / H, v.view, v.projection), 0);
+    renderer_view v;
+    assert_int_equal(frame_view_scene_camera(&s->camera, s->camera.position, scene_far_plane(s),
+                                             W, H, &v), 0);
     renderer_frame_pass(t.r, p);
     renderer_image img;
     assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);

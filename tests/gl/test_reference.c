@@ -311,6 +311,49 @@ static void render(room *r, int samples, uint64_t seed, reference_images *out)
     assert_int_equal(reference_render(r->ref, &rd, out, err, sizeof err), 0);
 }
 
+/* Coverage: every pixel of the closed default room meets geometry; in the open-top
+ * courtyard, looking up, the sky's pixels do not, and they are black in all three
+ * images. */
+static void test_coverage(void **state)
+{
+    (void)state;
+    enum { W = 40, H = 30 };
+    room r;
+    room_open(&r, W, H, 0);
+    reference_images img;
+    render(&r, 1, 1, &img);
+    size_t covered = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        covered += img.coverage[i] == 1;
+    assert_int_equal(covered, W * H);
+    reference_images_free(&img);
+    assert_null(img.coverage);
+    room_close(&r);
+
+    char err[256];
+    assert_int_equal(scene_load("courtyard", &r.s, err, sizeof err), 0);
+    frame_params_default(&r.p);
+    frame_params_lights_from_scene(&r.p, &r.s);
+    const float eye[3] = {0, 1.5f, 2.5f}, up[3] = {0, 9, -2.5f};
+    gltest_look_at(&r.v, eye, up, 1.2f, W, H);
+    r.ref = reference_create(&r.s, 0, err, sizeof err);
+    assert_non_null(r.ref);
+    render(&r, 4, 1, &img);
+    covered = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) {
+        double sum = 0;
+        for (int c = 0; c < 3; c++)
+            sum += img.direct[3 * i + c] + img.indirect1[3 * i + c] + img.indirect[3 * i + c];
+        assert_true(img.coverage[i] <= 1);
+        assert_true(img.coverage[i] || sum == 0);
+        covered += img.coverage[i];
+    }
+    printf("coverage: courtyard looking up, %zu of %d pixels meet geometry\n", covered, W * H);
+    assert_true(covered > W * H / 4 && covered < W * H * 3 / 4);
+    reference_images_free(&img);
+    room_close(&r);
+}
+
 /* Two independent halves differ by about 1/sqrt(samples): 4x the samples halves it. */
 static void test_noise_falls_with_samples(void **state)
 {
@@ -402,6 +445,7 @@ int main(void)
         cmocka_unit_test(test_furnace_box),
         cmocka_unit_test(test_one_bounce_closed_form),
         cmocka_unit_test(test_noise_falls_with_samples),
+        cmocka_unit_test(test_coverage),
         cmocka_unit_test(test_deterministic_and_ordered),
         cmocka_unit_test(test_bad_input),
     };

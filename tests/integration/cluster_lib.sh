@@ -23,7 +23,7 @@ make_config() {
   cat > "$file" <<JSON
 {"name": "test", "master": {"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"},
  "security": {"mode": "${CLUSTER_SECURITY:-insecure}"},
- "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100, "master_ms": 3000},
+ "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100, "master_ms": 3000, "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
  "observer": {"eye_separation": 0.064, "home": [0, 1.7, 0]},
  "screens": [
   {"name": "front-l", "bottom_left": [-1.5,0,-1.5], "bottom_right": [0,0,-1.5], "top_left": [-1.5,3,-1.5], "overview": [32, 0]},

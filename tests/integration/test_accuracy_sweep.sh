@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # cavelight-bench accuracy (the measuring half of scripts/chart.sh) at a tiny size: every
-# experiment writes its CSV and JSON line, the Pareto marks are right, the reference cache
-# is reused, and scripts/accuracy_report.py turns the output into markdown.
+# experiment writes its CSV and JSON line, the Pareto marks (on the indirect relative RMSE
+# the CSV prints) are right, the goal's rows are run and summarised, the metrics are
+# masked to geometry (the open courtyard's sky is left out), the reference cache is
+# reused, and scripts/accuracy_report.py turns the output into markdown with the goal
+# table.
 set -euo pipefail
 build=$1
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -15,41 +18,71 @@ small=(--width 40 --height 30 --out "$out" --threads 1)
 "$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8,12 \
     --steps 1,4 --lambdas 0,0.8 --backends cpu --timing-frames 2 > "$out/sweep.json" \
     2> "$out/sweep.log" || { cat "$out/sweep.log" >&2; fail "sweep failed"; }
-ls "$out"/ref_default_a_40x30_4_direct.pfm "$out"/ref_default_a_40x30_4_noise.txt >/dev/null \
-    || fail "reference not cached"
+ls "$out"/ref_default_a_40x30_4_direct.pfm "$out"/ref_default_a_40x30_4_noise.txt \
+    "$out"/ref_default_a_40x30_4_coverage.pfm >/dev/null || fail "reference not cached"
 python3 - "$out" <<'PY' || fail "sweep CSV or summary wrong"
 import csv, json, math, sys
 out = sys.argv[1]
 rows = list(csv.DictReader(open(f"{out}/sweep_default.csv")))
-# 2 lattices x (2 steps x 2 lambdas + 2 classic) configurations.
-assert len(rows) == 12, len(rows)
+# 2 lattices x (2 steps x 2 lambdas + 2 classic) configurations, then the goal's: 4 steps
+# at the default lambda_incr 0.8 on 16, 32 and 64 cells.
+assert len(rows) == 15, len(rows)
 for r in rows:
     assert r["backend"] == "cpu" and r["mode"] in ("incremental", "classic")
-    for k in ("propagate_ms", "frame_ms", "mae_display", "mae_indirect", "ssim_indirect"):
+    for k in ("propagate_ms", "frame_ms", "mae_display", "mae_indirect", "ssim_indirect",
+              "rmse_rel_indirect"):
         assert math.isfinite(float(r[k])) and float(r[k]) >= 0, (k, r[k])
-    assert 0 < float(r["mae_display"]) < 1
+    assert 0 < float(r["mae_display"]) < 1 and float(r["ssim_indirect"]) <= 1
     assert (r["mode"] == "classic") == (r["mae_self32"] == "nan")
     assert r["frames"] == ("33" if r["lambda"] == "0.8" else "3"), r  # 31 to steady state, 2 timed
+goal = [r for r in rows if r["lattice"] in ("16", "32", "64")]
+assert [(r["lattice"], r["steps"], r["lambda"]) for r in goal] == \
+    [("16", "4", "0.8"), ("32", "4", "0.8"), ("64", "4", "0.8")], goal
 def dominated(a, b):  # b at least as fast and as accurate, and better in one
-    ta, ea, tb, eb = (float(a["propagate_ms"]), float(a["mae_display"]),
-                      float(b["propagate_ms"]), float(b["mae_display"]))
+    ta, ea, tb, eb = (float(a["propagate_ms"]), float(a["rmse_rel_indirect"]),
+                      float(b["propagate_ms"]), float(b["rmse_rel_indirect"]))
     return tb <= ta and eb <= ea and (tb < ta or eb < ea)
 for a in rows:
     on_front = not any(dominated(a, b) for b in rows if b is not a)
     assert on_front == (a["pareto"] == "1"), a
 j = json.loads(open(f"{out}/sweep.json").read())
-assert j["configs"] == 12 and j["reference_noise_indirect1"] > 0 and j["reference_seconds"] > 0
-assert j["reference_cached"] is False
+assert j["configs"] == 15 and j["reference_noise_indirect1"] > 0 and j["reference_seconds"] > 0
+assert j["reference_cached"] is False and j["pixels_compared"] == 40 * 30  # a closed room
+g = j["goal"]
+assert (g["lattice"], g["steps"], g["lambda"], g["lattices"]) == (32, 4, 0.8, [16, 32, 64]), g
+assert g["rmse_rel"] == float(goal[1]["rmse_rel_indirect"]) and g["no_signal"] is False
+assert abs(g["ssim"] - float(goal[1]["ssim_indirect"])) <= 1e-5 and g["propagate_ms"] > 0
+by = [g["rmse_rel_16"], g["rmse_rel_32"], g["rmse_rel_64"]]
+assert g["finer_never_worse"] == (by[1] <= by[0] and by[2] <= by[1]), g
 PY
 
-# A second run reads the cached reference instead of tracing it again.
+# Masked to geometry: from the open courtyard's camera some pixels see the sky; the
+# metrics count only the others.
+"$bench" accuracy sweep --scene courtyard "${small[@]}" --ref-samples 2 --lattices 8 \
+    --steps 1 --lambdas 0 --backends cpu --classic 0 --goal 0 --timing-frames 1 \
+    > "$out/court.json" 2>/dev/null || fail "courtyard sweep failed"
+python3 - "$out" <<'PY' || fail "courtyard metrics are not masked to geometry"
+import json, struct, sys
+out = sys.argv[1]
+def pfm(path):
+    f = open(path, "rb"); f.readline()
+    w, h = map(int, f.readline().split()); f.readline()
+    return struct.unpack("<%df" % (w * h * 3), f.read(w * h * 12))
+cov = pfm(f"{out}/ref_courtyard_a_40x30_2_coverage.pfm")[::3]
+assert set(cov) <= {0.0, 1.0} and 0 < sum(cov) < len(cov), sum(cov)
+j = json.loads(open(f"{out}/court.json").read())
+assert j["pixels_compared"] == sum(cov), (j["pixels_compared"], sum(cov))
+PY
+
+# A second run reads the cached reference instead of tracing it again (the first run's
+# CSV is kept for the report below).
+cp "$out/sweep_default.csv" "$out/first.csv"
 "$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8 \
-    --steps 1 --lambdas 0 --backends cpu --classic 0 --timing-frames 1 > "$out/again.json" \
-    2>/dev/null || fail "second sweep failed"
+    --steps 1 --lambdas 0 --backends cpu --classic 0 --goal 0 --timing-frames 1 \
+    > "$out/again.json" 2>/dev/null || fail "second sweep failed"
 python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['reference_cached'] is True" \
     "$out/again.json" || fail "the cached reference was not reused"
-"$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8 \
-    --steps 1 --lambdas 0 --backends cpu --timing-frames 1 > "$out/sweep.json" 2>/dev/null
+mv "$out/first.csv" "$out/sweep_default.csv"
 
 "$bench" accuracy move --scene default "${small[@]}" --ref-samples 4 --lattice 8 --steps 2 \
     --lambdas 0,0.8 --frames 6 > "$out/move_default.json" 2>/dev/null || fail "move failed"
@@ -76,5 +109,7 @@ PY
 python3 "$src/scripts/accuracy_report.py" "$out" --quick > "$out/ACCURACY.md" \
     || fail "report generator failed"
 grep -q "^## default: speed against accuracy" "$out/ACCURACY.md" || fail "report lacks the sweep"
+grep -q "^| default | [0-9.]* | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
+    || fail "report lacks the goal table"
 grep -q "Modelling no more than the scene needs" "$out/ACCURACY.md" || fail "report lacks savings"
 echo "accuracy sweep: ok"

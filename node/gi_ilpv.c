@@ -19,7 +19,9 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/vec3.h"
 #include "lpv/lpv_geometry.h"
+#include "gltools.h"
 #include "renderer_internal.h"
 
 static const double PI = 3.14159265358979323846;
@@ -44,15 +46,9 @@ static int build_emitters(renderer *r)
         if (!(e[0] > 0 || e[1] > 0 || e[2] > 0))
             continue;
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
-        float a[3], b[3], f[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = p[3 + k] - p[k];
-            b[k] = p[6 + k] - p[k];
-        }
-        f[0] = a[1] * b[2] - a[2] * b[1];
-        f[1] = a[2] * b[0] - a[0] * b[2];
-        f[2] = a[0] * b[1] - a[1] * b[0];
-        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        float f[3];
+        vec3_triangle_normal(p, f);
+        float len = vec3_length(f);
         if (!(len > 0))
             continue;
         float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
@@ -116,14 +112,14 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
     gather_body(&r->transfer, body, sizeof body);
     r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
                                                             : desc->lpv_gl_tiles == RENDERER_TILES_ON;
-    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
+    r->prog_propagate = gltools_program(r->gl, NULL, NULL, "propagate.comp",
                                          r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
                                          err, errlen);
     r->prog_merge = r->prog_propagate
-                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
+                        ? gltools_program(r->gl, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
                         : 0;
     if (r->prog_merge && r->mode == RENDERER_LPV_CLASSIC)
-        r->prog_accumulate = renderer_program(r, NULL, NULL, "accumulate.comp", NULL, NULL, err,
+        r->prog_accumulate = gltools_program(r->gl, NULL, NULL, "accumulate.comp", NULL, NULL, err,
                                               errlen);
     if (!r->prog_merge || (r->mode == RENDERER_LPV_CLASSIC && !r->prog_accumulate))
         return -1;
@@ -132,18 +128,18 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
         return -1;
     }
     for (int c = 0; c < 3; c++) {
-        r->gl_injected[c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[0][c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[1][c] = renderer_texture3d(r, r->lattice.n);
+        r->gl_injected[c] = gltools_texture3d(r->gl, r->lattice.n);
+        r->gl_volume[0][c] = gltools_texture3d(r->gl, r->lattice.n);
+        r->gl_volume[1][c] = gltools_texture3d(r->gl, r->lattice.n);
         if (r->mode == RENDERER_LPV_CLASSIC)
-            r->gl_accum[c] = renderer_texture3d(r, r->lattice.n);
+            r->gl_accum[c] = gltools_texture3d(r->gl, r->lattice.n);
     }
     /* Defined contents everywhere: the zeroed readback volume. */
     upload_volume(r, &r->gl_result, r->gl_volume[0]);
     upload_volume(r, &r->gl_result, r->gl_volume[1]);
     if (r->mode == RENDERER_LPV_CLASSIC)
         upload_volume(r, &r->gl_result, r->gl_accum);
-    r->gl_geometry = renderer_texture3d(r, r->lattice.n);
+    r->gl_geometry = gltools_texture3d(r->gl, r->lattice.n);
     for (size_t i = 0; i < r->geometry.cells; i++)
         for (int s = 0; s < 4; s++)
             r->upload[4 * i + s] = r->geometry.ch[s][i];
@@ -166,9 +162,9 @@ static double mean_free_path(const scene *s, double cell)
             e1[k] = p[3 + k] - p[k];
             e2[k] = p[6 + k] - p[k];
         }
-        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
-               cz = e1[0] * e2[1] - e1[1] * e2[0];
-        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+        double c[3];
+        vec3d_cross(e1, e2, c);
+        area += 0.5 * sqrt(vec3d_dot(c, c));
     }
     return area > 0 ? 4.0 * volume / area : 0.0;
 }
@@ -262,7 +258,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     if (r->backend == RENDERER_LPV_GL)
         return init_gl_backend(r, software, desc, err, errlen);
     for (int c = 0; c < 3; c++)
-        r->lpv_tex[c] = renderer_texture3d(r, r->lattice.n);
+        r->lpv_tex[c] = gltools_texture3d(r->gl, r->lattice.n);
     return 0;
 }
 

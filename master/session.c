@@ -1,0 +1,287 @@
+#include "session.h"
+#include "base/xalloc.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/clock.h"
+#include "input.h"
+#include "interaction.h"
+#include "scene/scene.h"
+#include "script.h"
+
+enum { MAX_SAMPLES = 100000 };
+
+/* What the report is made of, gathered frame by frame. */
+typedef struct run_stats {
+    int n;
+    double round_trip[MAX_SAMPLES], barrier[MAX_SAMPLES], frame_bytes[MAX_SAMPLES], timeout[MAX_SAMPLES];
+    double nodes_wait_ms;   /* bound to the first wait for nodes ending (-1: not yet) */
+    int node_n[CLUSTER_MAX_NODES];
+    double ready_ms[CLUSTER_MAX_NODES][MAX_SAMPLES / 10];
+    double pass_sum[CLUSTER_MAX_NODES][WIRE_TIMING_COUNT];
+    uint64_t pass_frames[CLUSTER_MAX_NODES];
+    uint64_t last_ready[CLUSTER_MAX_NODES];
+    int live_min, live_max;
+} run_stats;
+
+struct session {
+    const cluster_config *cfg;
+    cluster_master *m;
+    frame_params frame;     /* what the input and interaction edit (live input only) */
+    script script;
+    input *in;              /* NULL: the scripted path */
+    interaction ia;
+    double dt, start_ms, created_ms;
+    int frames;
+    uint64_t last_version;
+    run_stats rs;
+};
+
+/* The frame every node starts from: the defaults and the scene's lights. */
+static int seed(session *s, const char *scene_path, char *err, size_t errlen)
+{
+    scene sc;
+    if (scene_load(scene_path, &sc, err, errlen) != 0)
+        return -1;
+    if (sc.light_added) { /* the nodes load it too; the master says it once */
+        char note[400];
+        scene_light_added_note(&sc, scene_path, note, sizeof note);
+        fprintf(stderr, "cavelight-master: warning: %s\n", note);
+    }
+    frame_params_default(&s->frame);
+    frame_params_lights_from_scene(&s->frame, &sc);
+    scene_free(&sc);
+    params_set_from_frame(cluster_master_params(s->m), &s->frame);
+    return 0;
+}
+
+session *session_create(const session_desc *d, char *err, size_t errlen)
+{
+    session *s = xcalloc(1, sizeof *s); /* large (the statistics): never on the stack */
+    s->cfg = d->config;
+    s->dt = d->dt;
+    cluster_master_desc md = {.config = d->config, .bind = d->bind,
+                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
+    const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
+    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, err, errlen) != 0)
+        goto fail;
+    s->created_ms = clock_now_ms();
+    s->rs.nodes_wait_ms = -1;
+    script_init(&s->script, d->config, cluster_master_params(s->m));
+    if (d->input) {
+        input_desc idesc = {.path = d->input};
+        memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
+               sizeof idesc.tracker_to_cave);
+        if (!(s->in = input_open(&idesc, err, errlen)))
+            goto fail;
+        interaction_init(&s->ia, &(interaction_desc){0});
+    }
+    return s;
+fail:
+    session_destroy(s);
+    return NULL;
+}
+
+void session_destroy(session *s)
+{
+    if (!s)
+        return;
+    if (s->in)
+        input_close(s->in);
+    if (s->m)
+        cluster_master_destroy(s->m);
+    free(s);
+}
+
+cluster_master *session_master(session *s) { return s->m; }
+int session_frames(const session *s) { return s->frames; }
+uint64_t session_last_version(const session *s) { return s->last_version; }
+
+int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomic_t *stop)
+{
+    int live = cluster_master_live_count(s->m);
+    for (double until = clock_now_ms() + timeout_ms;
+         !(stop && *stop) && clock_now_ms() < until && live < count;)
+        live = cluster_master_wait_nodes(s->m, count, 200);
+    if (s->rs.nodes_wait_ms < 0)
+        s->rs.nodes_wait_ms = clock_now_ms() - s->created_ms;
+    return live;
+}
+
+/* Live or recorded input through the interaction layouts into the store. Returns
+ * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
+static session_step apply_input(session *s, params_store *store)
+{
+    input_state ist;
+    char err[512];
+    if (input_poll(s->in, &ist, err, sizeof err) != 0)
+        fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+    if (ist.failed)
+        return SESSION_INPUT_FAILED;
+    if (ist.finished)
+        return SESSION_INPUT_ENDED;
+    interaction_update(&s->ia, &ist, ist.dt, &s->frame);
+    s->frame.time = ist.time;
+    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
+    params_set_from_frame(store, &s->frame);
+    params_set_i32(store, PARAMS_LPV_RESOLUTION, interaction_pipeline(&s->ia) ? 64 : 0);
+    return SESSION_FRAME_DONE;
+}
+
+static void record(session *s, const cluster_frame_result *r)
+{
+    run_stats *rs = &s->rs;
+    if (rs->n < MAX_SAMPLES) {
+        rs->round_trip[rs->n] = r->round_trip_ms;
+        rs->barrier[rs->n] = r->barrier_ms;
+        rs->frame_bytes[rs->n] = (double)r->frame_bytes;
+        rs->timeout[rs->n] = r->timeout_ms;
+        rs->n++;
+    }
+    if (rs->n == 1 || r->live < rs->live_min)
+        rs->live_min = r->live;
+    if (r->live > rs->live_max)
+        rs->live_max = r->live;
+    for (int i = 0; i < s->cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(s->m, i, &ps);
+        if (ps.frames_ready == rs->last_ready[i])
+            continue;
+        rs->last_ready[i] = ps.frames_ready;
+        if (rs->node_n[i] < MAX_SAMPLES / 10)
+            rs->ready_ms[i][rs->node_n[i]++] = ps.ready_ms;
+        for (int k = 0; k < WIRE_TIMING_COUNT; k++)
+            rs->pass_sum[i][k] += ps.timings[k];
+        rs->pass_frames[i]++;
+    }
+}
+
+session_step session_frame(session *s, cluster_frame_result *result)
+{
+    params_store *store = cluster_master_params(s->m);
+    if (s->frames == 0 && s->start_ms == 0)
+        s->start_ms = clock_now_ms();
+    if (s->in) {
+        session_step step = apply_input(s, store);
+        if (step != SESSION_FRAME_DONE)
+            return step;
+    } else {
+        double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
+        script_apply(&s->script, t, store);
+    }
+    if (cluster_master_frame(s->m, result) != 0)
+        return SESSION_NO_NODES;
+    s->frames++;
+    s->last_version = result->version;
+    record(s, result);
+    return SESSION_FRAME_DONE;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double percentile(double *v, int n, double p)
+{
+    if (n <= 0)
+        return 0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    int i = (int)ceil(p * n) - 1;
+    return v[i < 0 ? 0 : i >= n ? n - 1 : i];
+}
+
+static cJSON *stat_obj(double *v, int n)
+{
+    cJSON *o = cJSON_CreateObject();
+    double sum = 0;
+    for (int i = 0; i < n; i++)
+        sum += v[i];
+    cJSON_AddNumberToObject(o, "mean", n ? sum / n : 0);
+    cJSON_AddNumberToObject(o, "median", percentile(v, n, 0.5));
+    cJSON_AddNumberToObject(o, "p99", percentile(v, n, 0.99));
+    cJSON_AddNumberToObject(o, "max", n ? v[n - 1] : 0);
+    return o;
+}
+
+/* What a joining node receives: one SNAPSHOT message of the whole store. */
+static size_t snapshot_bytes(session *s)
+{
+    uint8_t snap[PARAMS_ENCODED_MAX], msg[WIRE_MAX_MESSAGE];
+    wire_msg sm = {.type = WIRE_SNAPSHOT, .version = s->last_version, .params = snap};
+    sm.params_len = params_encode_snapshot(cluster_master_params(s->m), snap, sizeof snap);
+    return wire_encode(&sm, msg, sizeof msg);
+}
+
+int session_write_report(session *s, const char *path, double wall_s)
+{
+    const cluster_config *cfg = s->cfg;
+    cluster_master *m = s->m;
+    run_stats *rs = &s->rs;
+    uint64_t last_version = s->last_version;
+    size_t snap_bytes = snapshot_bytes(s);
+    cluster_master_stats st;
+    cluster_master_stats_get(m, &st);
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "config", cfg->path);
+    cJSON_AddNumberToObject(root, "frames", (double)st.frames);
+    cJSON_AddNumberToObject(root, "last_version", (double)last_version);
+    cJSON_AddNumberToObject(root, "wall_seconds", wall_s);
+    cJSON_AddNumberToObject(root, "nodes_configured", cfg->node_count);
+    cJSON_AddNumberToObject(root, "nodes_live_min", rs->live_min);
+    cJSON_AddNumberToObject(root, "nodes_live_max", rs->live_max);
+    cJSON_AddNumberToObject(root, "desyncs", (double)st.desyncs);
+    cJSON_AddNumberToObject(root, "joins", (double)st.joins);
+    cJSON_AddNumberToObject(root, "drops", (double)st.drops);
+    cJSON_AddNumberToObject(root, "malformed_messages", (double)st.malformed);
+    cJSON_AddNumberToObject(root, "unknown_peer_messages", (double)st.unknown_peers);
+    cJSON_AddNumberToObject(root, "refused_connections", (double)st.refused);
+    cJSON_AddNumberToObject(root, "bytes_sent", (double)st.bytes_sent);
+    cJSON_AddNumberToObject(root, "bytes_received", (double)st.bytes_received);
+    cJSON_AddNumberToObject(root, "messages_sent", (double)st.messages_sent);
+    cJSON_AddNumberToObject(root, "snapshot_bytes", (double)snap_bytes);
+    cJSON_AddItemToObject(root, "frame_bytes", stat_obj(rs->frame_bytes, rs->n));
+    cJSON_AddItemToObject(root, "round_trip_ms", stat_obj(rs->round_trip, rs->n));
+    cJSON_AddItemToObject(root, "barrier_wait_ms", stat_obj(rs->barrier, rs->n));
+    cJSON_AddItemToObject(root, "stall_timeout_ms", stat_obj(rs->timeout, rs->n));
+    cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
+    cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
+    cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
+    static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
+    for (int i = 0; i < cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(m, i, &ps);
+        cJSON *n = cJSON_CreateObject();
+        cJSON_AddStringToObject(n, "name", cfg->nodes[i].name);
+        cJSON_AddStringToObject(n, "state", ps.state == CLUSTER_PEER_LIVE ? "live" :
+                                ps.state == CLUSTER_PEER_DROPPED ? "dropped" : "absent");
+        cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
+        cJSON_AddNumberToObject(n, "joins", ps.joins);
+        cJSON_AddNumberToObject(n, "drops", ps.drops);
+        char hex[20];
+        snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
+        cJSON_AddStringToObject(n, "last_checksum", hex);
+        cJSON *pass = cJSON_AddObjectToObject(n, "pass_ms_mean");
+        for (int k = 0; k < WIRE_TIMING_COUNT; k++)
+            cJSON_AddNumberToObject(pass, pass_names[k], rs->pass_frames[i] ? rs->pass_sum[i][k] / rs->pass_frames[i] : 0);
+        cJSON_AddItemToObject(n, "ready_after_frame_ms", stat_obj(rs->ready_ms[i], rs->node_n[i]));
+        cJSON_AddItemToArray(nodes, n);
+    }
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    FILE *f = text ? fopen(path, "w") : NULL;
+    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
+    if (f && fclose(f) != 0)
+        ok = 0;
+    free(text);
+    if (!ok)
+        fprintf(stderr, "cavelight-master: cannot write report %s: %s\n", path, strerror(errno));
+    return ok ? 0 : -1;
+}

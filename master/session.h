@@ -1,0 +1,62 @@
+/* session: one cluster session on the master, as a library a test can drive.
+ *
+ *   session *s = session_create(&desc, err, sizeof err);  bind, load the scene, seed the
+ *                                                          parameter store, open the input
+ *   session_wait_nodes(s, n, ms, stop);                    HELLO -> SNAPSHOT
+ *   per frame: session_frame(s, &result);                  input (or the scripted path) ->
+ *                                                          interaction -> store -> FRAME,
+ *                                                          barrier, SWAP; statistics kept
+ *   session_write_report(s, path, wall_s);                 the JSON report (docs/cluster.md)
+ *   session_destroy(s);                                    BYE to every node
+ *
+ * The store starts from frame_params_default() with the scene's lights, the same frame a
+ * standalone node starts from. Live or recorded input (docs/input.md) drives the
+ * interaction layouts; without it the scripted head and light path (script.h) moves at
+ * desc.dt seconds per frame (or with the wall clock). No processes, no signals, no
+ * command line: those are master/main.c's. */
+#ifndef CAVELIGHT_SESSION_H
+#define CAVELIGHT_SESSION_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "cluster/cluster_config.h"
+#include "cluster_master.h"
+
+typedef struct session session;
+
+typedef struct session_desc {
+    const cluster_config *config;
+    const char *bind;       /* NULL = the config's */
+    int barrier_ms;         /* 0 = the config's */
+    int quiet;              /* 1: log only errors */
+    const char *scene;      /* NULL = the config's scene, or "default" */
+    const char *input;      /* input config or recording; NULL = the scripted path */
+    double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
+} session_desc;
+
+typedef enum session_step {
+    SESSION_FRAME_DONE = 0, /* committed, barrier passed, SWAP sent */
+    SESSION_NO_NODES,       /* no node is live: nothing was sent; wait and try again */
+    SESSION_INPUT_ENDED,    /* a stepped recording has ended: the session is over */
+    SESSION_INPUT_FAILED,   /* a recording with errors: the session is over, not done */
+} session_step;
+
+/* Returns NULL with one line in err (bind, scene or input failed). */
+session *session_create(const session_desc *desc, char *err, size_t errlen);
+/* Sends BYE to every node and closes. */
+void session_destroy(session *s);
+cluster_master *session_master(session *s);
+/* Waits until count nodes are live, timeout_ms passed or *stop is set (may be NULL),
+ * in short steps so that a signal is honoured. Returns the live count. */
+int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomic_t *stop);
+/* One frame. result is filled for SESSION_FRAME_DONE. */
+session_step session_frame(session *s, cluster_frame_result *result);
+/* Frames done and the last committed version. */
+int session_frames(const session *s);
+uint64_t session_last_version(const session *s);
+/* The report: traffic, barrier and per-node figures over the frames so far. Returns 0,
+ * or -1 after printing one line. */
+int session_write_report(session *s, const char *path, double wall_s);
+
+#endif

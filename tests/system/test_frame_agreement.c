@@ -1,0 +1,100 @@
+/* One frame rule, three paths: a default-constructed parameter store, a standalone node
+ * and a cluster node must start from the same frame_params. The cluster path is the real
+ * one: the master's session seeds its store from the scene, sends the SNAPSHOT over
+ * ZeroMQ, and a node's cluster client turns it into frame_params as cluster_node_run()
+ * does. The standalone path is standalone_parse() and standalone_frame_params(), what
+ * cavelight-node --standalone runs. Compared field by field, bytes and all. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "cluster_client.h"
+#include "session.h"
+#include "standalone.h"
+
+static const char *config_json =
+    "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
+    " \"security\": {\"mode\": \"insecure\"},"
+    " \"timeouts\": {\"barrier_ms\": 5000, \"heartbeat_ms\": 50, \"master_ms\": 5000},"
+    " \"screens\": [{\"name\": \"s\", \"bottom_left\": [-1,0,-1], \"bottom_right\": [1,0,-1], \"top_left\": [-1,2,-1]}],"
+    " \"nodes\": [{\"name\": \"n\", \"screens\": [\"s\"], \"resolution\": [8,8]}]}";
+
+static void standalone_frame(const char *scene_name, frame_params *out)
+{
+    char *argv[] = {"cavelight-node", "--standalone", "--scene", (char *)scene_name};
+    node_options o;
+    assert_int_equal(standalone_parse(4, argv, &o), 0);
+    scene sc;
+    char err[256];
+    assert_int_equal(scene_load(scene_name, &sc, err, sizeof err), 0);
+    renderer_view first_eye = {0}; /* the HUD is off: the wand is not placed */
+    standalone_frame_params(&o, &sc, &first_eye, out);
+    scene_free(&sc);
+}
+
+static void cluster_node_frame(const char *scene_name, frame_params *out)
+{
+    static cluster_config cfg;
+    char err[512], endpoint[256];
+    assert_int_equal(cluster_config_parse(config_json, strlen(config_json), "agree.json", &cfg, err,
+                                          sizeof err), 0);
+    session_desc sd = {.config = &cfg, .quiet = 1, .scene = scene_name, .dt = 1.0 / 30};
+    session *s = session_create(&sd, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    assert_int_equal(cluster_master_endpoint(session_master(s), endpoint, sizeof endpoint), 0);
+    cluster_client_desc cd = {.config = &cfg, .name = "n", .endpoint = endpoint, .quiet = 1};
+    cluster_client *c = cluster_client_create(&cd, err, sizeof err);
+    if (!c)
+        fail_msg("%s", err);
+    /* One thread plays both sides: the client says HELLO from its poll, the master
+     * answers with the SNAPSHOT from its wait. */
+    cluster_event ev;
+    int joined = 0;
+    for (int i = 0; i < 200 && !joined; i++) {
+        joined = cluster_client_poll(c, 20, &ev) == CLUSTER_EVENT_JOINED;
+        session_wait_nodes(s, 1, 20, NULL);
+    }
+    assert_true(joined);
+    params_to_frame(cluster_client_params(c), out);
+    cluster_client_destroy(c);
+    session_destroy(s);
+}
+
+static void test_default_store_standalone_and_cluster_agree(void **state)
+{
+    (void)state;
+    const char *scenes[2] = {"default", "corridor"};
+    for (int i = 0; i < 2; i++) {
+        frame_params standalone, cluster, store, unlit;
+        memset(&standalone, 0xee, sizeof standalone); /* padding too: compared as bytes */
+        memset(&cluster, 0x11, sizeof cluster);
+        standalone_frame(scenes[i], &standalone);
+        cluster_node_frame(scenes[i], &cluster);
+        assert_true(standalone.light_count > 0);
+        assert_memory_equal(&standalone, &cluster, sizeof standalone);
+        /* A fresh store has no scene: the same frame without its lights. */
+        params_store ps;
+        params_init(&ps);
+        params_to_frame(&ps, &store);
+        unlit = standalone;
+        unlit.light_count = 0;
+        memset(unlit.lights, 0, sizeof unlit.lights);
+        assert_memory_equal(&store, &unlit, sizeof store);
+        printf("%s: standalone, cluster node and default store agree (%d light%s, lambda %g, "
+               "environment %d)\n", scenes[i], standalone.light_count,
+               standalone.light_count == 1 ? "" : "s", standalone.lambda_incr, standalone.environment);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_default_store_standalone_and_cluster_agree),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
