@@ -29,7 +29,7 @@ static const char *const modes[] = {"standalone mode (--standalone)", "cluster m
 
 enum id {
     O_STANDALONE, O_CLUSTER, O_NAME, O_MASTER, O_EXIT_WITH_MASTER, O_RENDER, O_QUIET,
-    O_GL, O_SCENE, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
+    O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
     O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
@@ -55,11 +55,13 @@ static const cli_option options[] = {
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
      "corridor, doorway, courtyard, leak-lid, leak-panel,\nleak-wall (docs/node.md)"},
+    {O_CAMERA, "camera", "NAME|INDEX", "the file's first; without one, a view inside the scene",
+     G_SCENE, S, "the scene file's camera to look through"},
     {O_FRAMES, "frames", "N", "1", G_SCENE, S, "frames to render"},
     {O_WIDTH, "width", "W", "320", G_SCENE, S, "image width"},
-    {O_HEIGHT, "height", "H", "240", G_SCENE, S, "image height"},
-    {O_POSITION, "position", "x,y,z", "the scene's default view", G_SCENE, S, "symmetric camera position"},
-    {O_TARGET, "target", "x,y,z", "the scene's default view", G_SCENE, S, "point the camera looks at"},
+    {O_HEIGHT, "height", "H", "240; a file camera's aspect ratio", G_SCENE, S, "image height"},
+    {O_POSITION, "position", "x,y,z", "the scene's camera", G_SCENE, S, "symmetric camera position instead"},
+    {O_TARGET, "target", "x,y,z", "the scene's camera", G_SCENE, S, "point the camera looks at"},
     {O_FOV, "fov", "DEG", "the scene's", G_SCENE, S, "vertical field of view"},
     {O_SCREEN, "screen", "blx,bly,blz,brx,bry,brz,tlx,tly,tlz", NULL, G_SCENE, S,
      "off-axis screen: bottom-left, bottom-right, top-left\ncorners (with --eye)"},
@@ -147,7 +149,8 @@ static const char *set(void *user, int id, const char *v)
     case O_SCENE: o->scene = d->scene = v; break;
     case O_FRAMES: why = cli_int(v, 1, 1000000, &o->frames); break;
     case O_WIDTH: why = cli_int(v, 1, 16384, &o->width); break;
-    case O_HEIGHT: why = cli_int(v, 1, 16384, &o->height); break;
+    case O_HEIGHT: why = cli_int(v, 1, 16384, &o->height); o->have_height = 1; break;
+    case O_CAMERA: o->camera = v; break;
     case O_POSITION: why = cli_floats(v, 3, o->position); o->have_position = 1; break;
     case O_TARGET: why = cli_floats(v, 3, o->target); o->have_target = 1; break;
     case O_FOV: {

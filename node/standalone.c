@@ -13,6 +13,7 @@
 #include "lpv/lpv_budget.h"
 #include "base/vec3.h"
 #include "frame/frame_view.h"
+#include "frame/offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
@@ -38,7 +39,8 @@ typedef struct eye_setup {
 
 /* Mono: one view; stereo: left and right eyes offset along the screen's (or camera's)
  * right vector, with off-axis frusta for screens and parallel axes for cameras. */
-static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
+static int make_views(const node_options *o, const scene *s, const scene_camera *cam,
+                      eye_setup eyes[2], int *count)
 {
     float right[3], head[3];
     if (o->have_screen) {
@@ -46,11 +48,12 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
         vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
-        memcpy(head, o->position, sizeof head);
-        float f[3], up[3] = {0, 1, 0};
-        vec3_sub(o->target, o->position, f);
-        vec3_cross(f, up, right);
-        if (!(vec3_normalize(right) > 0)) /* looking straight up or down */
+        memcpy(head, cam->position, sizeof head);
+        float view[16];
+        if (offaxis_view(cam->position, cam->target, cam->up, view) == 0)
+            for (int i = 0; i < 3; i++)
+                right[i] = view[4 * i]; /* the view's first row */
+        else
             memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
     static const char *const names[3] = {"left", "mono", "right"};
@@ -72,11 +75,8 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
                         distance < 0 ? "behind" : "in front of", FRAME_VIEW_NEAR_PLANE);
             rc = rc == 1 ? 0 : rc;
         } else {
-            float target[3];
-            for (int i = 0; i < 3; i++)
-                target[i] = o->target[i] + eye[i] - head[i];
-            rc = frame_view_camera(eye, target, o->yfov, far_plane, o->width, o->height,
-                                   &eyes[e].view);
+            rc = frame_view_scene_camera(cam, eye, far_plane, o->width, o->height,
+                                         &eyes[e].view);
         }
         if (rc != 0) {
             fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, or "
@@ -199,18 +199,36 @@ int standalone_run(const node_options *o)
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (o->camera && scene_pick_camera(&sc, o->camera, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: --camera: %s\n", err);
+        scene_free(&sc);
+        return 1;
+    }
+    if (sc.light_added) {
+        char note[400];
+        scene_light_added_note(&sc, o->scene, note, sizeof note);
+        fprintf(stderr, "cavelight-node: warning: %s\n", note);
+    }
     node_options opt = *o;
-    float view_position[3], view_target[3];
-    scene_default_view(&sc, view_position, view_target);
-    if (!opt.have_position)
-        memcpy(opt.position, view_position, sizeof view_position);
-    if (!opt.have_target)
-        memcpy(opt.target, view_target, sizeof view_target);
-    if (opt.yfov <= 0)
-        opt.yfov = scene_default_yfov(&sc);
+    /* The scene's camera (the file's first, or --camera's), else the default view; the
+     * command line's position, target and field of view win. */
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    if (opt.have_position)
+        memcpy(cam.position, opt.position, sizeof opt.position);
+    if (opt.have_target)
+        memcpy(cam.target, opt.target, sizeof opt.target);
+    if (opt.have_position || opt.have_target)
+        memset(cam.up, 0, sizeof cam.up);
+    if (opt.yfov > 0) {
+        cam.yfov = opt.yfov;
+        cam.orthographic = 0;
+    }
+    if (!opt.have_height && cam.aspect > 0 && !opt.have_screen)
+        opt.height = (int)fmin(fmax(lround(opt.width / cam.aspect), 1), 16384);
     eye_setup eyes[2];
     int eye_count;
-    if (make_views(&opt, &sc, eyes, &eye_count) != 0) {
+    if (make_views(&opt, &sc, &cam, eyes, &eye_count) != 0) {
         scene_free(&sc);
         return 1;
     }
@@ -225,7 +243,7 @@ int standalone_run(const node_options *o)
         scene_free(&sc);
         return rc;
     }
-    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
+    glctx_desc gd = {.backend = o->gl, .width = opt.width, .height = opt.height,
                      .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
     glctx *ctx = glctx_create(&gd, err, sizeof err);
     if (!ctx) {
@@ -282,8 +300,8 @@ int standalone_run(const node_options *o)
                             renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
                                                                              : "incremental");
     cJSON_AddNumberToObject(report, "triangles", (double)sc.triangle_count);
-    cJSON_AddNumberToObject(report, "width", o->width);
-    cJSON_AddNumberToObject(report, "height", o->height);
+    cJSON_AddNumberToObject(report, "width", opt.width);
+    cJSON_AddNumberToObject(report, "height", opt.height);
     cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
     cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
     cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
@@ -331,7 +349,7 @@ int standalone_run(const node_options *o)
         }
         /* A window shows the first eye; closing it ends the run. */
         if (rc == 0 && o->gl == GLCTX_GLFW) {
-            renderer_present(r, o->width, o->height);
+            renderer_present(r, opt.width, opt.height);
             if (!glctx_swap(ctx))
                 frames_done_early = 1;
         }
