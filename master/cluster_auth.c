@@ -1,4 +1,5 @@
 #include "cluster_auth.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -106,11 +107,7 @@ static void *zap_thread(void *arg)
 cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cfg, int quiet,
                                  char *err, size_t errlen)
 {
-    cluster_auth *a = calloc(1, sizeof *a);
-    if (!a) {
-        snprintf(err, errlen, "cluster master: out of memory");
-        return NULL;
-    }
+    cluster_auth *a = xcalloc(1, sizeof *a);
     a->cfg = cfg;
     a->ctx = ctx;
     a->quiet = quiet;

@@ -1,4 +1,5 @@
 #include "cluster_master.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -307,11 +308,7 @@ static int stall_timeout_ms(const cluster_master *m)
 
 cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen)
 {
-    cluster_master *m = calloc(1, sizeof *m);
-    if (!m) {
-        snprintf(err, errlen, "cluster master: out of memory");
-        return NULL;
-    }
+    cluster_master *m = xcalloc(1, sizeof *m);
     m->cfg = desc->config;
     m->quiet = desc->quiet;
     m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;

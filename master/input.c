@@ -1,5 +1,6 @@
 /* input: source list, merging, config loading, recording. */
 #include "input.h"
+#include "base/xalloc.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -32,11 +33,7 @@ struct input {
 
 input *input_create(const input_desc *desc, char *err, size_t errlen)
 {
-    input *in = calloc(1, sizeof *in);
-    if (!in) {
-        snprintf(err, errlen, "input: out of memory");
-        return NULL;
-    }
+    input *in = xcalloc(1, sizeof *in);
     memcpy(in->tracker_to_cave, desc->tracker_to_cave, sizeof in->tracker_to_cave);
     in->t0_ms = clock_now_ms();
     if (desc->record_path) {

@@ -1,5 +1,6 @@
 /* input_desk: keyboard and mouse stand-in for head tracker and wand (GLFW window). */
 #include "input_desk.h"
+#include "base/xalloc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -126,11 +127,7 @@ static void desk_close(input_source *s)
 
 input_source *input_desk_open(const input_desk_desc *desc, char *err, size_t errlen)
 {
-    desk_source *d = calloc(1, sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "input: out of memory for the desk simulator");
-        return NULL;
-    }
+    desk_source *d = xcalloc(1, sizeof *d);
     snprintf(d->base.name, sizeof d->base.name, "%s", desc->name ? desc->name : "desk");
     d->base.cave_space = 1;
     d->base.poll = desk_poll;

@@ -388,10 +388,7 @@ static input_source *open_failed(dtrack_source *d)
 
 input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t errlen)
 {
-    dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close,
-                                          err, errlen);
-    if (!d)
-        return NULL;
+    dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close);
     d->desc = *desc;
     d->desc.name = d->desc.bind = d->desc.sender = NULL; /* the caller's strings are not kept */
     if (!(d->desc.silence_s > 0))

@@ -1,5 +1,6 @@
 /* input_playback: recording file writer and reader (format in input_playback.h). */
 #include "input_playback.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -262,11 +263,7 @@ input_source *input_playback_open(const input_playback_desc *desc, char *err, si
                  desc->path, INPUT_PLAYBACK_MAGIC);
         return NULL;
     }
-    playback_source *pb = calloc(1, sizeof *pb);
-    if (!pb) {
-        snprintf(err, errlen, "input playback: out of memory");
-        return NULL;
-    }
+    playback_source *pb = xcalloc(1, sizeof *pb);
     snprintf(pb->path, sizeof pb->path, "%s", desc->path);
     pb->desc = *desc;
     pb->desc.path = pb->path;
@@ -298,11 +295,7 @@ struct input_playback_recorder {
 
 input_playback_recorder *input_playback_record_open(const char *path, char *err, size_t errlen)
 {
-    input_playback_recorder *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "input record: out of memory");
-        return NULL;
-    }
+    input_playback_recorder *r = xcalloc(1, sizeof *r);
     r->f = fopen(path, "wb");
     if (!r->f) {
         snprintf(err, errlen, "input record %s: cannot create: %s", path, strerror(errno));

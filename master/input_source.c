@@ -1,5 +1,6 @@
 /* input_source: helpers shared by the input sources, and pose maths. */
 #include "input_source.h"
+#include "base/xalloc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -7,14 +8,9 @@
 #include <string.h>
 
 void *input_source_alloc(size_t size, const char *name, const char *fallback,
-                         input_source_poll_fn poll, input_source_close_fn close, char *err,
-                         size_t errlen)
+                         input_source_poll_fn poll, input_source_close_fn close)
 {
-    input_source *s = calloc(1, size);
-    if (!s) {
-        snprintf(err, errlen, "input: out of memory for the %s source", fallback);
-        return NULL;
-    }
+    input_source *s = xcalloc(1, size);
     snprintf(s->name, sizeof s->name, "%s", name ? name : fallback);
     s->poll = poll;
     s->close = close;

@@ -61,10 +61,9 @@ typedef int (*input_source_poll_fn)(input_source *s, double now, char *err, size
 typedef void (*input_source_close_fn)(input_source *s);
 
 /* A zeroed source of `size` bytes (a struct that starts with its input_source), named
- * `name` or else `fallback`. Returns NULL with one line in err when out of memory. */
+ * `name` or else `fallback` (xcalloc(): never NULL). */
 void *input_source_alloc(size_t size, const char *name, const char *fallback,
-                         input_source_poll_fn poll, input_source_close_fn close, char *err,
-                         size_t errlen);
+                         input_source_poll_fn poll, input_source_close_fn close);
 /* The device went away (why: what happened). Returns -1 with "input NAME: WHY[; retrying
  * every S s]" for the first loss of an outage, 0 for the later ones and for lines the
  * rate limit leaves out. */

@@ -152,10 +152,7 @@ static uint8_t find_endpoint(libusb_device *dev, int iface, int *max_packet)
 
 input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errlen)
 {
-    usb_source *u = input_source_alloc(sizeof *u, desc->name, "usb", usb_poll, usb_close, err,
-                                       errlen);
-    if (!u)
-        return NULL;
+    usb_source *u = input_source_alloc(sizeof *u, desc->name, "usb", usb_poll, usb_close);
     u->desc = *desc;
     u->desc.name = NULL;
     int rc = libusb_init(&u->ctx);

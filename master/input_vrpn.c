@@ -1,6 +1,8 @@
 /* input_vrpn: VRPN client, TCP-only connection mode, with reconnection. */
 #include "input_vrpn.h"
 
+#include "base/byteorder.h"
+
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -16,25 +18,15 @@
 #include <netinet/tcp.h>
 #include <unistd.h>
 
-static uint32_t be32(const uint8_t *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
+static uint32_t be32(const uint8_t *p) { return (uint32_t)be_get(p, 4); }
+static void put32(uint8_t *p, uint32_t v) { be_put(p, v, 4); }
 
 static double bef64(const uint8_t *p)
 {
-    uint64_t u = (uint64_t)be32(p) << 32 | be32(p + 4);
+    uint64_t u = be_get(p, 8);
     double d;
     memcpy(&d, &u, sizeof d);
     return d;
-}
-
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v >> 24);
-    p[1] = (uint8_t)(v >> 16);
-    p[2] = (uint8_t)(v >> 8);
-    p[3] = (uint8_t)v;
 }
 
 void input_vrpn_write_cookie(uint8_t cookie[INPUT_VRPN_COOKIE_SIZE])
@@ -407,10 +399,7 @@ static void vrpn_close(input_source *s)
 
 input_source *input_vrpn_open(const input_vrpn_desc *desc, char *err, size_t errlen)
 {
-    vrpn_source *v = input_source_alloc(sizeof *v, desc->name, "vrpn", vrpn_poll, vrpn_close,
-                                        err, errlen);
-    if (!v)
-        return NULL;
+    vrpn_source *v = input_source_alloc(sizeof *v, desc->name, "vrpn", vrpn_poll, vrpn_close);
     v->desc = *desc;
     snprintf(v->host, sizeof v->host, "%s", desc->host ? desc->host : "localhost");
     snprintf(v->tracker, sizeof v->tracker, "%s", tracker_name(desc));

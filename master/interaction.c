@@ -1,5 +1,6 @@
 /* interaction: navigation, lighting and renderer-settings layouts driven by the wand. */
 #include "interaction.h"
+#include "base/vec3.h"
 
 #include <math.h>
 #include <string.h>
@@ -97,14 +98,6 @@ static void transform_dir(const float m[16], const float d[3], float out[3])
         out[r] = m[r] * d[0] + m[4 + r] * d[1] + m[8 + r] * d[2];
 }
 
-static void normalize3(float v[3])
-{
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= l;
-}
-
 /* The wand points along its -Z axis. */
 static void wand_forward(const input_pose *w, float f[3])
 {
@@ -159,7 +152,7 @@ static void navigation_update(interaction *ia, const input_state *in, double dt,
         float f[3], fw[3];
         wand_forward(&in->wand, f);
         transform_dir(p->navigation, f, fw);
-        normalize3(fw);
+        vec3_normalize(fw);
         for (int i = 0; i < 3; i++)
             p->navigation[12 + i] += fw[i] * v * (float)dt;
     }
@@ -210,7 +203,7 @@ static void lighting_update(interaction *ia, const input_state *in, double dt, f
         wand_forward(&in->wand, f);
         mat4_transform_point(p->navigation, in->wand.position, l->position);
         transform_dir(p->navigation, f, l->direction);
-        normalize3(l->direction);
+        vec3_normalize(l->direction);
     }
     if (in->pressed & (1u << INPUT_BUTTON_M))
         l->intensity *= d->intensity_step;

@@ -1,4 +1,5 @@
 #include "session.h"
+#include "base/xalloc.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -56,11 +57,7 @@ static int seed(session *s, const char *scene_path, char *err, size_t errlen)
 
 session *session_create(const session_desc *d, char *err, size_t errlen)
 {
-    session *s = calloc(1, sizeof *s); /* large (the statistics): never on the stack */
-    if (!s) {
-        snprintf(err, errlen, "session: out of memory");
-        return NULL;
-    }
+    session *s = xcalloc(1, sizeof *s); /* large (the statistics): never on the stack */
     s->cfg = d->config;
     s->dt = d->dt;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,

@@ -1,4 +1,5 @@
 #include "cluster_client.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -147,11 +148,7 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
                  desc->name, desc->config->path);
         return NULL;
     }
-    cluster_client *c = calloc(1, sizeof *c);
-    if (!c) {
-        snprintf(err, errlen, "cluster node: out of memory");
-        return NULL;
-    }
+    cluster_client *c = xcalloc(1, sizeof *c);
     c->cfg = desc->config;
     c->quiet = desc->quiet;
     snprintf(c->name, sizeof c->name, "%s", desc->name);

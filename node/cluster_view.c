@@ -1,4 +1,5 @@
 #include "cluster_view.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -11,6 +12,7 @@
 #include "glctx.h"
 #include "image/image.h"
 #include "base/mat4.h"
+#include "base/vec3.h"
 #include "scene/scene.h"
 
 typedef struct eye_image {
@@ -69,9 +71,9 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
      * right axis (the pose's first column). */
     float mid[3], right[3], eye_cave[3];
     mat4_transform_point(f->head, o->head_to_eye, mid);
-    float len = sqrtf(f->head[0] * f->head[0] + f->head[1] * f->head[1] + f->head[2] * f->head[2]);
-    for (int i = 0; i < 3; i++)
-        right[i] = len > 0 ? f->head[i] / len : (i == 0);
+    memcpy(right, f->head, sizeof right);
+    if (!(vec3_normalize(right) > 0))
+        memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     frame_view_eye(mid, right, o->eye_separation, side, eye_cave);
     float corner[3][3], eye[3];
     mat4_transform_point(f->navigation, s->bottom_left, corner[0]);
@@ -192,11 +194,7 @@ static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen)
 {
-    cluster_view *v = calloc(1, sizeof *v);
-    if (!v) {
-        snprintf(err, errlen, "cluster view: out of memory");
-        return NULL;
-    }
+    cluster_view *v = xcalloc(1, sizeof *v);
     v->cfg = desc->config;
     v->node = desc->node;
     v->output = desc->output;

@@ -1,4 +1,5 @@
 #include "cluster_window.h"
+#include "base/xalloc.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,11 +51,7 @@ static GLuint shader(const gl_functions *gl, GLenum type, const char *src, char 
 
 cluster_window *cluster_window_create(const cluster_window_desc *d, char *err, size_t errlen)
 {
-    cluster_window *w = calloc(1, sizeof *w);
-    if (!w) {
-        snprintf(err, errlen, "cluster window: out of memory");
-        return NULL;
-    }
+    cluster_window *w = xcalloc(1, sizeof *w);
     glctx_desc gd = {.backend = GLCTX_GLFW, .width = d->width, .height = d->height, .title = d->title, .visible = 1};
     /* glctx sets its own hints after glfwInit; a stereo hint set before survives them. */
     if (d->want_quad && glfwInit()) {

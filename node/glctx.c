@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "glctx_internal.h"
+#include "base/xalloc.h"
 
 static const char *const backend_names[] = {"egl", "osmesa", "glfw"};
 
@@ -23,11 +24,7 @@ const char *glctx_backend_name(glctx_backend backend)
 
 glctx *glctx_create(const glctx_desc *desc, char *err, size_t errlen)
 {
-    glctx *ctx = calloc(1, sizeof *ctx);
-    if (!ctx) {
-        snprintf(err, errlen, "GL context: out of memory");
-        return NULL;
-    }
+    glctx *ctx = xcalloc(1, sizeof *ctx);
     ctx->backend = desc->backend;
     int rc;
     switch (desc->backend) {

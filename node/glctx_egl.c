@@ -7,6 +7,7 @@
 #include <EGL/eglext.h>
 
 #include "glctx_internal.h"
+#include "base/xalloc.h"
 
 typedef struct egl_state {
     EGLDisplay display;
@@ -98,13 +99,7 @@ int glctx_egl_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen)
                  "update Mesa or the GPU driver, or try --gl osmesa)", platform, (unsigned)code);
         return -1;
     }
-    egl_state *s = malloc(sizeof *s);
-    if (!s) {
-        eglDestroyContext(display, context);
-        eglTerminate(display);
-        snprintf(err, errlen, "%s: out of memory", platform);
-        return -1;
-    }
+    egl_state *s = xmalloc(sizeof *s);
     s->display = display;
     s->context = context;
     ctx->native = s;

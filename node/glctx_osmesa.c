@@ -6,6 +6,7 @@
 #include <GL/osmesa.h>
 
 #include "glctx_internal.h"
+#include "base/xalloc.h"
 
 typedef struct osmesa_state {
     OSMesaContext context;
@@ -30,11 +31,7 @@ int glctx_osmesa_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errl
         OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
         OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 3, 0,
     };
-    osmesa_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        snprintf(err, errlen, "OSMesa: out of memory");
-        return -1;
-    }
+    osmesa_state *s = xcalloc(1, sizeof *s);
     s->context = OSMesaCreateContextAttribs(attribs, NULL);
     if (!s->context) {
         free(s);

@@ -6,14 +6,9 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/xalloc.h"
+#include "base/vec3.h"
 #include "reference_internal.h"
-
-static void cross3(const float a[3], const float b[3], float out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static float srgb_to_linear(int c)
 {
@@ -36,14 +31,11 @@ static int build_tables(reference *ref)
         return -1;
     for (size_t t = 0; t < s->triangle_count; t++) {
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
-        float a[3], b[3], f[3], nsum[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = p[3 + k] - p[k];
-            b[k] = p[6 + k] - p[k];
+        float f[3], nsum[3];
+        for (int k = 0; k < 3; k++)
             nsum[k] = vn[k] + vn[3 + k] + vn[6 + k];
-        }
-        cross3(a, b, f);
-        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        vec3_triangle_normal(p, f);
+        float len = vec3_length(f);
         float *n = ref->face_normal + 3 * t;
         for (int k = 0; k < 3; k++) /* degenerate triangles: Embree never reports a hit */
             n[k] = len > 0 ? f[k] / len : 0;
@@ -53,7 +45,7 @@ static int build_tables(reference *ref)
         if (!(power > 0))
             continue;
         /* The side of the vertex normals, as the rasterizer's emitter VPLs. */
-        float side = n[0] * nsum[0] + n[1] * nsum[1] + n[2] * nsum[2] < 0 ? -1.0f : 1.0f;
+        float side = vec3_dot(n, nsum) < 0 ? -1.0f : 1.0f;
         size_t i = ref->emitter_count++;
         ref->emitter_of[t] = (int32_t)i;
         ref->emitter_triangle[i] = (uint32_t)t;
@@ -134,11 +126,7 @@ reference *reference_create(const scene *s, int threads, char *err, size_t errle
         snprintf(err, errlen, "reference: the scene has no triangles or materials (load it first)");
         return NULL;
     }
-    reference *ref = calloc(1, sizeof *ref);
-    if (!ref) {
-        snprintf(err, errlen, "reference: out of memory");
-        return NULL;
-    }
+    reference *ref = xcalloc(1, sizeof *ref);
     ref->scene = s;
     if (build_tables(ref) != 0) {
         snprintf(err, errlen, "reference: out of memory for %zu triangles", s->triangle_count);
@@ -257,10 +245,9 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
         float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
         memcpy(s->position, l->position, sizeof s->position);
         memcpy(s->direction, l->direction, sizeof s->direction);
-        float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
-                          l->direction[2] * l->direction[2]);
-        for (int c = 0; c < 3; c++)
-            s->axis[c] = len > 0 ? l->direction[c] / len : (c == 1 ? -1.0f : 0.0f);
+        memcpy(s->axis, l->direction, sizeof s->axis);
+        if (!(vec3_normalize(s->axis) > 0))
+            memcpy(s->axis, (const float[3]){0, -1, 0}, sizeof s->axis);
         for (int c = 0; c < 3; c++)
             s->radiance[c] = l->color[c] * l->intensity;
         s->cos_outer = cosf(outer);

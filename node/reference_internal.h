@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "reference.h"
+#include "base/vec3.h"
 #include "base/workpool.h"
 
 struct reference {
@@ -72,19 +73,6 @@ typedef struct hit {
     float albedo[3];
     uint32_t tri;
 } hit;
-
-static inline float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static inline void normalize3(float v[3])
-{
-    float len = sqrtf(dot3(v, v));
-    if (len > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= len;
-}
 
 static inline float transmittance(float sigma, float r)
 {

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "reference_internal.h"
+#include "base/vec3.h"
 
 /* Spot light arriving at h from light i: irradiance E (on the shading normal) and the unit
  * direction to the light. 0 when the spot does not reach h. As shade.frag, without PCF. */
@@ -14,15 +15,15 @@ int reference_light_spot(const reference_job *job, int i, const hit *h, int shad
     float to[3];
     for (int k = 0; k < 3; k++)
         to[k] = s->position[k] - h->p[k];
-    float r2 = dot3(to, to), r = sqrtf(r2);
+    float r2 = vec3_dot(to, to), r = sqrtf(r2);
     if (!(r > 0))
         return 0;
     for (int k = 0; k < 3; k++)
         l[k] = to[k] / r;
-    float cos_i = dot3(h->n, l);
-    if (cos_i <= 0 || dot3(h->ng, l) <= 0)
+    float cos_i = vec3_dot(h->n, l);
+    if (cos_i <= 0 || vec3_dot(h->ng, l) <= 0)
         return 0;
-    float c = -dot3(l, s->direction);
+    float c = -vec3_dot(l, s->direction);
     float spot = fminf(fmaxf((c - s->cos_outer) / fmaxf(s->cos_inner - s->cos_outer, 1e-4f), 0), 1);
     if (spot <= 0)
         return 0;
@@ -31,7 +32,7 @@ int reference_light_spot(const reference_job *job, int i, const hit *h, int shad
         reference_sample_offset(h, o);
         for (int k = 0; k < 3; k++)
             od[k] = s->position[k] - o[k];
-        float dist = sqrtf(dot3(od, od));
+        float dist = sqrtf(vec3_dot(od, od));
         for (int k = 0; k < 3; k++)
             od[k] /= dist;
         if (!reference_sample_visible(job, o, od, dist, rays))
@@ -53,12 +54,12 @@ static float power_heuristic(float a, float b)
 static float spot_area_pdf(const reference_job *job, int i, const hit *h, const float l[3])
 {
     const reference_spot *s = &job->spots[i];
-    if (-dot3(l, s->axis) < s->cos_outer)
+    if (-vec3_dot(l, s->axis) < s->cos_outer)
         return 0;
     float to[3];
     for (int k = 0; k < 3; k++)
         to[k] = s->position[k] - h->p[k];
-    return dot3(h->ng, l) / dot3(to, to) / (2 * PI_F * (1 - s->cos_outer));
+    return vec3_dot(h->ng, l) / vec3_dot(to, to) / (2 * PI_F * (1 - s->cos_outer));
 }
 
 /* Irradiance at h from all spots (Lambertian vertices). cosine_pdf > 0: h was reached from
@@ -102,27 +103,21 @@ void reference_light_emitters(const reference_job *job, const hit *h, int mis, r
     const float *p = s->positions + 9 * (size_t)t;
     float r1 = sqrtf(rng_next(g)), r2 = rng_next(g);
     float b0 = 1 - r1, b1 = r1 * (1 - r2), b2 = r1 * r2;
-    float y[3], e1[3], e2[3], cr[3];
-    for (int k = 0; k < 3; k++) {
+    float y[3];
+    for (int k = 0; k < 3; k++)
         y[k] = b0 * p[k] + b1 * p[3 + k] + b2 * p[6 + k];
-        e1[k] = p[3 + k] - p[k];
-        e2[k] = p[6 + k] - p[k];
-    }
-    cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    float area = 0.5f * sqrtf(dot3(cr, cr)); /* > 0 for every listed emitter */
+    float area = vec3_triangle_area(p); /* > 0 for every listed emitter */
     float o[3], d[3];
     reference_sample_offset(h, o);
     for (int k = 0; k < 3; k++)
         d[k] = y[k] - o[k];
-    float dist2 = dot3(d, d), dist = sqrtf(dist2);
+    float dist2 = vec3_dot(d, d), dist = sqrtf(dist2);
     if (!(dist > 0) || !(area > 0))
         return;
     for (int k = 0; k < 3; k++)
         d[k] /= dist;
-    float cos_x = dot3(h->n, d), cos_e = -dot3(ref->emitter_front + 3 * lo, d);
-    if (cos_x <= 0 || cos_e <= 0 || dot3(h->ng, d) <= 0)
+    float cos_x = vec3_dot(h->n, d), cos_e = -vec3_dot(ref->emitter_front + 3 * lo, d);
+    if (cos_x <= 0 || cos_e <= 0 || vec3_dot(h->ng, d) <= 0)
         return;
     if (!reference_sample_visible(job, o, d, dist, rays))
         return;
@@ -142,10 +137,10 @@ float reference_light_emitter_hit_weight(const reference *ref, const hit *from, 
     int32_t i = ref->emitter_of[tri];
     if (i < 0)
         return 0;
-    float cos_e = -dot3(ref->emitter_front + 3 * i, d);
+    float cos_e = -vec3_dot(ref->emitter_front + 3 * i, d);
     if (cos_e <= 0)
         return 0;
-    return power_heuristic(dot3(from->n, d) / PI_F, ref->emitter_area_pdf[i] * t * t / cos_e);
+    return power_heuristic(vec3_dot(from->n, d) / PI_F, ref->emitter_area_pdf[i] * t * t / cos_e);
 }
 
 /* Spot strategy for spot i -> y -> x0: a direction uniform in the outer cone, its first
@@ -162,7 +157,7 @@ void reference_light_spot_connect(const reference_job *job, int i, const hit *x0
     float sn = sqrtf(fmaxf(0, 1 - c * c));
     for (int k = 0; k < 3; k++)
         w[k] = sn * cosf(phi) * t[k] + sn * sinf(phi) * bt[k] + c * axis[k];
-    normalize3(w);
+    vec3_normalize(w);
     struct RTCRayHit rh;
     if (!reference_sample_trace(job, s->position, w, INFINITY, &rh, rays))
         return;
@@ -177,17 +172,17 @@ void reference_light_spot_connect(const reference_job *job, int i, const hit *x0
     reference_sample_offset(x0, ox);
     for (int k = 0; k < 3; k++)
         d[k] = ox[k] - oy[k];
-    float d2 = dot3(d, d), dist = sqrtf(d2);
+    float d2 = vec3_dot(d, d), dist = sqrtf(d2);
     if (!(dist > 0))
         return;
     for (int k = 0; k < 3; k++)
         d[k] /= dist;
-    float cos_y = dot3(y.n, d), cos_x = -dot3(x0->n, d);
-    if (cos_y <= 0 || cos_x <= 0 || dot3(y.ng, d) <= 0 || -dot3(x0->ng, d) <= 0)
+    float cos_y = vec3_dot(y.n, d), cos_x = -vec3_dot(x0->n, d);
+    if (cos_y <= 0 || cos_x <= 0 || vec3_dot(y.ng, d) <= 0 || -vec3_dot(x0->ng, d) <= 0)
         return;
     if (!reference_sample_visible(job, oy, d, dist, rays))
         return;
-    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * dot3(y.ng, d) / d2;
+    float pdf_spot = spot_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * vec3_dot(y.ng, d) / d2;
     float f = cos_y * cos_x / d2 * transmittance(job->absorption, dist) / pdf_spot *
               power_heuristic(pdf_spot, pdf_cos);
     for (int k = 0; k < 3; k++)

@@ -66,11 +66,11 @@ void reference_sample_hit(const reference *ref, const struct RTCHit *eh, const f
         h->n[i] = b0 * n[i] + b1 * n[3 + i] + b2 * n[6 + i];
         h->ng[i] = ref->face_normal[3 * t + i];
     }
-    normalize3(h->n);
-    if (dot3(h->n, toward) < 0)
+    vec3_normalize(h->n);
+    if (vec3_dot(h->n, toward) < 0)
         for (int i = 0; i < 3; i++)
             h->n[i] = -h->n[i];
-    if (dot3(h->ng, toward) < 0)
+    if (vec3_dot(h->ng, toward) < 0)
         for (int i = 0; i < 3; i++)
             h->ng[i] = -h->ng[i];
     const scene_material *m = &s->materials[s->triangle_material[t]];
@@ -133,7 +133,7 @@ static void cosine_direction(const float n[3], rng *g, float d[3])
     basis(n, t, bt);
     for (int k = 0; k < 3; k++)
         d[k] = x * t[k] + y * bt[k] + z * n[k];
-    normalize3(d);
+    vec3_normalize(d);
 }
 
 /* Exact direct light at the visible point: emission + Blinn-Phong of every spot. */
@@ -145,7 +145,7 @@ static void shade_direct(const reference_job *job, const hit *h, float out[3], u
         out[k] = m->emissive[k];
         v[k] = job->eye[k] - h->p[k];
     }
-    normalize3(v);
+    vec3_normalize(v);
     float alpha = m->roughness * m->roughness;
     float mexp = 2.0f / fmaxf(alpha * alpha, 1e-3f) - 2.0f;
     for (int i = 0; i < job->spot_count; i++) {
@@ -154,8 +154,8 @@ static void shade_direct(const reference_job *job, const hit *h, float out[3], u
             continue;
         for (int k = 0; k < 3; k++)
             hv[k] = l[k] + v[k];
-        normalize3(hv);
-        float spec = (mexp + 8) / (8 * PI_F) * 0.04f * powf(fmaxf(dot3(h->n, hv), 0), mexp);
+        vec3_normalize(hv);
+        float spec = (mexp + 8) / (8 * PI_F) * 0.04f * powf(fmaxf(vec3_dot(h->n, hv), 0), mexp);
         for (int k = 0; k < 3; k++)
             out[k] += (h->albedo[k] / PI_F + spec) * e[k];
     }
@@ -196,7 +196,7 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         }
         float d[3], o[3];
         cosine_direction(cur.n, g, d);
-        if (dot3(d, cur.ng) <= 0)
+        if (vec3_dot(d, cur.ng) <= 0)
             break; /* below the true surface (smooth normals): no light that way */
         reference_sample_offset(&cur, o);
         struct RTCRayHit rh;
@@ -208,7 +208,7 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         float tr = transmittance(job->absorption, t);
         float we = reference_light_emitter_hit_weight(job->ref, &cur, d, t, next.tri);
         const float *le = s->materials[s->triangle_material[next.tri]].emissive;
-        float cosine_pdf = k == 0 ? dot3(cur.n, d) / PI_F * dot3(next.ng, back) / (t * t) : 0;
+        float cosine_pdf = k == 0 ? vec3_dot(cur.n, d) / PI_F * vec3_dot(next.ng, back) / (t * t) : 0;
         float es[3];
         reference_light_spots(job, &next, cosine_pdf, es, rays);
         for (int j = 0; j < 3; j++) {
@@ -248,7 +248,7 @@ void reference_sample_row(void *ctx, int row)
             o[k] = (float)w[0][k];
             d[k] = (float)(w[1][k] - w[0][k]);
         }
-        float len = sqrtf(dot3(d, d));
+        float len = sqrtf(vec3_dot(d, d));
         if (!(len > 0) || !isfinite(len))
             continue;
         for (int k = 0; k < 3; k++)

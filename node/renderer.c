@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/xalloc.h"
 #include "base/mat4.h"
 #include "frame/offaxis.h"
 #include "renderer_internal.h"
@@ -453,11 +454,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         snprintf(err, errlen, "renderer: needs a GL function table and a loaded scene");
         return NULL;
     }
-    renderer *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "renderer: out of memory");
-        return NULL;
-    }
+    renderer *r = xcalloc(1, sizeof *r);
     r->gl = desc->gl;
     r->scene = desc->scene;
     frame_params_default(&r->frame);

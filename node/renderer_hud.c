@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "base/mat4.h"
+#include "base/xalloc.h"
+#include "base/vec3.h"
 #include "renderer_hud.h"
 #include "renderer_internal.h"
 
@@ -24,14 +26,6 @@ enum { SEGMENTS = 24, TORUS_RINGS = 8 };
 static const float PI = 3.14159265f;
 
 /* ---- small maths -------------------------------------------------------------------- */
-
-static void normalize3(float v[3])
-{
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= l;
-}
 
 /* Local matrix from three (scaled) axis columns and a translation. */
 static void columns(const float x[3], const float y[3], const float z[3], const float t[3],
@@ -57,7 +51,7 @@ void renderer_hud_layout(const hud *h, renderer_hud_places *out)
         mat4_transform_point(w, (const float[3]){BAR_X, BAR_Y[i], z}, out->bar_start[i]);
     for (int r = 0; r < 3; r++)
         out->bar_axis[r] = w[r];
-    normalize3(out->bar_axis);
+    vec3_normalize(out->bar_axis);
     for (int k = 0; k < 8; k++) {
         const float p[3] = {k & 1 ? PANEL_MAX[0] : PANEL_MIN[0], k & 2 ? PANEL_MAX[1] : PANEL_MIN[1],
                             k & 4 ? PANEL_MAX[2] : PANEL_MIN[2]};
@@ -179,11 +173,7 @@ int renderer_hud_init(renderer *r, char *err, size_t errlen)
     r->hud_loc_gamma = gl->GetUniformLocation(r->prog_hud, "u_encoding_gamma");
 
     mesh_builder b = {.capacity = 36 + SEGMENTS * 6 + SEGMENTS * TORUS_RINGS * 6};
-    b.v = malloc((size_t)b.capacity * 6 * sizeof(float));
-    if (!b.v) {
-        snprintf(err, errlen, "renderer: out of memory for the HUD meshes");
-        return -1;
-    }
+    b.v = xmalloc((size_t)b.capacity * 6 * sizeof(float));
     void (*build[RENDERER_HUD_MESHES])(mesh_builder *) = {build_box, build_cone, build_torus};
     for (int m = 0; m < RENDERER_HUD_MESHES; m++) {
         r->hud_first[m] = b.count;
@@ -297,12 +287,10 @@ static void draw_cone(renderer *r, const float base[16], const float apex[3],
     float u[3], helper[3] = {1, 0, 0};
     if (fabsf(axis[0]) > 0.9f)
         helper[0] = 0, helper[1] = 1;
-    u[0] = axis[1] * helper[2] - axis[2] * helper[1];
-    u[1] = axis[2] * helper[0] - axis[0] * helper[2];
-    u[2] = axis[0] * helper[1] - axis[1] * helper[0];
-    normalize3(u);
-    float v[3] = {axis[1] * u[2] - axis[2] * u[1], axis[2] * u[0] - axis[0] * u[2],
-                  axis[0] * u[1] - axis[1] * u[0]};
+    vec3_cross(axis, helper, u);
+    vec3_normalize(u);
+    float v[3];
+    vec3_cross(axis, u, v);
     float rad = len * tanf(angle);
     float x[3], y[3], z[3], local[16], model[16];
     for (int k = 0; k < 3; k++) {
@@ -360,7 +348,7 @@ void renderer_hud_draw(renderer *r, const frame_params *p, const float view_proj
         static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         float axis[3];
         memcpy(axis, h.spot_direction, sizeof axis);
-        normalize3(axis);
+        vec3_normalize(axis);
         draw_cone(r, identity, h.spot_position, axis, angle, RENDERER_HUD_SPOT_CONE,
                   ind[HUD_SHAPE_CONE].color);
     }

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/vec3.h"
 #include "lpv/lpv_geometry.h"
 #include "renderer_internal.h"
 
@@ -43,15 +44,9 @@ static int build_emitters(renderer *r)
         if (!(e[0] > 0 || e[1] > 0 || e[2] > 0))
             continue;
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
-        float a[3], b[3], f[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = p[3 + k] - p[k];
-            b[k] = p[6 + k] - p[k];
-        }
-        f[0] = a[1] * b[2] - a[2] * b[1];
-        f[1] = a[2] * b[0] - a[0] * b[2];
-        f[2] = a[0] * b[1] - a[1] * b[0];
-        float len = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        float f[3];
+        vec3_triangle_normal(p, f);
+        float len = vec3_length(f);
         if (!(len > 0))
             continue;
         float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
@@ -165,9 +160,9 @@ static double mean_free_path(const scene *s, double cell)
             e1[k] = p[3 + k] - p[k];
             e2[k] = p[6 + k] - p[k];
         }
-        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
-               cz = e1[0] * e2[1] - e1[1] * e2[0];
-        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+        double c[3];
+        vec3d_cross(e1, e2, c);
+        area += 0.5 * sqrt(vec3d_dot(c, c));
     }
     return area > 0 ? 4.0 * volume / area : 0.0;
 }

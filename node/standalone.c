@@ -12,6 +12,7 @@
 #include "image/image.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_budget.h"
+#include "base/vec3.h"
 #include "frame/frame_view.h"
 #include "reference_cli.h"
 #include "renderer.h"
@@ -243,26 +244,16 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
 {
     float right[3], head[3];
     if (o->have_screen) {
-        float len = 0;
-        for (int i = 0; i < 3; i++) {
-            right[i] = o->screen[3 + i] - o->screen[i];
-            len += right[i] * right[i];
-        }
-        len = sqrtf(len);
-        for (int i = 0; i < 3; i++)
-            right[i] = len > 0 ? right[i] / len : 0;
+        vec3_sub(o->screen + 3, o->screen, right);
+        vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
         memcpy(head, o->position, sizeof head);
         float f[3], up[3] = {0, 1, 0};
-        for (int i = 0; i < 3; i++)
-            f[i] = o->target[i] - o->position[i];
-        right[0] = f[1] * up[2] - f[2] * up[1];
-        right[1] = f[2] * up[0] - f[0] * up[2];
-        right[2] = f[0] * up[1] - f[1] * up[0];
-        float len = sqrtf(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
-        for (int i = 0; i < 3; i++)
-            right[i] = len > 0 ? right[i] / len : (i == 0);
+        vec3_sub(o->target, o->position, f);
+        vec3_cross(f, up, right);
+        if (!(vec3_normalize(right) > 0)) /* looking straight up or down */
+            memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
     static const char *const names[3] = {"left", "mono", "right"};
     *count = o->stereo ? 2 : 1;

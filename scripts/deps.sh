@@ -5,7 +5,7 @@ set -euo pipefail
 
 CAVELIGHT_PACKAGES=(
   build-essential cmake pkg-config git
-  libcglm-dev libcmocka-dev libcjson-dev libpng-dev
+  libcmocka-dev libcjson-dev libpng-dev zlib1g-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libzmq3-dev libusb-1.0-0-dev
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev libglfw3-dev

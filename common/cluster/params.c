@@ -1,5 +1,7 @@
 #include "cluster/params.h"
 
+#include "base/byteorder.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -176,6 +178,7 @@ int params_changed_count(const params_store *s, uint64_t since)
     return n;
 }
 
+/* A value word (4 or 8 bytes, host order in the store) to and from little-endian bytes. */
 static void put_word(uint8_t *p, const uint8_t *v, size_t word)
 {
     uint64_t x = 0;
@@ -186,15 +189,12 @@ static void put_word(uint8_t *p, const uint8_t *v, size_t word)
         memcpy(&y, v, 4);
         x = y;
     }
-    for (size_t i = 0; i < word; i++)
-        p[i] = (uint8_t)(x >> (8 * i));
+    le_put(p, x, (int)word);
 }
 
 static void get_word(uint8_t *v, const uint8_t *p, size_t word)
 {
-    uint64_t x = 0;
-    for (size_t i = 0; i < word; i++)
-        x |= (uint64_t)p[i] << (8 * i);
+    uint64_t x = le_get(p, (int)word);
     if (word == 8) {
         memcpy(v, &x, 8);
     } else {
@@ -213,8 +213,7 @@ static size_t encode(const params_store *s, int all, uint64_t since, uint8_t *bu
         size_t word = type_word_size(t), words = type_words(t);
         if (n + 2 + word * words > cap)
             return PARAMS_ENCODE_TOO_SMALL;
-        buf[n] = (uint8_t)(k & 0xff);
-        buf[n + 1] = (uint8_t)(k >> 8);
+        le_put(buf + n, (uint64_t)k, 2);
         n += 2;
         for (size_t w = 0; w < words; w++, n += word)
             put_word(buf + n, s->value[k] + w * word, word);
@@ -242,7 +241,7 @@ int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t l
         while (n < len) {
             if (len - n < 2)
                 return -1;
-            int k = buf[n] | (buf[n + 1] << 8);
+            int k = (int)le_get(buf + n, 2);
             n += 2;
             if (k >= PARAMS_KEY_COUNT)
                 return -1;

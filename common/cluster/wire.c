@@ -1,41 +1,22 @@
 #include "cluster/wire.h"
 
-#include <pthread.h>
+#include "base/byteorder.h"
+
 #include <string.h>
+#include <zlib.h>
 
-static uint32_t crc_table[256];
-static pthread_once_t crc_once = PTHREAD_ONCE_INIT;
-
-static void crc_init(void)
-{
-    /* Reflected CRC-32, polynomial 0xEDB88320 (IEEE 802.3, as zlib). */
-    for (uint32_t i = 0; i < 256; i++) {
-        uint32_t c = i;
-        for (int k = 0; k < 8; k++)
-            c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-        crc_table[i] = c;
-    }
-}
-
-static uint32_t crc_update(uint32_t c, const uint8_t *p, size_t len)
-{
-    for (size_t i = 0; i < len; i++)
-        c = crc_table[(c ^ p[i]) & 0xff] ^ (c >> 8);
-    return c;
-}
-
+/* zlib's crc32 is the IEEE 802.3 CRC-32 (reflected, polynomial 0xEDB88320) the header
+ * names. */
 uint32_t wire_crc32(const void *data, size_t len)
 {
-    pthread_once(&crc_once, crc_init);
-    return crc_update(0xFFFFFFFFu, data, len) ^ 0xFFFFFFFFu;
+    return (uint32_t)crc32_z(0L, data, len);
 }
 
 /* CRC of header bytes 0..11 followed by the payload (the CRC field itself is skipped). */
 static uint32_t crc_message(const uint8_t *msg, size_t payload_len)
 {
-    pthread_once(&crc_once, crc_init);
-    uint32_t c = crc_update(0xFFFFFFFFu, msg, 12);
-    return crc_update(c, msg + WIRE_HEADER_SIZE, payload_len) ^ 0xFFFFFFFFu;
+    uLong c = crc32_z(0L, msg, 12);
+    return (uint32_t)crc32_z(c, msg + WIRE_HEADER_SIZE, payload_len);
 }
 
 int wire_name_valid(const char *name)
@@ -65,8 +46,8 @@ static void put(cursor *c, uint64_t v, int bytes)
         c->bad = 1;
         return;
     }
-    for (int i = 0; i < bytes; i++)
-        c->w[c->pos++] = (uint8_t)(v >> (8 * i));
+    le_put(c->w + c->pos, v, bytes);
+    c->pos += (size_t)bytes;
 }
 
 static void put_bytes(cursor *c, const void *p, size_t n)
@@ -97,9 +78,8 @@ static uint64_t get(cursor *c, int bytes)
         c->bad = 1;
         return 0;
     }
-    uint64_t v = 0;
-    for (int i = 0; i < bytes; i++)
-        v |= (uint64_t)c->r[c->pos++] << (8 * i);
+    uint64_t v = le_get(c->r + c->pos, bytes);
+    c->pos += (size_t)bytes;
     return v;
 }
 

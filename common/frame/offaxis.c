@@ -2,28 +2,12 @@
 #include <string.h>
 
 #include "frame/offaxis.h"
+#include "base/vec3.h"
 
-static void sub(const float a[3], const float b[3], float o[3])
-{
-    o[0] = a[0] - b[0]; o[1] = a[1] - b[1]; o[2] = a[2] - b[2];
-}
-static float dot(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static void cross(const float a[3], const float b[3], float o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
+/* Unit length, or -1 for a (nearly) zero vector. */
 static int normalize(float v[3])
 {
-    float l = sqrtf(dot(v, v));
-    if (!(l > 1e-12f))
-        return -1;
-    v[0] /= l; v[1] /= l; v[2] /= l;
-    return 0;
+    return vec3_normalize(v) > 1e-12f ? 0 : -1;
 }
 
 /* view = rotation with rows (r, u, n) then translation by -eye. */
@@ -36,9 +20,9 @@ static void basis_view(const float r[3], const float u[3], const float n[3], con
         view[i * 4 + 1] = u[i];
         view[i * 4 + 2] = n[i];
     }
-    view[12] = -dot(r, eye);
-    view[13] = -dot(u, eye);
-    view[14] = -dot(n, eye);
+    view[12] = -vec3_dot(r, eye);
+    view[13] = -vec3_dot(u, eye);
+    view[14] = -vec3_dot(n, eye);
     view[15] = 1.0f;
 }
 
@@ -59,25 +43,25 @@ int offaxis_screen(const offaxis_screen_desc *d, float view[16], float projectio
     float n_ = d->near_plane > 0 ? d->near_plane : 0.05f;
     float f_ = d->far_plane > 0 ? d->far_plane : 100.0f;
     float vr[3], vu[3], vn[3], va[3], vb[3], vc[3];
-    sub(d->bottom_right, d->bottom_left, vr);
-    sub(d->top_left, d->bottom_left, vu);
+    vec3_sub(d->bottom_right, d->bottom_left, vr);
+    vec3_sub(d->top_left, d->bottom_left, vu);
     if (normalize(vr) || normalize(vu))
         return -1;
-    cross(vr, vu, vn);
+    vec3_cross(vr, vu, vn);
     if (normalize(vn))
         return -1;
-    sub(d->bottom_left, d->eye, va);
-    sub(d->bottom_right, d->eye, vb);
-    sub(d->top_left, d->eye, vc);
-    float dist = -dot(va, vn); /* eye to screen plane along the normal */
+    vec3_sub(d->bottom_left, d->eye, va);
+    vec3_sub(d->bottom_right, d->eye, vb);
+    vec3_sub(d->top_left, d->eye, vc);
+    float dist = -vec3_dot(va, vn); /* eye to screen plane along the normal */
     if (!(dist > 1e-6f))
         return -1;
     float s = n_ / dist;
-    float l = dot(vr, va) * s, r = dot(vr, vb) * s;
-    float b = dot(vu, va) * s, t = dot(vu, vc) * s;
+    float l = vec3_dot(vr, va) * s, r = vec3_dot(vr, vb) * s;
+    float b = vec3_dot(vu, va) * s, t = vec3_dot(vu, vc) * s;
     /* The screen's up vector need not be exactly orthogonal to right (a sheared input):
      * re-orthogonalize so that the view stays a rotation. */
-    cross(vn, vr, vu);
+    vec3_cross(vn, vr, vu);
     frustum(l, r, b, t, n_, f_, projection);
     basis_view(vr, vu, vn, d->eye, view);
     return 0;
@@ -87,7 +71,7 @@ int offaxis_look_at(const float position[3], const float target[3], float yfov, 
                     float near_plane, float far_plane, float view[16], float projection[16])
 {
     float f[3], r[3], u[3], back[3];
-    sub(target, position, f);
+    vec3_sub(target, position, f);
     if (normalize(f))
         return -1;
     float up[3] = {0, 1, 0};
@@ -95,9 +79,9 @@ int offaxis_look_at(const float position[3], const float target[3], float yfov, 
         up[1] = 0;
         up[2] = 1;
     }
-    cross(f, up, r);
+    vec3_cross(f, up, r);
     normalize(r);
-    cross(r, f, u);
+    vec3_cross(r, f, u);
     back[0] = -f[0]; back[1] = -f[1]; back[2] = -f[2];
     basis_view(r, u, back, position, view);
     float t = near_plane * tanf(0.5f * yfov), rr = t * aspect;

@@ -1,4 +1,5 @@
 #include "lpv/lpv_geometry.h"
+#include "base/vec3.h"
 
 #include <math.h>
 
@@ -47,10 +48,8 @@ void lpv_geometry_add_triangles(lpv_volume *geometry, const lattice_desc *lat,
             e2[a] = v[2][a] - v[0][a];
             e3[a] = v[2][a] - v[1][a];
         }
-        cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double twice_area = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+        vec3d_cross(e1, e2, cr);
+        double twice_area = sqrt(vec3d_dot(cr, cr));
         if (!(twice_area > 0.0) || !isfinite(twice_area)) {
             st.degenerate++;
             continue;

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "scene/scene.h"
+#include "base/vec3.h"
 
 static int grow(void **p, size_t elem, size_t count, size_t *capacity)
 {
@@ -54,20 +55,14 @@ long scene_add_triangle(scene *s, const float p[9], const float *normals, const 
     if (normals) {
         memcpy(nn, normals, 9 * sizeof(float));
     } else {
-        float e1[3], e2[3], f[3];
-        for (int i = 0; i < 3; i++) {
-            e1[i] = p[3 + i] - p[i];
-            e2[i] = p[6 + i] - p[i];
-        }
-        f[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        f[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        f[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        float f[3];
+        vec3_triangle_normal(p, f);
         for (int v = 0; v < 3; v++)
             memcpy(nn + 3 * v, f, sizeof f);
     }
     for (int v = 0; v < 3; v++) {
         float *q = nn + 3 * v;
-        float len = sqrtf(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        float len = vec3_length(q);
         if (len > 0.0f && isfinite(len)) {
             q[0] /= len; q[1] /= len; q[2] /= len;
         } else {

@@ -22,14 +22,13 @@ typedef struct fake_source {
 
 static void test_alloc_names_and_zeroes(void **state)
 {
-    char err[128];
-    fake_source *f = input_source_alloc(sizeof *f, NULL, "fake", no_poll, no_close, err, sizeof err);
+    fake_source *f = input_source_alloc(sizeof *f, NULL, "fake", no_poll, no_close);
     assert_non_null(f);
     assert_string_equal(f->base.name, "fake");
     assert_int_equal(f->device, 0);
     assert_ptr_equal(f->base.poll, no_poll);
     f->base.close(&f->base);
-    f = input_source_alloc(sizeof *f, "wand", "fake", no_poll, no_close, err, sizeof err);
+    f = input_source_alloc(sizeof *f, "wand", "fake", no_poll, no_close);
     assert_string_equal(f->base.name, "wand");
     f->base.close(&f->base);
 }
@@ -37,7 +36,7 @@ static void test_alloc_names_and_zeroes(void **state)
 static void test_one_report_per_outage_and_retry(void **state)
 {
     char err[256] = "";
-    fake_source *f = input_source_alloc(sizeof *f, "tracker", "fake", no_poll, no_close, err, sizeof err);
+    fake_source *f = input_source_alloc(sizeof *f, "tracker", "fake", no_poll, no_close);
     f->base.retry_interval = 0.5;
     assert_true(input_source_retry_due(&f->base, 0.0)); /* the first attempt is due at once */
     input_source_set_buttons(&f->base.st, 1u << INPUT_BUTTON_C, 1.0);
@@ -84,7 +83,7 @@ static void test_first_answer_and_rate_limit(void **state)
 static void test_no_retry(void **state)
 {
     char err[256];
-    fake_source *f = input_source_alloc(sizeof *f, NULL, "usb", no_poll, no_close, err, sizeof err);
+    fake_source *f = input_source_alloc(sizeof *f, NULL, "usb", no_poll, no_close);
     assert_false(input_source_retry_due(&f->base, 100.0));
     assert_int_equal(input_source_lost(&f->base, 1.0, "unplugged", err, sizeof err), -1);
     assert_string_equal(err, "input usb: unplugged");

@@ -4,10 +4,12 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 
+#include "cluster/params.h"
 #include "cluster/wire.h"
 
 static size_t sample(int type, uint8_t *buf, size_t cap, const uint8_t *params, size_t plen)
@@ -23,6 +25,76 @@ static void test_crc32_reference(void **state)
 {
     assert_int_equal(wire_crc32("123456789", 9), 0xCBF43926u);
     assert_int_equal(wire_crc32("", 0), 0);
+}
+
+/* Messages as encoded before CRC-32 came from zlib (captured from that build): the
+ * encoding, header CRC included, must not change, and they must still decode. */
+static const struct { int type; const char *hex; } golden[] = {
+        {WIRE_HELLO,
+         "43564c540100010014000000aed608b1036e303188776655443322112a000000"
+         "00000000"},
+        {WIRE_SNAPSHOT,
+         "43564c5401000200140000009e12fa072a000000000000000800000001020304"
+         "05060708"},
+        {WIRE_FRAME,
+         "43564c54010003001c00000020568dde2a000000000000002900000000000000"
+         "080000000102030405060708"},
+        {WIRE_READY,
+         "43564c540100040024000000f9297c90036e30312a000000000000000df0feca"
+         "efbeadde0000003f0000c03f0000204000006040"},
+        {WIRE_SWAP,
+         "43564c540100050008000000d08f088d2a00000000000000"},
+        {WIRE_BYE,
+         "43564c540100060008000000ec4a35c9036e303107000000"},
+        {WIRE_HEARTBEAT,
+         "43564c54010007000c000000c91c79d9036e30312a00000000000000"},
+};
+static const char *golden_frame_delta =
+    "43564c540100030074000000a7cbf87302000000000000000100000000000000"
+    "6000000000000000803f000000000000000000000000000000000000803f0000"
+    "00000000000000000000000000000000803f000000000000803e9a99d93f0000"
+    "00bf0000803f0300111111111111a13f06000000203f11000000003f0000803e"
+    "0000803f";
+
+static size_t from_hex(const char *hex, uint8_t *out)
+{
+    size_t n = strlen(hex) / 2;
+    for (size_t i = 0; i < n; i++) {
+        unsigned b;
+        sscanf(hex + 2 * i, "%2x", &b);
+        out[i] = (uint8_t)b;
+    }
+    return n;
+}
+
+static void test_encoding_unchanged(void **state)
+{
+    uint8_t params[8] = {1, 2, 3, 4, 5, 6, 7, 8}, want[WIRE_MAX_MESSAGE], got[WIRE_MAX_MESSAGE];
+    for (size_t i = 0; i < sizeof golden / sizeof golden[0]; i++) {
+        size_t n = from_hex(golden[i].hex, want);
+        assert_int_equal(sample(golden[i].type, got, sizeof got, params, sizeof params), n);
+        assert_memory_equal(got, want, n);
+        wire_msg m;
+        assert_int_equal(wire_decode(want, n, &m), WIRE_OK);
+    }
+    /* A FRAME carrying a real delta: head pose, time, lambda_incr, light 0's colour. */
+    static params_store s;
+    params_init(&s);
+    params_commit(&s);
+    float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.25f, 1.7f, -0.5f, 1};
+    params_set_mat4(&s, PARAMS_HEAD, head);
+    params_set_f64(&s, PARAMS_TIME, 1.0 / 30);
+    params_set_f32(&s, PARAMS_LAMBDA_INCR, 0.625f);
+    const float color[3] = {0.5f, 0.25f, 1};
+    params_set(&s, params_light_key(0, PARAMS_LIGHT_COLOR), color, sizeof color);
+    uint64_t v = params_commit(&s);
+    uint8_t delta[PARAMS_ENCODED_MAX];
+    size_t dn = params_encode_delta(&s, v - 1, delta, sizeof delta);
+    wire_msg f = {.type = WIRE_FRAME, .version = v, .base_version = v - 1, .params = delta,
+                  .params_len = dn};
+    size_t n = from_hex(golden_frame_delta, want);
+    assert_int_equal(wire_encode(&f, got, sizeof got), n);
+    assert_memory_equal(got, want, n);
 }
 
 static void test_round_trip_every_type(void **state)
@@ -156,6 +228,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crc32_reference),
+        cmocka_unit_test(test_encoding_unchanged),
         cmocka_unit_test(test_round_trip_every_type),
         cmocka_unit_test(test_truncation_and_bit_flips_rejected),
         cmocka_unit_test(test_oversized_and_bad_fields),
