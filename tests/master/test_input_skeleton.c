@@ -61,7 +61,7 @@ static void test_one_report_per_outage_and_retry(void **state)
 static void test_first_answer_and_rate_limit(void **state)
 {
     char err[256] = "";
-    fake_source *f = input_source_alloc(sizeof *f, "tracker", "fake", no_poll, no_close, err, sizeof err);
+    fake_source *f = input_source_alloc(sizeof *f, "tracker", "fake", no_poll, no_close);
     assert_int_equal(input_source_up(&f->base, 0.5, "connected", err, sizeof err), 1);
     assert_string_equal(err, "input tracker: connected");
     err[0] = 0;
