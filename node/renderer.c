@@ -9,176 +9,14 @@
 #include "base/xalloc.h"
 #include "base/mat4.h"
 #include "frame/offaxis.h"
+#include "gltools.h"
 #include "renderer_internal.h"
-#include "base/textfile.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
-
-/* ---- shaders ---------------------------------------------------------------------- */
-
-static char *read_text(const char *name, char *err, size_t errlen)
-{
-    const char *dir = getenv("CAVELIGHT_SHADERS");
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir && *dir ? dir : CAVELIGHT_SHADER_DIR, name);
-    char why[128];
-    char *s = textfile_read(path, NULL, why, sizeof why);
-    if (!s)
-        snprintf(err, errlen, "shader %s: %s; set CAVELIGHT_SHADERS to the shaders/ folder",
-                 path, why);
-    return s;
-}
-
-/* Source = version + defines + common.glsl + file, with "// @BODY@" in the file replaced
- * by body. defines and body may be NULL. */
-static GLuint compile(renderer *r, GLenum type, const char *name, const char *defines,
-                      const char *body, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    char *common = read_text("common.glsl", err, errlen);
-    char *text = common ? read_text(name, err, errlen) : NULL;
-    if (!text) {
-        free(common);
-        return 0;
-    }
-    const char *marker = body ? strstr(text, "// @BODY@") : NULL;
-    const char *parts[7];
-    GLint lengths[7];
-    int count = 0;
-    parts[count] = "#version 430 core\n";
-    lengths[count++] = -1;
-    parts[count] = defines ? defines : "";
-    lengths[count++] = -1;
-    parts[count] = common;
-    lengths[count++] = -1;
-    if (marker) {
-        parts[count] = text;
-        lengths[count++] = (GLint)(marker - text);
-        parts[count] = body;
-        lengths[count++] = -1;
-        parts[count] = marker + 9;
-        lengths[count++] = -1;
-    } else {
-        parts[count] = text;
-        lengths[count++] = -1;
-    }
-    GLuint s = gl->CreateShader(type);
-    gl->ShaderSource(s, count, parts, lengths);
-    gl->CompileShader(s);
-    free(common);
-    free(text);
-    GLint ok = 0;
-    gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        gl->GetShaderInfoLog(s, sizeof log, NULL, log);
-        char *nl = strchr(log, '\n');
-        if (nl)
-            *nl = '\0';
-        snprintf(err, errlen, "shader %s does not compile: %s", name, log);
-        gl->DeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
-GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *defines, const char *comp_body, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    GLuint shaders[2] = {0, 0};
-    int n = 0;
-    if (comp) {
-        if (!(shaders[n++] = compile(r, GL_COMPUTE_SHADER, comp, defines, comp_body, err, errlen)))
-            return 0;
-    } else {
-        if (!(shaders[n++] = compile(r, GL_VERTEX_SHADER, vert, defines, NULL, err, errlen)))
-            return 0;
-        if (!(shaders[n++] = compile(r, GL_FRAGMENT_SHADER, frag, defines, NULL, err, errlen))) {
-            gl->DeleteShader(shaders[0]);
-            return 0;
-        }
-    }
-    GLuint p = gl->CreateProgram();
-    for (int i = 0; i < n; i++)
-        gl->AttachShader(p, shaders[i]);
-    gl->LinkProgram(p);
-    for (int i = 0; i < n; i++)
-        gl->DeleteShader(shaders[i]);
-    GLint ok = 0;
-    gl->GetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        gl->GetProgramInfoLog(p, sizeof log, NULL, log);
-        char *nl = strchr(log, '\n');
-        if (nl)
-            *nl = '\0';
-        snprintf(err, errlen, "shader program %s does not link: %s", comp ? comp : frag, log);
-        gl->DeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
 
 static GLint loc(renderer *r, GLuint prog, const char *name)
 {
     return r->gl->GetUniformLocation(prog, name);
-}
-
-/* ---- resources -------------------------------------------------------------------- */
-
-static GLuint texture2d(renderer *r, GLenum format, int w, int h, GLenum filter)
-{
-    const gl_functions *gl = r->gl;
-    GLuint t;
-    gl->GenTextures(1, &t);
-    gl->BindTexture(GL_TEXTURE_2D, t);
-    gl->TexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, (GLint)filter);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, (GLint)filter);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
-
-static GLuint texture_array(renderer *r, GLenum format, int size, int layers)
-{
-    const gl_functions *gl = r->gl;
-    GLuint t;
-    gl->GenTextures(1, &t);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, t);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, size, size, layers);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
-
-GLuint renderer_texture3d(renderer *r, const int n[3])
-{
-    const gl_functions *gl = r->gl;
-    GLuint t;
-    gl->GenTextures(1, &t);
-    gl->BindTexture(GL_TEXTURE_3D, t);
-    gl->TexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA32F, n[0], n[1], n[2]);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    return t;
-}
-
-static int fbo_complete(renderer *r, const char *what, char *err, size_t errlen)
-{
-    GLenum st = r->gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (st != GL_FRAMEBUFFER_COMPLETE) {
-        snprintf(err, errlen, "%s framebuffer incomplete (status 0x%x): the driver lacks "
-                 "float render targets", what, (unsigned)st);
-        return -1;
-    }
-    return 0;
 }
 
 static const GLenum draw_buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
@@ -188,10 +26,10 @@ static int create_rsm(renderer *r, char *err, size_t errlen)
 {
     const gl_functions *gl = r->gl;
     int s = r->rsm_size;
-    r->rsm_position = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_normal = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_flux = texture_array(r, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_depth = texture_array(r, GL_DEPTH_COMPONENT32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_position = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_normal = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_flux = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
+    r->rsm_depth = gltools_texture_array(r->gl, GL_DEPTH_COMPONENT32F, s, FRAME_MAX_LIGHTS);
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
     gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -205,7 +43,7 @@ static int create_rsm(renderer *r, char *err, size_t errlen)
         gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->rsm_flux, 0, i);
         gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->rsm_depth, 0, i);
         gl->DrawBuffers(3, draw_buffers);
-        if (fbo_complete(r, "RSM", err, errlen))
+        if (gltools_fbo_complete(r->gl, "RSM", err, errlen))
             return -1;
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -240,11 +78,11 @@ static int eye_targets(renderer *r, int w, int h)
     const gl_functions *gl = r->gl;
     free_eye_targets(r);
     char err[160] = "out of memory for the eye targets";
-    r->g_position = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
-    r->g_normal = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
-    r->g_albedo = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
-    r->g_emissive = texture2d(r, GL_RGBA16F, w, h, GL_NEAREST);
-    r->g_depth = texture2d(r, GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    r->g_position = gltools_texture2d(r->gl, GL_RGBA32F, w, h, GL_NEAREST);
+    r->g_normal = gltools_texture2d(r->gl, GL_RGBA16F, w, h, GL_NEAREST);
+    r->g_albedo = gltools_texture2d(r->gl, GL_RGBA8, w, h, GL_NEAREST);
+    r->g_emissive = gltools_texture2d(r->gl, GL_RGBA16F, w, h, GL_NEAREST);
+    r->g_depth = gltools_texture2d(r->gl, GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
     gl->GenFramebuffers(1, &r->gbuffer_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->gbuffer_fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->g_position, 0);
@@ -253,27 +91,27 @@ static int eye_targets(renderer *r, int w, int h)
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, r->g_emissive, 0);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->g_depth, 0);
     gl->DrawBuffers(4, draw_buffers);
-    int bad = fbo_complete(r, "G-buffer", err, sizeof err);
+    int bad = gltools_fbo_complete(r->gl, "G-buffer", err, sizeof err);
 
-    r->s_final = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
-    r->s_direct = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
-    r->s_indirect = texture2d(r, GL_RGBA32F, w, h, GL_NEAREST);
+    r->s_final = gltools_texture2d(r->gl, GL_RGBA32F, w, h, GL_NEAREST);
+    r->s_direct = gltools_texture2d(r->gl, GL_RGBA32F, w, h, GL_NEAREST);
+    r->s_indirect = gltools_texture2d(r->gl, GL_RGBA32F, w, h, GL_NEAREST);
     gl->GenFramebuffers(1, &r->shade_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->s_final, 0);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->s_direct, 0);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->s_indirect, 0);
     gl->DrawBuffers(3, draw_buffers);
-    bad |= fbo_complete(r, "shading", err, sizeof err);
+    bad |= gltools_fbo_complete(r->gl, "shading", err, sizeof err);
 
-    r->f_color = texture2d(r, GL_RGBA8, w, h, GL_NEAREST);
+    r->f_color = gltools_texture2d(r->gl, GL_RGBA8, w, h, GL_NEAREST);
     gl->GenFramebuffers(1, &r->final_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->f_color, 0);
     /* The scene's depth, so the HUD drawn into the final image is occluded by it. */
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->g_depth, 0);
     gl->DrawBuffers(1, draw_buffers);
-    bad |= fbo_complete(r, "final", err, sizeof err);
+    bad |= gltools_fbo_complete(r->gl, "final", err, sizeof err);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 
     r->rgba = malloc((size_t)w * h * 4);
@@ -462,12 +300,13 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
-    if (!(r->prog_gbuffer = renderer_program(r, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_rsm = renderer_program(r, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = renderer_program(r, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_final = renderer_program(r, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
+    if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_rsm = gltools_program(r->gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
+        !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen) || renderer_hud_init(r, err, errlen)) {
+        renderer_lpv_init(r, desc, software, err, errlen) ||
+        !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
     }
@@ -488,7 +327,7 @@ void renderer_destroy(renderer *r)
         return;
     const gl_functions *gl = r->gl;
     renderer_lpv_free(r);
-    renderer_hud_free(r);
+    renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
     for (int i = 0; i < 4; i++)
@@ -734,7 +573,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
-    renderer_hud_draw(r, p, vp, view->eye_position, encoding);
+    int cells = r->lattice.n[0];
+    for (int a = 1; a < 3; a++)
+        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
+    renderer_hud_draw(r->hud, p, cells, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);

@@ -10,7 +10,18 @@
 #include "base/xalloc.h"
 #include "base/vec3.h"
 #include "renderer_hud.h"
-#include "renderer_internal.h"
+#include "gltools.h"
+
+enum { RENDERER_HUD_BOX, RENDERER_HUD_CONE, RENDERER_HUD_TORUS, RENDERER_HUD_MESHES };
+
+/* One program, three meshes in one buffer. */
+struct renderer_hud {
+    const gl_functions *gl;
+    GLuint prog_hud, hud_vao, hud_vbo;
+    GLint hud_first[RENDERER_HUD_MESHES];
+    GLsizei hud_count[RENDERER_HUD_MESHES];
+    GLint hud_loc_model, hud_loc_view_projection, hud_loc_color, hud_loc_eye, hud_loc_gamma;
+};
 
 /* Panel layout in the wand's frame, metres (see renderer_hud.h). */
 static const float INDICATOR_X = -0.07f;
@@ -161,11 +172,14 @@ static void build_torus(mesh_builder *b)
         }
 }
 
-int renderer_hud_init(renderer *r, char *err, size_t errlen)
+renderer_hud *renderer_hud_create(const gl_functions *gl, char *err, size_t errlen)
 {
-    const gl_functions *gl = r->gl;
-    if (!(r->prog_hud = renderer_program(r, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen)))
-        return -1;
+    renderer_hud *r = xcalloc(1, sizeof *r);
+    r->gl = gl;
+    if (!(r->prog_hud = gltools_program(gl, "hud.vert", "hud.frag", NULL, NULL, NULL, err, errlen))) {
+        renderer_hud_destroy(r);
+        return NULL;
+    }
     r->hud_loc_model = gl->GetUniformLocation(r->prog_hud, "u_model");
     r->hud_loc_view_projection = gl->GetUniformLocation(r->prog_hud, "u_view_projection");
     r->hud_loc_color = gl->GetUniformLocation(r->prog_hud, "u_color");
@@ -193,11 +207,13 @@ int renderer_hud_init(renderer *r, char *err, size_t errlen)
     }
     gl->BindVertexArray(0);
     free(b.v);
-    return 0;
+    return r;
 }
 
-void renderer_hud_free(renderer *r)
+void renderer_hud_destroy(renderer_hud *r)
 {
+    if (!r)
+        return;
     const gl_functions *gl = r->gl;
     if (r->prog_hud)
         gl->DeleteProgram(r->prog_hud);
@@ -205,12 +221,12 @@ void renderer_hud_free(renderer *r)
         gl->DeleteBuffers(1, &r->hud_vbo);
     if (r->hud_vao)
         gl->DeleteVertexArrays(1, &r->hud_vao);
-    r->prog_hud = r->hud_vbo = r->hud_vao = 0;
+    free(r);
 }
 
 /* ---- drawing ------------------------------------------------------------------------ */
 
-static void draw(renderer *r, int mesh, const float model[16], const float color[3])
+static void draw(renderer_hud *r, int mesh, const float model[16], const float color[3])
 {
     const gl_functions *gl = r->gl;
     gl->UniformMatrix4fv(r->hud_loc_model, 1, GL_FALSE, model);
@@ -219,7 +235,7 @@ static void draw(renderer *r, int mesh, const float model[16], const float color
 }
 
 /* A mesh placed in the wand's frame: model = wand_world * local. */
-static void draw_local(renderer *r, const hud *h, int mesh, const float x[3], const float y[3],
+static void draw_local(renderer_hud *r, const hud *h, int mesh, const float x[3], const float y[3],
                        const float z[3], const float t[3], const float color[3])
 {
     float local[16], model[16];
@@ -229,7 +245,7 @@ static void draw_local(renderer *r, const hud *h, int mesh, const float x[3], co
 }
 
 /* Axis-aligned box in the wand's frame. */
-static void draw_box(renderer *r, const hud *h, const float centre[3], const float size[3],
+static void draw_box(renderer_hud *r, const hud *h, const float centre[3], const float size[3],
                      const float color[3])
 {
     draw_local(r, h, RENDERER_HUD_BOX, (const float[3]){size[0], 0, 0},
@@ -237,7 +253,7 @@ static void draw_box(renderer *r, const hud *h, const float centre[3], const flo
 }
 
 /* A stroke of a letter, from a to b in the panel plane (wand x, y at depth z). */
-static void draw_stroke(renderer *r, const hud *h, const float a[2], const float b[2], float z,
+static void draw_stroke(renderer_hud *r, const hud *h, const float a[2], const float b[2], float z,
                         const float color[3])
 {
     float d[2] = {b[0] - a[0], b[1] - a[1]};
@@ -263,7 +279,7 @@ static const letter_strokes LETTERS[HUD_BAR_COUNT] = {
     {'P', 4, {{0, 0, 0, 2}, {0, 2, 2, 2}, {2, 2, 2, 1}, {2, 1, 0, 1}}},
 };
 
-static void draw_letter(renderer *r, const hud *h, char letter, float cx, float cy, float z,
+static void draw_letter(renderer_hud *r, const hud *h, char letter, float cx, float cy, float z,
                         const float color[3])
 {
     float unit = 0.5f * LETTER_SIZE;
@@ -281,7 +297,7 @@ static void draw_letter(renderer *r, const hud *h, char letter, float cx, float 
 
 /* Cone with its apex at apex, opening along axis (unit) by half angle a, length len:
  * placed through the world matrix base (wand_world, or identity for world space). */
-static void draw_cone(renderer *r, const float base[16], const float apex[3],
+static void draw_cone(renderer_hud *r, const float base[16], const float apex[3],
                       const float axis[3], float angle, float len, const float color[3])
 {
     float u[3], helper[3] = {1, 0, 0};
@@ -305,12 +321,9 @@ static void draw_cone(renderer *r, const float base[16], const float apex[3],
 
 static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 
-void renderer_hud_draw(renderer *r, const frame_params *p, const float view_projection[16],
-                       const float eye[3], float encoding_gamma)
+void renderer_hud_draw(renderer_hud *r, const frame_params *p, int cells,
+                       const float view_projection[16], const float eye[3], float encoding_gamma)
 {
-    int cells = r->lattice.n[0];
-    for (int a = 1; a < 3; a++)
-        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
     hud h;
     hud_describe(p, cells, &h);
     if (!h.visible)

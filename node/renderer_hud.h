@@ -13,10 +13,21 @@
 #define CAVELIGHT_RENDERER_HUD_H
 
 #include "frame/hud.h"
+#include "gl_functions.h"
 
 #define RENDERER_HUD_DISTANCE 0.12f   /* panel in front of the wand origin, metres */
 #define RENDERER_HUD_BAR_LENGTH 0.12f /* a bar at value 1 */
 #define RENDERER_HUD_SPOT_CONE 0.08f  /* length of the cone drawn at the spot */
+
+typedef struct renderer_hud renderer_hud;
+
+/* Program and meshes on the current context. Returns NULL with one line in err. */
+renderer_hud *renderer_hud_create(const gl_functions *gl, char *err, size_t errlen);
+void renderer_hud_destroy(renderer_hud *h);
+/* Into the bound framebuffer (depth-tested against what it holds), if p->hud_layout >= 0;
+ * lattice_cells: the resolution the settings bar shows (0 when the GI method has none). */
+void renderer_hud_draw(renderer_hud *h, const frame_params *p, int lattice_cells,
+                       const float view_projection[16], const float eye[3], float encoding_gamma);
 
 typedef struct renderer_hud_places {
     float indicator[HUD_INDICATOR_COUNT][3]; /* world centre of each indicator */

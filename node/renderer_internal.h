@@ -1,5 +1,5 @@
-/* renderer_internal: state shared by renderer.c (GL passes), renderer_lpv.c (the LPV
- * backends) and renderer_hud.c (the wand HUD). Not for other modules. */
+/* renderer_internal: state shared by renderer.c (GL passes) and renderer_lpv.c (the LPV
+ * backends). Not for other modules. */
 #ifndef CAVELIGHT_RENDERER_INTERNAL_H
 #define CAVELIGHT_RENDERER_INTERNAL_H
 
@@ -11,11 +11,10 @@
 #include "lpv/lpv_inject.h"
 #include "lpv/lpv_transfer.h"
 #include "renderer.h"
+#include "renderer_hud.h"
 #include "base/workpool.h"
 
 enum { RENDERER_QUERY_RING = 4 };
-
-enum { RENDERER_HUD_BOX, RENDERER_HUD_CONE, RENDERER_HUD_TORUS, RENDERER_HUD_MESHES };
 
 /* GL timer queries read a few frames later, never waited for (paper 4.6). */
 typedef struct renderer_queries {
@@ -93,23 +92,14 @@ struct renderer {
     ilpv_history gl_history; /* the GL path's own merge state (ilpv_merge_factors()) */
     lpv_volume gl_result;
 
-    /* HUD: one program, three meshes in one buffer */
-    GLuint prog_hud, hud_vao, hud_vbo;
-    GLint hud_first[RENDERER_HUD_MESHES];
-    GLsizei hud_count[RENDERER_HUD_MESHES];
-    GLint hud_loc_model, hud_loc_view_projection, hud_loc_color, hud_loc_eye, hud_loc_gamma;
 
+    renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
                                 passes render */
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
     char error[256];         /* why the last eye pass failed */
 };
-
-/* renderer.c */
-GLuint renderer_program(renderer *r, const char *vert, const char *frag, const char *comp,
-                        const char *defines, const char *comp_body, char *err, size_t errlen);
-GLuint renderer_texture3d(renderer *r, const int n[3]);
 
 /* renderer_lpv.c */
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err, size_t errlen);
@@ -121,11 +111,5 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p);
 /* The three textures (R, G, B SH) the shading pass samples. */
 void renderer_lpv_textures(const renderer *r, GLuint out[3]);
 
-/* renderer_hud.c */
-int renderer_hud_init(renderer *r, char *err, size_t errlen);
-void renderer_hud_free(renderer *r);
-/* Into the bound final framebuffer (G-buffer depth attached), if p->hud_layout >= 0. */
-void renderer_hud_draw(renderer *r, const frame_params *p, const float view_projection[16],
-                       const float eye[3], float encoding_gamma);
 
 #endif

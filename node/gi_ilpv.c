@@ -20,6 +20,7 @@
 #include "base/clock.h"
 #include "base/vec3.h"
 #include "lpv/lpv_geometry.h"
+#include "gltools.h"
 #include "renderer_internal.h"
 
 static const double PI = 3.14159265358979323846;
@@ -110,14 +111,14 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
     gather_body(&r->transfer, body, sizeof body);
     r->gl_tiles = desc->lpv_gl_tiles == RENDERER_TILES_AUTO ? !software
                                                             : desc->lpv_gl_tiles == RENDERER_TILES_ON;
-    r->prog_propagate = renderer_program(r, NULL, NULL, "propagate.comp",
+    r->prog_propagate = gltools_program(r->gl, NULL, NULL, "propagate.comp",
                                          r->gl_tiles ? "#define LPV_TILES 1\n" : NULL, body,
                                          err, errlen);
     r->prog_merge = r->prog_propagate
-                        ? renderer_program(r, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
+                        ? gltools_program(r->gl, NULL, NULL, "merge.comp", NULL, NULL, err, errlen)
                         : 0;
     if (r->prog_merge && r->mode == RENDERER_LPV_CLASSIC)
-        r->prog_accumulate = renderer_program(r, NULL, NULL, "accumulate.comp", NULL, NULL, err,
+        r->prog_accumulate = gltools_program(r->gl, NULL, NULL, "accumulate.comp", NULL, NULL, err,
                                               errlen);
     if (!r->prog_merge || (r->mode == RENDERER_LPV_CLASSIC && !r->prog_accumulate))
         return -1;
@@ -126,18 +127,18 @@ static int init_gl_backend(renderer *r, int software, const renderer_desc *desc,
         return -1;
     }
     for (int c = 0; c < 3; c++) {
-        r->gl_injected[c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[0][c] = renderer_texture3d(r, r->lattice.n);
-        r->gl_volume[1][c] = renderer_texture3d(r, r->lattice.n);
+        r->gl_injected[c] = gltools_texture3d(r->gl, r->lattice.n);
+        r->gl_volume[0][c] = gltools_texture3d(r->gl, r->lattice.n);
+        r->gl_volume[1][c] = gltools_texture3d(r->gl, r->lattice.n);
         if (r->mode == RENDERER_LPV_CLASSIC)
-            r->gl_accum[c] = renderer_texture3d(r, r->lattice.n);
+            r->gl_accum[c] = gltools_texture3d(r->gl, r->lattice.n);
     }
     /* Defined contents everywhere: the zeroed readback volume. */
     upload_volume(r, &r->gl_result, r->gl_volume[0]);
     upload_volume(r, &r->gl_result, r->gl_volume[1]);
     if (r->mode == RENDERER_LPV_CLASSIC)
         upload_volume(r, &r->gl_result, r->gl_accum);
-    r->gl_geometry = renderer_texture3d(r, r->lattice.n);
+    r->gl_geometry = gltools_texture3d(r->gl, r->lattice.n);
     for (size_t i = 0; i < r->geometry.cells; i++)
         for (int s = 0; s < 4; s++)
             r->upload[4 * i + s] = r->geometry.ch[s][i];
@@ -262,7 +263,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     if (r->backend == RENDERER_LPV_GL)
         return init_gl_backend(r, software, desc, err, errlen);
     for (int c = 0; c < 3; c++)
-        r->lpv_tex[c] = renderer_texture3d(r, r->lattice.n);
+        r->lpv_tex[c] = gltools_texture3d(r->gl, r->lattice.n);
     return 0;
 }
 

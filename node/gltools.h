@@ -1,0 +1,29 @@
+/* gltools: the small GL toolkit every GL module of the node uses, on a gl_functions table.
+ *
+ * Programs from the shaders/ folder (CAVELIGHT_SHADERS, else the source tree's): each stage
+ * is "#version 430 core", the caller's defines, common.glsl, then the file, with a
+ * "// @BODY@" line in a compute shader replaced by generated code; a compile or link
+ * failure is one line naming the file and the driver's first message. Immutable textures
+ * (2D, 2D array, 3D RGBA32F with linear filtering) clamped to their edges, and the check
+ * that a framebuffer is complete. Holds no state. */
+#ifndef CAVELIGHT_GLTOOLS_H
+#define CAVELIGHT_GLTOOLS_H
+
+#include <stddef.h>
+
+#include "gl_functions.h"
+
+/* A vertex + fragment program, or a compute program when comp is given (comp_body replaces
+ * its @BODY@ line). defines and comp_body may be NULL. Returns 0 with one line in err. */
+GLuint gltools_program(const gl_functions *gl, const char *vert, const char *frag,
+                       const char *comp, const char *defines, const char *comp_body, char *err,
+                       size_t errlen);
+GLuint gltools_texture2d(const gl_functions *gl, GLenum format, int w, int h, GLenum filter);
+/* size x size x layers, nearest filtering. */
+GLuint gltools_texture_array(const gl_functions *gl, GLenum format, int size, int layers);
+/* n[0] x n[1] x n[2] RGBA32F, linear filtering: an LPV colour channel's 4 SH coefficients. */
+GLuint gltools_texture3d(const gl_functions *gl, const int n[3]);
+/* Of the bound GL_FRAMEBUFFER: 0, or -1 with "WHAT framebuffer incomplete ..." in err. */
+int gltools_fbo_complete(const gl_functions *gl, const char *what, char *err, size_t errlen);
+
+#endif
