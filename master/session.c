@@ -48,6 +48,11 @@ static int seed(session *s, const char *scene_path, char *err, size_t errlen)
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
         return -1;
+    if (sc.light_added) { /* the nodes load it too; the master says it once */
+        char note[400];
+        scene_light_added_note(&sc, scene_path, note, sizeof note);
+        fprintf(stderr, "cavelight-master: warning: %s\n", note);
+    }
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     scene_free(&sc);

@@ -64,6 +64,8 @@ typedef frame_view renderer_view;
 typedef struct renderer_image {
     int width, height;
     uint8_t *rgb;          /* width*height*3, top row first; owned by the renderer */
+    int lit;               /* some pixel shows light (before the HUD); a view that turns
+                              black is also reported on stderr, once */
     const float *final;    /* linear RGB floats, or NULL unless requested */
     const float *direct;
     const float *indirect;
