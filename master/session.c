@@ -118,9 +118,9 @@ int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomi
 static session_step apply_input(session *s, params_store *store)
 {
     input_state ist;
-    char err[512];
+    char err[1024];
     if (input_poll(s->in, &ist, err, sizeof err) != 0)
-        fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+        fprintf(stderr, "cavelight-master: %s\n", err); /* a warning or notice; the session goes on */
     if (ist.failed)
         return SESSION_INPUT_FAILED;
     if (ist.finished)
