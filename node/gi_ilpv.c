@@ -1,6 +1,7 @@
 /* renderer_lpv: the frame pass after the RSMs. RSM texels become VPLs (host, in texel
  * order, so the injection is deterministic), are injected with the CPU core, then merged
- * and propagated either by the CPU ILPV core or by GL compute shaders.
+ * and propagated either by the CPU ILPV core or by GL compute shaders. The VPLs come from
+ * the source every light type feeds (renderer_rsm_vpls()).
  *
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
  * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
@@ -187,16 +188,10 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     lpv_geometry_add_triangles(&r->blockers, &r->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
     size_t cells = lattice_cell_count(&r->lattice);
-    size_t texels = (size_t)r->rsm_size * r->rsm_size;
     r->upload = malloc(cells * 4 * sizeof(float));
-    for (int i = 0; i < 3; i++)
-        r->rsm_read[i] = malloc(texels * 4 * sizeof(float));
-    r->vpl_capacity = FRAME_MAX_LIGHTS * texels + r->emitter_count;
-    r->vpls = malloc(r->vpl_capacity * sizeof *r->vpls);
     r->pool = workpool_create(desc->threads);
-    if (!r->upload || !r->rsm_read[0] || !r->rsm_read[1] || !r->rsm_read[2] || !r->vpls ||
-        !r->pool) {
-        snprintf(err, errlen, "renderer: out of memory for RSM readback and VPLs");
+    if (!r->upload || !r->pool) {
+        snprintf(err, errlen, "renderer: out of memory for the LPV upload");
         return -1;
     }
     if (r->backend == RENDERER_LPV_GL)
@@ -236,8 +231,6 @@ void renderer_lpv_free(renderer *r)
     free(r->emitters);
     free(r->vpls);
     free(r->upload);
-    for (int i = 0; i < 3; i++)
-        free(r->rsm_read[i]);
 }
 
 void renderer_lpv_textures(const renderer *r, GLuint out[3])
@@ -248,50 +241,38 @@ void renderer_lpv_textures(const renderer *r, GLuint out[3])
                                                    : r->gl_result[c];
 }
 
-/* RSM texels of every rendered light, in layer then texel order, plus the emitters. */
-static size_t collect_vpls(renderer *r)
+/* The shared VPL source (renderer_rsm_vpls()) as the lattice wants it, Phi / pi (the units
+ * above), then the emitters. NULL when out of memory (the frame injects nothing). */
+static const lpv_vpl *collect_vpls(renderer *r, size_t *count)
 {
-    const gl_functions *gl = r->gl;
-    int size = r->rsm_size;
-    size_t texels = (size_t)size * size, n = 0;
-    for (int layer = 0; layer < r->rsm_lights; layer++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
-        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        for (int b = 0; b < 3; b++) {
-            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
-            gl->ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, r->rsm_read[b]);
+    lpv_vpl *rsm;
+    size_t n = renderer_rsm_vpls(r, &rsm), need = n + r->emitter_count;
+    if (need > r->vpl_capacity) {
+        lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
+        if (!v) {
+            *count = 0;
+            return NULL;
         }
-        const float *pos = r->rsm_read[0], *nrm = r->rsm_read[1], *flux = r->rsm_read[2];
-        for (size_t i = 0; i < texels; i++) {
-            const float *f = flux + 4 * i;
-            if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
-                continue;
-            lpv_vpl *v = &r->vpls[n++];
-            for (int k = 0; k < 3; k++) {
-                v->position[k] = pos[4 * i + k];
-                v->normal[k] = nrm[4 * i + k];
-                v->flux[k] = f[k] * (float)(1.0 / PI);
-            }
-        }
+        r->vpls = v;
+        r->vpl_capacity = need;
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    for (size_t i = 0; i < n; i++) {
+        r->vpls[i] = rsm[i];
+        for (int k = 0; k < 3; k++)
+            r->vpls[i].flux[k] = rsm[i].flux[k] * (float)(1.0 / PI);
+    }
     if (r->emitter_count) /* a scene without emitters has no emitter array */
         memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
-    return n + r->emitter_count;
+    *count = need;
+    return r->vpls;
 }
 
 /* Emitted energy for the incremental merge, from the lights' parameters (paper 3.4). */
 static double emitted_energy(const renderer *r, const frame_params *p)
 {
     double e = r->emitter_energy;
-    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
-        const frame_light *l = &p->lights[i];
-        if (!l->enabled || !(l->intensity > 0))
-            continue;
-        double outer = fmin(fmax(l->outer_angle, 0.01), 1.45);
-        e += l->intensity * (l->color[0] + l->color[1] + l->color[2]) / 3.0 * 2.0 * PI *
-             (1.0 - cos(outer));
-    }
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
+        e += light_power(&p->lights[i], r->scene);
     return e;
 }
 
@@ -442,10 +423,11 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
         r->reset_epoch = p->reset_epoch;
     }
     double t0 = clock_now_ms();
-    size_t count = collect_vpls(r);
+    size_t count;
+    const lpv_vpl *vpls = collect_vpls(r, &count);
     ilpv_begin_frame(&r->cpu);
     memset(&r->inject_stats, 0, sizeof r->inject_stats);
-    lpv_inject_vpls(ilpv_injection(&r->cpu), ilpv_origin(&r->cpu), &r->lattice, r->vpls, count,
+    lpv_inject_vpls(ilpv_injection(&r->cpu), ilpv_origin(&r->cpu), &r->lattice, vpls, count,
                     &r->inject_stats);
     double t1 = clock_now_ms();
     double energy = emitted_energy(r, p);

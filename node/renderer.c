@@ -8,6 +8,7 @@
 #include "base/clock.h"
 #include "base/xalloc.h"
 #include "base/mat4.h"
+#include "base/ratelog.h"
 #include "frame/offaxis.h"
 #include "gltools.h"
 #include "lpv/lpv_receive.h"
@@ -22,34 +23,6 @@ static GLint loc(renderer *r, GLuint prog, const char *name)
 
 static const GLenum draw_buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                        GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-
-static int create_rsm(renderer *r, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    int s = r->rsm_size;
-    r->rsm_position = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_normal = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_flux = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_depth = gltools_texture_array(r->gl, GL_DEPTH_COMPONENT32F, s, FRAME_MAX_LIGHTS);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    gl->GenFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
-    for (int i = 0; i < FRAME_MAX_LIGHTS; i++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[i]);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->rsm_position, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->rsm_normal, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->rsm_flux, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->rsm_depth, 0, i);
-        gl->DrawBuffers(3, draw_buffers);
-        if (gltools_fbo_complete(r->gl, "RSM", err, errlen))
-            return -1;
-    }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    return 0;
-}
 
 static void free_eye_targets(renderer *r)
 {
@@ -216,7 +189,7 @@ static void bind_material(renderer *r, GLuint prog, uint32_t mi)
         gl->Uniform1f(ro, m->roughness);
 }
 
-static void draw_scene(renderer *r, GLuint prog)
+void renderer_draw_scene(renderer *r, GLuint prog)
 {
     const gl_functions *gl = r->gl;
     gl->BindVertexArray(r->vao);
@@ -297,7 +270,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     r->gl = desc->gl;
     r->scene = desc->scene;
     frame_params_default(&r->frame);
-    r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
+    r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
@@ -308,7 +281,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->prog_rsm = gltools_program(r->gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, shade_defines, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
-        upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
+        upload_scene(r, err, errlen) || renderer_rsm_init(r, err, errlen) ||
         renderer_lpv_init(r, desc, software, err, errlen) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
@@ -316,6 +289,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     }
     queries_init(r, &r->frame_queries);
     queries_init(r, &r->eye_queries);
+    r->gl->GenQueries(1, &r->lit_query);
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
         snprintf(err, errlen, "renderer: GL error 0x%x while creating resources", (unsigned)e);
@@ -337,12 +311,7 @@ void renderer_destroy(renderer *r)
     for (int i = 0; i < 4; i++)
         if (progs[i])
             gl->DeleteProgram(progs[i]);
-    GLuint tex[] = {r->rsm_position, r->rsm_normal, r->rsm_flux, r->rsm_depth};
-    for (int i = 0; i < 4; i++)
-        if (tex[i])
-            gl->DeleteTextures(1, &tex[i]);
-    if (r->rsm_fbo[0])
-        gl->DeleteFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
+    renderer_rsm_free(r);
     if (r->textures && r->scene->texture_count)
         gl->DeleteTextures((GLsizei)r->scene->texture_count, r->textures);
     if (r->vbo)
@@ -351,6 +320,8 @@ void renderer_destroy(renderer *r)
         gl->DeleteVertexArrays(1, &r->vao);
     if (r->empty_vao)
         gl->DeleteVertexArrays(1, &r->empty_vao);
+    if (r->lit_query)
+        gl->DeleteQueries(1, &r->lit_query);
     for (int i = 0; i < RENDERER_QUERY_RING; i++) {
         if (r->frame_queries.id[i][0])
             gl->DeleteQueries(4, r->frame_queries.id[i]);
@@ -364,63 +335,6 @@ void renderer_destroy(renderer *r)
 
 /* ---- frame pass ------------------------------------------------------------------- */
 
-/* The shadow map's near plane follows the scene's size (as the falloff bound does,
- * scene_min_light_distance()), so that a 4 cm model and a 4 km site render alike
- * (docs/stability.md): a fixed 5 cm left a 4 cm model's RSM empty. D / 128 gives the 6.4 m
- * default room the former value. The shadow test's offset is in texels (shade.frag). */
-static void render_rsms(renderer *r, const frame_params *p)
-{
-    const gl_functions *gl = r->gl;
-    GLuint prog = r->prog_rsm;
-    float diagonal = scene_diagonal(r->scene);
-    r->rsm_lights = 0;
-    gl->UseProgram(prog);
-    gl->Viewport(0, 0, r->rsm_size, r->rsm_size);
-    gl->Enable(GL_DEPTH_TEST);
-    gl->DepthFunc(GL_LESS);
-    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
-        const frame_light *l = &p->lights[i];
-        if (!l->enabled || !(l->intensity > 0))
-            continue;
-        int layer = r->rsm_lights++;
-        r->rsm_layer_of[layer] = i;
-        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
-        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
-        float target[3], view[16], proj[16];
-        for (int a = 0; a < 3; a++)
-            target[a] = l->position[a] + l->direction[a];
-        float dist = 0;
-        for (int a = 0; a < 3; a++) {
-            float c = 0.5f * (r->scene->bounds_min[a] + r->scene->bounds_max[a]) - l->position[a];
-            dist += c * c;
-        }
-        float fp = diagonal + sqrtf(dist) + diagonal / 6.4f;
-        offaxis_look_at(l->position, target, 2.0f * outer, 1.0f, diagonal / 128.0f, fp, view,
-                        proj);
-        mat4_mul(proj, view, r->light_view_projection[layer]);
-        r->rsm_tan_half_fov[layer] = tanf(outer);
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
-        const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
-        for (int b = 0; b < 3; b++)
-            gl->ClearBufferfv(GL_COLOR, b, zero);
-        gl->ClearBufferfv(GL_DEPTH, 0, &one);
-        gl->UniformMatrix4fv(loc(r, prog, "u_view_projection"), 1, GL_FALSE,
-                             r->light_view_projection[layer]);
-        gl->Uniform3fv(loc(r, prog, "u_light_position"), 1, l->position);
-        gl->Uniform3fv(loc(r, prog, "u_light_direction"), 1, l->direction);
-        float radiance[3] = {l->color[0] * l->intensity, l->color[1] * l->intensity,
-                             l->color[2] * l->intensity};
-        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), 1, radiance);
-        gl->Uniform1f(loc(r, prog, "u_cos_outer"), cosf(outer));
-        gl->Uniform1f(loc(r, prog, "u_cos_inner"), cosf(inner));
-        gl->Uniform1f(loc(r, prog, "u_tan_half_fov"), r->rsm_tan_half_fov[layer]);
-        gl->Uniform1f(loc(r, prog, "u_size"), (float)r->rsm_size);
-        gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
-        draw_scene(r, prog);
-    }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
@@ -428,6 +342,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
      * per frame; the eye passes render this copy. */
     r->frame = *params;
     frame_params_sanitize(&r->frame);
+    r->eye_index = 0;
     const frame_params *p = &r->frame;
     if (renderer_lpv_skip(r, p)) { /* RSMs, textures and the LPV still hold this result */
         r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
@@ -436,7 +351,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     }
     int slot = queries_begin_frame(r, &r->frame_queries, 1);
     query_begin(r, &r->frame_queries, slot, Q_RSM);
-    render_rsms(r, p);
+    renderer_rsm_render(r, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
     uint64_t checksum = renderer_lpv_frame(r, p);
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
@@ -461,6 +376,49 @@ static void read_rgb_float(renderer *r, GLenum attachment, float *out)
             out[y * row + i] = out[(size_t)(h - 1 - y) * row + i];
             out[(size_t)(h - 1 - y) * row + i] = t;
         }
+}
+
+/* Where the eye is, for the sides and the specular: its position (w 1), or for an
+ * orthographic projection (no perspective divide: the last row is 0 0 0 1) the direction
+ * towards it, the view's +z axis in the world (w 0). */
+static void eye_towards(const renderer_view *v, float eye[4])
+{
+    if (v->projection[3] == 0 && v->projection[7] == 0 && v->projection[11] == 0) {
+        for (int a = 0; a < 3; a++)
+            eye[a] = v->view[4 * a + 2];
+        eye[3] = 0;
+    } else {
+        memcpy(eye, v->eye_position, 3 * sizeof(float));
+        eye[3] = 1;
+    }
+}
+
+/* One line when the k-th view of a frame turns black (it showed light before, or it is the
+ * first), whatever the cause; not again while it stays black, and rate limited (a view
+ * that flickers between black and lit). */
+static void warn_if_dark(renderer *r, int lit)
+{
+    int k = r->eye_index < RENDERER_DARK_VIEWS ? r->eye_index : RENDERER_DARK_VIEWS - 1;
+    r->eye_index++;
+    if (lit) {
+        r->view_dark[k] = 0;
+        return;
+    }
+    if (r->view_dark[k])
+        return;
+    r->view_dark[k] = 1;
+    uint64_t skipped;
+    if (!ratelog_event(&r->dark_log, clock_now_ms(), &skipped))
+        return;
+    const frame_params *p = &r->frame;
+    int lights = 0;
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
+        lights += light_is_lit(&p->lights[i]) &&
+                  (p->lights[i].color[0] > 0 || p->lights[i].color[1] > 0 || p->lights[i].color[2] > 0);
+    fprintf(stderr, "cavelight-node: warning: frame %llu, view %d receives no light: %s%s\n",
+            (unsigned long long)p->version, k,
+            light_dark_reason(lights || r->emitter_count),
+            skipped ? " (more such lines left out)" : "");
 }
 
 int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
@@ -493,8 +451,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->ClearBufferfv(GL_DEPTH, 0, &one);
     gl->UseProgram(r->prog_gbuffer);
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
-    gl->Uniform3fv(loc(r, r->prog_gbuffer, "u_eye"), 1, view->eye_position);
-    draw_scene(r, r->prog_gbuffer);
+    float eye[4];
+    eye_towards(view, eye);
+    gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
+    renderer_draw_scene(r, r->prog_gbuffer);
     gl->Disable(GL_DEPTH_TEST);
     query_end(r, &r->eye_queries, slot, Q_GBUFFER);
 
@@ -510,12 +470,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->BindTexture(GL_TEXTURE_2D, gtex[i]);
         gl->Uniform1i(loc(r, prog, gname[i]), i);
     }
-    gl->ActiveTexture(GL_TEXTURE4);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
-    gl->Uniform1i(loc(r, prog, "u_shadow"), 4);
-    gl->ActiveTexture(GL_TEXTURE8);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_normal);
-    gl->Uniform1i(loc(r, prog, "u_rsm_normal"), 8);
+    renderer_rsm_bind_shading(r, prog, p, 4, 8);
     GLuint lpv[3];
     renderer_lpv_textures(r, lpv);
     const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
@@ -528,35 +483,8 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
     gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
     gl->Uniform3i(loc(r, prog, "u_lpv_size"), r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
-    float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];
-    float cos_outer[FRAME_MAX_LIGHTS], cos_inner[FRAME_MAX_LIGHTS];
-    for (int k = 0; k < r->rsm_lights; k++) {
-        const frame_light *l = &p->lights[r->rsm_layer_of[k]];
-        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
-        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
-        memcpy(lpos[k], l->position, sizeof lpos[k]);
-        memcpy(ldir[k], l->direction, sizeof ldir[k]);
-        for (int c = 0; c < 3; c++)
-            lrad[k][c] = l->color[c] * l->intensity;
-        cos_outer[k] = cosf(outer);
-        cos_inner[k] = cosf(inner);
-    }
-    int nl = r->rsm_lights;
-    gl->Uniform1i(loc(r, prog, "u_light_count"), nl);
-    if (nl > 0) {
-        gl->Uniform3fv(loc(r, prog, "u_light_position"), nl, lpos[0]);
-        gl->Uniform3fv(loc(r, prog, "u_light_direction"), nl, ldir[0]);
-        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), nl, lrad[0]);
-        gl->Uniform1fv(loc(r, prog, "u_cos_outer"), nl, cos_outer);
-        gl->Uniform1fv(loc(r, prog, "u_cos_inner"), nl, cos_inner);
-        gl->UniformMatrix4fv(loc(r, prog, "u_light_view_projection"), nl, GL_FALSE,
-                             r->light_view_projection[0]);
-        gl->Uniform1fv(loc(r, prog, "u_light_tan_half_fov"), nl, r->rsm_tan_half_fov);
-    }
-    gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
-    gl->Uniform1f(loc(r, prog, "u_min_light_distance"), scene_min_light_distance(r->scene));
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
-    gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);
+    gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);
     gl->BindVertexArray(r->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
@@ -572,7 +500,11 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
     float encoding = frame_params_e2e_gamma(p->environment) / display;
     gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"), encoding);
+    /* final.frag leaves black pixels out; any sample written means the view shows light. */
+    gl->ClearBufferfv(GL_COLOR, 0, zero);
+    gl->BeginQuery(GL_ANY_SAMPLES_PASSED, r->lit_query);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
     int cells = r->lattice.n[0];
@@ -587,6 +519,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             memcpy(r->rgb + ((size_t)y * w + x) * 3, r->rgba + ((size_t)(h - 1 - y) * w + x) * 4, 3);
+    GLint any = 0;
+    gl->GetQueryObjectiv(r->lit_query, GL_QUERY_RESULT, &any); /* ready: ReadPixels waited */
+    out->lit = any != 0;
+    warn_if_dark(r, out->lit);
     out->width = w;
     out->height = h;
     out->rgb = r->rgb;

@@ -10,11 +10,13 @@
 #include "lpv/lpv_converge.h"
 #include "lpv/lpv_inject.h"
 #include "lpv/lpv_geometry.h"
+#include "frame/light_view.h"
 #include "renderer.h"
+#include "base/ratelog.h"
 #include "renderer_hud.h"
 #include "base/workpool.h"
 
-enum { RENDERER_QUERY_RING = 4 };
+enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
 
 /* GL timer queries read a few frames later, never waited for (paper 4.6). */
 typedef struct renderer_queries {
@@ -41,13 +43,16 @@ struct renderer {
 
     GLuint prog_gbuffer, prog_rsm, prog_shade, prog_final;
 
+    /* RSMs (renderer_rsm.c): one layer per light view */
     int rsm_size;
-    GLuint rsm_fbo[FRAME_MAX_LIGHTS];
+    int rsm_layers;          /* layers allocated */
+    GLuint rsm_fbo[LIGHT_VIEW_MAX];
     GLuint rsm_position, rsm_normal, rsm_flux, rsm_depth;
-    float light_view_projection[FRAME_MAX_LIGHTS][16];
-    float rsm_tan_half_fov[FRAME_MAX_LIGHTS];
-    int rsm_lights;          /* lights rendered in the last frame pass */
-    int rsm_layer_of[FRAME_MAX_LIGHTS];
+    int view_count;          /* views rendered in the last frame pass */
+    light_view views[LIGHT_VIEW_MAX];
+    float *rsm_read[3];      /* position, normal, flux of one layer, read back */
+    lpv_vpl *rsm_vpls;       /* renderer_rsm_vpls()'s array */
+    size_t rsm_vpl_capacity;
 
     int eye_w, eye_h;
     GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
@@ -68,12 +73,11 @@ struct renderer {
     lpv_converge converge;
     uint64_t checksum;       /* of the last computed result */
     workpool *pool;
-    lpv_vpl *vpls;
+    lpv_vpl *vpls;           /* what the LPV injects: RSM VPLs (flux / pi) and emitters */
     size_t vpl_capacity;
     lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
     size_t emitter_count;
     double emitter_energy;
-    float *rsm_read[3];      /* position, normal, flux of all RSM layers */
     float *upload;           /* 4 floats per cell, one colour at a time */
     GLuint lpv_tex[3];       /* what the shading samples (CPU backend) */
     uint32_t reset_epoch;
@@ -93,10 +97,34 @@ struct renderer {
     renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
                                 passes render */
+    /* Views that show no light (renderer.c): a query over the final pass, whose shader
+     * leaves black pixels out; one warning when the k-th view of a frame turns black. */
+    GLuint lit_query;
+    int eye_index;           /* eye passes since the frame pass */
+    int view_dark[RENDERER_DARK_VIEWS];
+    ratelog dark_log;
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
     char error[256];         /* why the last eye pass failed */
 };
+
+/* renderer.c */
+/* Every triangle with prog bound, its material's uniforms set per draw. */
+void renderer_draw_scene(renderer *r, GLuint prog);
+
+/* renderer_rsm.c */
+int renderer_rsm_init(renderer *r, char *err, size_t errlen);
+void renderer_rsm_free(renderer *r);
+/* The RSM of every view of every lit light (light_views()). */
+void renderer_rsm_render(renderer *r, const frame_params *p);
+/* The lights, their views and shadow maps as shade.frag's uniforms (texture units given). */
+void renderer_rsm_bind_shading(renderer *r, GLuint prog, const frame_params *p,
+                               GLenum depth_unit, GLenum normal_unit);
+/* The VPL source every GI method shares: every RSM texel a light reaches, of every view of
+ * the last frame pass, as a Lambertian VPL carrying the flux it reflects, Phi in W (not
+ * Phi / pi), in view then texel order (deterministic). Reads the RSMs back. The array is
+ * the renderer's, valid until the next call. */
+size_t renderer_rsm_vpls(renderer *r, lpv_vpl **out);
 
 /* renderer_lpv.c */
 int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err, size_t errlen);
