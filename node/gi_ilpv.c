@@ -392,6 +392,7 @@ static void gl_frame(renderer *r, const frame_params *p, uint64_t key, double en
     if (rule.restart) {
         fpmode mode = fpmode_enter();
         lpv_volume_copy(faded, result);
+        lpv_volume_add_scaled(faded, &r->cpu.early, -1.0f);
         lpv_volume_scale(faded, rule.keep);
         double e[3];
         lpv_volume_energy(faded, e);
@@ -405,8 +406,14 @@ static void gl_frame(renderer *r, const frame_params *p, uint64_t key, double en
     download_volume(r, r->gl_sum, sum);
     fpmode mode = fpmode_enter();
     double e[3];
+    if (rule.restart) {
+        lpv_volume_copy(&r->cpu.early, sum);
+        lpv_volume_energy(sum, e);
+        r->gl_history.early_energy = e[0] + e[1] + e[2];
+    }
     lpv_volume_energy(sum, e);
-    float w = ilpv_faded_weight(&r->gl_history, p->lambda_incr, e[0] + e[1] + e[2]);
+    float w = ilpv_faded_weight(&r->gl_history, p->lambda_incr,
+                                e[0] + e[1] + e[2] - r->gl_history.early_energy);
     ilpv_history_settle(&r->gl_history, rule, p->lambda_incr, e[0] + e[1] + e[2], w);
     lpv_volume_copy(result, sum);
     if (w > 0.0f)

@@ -12,7 +12,7 @@ int ilpv_init(ilpv *s, const lattice_desc *lat)
         return -1;
     s->lattice = *lat;
     lpv_volume *light[] = {&s->injected, &s->near,  &s->shell,  &s->front[0],
-                           &s->front[1], &s->sum,   &s->faded,  &s->result};
+                           &s->front[1], &s->sum,   &s->early,  &s->faded, &s->result};
     for (size_t i = 0; i < sizeof light / sizeof light[0]; i++)
         if (lpv_volume_init(light[i], lat->n, LPV_LIGHT_CHANNELS) != 0) {
             ilpv_free(s);
@@ -28,7 +28,7 @@ int ilpv_init(ilpv *s, const lattice_desc *lat)
 void ilpv_free(ilpv *s)
 {
     lpv_volume *all[] = {&s->injected, &s->origin, &s->near, &s->shell, &s->front[0],
-                         &s->front[1], &s->sum,    &s->faded, &s->result};
+                         &s->front[1], &s->sum,    &s->early, &s->faded, &s->result};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         lpv_volume_free(all[i]);
     lpv_splat_free(&s->splat);
@@ -131,8 +131,9 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     int rc = 0;
     if (rule.restart) {
         fpmode mode = fpmode_enter();
-        if (rule.keep > 0.0f) { /* the picture shown last, in this frame's power */
+        if (rule.keep > 0.0f) { /* the far part of the picture shown last, in this frame's power */
             lpv_volume_copy(&s->faded, &s->result);
+            lpv_volume_add_scaled(&s->faded, &s->early, -1.0f);
             lpv_volume_scale(&s->faded, rule.keep);
         } else {
             lpv_volume_clear(&s->faded); /* never read a stale history: it may hold anything */
@@ -159,8 +160,12 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy,
                          faded_energy);
     fpmode mode = fpmode_enter();
+    if (rule.restart) {
+        lpv_volume_copy(&s->early, &s->sum);
+        s->history.early_energy = total_energy(&s->early);
+    }
     double sum_energy = total_energy(&s->sum);
-    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, sum_energy);
+    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, sum_energy - s->history.early_energy);
     ilpv_history_settle(&s->history, rule, desc->lambda_incr, sum_energy, w);
     lpv_volume_copy(&s->result, &s->sum);
     if (w > 0.0f)

@@ -15,17 +15,21 @@
  * A chain restarts when this frame's injection differs from the last one's (a light
  * moved, turned, changed, the absorption or scattering changed: lpv_volume_checksum() of
  * the injected light and its origins, with the step probabilities), and every frame when
- * lambda_incr is 0 (no temporal reuse: the classic sum of `steps` steps). The light shown
- * before then fades out while the new chain builds up: at a restart
- *   faded = (E_now / E_prev) x the last result        (E: the lights' emitted energy)
- * and every frame shows result = sum + w faded, with
- *   w = lambda_incr^k (1 - <sum|1> / <faded|1>)  (the bracket clamped to [0, 1]),
- * k the frames since the restart: the old light fills in what the new chain has not
- * reached yet, in proportion to the energy still missing, so the picture keeps its level
- * while a light moves (a restart every frame), and it fades at least as fast as
- * lambda_incr^k once the lights stop -- also when the energy ratio misjudges the old
- * light's level (one of two lights changed), so nothing of it stays for good. No history
- * (faded = 0) on the first frame, after
+ * lambda_incr is 0 (no temporal reuse: the classic sum of `steps` steps). The far part of
+ * the light shown before then stands in for the new chain's far ages until they arrive: at
+ * a restart
+ *   faded = (E_now / E_prev) x (the last result - early)   (E: the lights' emitted energy)
+ * with early the old chain's sum after its first frame (its near field and first `steps`
+ * ages, which the new chain has from its first frame on), and every frame shows
+ * result = sum + w faded, with
+ *   w = lambda_incr^k (1 - (<sum|1> - <early|1>) / <faded|1>)  (the bracket clamped to [0, 1]),
+ * k the frames since the restart, early now the new chain's: the old far light fills in
+ * what the new chain has not reached yet, in proportion to the energy still missing. So the
+ * picture keeps its level and shape while a light moves (a restart every frame: the near
+ * field follows the light, the far field stays as it was when the motion began), and the
+ * old light fades at least as fast as lambda_incr^k once the lights stop -- also when the
+ * energy ratio misjudges its level (one of two lights changed), so nothing of it stays for
+ * good. No history (faded = 0) on the first frame, after
  * ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or E_now is negative or not
  * finite. ilpv_history_rule() and ilpv_faded_weight() are that rule, once, for this core
  * and the GL path (node/gi_ilpv.c). lambda_incr's range [0,1) is the caller's
@@ -48,6 +52,7 @@ typedef struct ilpv_history {
     unsigned chain_steps;   /* steps since the chain started (lpv_propagate_desc.step) */
     unsigned chain_frames;  /* frames since the chain started */
     double faded_energy;    /* <faded|1>, all colours */
+    double early_energy;    /* <early|1>, all colours */
     double sum_energy;      /* <sum|1> after the last frame */
     double pending;         /* share of the result the next frames may still change */
 } ilpv_history;
@@ -63,6 +68,7 @@ typedef struct ilpv {
     lpv_volume near, shell;      /* lpv_splat.h */
     lpv_volume front[2];         /* the chain's oldest light, ping-pong */
     lpv_volume sum;              /* near + every age of the chain so far */
+    lpv_volume early;            /* the sum after the chain's first frame */
     lpv_volume faded;            /* the light shown when the chain started */
     lpv_volume result;           /* sum + w faded */
     lpv_splat splat;
@@ -99,7 +105,7 @@ ilpv_rule ilpv_history_rule(const ilpv_history *h, float lambda_incr, uint64_t k
 void ilpv_history_advance(ilpv_history *h, ilpv_rule r, int steps, uint64_t key,
                           double emitted_energy, double faded_energy);
 /* w of this frame, from the history (after ilpv_history_advance()), lambda_incr and the
- * energy of the chain's sum (all colours). */
+ * energy the chain's sum holds beyond its early sum (<sum|1> - <early|1>, all colours). */
 float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_energy);
 /* After the frame's result: records the sum's energy and the pending share, what this
  * frame's steps added plus the faded light still shown, over the result's energy (with

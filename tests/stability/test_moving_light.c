@@ -20,8 +20,16 @@
  * RSM texel of the box's edge changes hands; with the former constant depth bias (which
  * let zero-thickness walls leak, test_leaks.c) it measured 9.
  * A renderer that dropped its history every other frame measured 0.045 and failed.
- * Bounds: static 1e-8 and jump <= 1; moving 0.0065 and jump <= 26 for both lambdas and
- * at least 100 x the static figure; trailing 2.5e-4. */
+ * With the ballistic transport and the ILPV's chains (ilpv.h), lattice 20, RSM 64:
+ *   0.5 m/s, lambda 0:         0.00638, jump 34 (one pixel at the spot's cone edge)
+ *   0.5 m/s, lambda 0.8:       0.00603, jump 29
+ *   lambda 0.8, last moving frame vs converged where it stopped: 0.0137 (the far field
+ *   stays as it was when the light started to move until the light stops: the indirect
+ *   light now reaches the far walls at its physical level, so its trail shows; it fades as
+ *   lambda^k once the light stops). Showing the whole last picture instead of its far part
+ *   measured 0.0415 (a jump when the light starts to move) and trailing 0.066.
+ * Bounds: static 1e-8 and jump <= 1; moving 0.0075 and jump <= 40 for both lambdas and
+ * at least 100 x the static figure; trailing 0.02. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -112,9 +120,9 @@ static void test_walking_speed_is_smooth(void **state)
            l8.mad, l8.jump, lag);
     assert_true(still.mad <= 1e-8 && still.jump <= 1);
     assert_true(l0.mad > 100 * still.mad && l8.mad > 100 * still.mad); /* it did move */
-    assert_true(l0.mad <= 0.0065 && l8.mad <= 0.0065);
-    assert_true(l0.jump <= 26 && l8.jump <= 26);
-    assert_true(lag <= 2.5e-4);
+    assert_true(l0.mad <= 0.0075 && l8.mad <= 0.0075);
+    assert_true(l0.jump <= 40 && l8.jump <= 40);
+    assert_true(lag <= 0.02);
     free(end.last);
     free(still.last);
     free(l0.last);
