@@ -141,6 +141,10 @@ int frame_params_sanitize(frame_params *p)
     changed += clamp_or(&p->lambda_incr, 0.0f, 0.999f, 0.0f, 0.999f, 0.0f);
     changed += clamp_or(&p->absorption, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
     changed += clamp_or(&p->scattering, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
+    if (p->pattern != 0 && p->pattern != 1) {
+        p->pattern = 0;
+        changed++;
+    }
     if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
         p->environment != FRAME_ENV_OFFICE) {
         p->environment = FRAME_ENV_DIM;

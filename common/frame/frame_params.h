@@ -49,6 +49,7 @@ typedef struct frame_params {
     float display_gamma;    /* 2.2 by default */
     float exposure;         /* linear scale before tone mapping, 1 by default */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
+    int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
 } frame_params;
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
