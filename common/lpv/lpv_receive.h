@@ -1,6 +1,6 @@
 /* lpv_receive: the irradiance a surface point receives from the rendered LPV field: the
- * rule shaders/shade.frag implements on the GPU, here in C for the tests and tools (a GL
- * test checks that both agree).
+ * rule shaders/shade.frag implements on the GPU, here in C for the tests and tools (no test
+ * compares the two yet).
  *
  * The field is read at p + cell/2 * n by trilinear interpolation of the SH coefficients,
  * leaving out the cells whose centre lies behind the surface's plane (light behind a wall
