@@ -1,5 +1,5 @@
 /* renderer: GL passes of the render node (RSM, G-buffer, shading, final) and the frame /
- * eye pass orchestration. The LPV backends live in renderer_lpv.c. */
+ * eye pass orchestration. The indirect light is the active GI method's (gi.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,10 +9,68 @@
 #include "base/xalloc.h"
 #include "base/mat4.h"
 #include "frame/offaxis.h"
+#include "gi.h"
+#include "gi_ilpv.h"
 #include "gltools.h"
-#include "renderer_internal.h"
+#include "renderer.h"
+#include "renderer_hud.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
+
+enum { RENDERER_QUERY_RING = 4 };
+
+/* GL timer queries read a few frames later, never waited for (paper 4.6). */
+typedef struct renderer_queries {
+    GLuint id[RENDERER_QUERY_RING][4];
+    int pending[RENDERER_QUERY_RING];
+    int next;
+    long dropped;            /* implausible readings thrown away */
+    double ms[4];            /* latest results that arrived */
+} renderer_queries;
+
+typedef struct renderer_draw_range {
+    uint32_t material;
+    GLint first;
+    GLsizei count;
+} renderer_draw_range;
+
+struct renderer {
+    const gl_functions *gl;
+    const scene *scene;
+    GLuint vao, vbo, empty_vao;
+    renderer_draw_range *ranges;
+    int range_count;
+    GLuint *textures;
+
+    GLuint prog_gbuffer, prog_rsm, prog_shade, prog_final;
+
+    int rsm_size;
+    GLuint rsm_fbo[FRAME_MAX_LIGHTS];
+    GLuint rsm_position, rsm_normal, rsm_flux, rsm_depth;
+    float light_view_projection[FRAME_MAX_LIGHTS][16];
+    float rsm_tan_half_fov[FRAME_MAX_LIGHTS];
+    int rsm_lights;          /* lights rendered in the last frame pass */
+    int rsm_layer_of[FRAME_MAX_LIGHTS];
+
+    int eye_w, eye_h;
+    GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
+    GLuint shade_fbo, s_final, s_direct, s_indirect;
+    GLuint final_fbo, f_color;
+    uint8_t *rgba, *rgb;
+    float *linear[3];
+
+    gi *gi;                  /* the indirect-light method (gi.h) */
+    uint64_t checksum;       /* its last frame's */
+    gi_desc gi_desc;         /* what it is made with, for a live switch */
+    renderer_desc desc;
+    renderer_hud *hud;
+    frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
+                                passes render */
+    renderer_queries frame_queries, eye_queries;
+    renderer_timings timings;
+    char error[256];         /* why the last eye pass failed */
+};
+
 
 static GLint loc(renderer *r, GLuint prog, const char *name)
 {
@@ -298,14 +356,18 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     frame_params_default(&r->frame);
     r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
-    int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
-                                   strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
+    r->desc = *desc;
+    r->gi_desc = (gi_desc){
+        .gl = r->gl, .scene = r->scene, .settings = &r->desc, .rsm_size = r->rsm_size,
+        .software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
+                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast")),
+    };
     if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_rsm = gltools_program(r->gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen) ||
+        !(r->gi = gi_create(desc->gi, &r->gi_desc, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
@@ -326,7 +388,7 @@ void renderer_destroy(renderer *r)
     if (!r)
         return;
     const gl_functions *gl = r->gl;
-    renderer_lpv_free(r);
+    gi_destroy(r->gi);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
@@ -417,6 +479,25 @@ static void render_rsms(renderer *r, const frame_params *p)
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+/* A frame that asks for another GI method gets a fresh one: every node switches in the
+ * same frame and starts it alike, without history. One that cannot be built (memory)
+ * leaves the current method in place and says why in renderer_last_error(); the checksums
+ * then show the master whether the nodes disagree. */
+static void switch_gi(renderer *r, frame_gi want)
+{
+    if (want == gi_active(r->gi))
+        return;
+    char err[200];
+    gi *g = gi_create(want, &r->gi_desc, err, sizeof err);
+    if (!g) {
+        snprintf(r->error, sizeof r->error, "renderer: GI method %s not built (%s); keeping %s",
+                 frame_gi_name(want), err, frame_gi_name(gi_active(r->gi)));
+        return;
+    }
+    gi_destroy(r->gi);
+    r->gi = g;
+}
+
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
@@ -425,7 +506,8 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     r->frame = *params;
     frame_params_sanitize(&r->frame);
     const frame_params *p = &r->frame;
-    if (renderer_lpv_skip(r, p)) { /* RSMs, textures and the LPV still hold this result */
+    switch_gi(r, p->gi);
+    if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
         r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
         r->timings.frame_host_ms = clock_now_ms() - t0;
         return r->checksum;
@@ -434,10 +516,15 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     render_rsms(r, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    uint64_t checksum = renderer_lpv_frame(r, p);
+    gi_rsm rsm = {.size = r->rsm_size, .layers = r->rsm_lights, .fbo = r->rsm_fbo};
+    r->checksum = gi_frame(r->gi, p, &rsm);
+    gi_stats gs;
+    gi_stats_get(r->gi, &gs);
+    r->timings.inject_ms = gs.inject_ms;
+    r->timings.propagate_ms = gs.propagate_ms;
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
     r->timings.frame_host_ms = clock_now_ms() - t0;
-    return checksum;
+    return r->checksum;
 }
 
 /* ---- eye pass --------------------------------------------------------------------- */
@@ -512,20 +599,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->ActiveTexture(GL_TEXTURE8);
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_normal);
     gl->Uniform1i(loc(r, prog, "u_rsm_normal"), 8);
-    GLuint lpv[3];
-    renderer_lpv_textures(r, lpv);
-    const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
-    for (int c = 0; c < 3; c++) {
-        gl->ActiveTexture(GL_TEXTURE5 + c);
-        gl->BindTexture(GL_TEXTURE_3D, lpv[c]);
-        gl->Uniform1i(loc(r, prog, lname[c]), 5 + c);
-    }
-    gl->Uniform1i(loc(r, prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
-    gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
-    gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
-    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale * r->energy_gain);
-    gl->Uniform3f(loc(r, prog, "u_lpv_size"), (float)r->lattice.n[0], (float)r->lattice.n[1],
-                  (float)r->lattice.n[2]);
+    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5});
     float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];
     float cos_outer[FRAME_MAX_LIGHTS], cos_inner[FRAME_MAX_LIGHTS];
     for (int k = 0; k < r->rsm_lights; k++) {
@@ -573,10 +647,9 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
-    int cells = r->lattice.n[0];
-    for (int a = 1; a < 3; a++)
-        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
-    renderer_hud_draw(r->hud, p, cells, vp, view->eye_position, encoding);
+    gi_stats gs;
+    gi_stats_get(r->gi, &gs);
+    renderer_hud_draw(r->hud, p, gs.lattice_cells, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -633,5 +706,48 @@ void renderer_get_timings(const renderer *r, renderer_timings *out)
     *out = r->timings;
 }
 
-renderer_lpv_backend renderer_get_lpv_backend(const renderer *r) { return r->backend; }
-const lattice_desc *renderer_get_lattice(const renderer *r) { return &r->lattice; }
+/* ---- the ILPV method's figures, while it is the active one ----------------------------- */
+
+static gi_ilpv *active_ilpv(const renderer *r)
+{
+    return gi_active(r->gi) == FRAME_GI_ILPV ? gi_state(r->gi) : NULL;
+}
+
+frame_gi renderer_get_gi(const renderer *r) { return gi_active(r->gi); }
+
+renderer_lpv_backend renderer_get_lpv_backend(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_backend(active_ilpv(r)) : RENDERER_LPV_AUTO;
+}
+
+const lattice_desc *renderer_get_lattice(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_lattice(active_ilpv(r)) : NULL;
+}
+
+const lpv_volume *renderer_get_lpv(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_volume(active_ilpv(r)) : NULL;
+}
+
+float renderer_get_indirect_scale(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_indirect_scale(active_ilpv(r)) : 0.0f;
+}
+
+renderer_lpv_mode renderer_get_lpv_mode(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_mode(active_ilpv(r)) : r->desc.lpv_mode;
+}
+
+void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
+{
+    *out = (renderer_lpv_stats){.last_residual = INFINITY};
+    if (active_ilpv(r))
+        gi_ilpv_lpv_stats(active_ilpv(r), out);
+}
+
+double renderer_measure_step_ms(renderer *r, int steps)
+{
+    return active_ilpv(r) ? gi_ilpv_measure_step_ms(active_ilpv(r), steps) : 0.0;
+}

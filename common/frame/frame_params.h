@@ -19,6 +19,13 @@ typedef enum frame_environment {
     FRAME_ENV_OFFICE = 2, /* 1.125 */
 } frame_environment;
 
+/* The indirect-light (GI) method every node uses for the frame (node/gi.h). */
+typedef enum frame_gi {
+    FRAME_GI_ILPV = 0, /* incremental light propagation volumes */
+    FRAME_GI_NONE = 1, /* direct light only */
+    FRAME_GI_COUNT
+} frame_gi;
+
 typedef struct frame_light {
     int enabled;
     float position[3];    /* world space, metres */
@@ -46,11 +53,12 @@ typedef struct frame_params {
     float display_gamma;    /* 2.2 by default */
     float exposure;         /* linear scale before tone mapping, 1 by default */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
+    frame_gi gi;            /* indirect-light method */
 } frame_params;
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
  * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
- * environment, display gamma 2.2, exposure 1, no HUD. */
+ * environment, display gamma 2.2, exposure 1, no HUD, ILPV. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
  * one spot 1.5 x its height above the centre of its bounds, pointing down. */
@@ -68,11 +76,16 @@ void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
  * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
- * display gamma, an unknown environment and non-finite poses or time get their defaults.
+ * display gamma, an unknown environment or GI method and non-finite poses or time get
+ * their defaults.
  * Returns how many fields it changed (0 for valid parameters). This is the only place a
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in
  * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
+/* "ilpv", "none"; NULL for a value outside the enum. */
+const char *frame_gi_name(frame_gi gi);
+/* Returns 0 and the method named name, or -1. */
+int frame_gi_parse(const char *name, frame_gi *out);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);
 
