@@ -33,12 +33,12 @@ static void usage(void)
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
             "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--quiet]\n"
+            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--gi ilpv|none] [--quiet]\n"
             "       cavelight-master --config FILE --keygen   (CURVE keys into the config's security.keys)\n");
 }
 
 typedef struct options {
-    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input;
+    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input, *gi;
     int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen;
     double dt, fps;
 } options;
@@ -71,6 +71,7 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--overview") == 0) o->overview = v;
         else if (strcmp(a, "--endpoint-file") == 0) o->endpoint_file = v;
         else if (strcmp(a, "--input") == 0) o->input = v;
+        else if (strcmp(a, "--gi") == 0) o->gi = v;
         else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
         else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
         else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
@@ -105,8 +106,8 @@ static int node_argv(const options *o, const char *config_abs, const char *exe, 
         argv[n++] = (char *)connect;
     }
     const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", o->out_dir},
-                              {"--scene", o->scene}};
-    for (int i = 0; i < 4; i++)
+                              {"--scene", o->scene}, {"--gi", o->gi}};
+    for (int i = 0; i < 5; i++)
         if (pairs[i][1]) {
             argv[n++] = (char *)pairs[i][0];
             argv[n++] = (char *)pairs[i][1];
@@ -289,6 +290,10 @@ static int master_run(const options *o)
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt};
+    if (o->gi && frame_gi_parse(o->gi, &sd.gi) != 0) {
+        fprintf(stderr, "cavelight-master: --gi %s: use ilpv or none\n", o->gi);
+        return 2;
+    }
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);

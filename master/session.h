@@ -33,6 +33,7 @@ typedef struct session_desc {
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
+    frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
 } session_desc;
 
 typedef enum session_step {

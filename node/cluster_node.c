@@ -26,7 +26,8 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                                 .output = d->output >= 0 ? (cluster_output)d->output : d->config->nodes[node].output,
                                 .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
                                 .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size,
-                                .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold};
+                                .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold,
+                                .gi = d->gi};
         view = cluster_view_create(&vd, err, errlen);
         if (!view)
             return 1;
@@ -149,7 +150,7 @@ static void usage(void)
     fprintf(stderr,
             "usage: cavelight-node --cluster FILE --name NODE [--master ENDPOINT] [--render gl|none]\n"
             "         [--output window|headless|png] [--out DIR] [--scene FILE] [--lpv-threads N]\n"
-            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic]\n"
+            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic] [--gi ilpv|none]\n"
             "         [--converge-threshold R]\n"
             "         [--exit-with-master] [--quiet]\n");
 }
@@ -183,6 +184,14 @@ int cluster_node_main(int argc, char **argv)
         else if (strcmp(a, "--lpv-mode") == 0 && v && (strcmp(v, "incremental") == 0 ||
                                                       strcmp(v, "classic") == 0))
             d.lpv_mode = strcmp(v, "classic") == 0 ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL;
+        else if (strcmp(a, "--gi") == 0 && v) {
+            frame_gi gi;
+            if (frame_gi_parse(v, &gi) != 0) {
+                fprintf(stderr, "cavelight-node: --gi %s: use ilpv or none\n", v);
+                return 2;
+            }
+            d.gi = gi;
+        }
         else if (strcmp(a, "--fault-checksum-from") == 0 && v)
             d.fault_checksum_from = strtoull(v, NULL, 10);
         else if (strcmp(a, "--render") == 0 && v) {

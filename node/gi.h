@@ -6,8 +6,9 @@
  *     frame() with this frame's RSMs; frame() returns the checksum READY carries, so
  *     desync detection covers whatever the method computes;
  *   eye pass (per screen and eye): eye_bind() with the shading program bound, to set the
- *     method's uniforms and textures (shaders/shade.frag adds the indirect light; a method
- *     without the LPV lookup sets u_lpv_enabled to 0).
+ *     method's uniforms and textures. shaders/shade.frag adds the indirect light through
+ *     its LPV lookup (u_lpv_enabled, the samplers u_lpv_r/g/b, ...); a method that does not
+ *     use it calls gi_shade_without_lpv().
  * stats() reports its stage timings for the frame report.
  *
  * Methods, indexed by frame_gi: ilpv (gi_ilpv.c) and none (gi_none.c: direct light only).
@@ -72,6 +73,10 @@ int gi_reuse(gi *g, const frame_params *p);
 uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm);
 void gi_eye_bind(gi *g, const gi_eye *eye);
 void gi_stats_get(const gi *g, gi_stats *out);
+/* For eye_bind() of a method without the LPV lookup: turns it off and parks its samplers
+ * on the method's texture units (a sampler3D left on unit 0 beside the G-buffer's 2D
+ * textures makes the draw a GL error). */
+void gi_shade_without_lpv(const gl_functions *gl, const gi_eye *eye);
 /* The method's own state, for its inspection functions (gi_ilpv.h). */
 void *gi_state(const gi *g);
 

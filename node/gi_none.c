@@ -29,7 +29,7 @@ static uint64_t none_frame(void *state, const frame_params *p, const gi_rsm *rsm
 static void none_eye_bind(void *state, const gi_eye *eye)
 {
     const gi_none *n = state;
-    n->gl->Uniform1i(n->gl->GetUniformLocation(eye->program, "u_lpv_enabled"), 0);
+    gi_shade_without_lpv(n->gl, eye);
 }
 
 static void none_stats(const void *state, gi_stats *out) { *out = (gi_stats){0}; }
