@@ -75,12 +75,18 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
 {
     double now = (clock_now_ms() - in->t0_ms) / 1000.0;
     int rc = 0;
-    char e[256];
+    char e[512];
+    size_t used = 0;
+    if (errlen)
+        err[0] = '\0';
+    /* Every source's line, joined into one: a warning (-1) outranks a notice (1). */
     for (int i = 0; i < in->count; i++) {
-        if (in->src[i]->poll(in->src[i], now, e, sizeof e) && rc == 0) {
-            snprintf(err, errlen, "%s", e);
-            rc = -1;
-        }
+        int r = in->src[i]->poll(in->src[i], now, e, sizeof e);
+        if (r == 0)
+            continue;
+        if (used < errlen)
+            used += (size_t)snprintf(err + used, errlen - used, "%s%s", used ? "; " : "", e);
+        rc = r < 0 || rc < 0 ? -1 : 1;
     }
     memset(out, 0, sizeof *out);
     out->time = now;
@@ -114,8 +120,9 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
     }
     in->polled = 1;
     in->last_time = out->time;
-    if (in->rec && input_playback_record(in->rec, out, e, sizeof e) && rc == 0) {
-        snprintf(err, errlen, "%s", e);
+    if (in->rec && input_playback_record(in->rec, out, e, sizeof e)) {
+        if (used < errlen)
+            snprintf(err + used, errlen - used, "%s%s", used ? "; " : "", e);
         rc = -1;
     }
     return rc;
@@ -286,6 +293,7 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
     if (strcmp(type, "dtrack") == 0) {
         input_dtrack_desc d = {.name = name,
                                .port = get_int(j, "port", INPUT_DTRACK_DEFAULT_PORT),
+                               .bind = get_str(j, "bind"), .sender = get_str(j, "sender"),
                                .head_id = get_int(j, "head", 0),
                                .wand_id = get_int(j, "wand", 0)};
         const char *kind = get_str(j, "wand_kind");

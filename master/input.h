@@ -79,8 +79,10 @@ typedef struct input_source input_source;
 input *input_open(const input_desc *desc, char *err, size_t errlen);
 /* Takes ownership of src (from one of the input_*_open() source constructors). */
 int input_add_source(input *in, input_source *src, char *err, size_t errlen);
-/* Reads everything the sources have received and merges it. Returns 0, or -1 with a
- * one-line reason (a source failed; the others keep working on the next poll). */
+/* Reads everything the sources have received and merges it. Returns 0; -1 with a
+ * one-line warning (a source failed or went silent; the others keep working, and so does
+ * the session); or 1 with a one-line notice (a source connected, or its data resumed).
+ * Several sources' lines are joined with "; ". */
 int input_poll(input *in, input_state *out, char *err, size_t errlen);
 void input_close(input *in);
 
@@ -90,7 +92,9 @@ input *input_create(const input_desc *desc, char *err, size_t errlen);
 
 /* Pose helpers shared by sources and layouts. */
 void input_pose_to_mat4(const input_pose *p, float out[16]);
-/* Applies the column-major rigid transform m (all zeros = identity) to p in place. */
+/* Applies the column-major transform m (rotation, uniform scale, translation; all zeros
+ * = identity) to p in place: the position takes all of it, the orientation only the
+ * rotation, so it stays orthonormal whatever the scale. */
 void input_pose_transform(input_pose *p, const float m[16]);
 
 #endif

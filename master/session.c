@@ -48,6 +48,11 @@ static int seed(session *s, const char *scene_path, frame_gi gi, char *err, size
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
         return -1;
+    if (sc.light_added) { /* the nodes load it too; the master says it once */
+        char note[400];
+        scene_light_added_note(&sc, scene_path, note, sizeof note);
+        fprintf(stderr, "cavelight-master: warning: %s\n", note);
+    }
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     s->frame.gi = gi;
@@ -114,9 +119,9 @@ int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomi
 static session_step apply_input(session *s, params_store *store)
 {
     input_state ist;
-    char err[512];
+    char err[1024];
     if (input_poll(s->in, &ist, err, sizeof err) != 0)
-        fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+        fprintf(stderr, "cavelight-master: %s\n", err); /* a warning or notice; the session goes on */
     if (ist.failed)
         return SESSION_INPUT_FAILED;
     if (ist.finished)

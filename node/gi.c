@@ -49,11 +49,3 @@ uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm) { return g->m
 void gi_eye_bind(gi *g, const gi_eye *eye) { g->m->eye_bind(g->state, eye); }
 void gi_stats_get(const gi *g, gi_stats *out) { g->m->stats(g->state, out); }
 void *gi_state(const gi *g) { return g->state; }
-
-void gi_shade_without_lpv(const gl_functions *gl, const gi_eye *eye)
-{
-    const char *samplers[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
-    for (int c = 0; c < 3; c++)
-        gl->Uniform1i(gl->GetUniformLocation(eye->program, samplers[c]), eye->first_unit + c);
-    gl->Uniform1i(gl->GetUniformLocation(eye->program, "u_lpv_enabled"), 0);
-}

@@ -136,21 +136,19 @@ static void cosine_direction(const float n[3], rng *g, float d[3])
     vec3_normalize(d);
 }
 
-/* Exact direct light at the visible point: emission + Blinn-Phong of every spot. */
-static void shade_direct(const reference_job *job, const hit *h, float out[3], uint64_t *rays)
+/* Exact direct light at the visible point: emission + Blinn-Phong of every light, seen from
+ * v (unit, back along the primary ray: towards the eye, or an orthographic view's way). */
+static void shade_direct(const reference_job *job, const hit *h, const float v[3], float out[3],
+                         uint64_t *rays)
 {
     const scene_material *m = &job->ref->scene->materials[job->ref->scene->triangle_material[h->tri]];
-    float v[3];
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3; k++)
         out[k] = m->emissive[k];
-        v[k] = job->eye[k] - h->p[k];
-    }
-    vec3_normalize(v);
     float alpha = m->roughness * m->roughness;
     float mexp = 2.0f / fmaxf(alpha * alpha, 1e-3f) - 2.0f;
-    for (int i = 0; i < job->spot_count; i++) {
+    for (int i = 0; i < job->light_count; i++) {
         float e[3], l[3], hv[3];
-        if (!reference_light_spot(job, i, h, 1, e, l, rays))
+        if (!reference_light_one(job, i, h, 1, e, l, rays))
             continue;
         for (int k = 0; k < 3; k++)
             hv[k] = l[k] + v[k];
@@ -175,8 +173,8 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         int more = k < job->max_bounces; /* a cosine ray leaves x_k */
         float e[3], c[3] = {0, 0, 0};
         reference_light_emitters(job, &cur, more, g, e, rays);
-        for (int i = 0; more && k == 0 && i < job->spot_count; i++)
-            reference_light_spot_connect(job, i, &cur, g, c, rays);
+        for (int i = 0; more && k == 0 && i < job->light_count; i++)
+            reference_light_connect(job, i, &cur, g, c, rays);
         for (int j = 0; j < 3; j++) {
             float v = arrive[j] * (c[j] + cur.albedo[j] / PI_F * e[j]);
             acc1[j] += k == 0 ? v : 0;
@@ -210,7 +208,7 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         const float *le = s->materials[s->triangle_material[next.tri]].emissive;
         float cosine_pdf = k == 0 ? vec3_dot(cur.n, d) / PI_F * vec3_dot(next.ng, back) / (t * t) : 0;
         float es[3];
-        reference_light_spots(job, &next, cosine_pdf, es, rays);
+        reference_light_all(job, &next, cosine_pdf, es, rays);
         for (int j = 0; j < 3; j++) {
             arrive[j] = beta[j] * tr;
             /* emitter -> x_k and spot -> x_(k+1) -> x_k */
@@ -260,7 +258,7 @@ void reference_sample_row(void *ctx, int row)
         hit x0;
         float toward_eye[3] = {-d[0], -d[1], -d[2]};
         reference_sample_hit(job->ref, &rh.hit, toward_eye, &x0);
-        shade_direct(job, &x0, dst[0], &rays);
+        shade_direct(job, &x0, toward_eye, dst[0], &rays);
         rng g = {splitmix64(job->seed ^ splitmix64(pix))};
         double acc1[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
         for (int s = 0; s < job->samples; s++)

@@ -15,6 +15,7 @@
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "frame/frame_view.h"
+#include "frame/offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
@@ -32,7 +33,9 @@ static void usage(FILE *f)
         "  --gi ilpv|none               indirect light: ILPV (default) or none (direct only)\n"
         "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
         "  --pfm                        also write linear final/direct/indirect PFMs\n"
-        "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
+        "  --camera NAME|INDEX          the scene file's camera to look through (default: its\n"
+        "                               first; without one, a view inside the scene's bounds)\n"
+        "  --position x,y,z --target x,y,z --fov DEG   symmetric camera instead\n"
         "  --screen blx,bly,blz,brx,bry,brz,tlx,tly,tlz --eye x,y,z   off-axis screen\n"
         "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
         "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
@@ -145,7 +148,8 @@ int standalone_parse(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
         else if (strcmp(a, "--width") == 0) bad = parse_int(v, &o->width, 1, 16384);
-        else if (strcmp(a, "--height") == 0) bad = parse_int(v, &o->height, 1, 16384);
+        else if (strcmp(a, "--height") == 0) { bad = parse_int(v, &o->height, 1, 16384); o->have_height = 1; }
+        else if (strcmp(a, "--camera") == 0) o->camera = v;
         else if (strcmp(a, "--rsm") == 0) bad = parse_int(v, &o->rsm, 8, 4096);
         else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
         else if (strcmp(a, "--lattice-cells") == 0) bad = parse_int(v, &o->lattice_total, 8, 1 << 24);
@@ -247,7 +251,8 @@ typedef struct eye_setup {
 
 /* Mono: one view; stereo: left and right eyes offset along the screen's (or camera's)
  * right vector, with off-axis frusta for screens and parallel axes for cameras. */
-static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
+static int make_views(const node_options *o, const scene *s, const scene_camera *cam,
+                      eye_setup eyes[2], int *count)
 {
     float right[3], head[3];
     if (o->have_screen) {
@@ -255,11 +260,12 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
         vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
-        memcpy(head, o->position, sizeof head);
-        float f[3], up[3] = {0, 1, 0};
-        vec3_sub(o->target, o->position, f);
-        vec3_cross(f, up, right);
-        if (!(vec3_normalize(right) > 0)) /* looking straight up or down */
+        memcpy(head, cam->position, sizeof head);
+        float view[16];
+        if (offaxis_view(cam->position, cam->target, cam->up, view) == 0)
+            for (int i = 0; i < 3; i++)
+                right[i] = view[4 * i]; /* the view's first row */
+        else
             memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
     static const char *const names[3] = {"left", "mono", "right"};
@@ -275,11 +281,8 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
             rc = frame_view_screen(o->screen, o->screen + 3, o->screen + 6, eye, far_plane,
                                    o->width, o->height, &eyes[e].view);
         } else {
-            float target[3];
-            for (int i = 0; i < 3; i++)
-                target[i] = o->target[i] + eye[i] - head[i];
-            rc = frame_view_camera(eye, target, o->yfov, far_plane, o->width, o->height,
-                                   &eyes[e].view);
+            rc = frame_view_scene_camera(cam, eye, far_plane, o->width, o->height,
+                                         &eyes[e].view);
         }
         if (rc != 0) {
             fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
@@ -603,18 +606,36 @@ int standalone_run(const node_options *o)
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (o->camera && scene_pick_camera(&sc, o->camera, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: --camera: %s\n", err);
+        scene_free(&sc);
+        return 1;
+    }
+    if (sc.light_added) {
+        char note[400];
+        scene_light_added_note(&sc, o->scene, note, sizeof note);
+        fprintf(stderr, "cavelight-node: warning: %s\n", note);
+    }
     node_options opt = *o;
-    float view_position[3], view_target[3];
-    scene_default_view(&sc, view_position, view_target);
-    if (!opt.have_position)
-        memcpy(opt.position, view_position, sizeof view_position);
-    if (!opt.have_target)
-        memcpy(opt.target, view_target, sizeof view_target);
-    if (opt.yfov <= 0)
-        opt.yfov = scene_default_yfov(&sc);
+    /* The scene's camera (the file's first, or --camera's), else the default view; the
+     * command line's position, target and field of view win. */
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    if (opt.have_position)
+        memcpy(cam.position, opt.position, sizeof opt.position);
+    if (opt.have_target)
+        memcpy(cam.target, opt.target, sizeof opt.target);
+    if (opt.have_position || opt.have_target)
+        memset(cam.up, 0, sizeof cam.up);
+    if (opt.yfov > 0) {
+        cam.yfov = opt.yfov;
+        cam.orthographic = 0;
+    }
+    if (!opt.have_height && cam.aspect > 0 && !opt.have_screen)
+        opt.height = (int)fmin(fmax(lround(opt.width / cam.aspect), 1), 16384);
     eye_setup eyes[2];
     int eye_count, rc = 1;
-    if (make_views(&opt, &sc, eyes, &eye_count) == 0) {
+    if (make_views(&opt, &sc, &cam, eyes, &eye_count) == 0) {
         frame_params fp;
         standalone_frame_params(o, &sc, &eyes[0].view, &fp);
         if (o->reference) {
@@ -624,7 +645,7 @@ int standalone_run(const node_options *o)
                                      .seed = o->seed, .out = o->out};
             rc = reference_cli_run(&rd);
         } else {
-            rc = run_gl(o, &sc, eyes, eye_count, &fp);
+            rc = run_gl(&opt, &sc, eyes, eye_count, &fp);
         }
     }
     scene_free(&sc);

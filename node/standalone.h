@@ -25,8 +25,10 @@ typedef struct node_options {
     int frames, width, height;
     const char *out;
     int pfm;
-    /* camera: look-at unless a screen is given */
-    int have_position, have_target, have_screen, have_eye;
+    /* camera: the scene's (--camera picks one of a file's), or look-at, unless a screen is
+     * given; without --height, a file camera's aspect ratio sets the height */
+    const char *camera;
+    int have_position, have_target, have_screen, have_eye, have_height;
     float position[3], target[3], yfov; /* radians, <= 0: the scene's */
     float screen[9], eye[3];
     int stereo;

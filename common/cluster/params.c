@@ -17,10 +17,10 @@ static const params_type global_types[PARAMS_LIGHT_BASE] = {
     PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32,
 };
 static const char *const light_names[PARAMS_LIGHT_FIELDS] = {
-    "enabled", "pose", "color", "intensity", "cone",
+    "enabled", "pose", "color", "intensity", "cone", "type",
 };
 static const params_type light_types[PARAMS_LIGHT_FIELDS] = {
-    PARAMS_T_I32, PARAMS_T_POSE, PARAMS_T_VEC3, PARAMS_T_F32, PARAMS_T_VEC2,
+    PARAMS_T_I32, PARAMS_T_POSE, PARAMS_T_VEC3, PARAMS_T_F32, PARAMS_T_VEC2, PARAMS_T_I32,
 };
 
 int params_light_key(int light, int field)
@@ -136,6 +136,7 @@ static void set_light(params_store *s, int i, const frame_light *l)
     params_set(s, params_light_key(i, PARAMS_LIGHT_COLOR), l->color, 12);
     params_set_f32(s, params_light_key(i, PARAMS_LIGHT_INTENSITY), l->intensity);
     params_set(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
+    params_set_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE), (int32_t)l->type);
 }
 
 void params_set_from_frame(params_store *s, const frame_params *f)
@@ -302,7 +303,7 @@ void params_to_frame(const params_store *s, frame_params *f)
     f->light_count = params_get_i32(s, PARAMS_LIGHT_COUNT);
     for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++) {
         frame_light *l = &f->lights[i];
-        float pose[6], cone[2];
+        float pose[6] = {0}, cone[2] = {0};
         l->enabled = params_get_i32(s, params_light_key(i, PARAMS_LIGHT_ENABLED));
         params_get(s, params_light_key(i, PARAMS_LIGHT_POSE), pose, sizeof pose);
         memcpy(l->position, pose, 12);
@@ -312,6 +313,7 @@ void params_to_frame(const params_store *s, frame_params *f)
         params_get(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
         l->outer_angle = cone[0];
         l->inner_angle = cone[1];
+        l->type = (scene_light_type)params_get_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE));
     }
 }
 

@@ -36,7 +36,28 @@ int frame_view_screen(const float bottom_left[3], const float bottom_right[3],
 int frame_view_camera(const float eye[3], const float target[3], float yfov, float far_plane,
                       int width, int height, frame_view *out)
 {
+    scene_camera c = {.valid = 1, .yfov = yfov};
+    memcpy(c.position, eye, sizeof c.position);
+    memcpy(c.target, target, sizeof c.target);
+    return frame_view_scene_camera(&c, eye, far_plane, width, height, out);
+}
+
+int frame_view_scene_camera(const scene_camera *c, const float eye[3], float far_plane,
+                            int width, int height, frame_view *out)
+{
     begin(eye, width, height, out);
-    return offaxis_look_at(eye, target, yfov, (float)width / (float)height,
-                           FRAME_VIEW_NEAR_PLANE, far_plane, out->view, out->projection);
+    float target[3];
+    for (int i = 0; i < 3; i++)
+        target[i] = c->target[i] + eye[i] - c->position[i];
+    if (offaxis_view(eye, target, c->up, out->view) != 0)
+        return -1;
+    float aspect = (float)width / (float)height;
+    float near_plane = c->znear > 0 ? c->znear : FRAME_VIEW_NEAR_PLANE;
+    float far_clip = c->zfar > near_plane ? c->zfar : far_plane;
+    if (c->orthographic)
+        offaxis_orthographic(-c->ymag * aspect, c->ymag * aspect, -c->ymag, c->ymag, near_plane,
+                             far_clip, out->projection);
+    else
+        offaxis_perspective(c->yfov, aspect, near_plane, far_clip, out->projection);
+    return 0;
 }

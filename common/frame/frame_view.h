@@ -3,10 +3,13 @@
  * One rule for every view (standalone cameras and screens, cluster screens, benchmarks):
  * the eyes of a head sit offaxis_stereo_eyes() apart along the head's right axis; the
  * near plane is FRAME_VIEW_NEAR_PLANE; the far plane is the caller's (scene_far_plane()).
- * Screens get Kooima's off-axis frustum (offaxis_screen()), cameras a symmetric one
- * (offaxis_look_at()). Pure maths, no GL. */
+ * Screens get Kooima's off-axis frustum (offaxis_screen()), cameras a symmetric perspective
+ * or an orthographic one. A scene file's camera keeps its own clip planes where the file
+ * gives them. Pure maths, no GL. */
 #ifndef CAVELIGHT_FRAME_VIEW_H
 #define CAVELIGHT_FRAME_VIEW_H
+
+#include "scene/scene.h"
 
 /* 2 cm: closer than the eye can focus (its near point is about 7 cm even in children), so
  * nothing a user can look at is clipped; the depth buffer is 32-bit float. */
@@ -32,5 +35,12 @@ int frame_view_screen(const float bottom_left[3], const float bottom_right[3],
  * equals target. */
 int frame_view_camera(const float eye[3], const float target[3], float yfov, float far_plane,
                       int width, int height, frame_view *out);
+/* Through a scene camera (scene_default_camera()) from eye (its position, or a stereo eye
+ * beside it), looking its way with its up: perspective, or orthographic (shaded as seen
+ * from far along its axis: the renderer takes the view's direction), with the image's
+ * aspect; its znear and zfar where the file gives them. Returns 0, or -1 for a degenerate
+ * camera. */
+int frame_view_scene_camera(const scene_camera *c, const float eye[3], float far_plane,
+                            int width, int height, frame_view *out);
 
 #endif

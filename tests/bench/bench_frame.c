@@ -102,10 +102,9 @@ int bench_frame(int argc, char **argv)
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc);
     renderer_view v;
-    float eye[3], target[3];
-    scene_default_view(&sc, eye, target);
-    frame_view_camera(eye, target, scene_default_yfov(&sc), scene_far_plane(&sc), width, height,
-                      &v);
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
 
     int n = frames - WARMUP;
     double *s = calloc((size_t)n * PASSES, sizeof *s);

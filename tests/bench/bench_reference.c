@@ -76,10 +76,9 @@ int bench_reference(int argc, char **argv)
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &sc);
     renderer_view v;
-    float eye[3], target[3];
-    scene_default_view(&sc, eye, target);
-    frame_view_camera(eye, target, scene_default_yfov(&sc), scene_far_plane(&sc), width, height,
-                      &v);
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
     reference_render_desc rd = {.params = &p, .view = &v, .samples = samples,
                                 .max_bounces = bounces, .seed = 1};
     workpool *probe = workpool_create(0);

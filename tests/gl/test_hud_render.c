@@ -331,7 +331,7 @@ static void test_cone_at_spot(void **state)
     const frame_light *l = &p.lights[0];
     float eye[3] = {l->position[0], l->position[1] - 0.5f, l->position[2] + 0.6f}, mid[3];
     for (int k = 0; k < 3; k++)
-        mid[k] = l->position[k] + 0.5f * RENDERER_HUD_SPOT_CONE * l->direction[k];
+        mid[k] = l->position[k] + 0.5f * RENDERER_HUD_LIGHT_MARKER * l->direction[k];
     renderer_view v;
     gltest_look_at(&v, eye, mid, 0.6f, W, H);
     memcpy(p.wand + 12, (const float[3]){eye[0], eye[1], eye[2] + 3.0f}, 3 * sizeof(float));
@@ -344,7 +344,7 @@ static void test_cone_at_spot(void **state)
     gltest_project(&v, l->position, c);
     lo[0] = hi[0] = c[0];
     lo[1] = hi[1] = c[1];
-    float rim = RENDERER_HUD_SPOT_CONE * tanf(l->outer_angle);
+    float rim = RENDERER_HUD_LIGHT_MARKER * tanf(l->outer_angle);
     for (int s = 0; s < 64; s++) {
         float q[3], px[2], dx = cosf(s * 0.0982f), dy = sinf(s * 0.0982f);
         /* any two unit vectors spanning the base plane */
@@ -355,7 +355,7 @@ static void test_cone_at_spot(void **state)
                       l->direction[2] * u[0] - l->direction[0] * u[2],
                       l->direction[0] * u[1] - l->direction[1] * u[0]};
         for (int k = 0; k < 3; k++)
-            q[k] = l->position[k] + RENDERER_HUD_SPOT_CONE * l->direction[k] +
+            q[k] = l->position[k] + RENDERER_HUD_LIGHT_MARKER * l->direction[k] +
                    rim * (dx * u[k] + dy * w[k]);
         gltest_project(&v, q, px);
         for (int a = 0; a < 2; a++) {
