@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/folder.h"
+#include "cluster/cluster_config.h"
 #include "input_desk.h"
 #include "input_dtrack.h"
 #include "input_playback.h"
@@ -37,6 +39,12 @@ input *input_create(const input_desc *desc, char *err, size_t errlen)
     memcpy(in->tracker_to_cave, desc->tracker_to_cave, sizeof in->tracker_to_cave);
     in->t0_ms = clock_now_ms();
     if (desc->record_path) {
+        char why[300];
+        if (folder_create_for(desc->record_path, why, sizeof why) != 0) {
+            snprintf(err, errlen, "input record %s: %s", desc->record_path, why);
+            free(in);
+            return NULL;
+        }
         in->rec = input_playback_record_open(desc->record_path, err, errlen);
         if (!in->rec) {
             free(in);
@@ -410,7 +418,11 @@ input *input_open(const input_desc *desc, char *err, size_t errlen)
     char rec[4096];
     const char *record = get_str(root, "record");
     if (!d.record_path && record) {
-        resolve_path(desc->path, record, rec, sizeof rec);
+        const char *dir = desc->out_dir ? desc->out_dir : CLUSTER_DEFAULT_OUT;
+        if (record[0] == '/')
+            snprintf(rec, sizeof rec, "%s", record);
+        else
+            snprintf(rec, sizeof rec, "%s/%s", dir, record);
         d.record_path = rec;
     }
     const cJSON *sources = cJSON_GetObjectItemCaseSensitive(root, "sources");

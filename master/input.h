@@ -13,7 +13,8 @@
  * release between two polls is not lost; axes come from the source that moved them last.
  * Poses are in CAVE space (metres, Y up, wand pointing along its -Z): tracker sources are
  * mapped through desc.tracker_to_cave, playback and the desk simulator are already in CAVE
- * space. A recording (input_desc.record_path) stores each merged state exactly as polled,
+ * space. A recording (input_desc.record_path, or the config's "record" inside
+ * input_desc.out_dir; its folder is created) stores each merged state exactly as polled,
  * so playing it back stepped (one recorded poll per input_poll) reproduces the same
  * interaction and parameter stream bit for bit. See docs/input.md for the file formats. */
 #ifndef CAVELIGHT_INPUT_H
@@ -70,6 +71,9 @@ typedef struct input_desc {
     float tracker_to_cave[16];
     /* Record every merged state to this file (overrides the config's "record"), or NULL. */
     const char *record_path;
+    /* Where a relative "record" of the input config goes (never beside the config, which
+     * may be in the source tree); NULL = CLUSTER_DEFAULT_OUT. */
+    const char *out_dir;
 } input_desc;
 
 typedef struct input input;

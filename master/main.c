@@ -12,8 +12,10 @@
 #include <unistd.h>
 
 #include "base/clock.h"
+#include "base/folder.h"
 #include "cluster_auth.h"
 #include "cluster_master.h"
+#include "master_cli.h"
 #include "overview.h"
 #include "session.h"
 #include "spawn.h"
@@ -26,75 +28,8 @@ static void on_signal(int sig)
     stop_requested = 1;
 }
 
-static void usage(void)
-{
-    fprintf(stderr,
-            "usage: cavelight-master --config FILE [--spawn-local | --spawn-remote] [--bind EP] [--frames N]\n"
-            "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
-            "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
-            "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--gi ilpv|none] [--quiet]\n"
-            "       cavelight-master --config FILE --keygen   (CURVE keys into the config's security.keys)\n");
-}
-
-typedef struct options {
-    const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input, *gi;
-    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen;
-    double dt, fps;
-} options;
-
-static int parse_args(int argc, char **argv, options *o)
-{
-    memset(o, 0, sizeof *o);
-    o->dt = 1.0 / 30;
-    o->wait_ms = 30000;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--spawn-local") == 0) { o->spawn_local = 1; continue; }
-        if (strcmp(a, "--spawn-remote") == 0) { o->spawn_remote = 1; continue; }
-        if (strcmp(a, "--quiet") == 0) { o->quiet = 1; continue; }
-        if (strcmp(a, "--keygen") == 0) { o->keygen = 1; continue; }
-        if (!v) {
-            fprintf(stderr, "cavelight-master: unknown or incomplete option %s\n", a);
-            return -1;
-        }
-        i++;
-        if (strcmp(a, "--config") == 0) o->config = v;
-        else if (strcmp(a, "--bind") == 0) o->bind = v;
-        else if (strcmp(a, "--report") == 0) o->report = v;
-        else if (strcmp(a, "--node-exe") == 0) o->node_exe = v;
-        else if (strcmp(a, "--render") == 0) o->render = v;
-        else if (strcmp(a, "--output") == 0) o->output = v;
-        else if (strcmp(a, "--out") == 0) o->out_dir = v;
-        else if (strcmp(a, "--node-args") == 0) o->node_args = v;
-        else if (strcmp(a, "--scene") == 0) o->scene = v;
-        else if (strcmp(a, "--overview") == 0) o->overview = v;
-        else if (strcmp(a, "--endpoint-file") == 0) o->endpoint_file = v;
-        else if (strcmp(a, "--input") == 0) o->input = v;
-        else if (strcmp(a, "--gi") == 0) o->gi = v;
-        else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
-        else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
-        else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
-        else if (strcmp(a, "--dt") == 0) o->dt = atof(v);
-        else if (strcmp(a, "--fps") == 0) o->fps = atof(v);
-        else {
-            fprintf(stderr, "cavelight-master: unknown option %s\n", a);
-            return -1;
-        }
-    }
-    if (!o->config) {
-        fprintf(stderr, "cavelight-master: --config FILE is required\n");
-        return -1;
-    }
-    if (o->spawn_local && o->spawn_remote) {
-        fprintf(stderr, "cavelight-master: choose one of --spawn-local and --spawn-remote\n");
-        return -1;
-    }
-    return 0;
-}
-
 /* The node command line for one node: exe, its options, then --node-args split at spaces. */
-static int node_argv(const options *o, const char *config_abs, const char *exe, const char *name,
+static int node_argv(const master_options *o, const char *config_abs, const char *exe, const char *name,
                      const char *connect, char *storage, size_t cap, char **argv, int max)
 {
     int n = 0;
@@ -106,7 +41,8 @@ static int node_argv(const options *o, const char *config_abs, const char *exe, 
         argv[n++] = (char *)connect;
     }
     const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", o->out_dir},
-                              {"--scene", o->scene}, {"--gi", o->gi}};
+                              {"--scene", o->scene},
+                              {"--gi", o->gi_given ? frame_gi_name(o->gi) : NULL}};
     for (int i = 0; i < 5; i++)
         if (pairs[i][1]) {
             argv[n++] = (char *)pairs[i][0];
@@ -114,6 +50,8 @@ static int node_argv(const options *o, const char *config_abs, const char *exe, 
         }
     if (o->quiet)
         argv[n++] = "--quiet";
+    if (o->keep_frames)
+        argv[n++] = "--keep-frames";
     if (o->node_args) {
         snprintf(storage, cap, "%s", o->node_args);
         for (char *tok = strtok(storage, " "); tok && n < max - 1; tok = strtok(NULL, " "))
@@ -160,7 +98,7 @@ static int write_endpoint_file(cluster_master *m, const char *path)
 }
 
 /* One node per configured node: a local child, or the config's launch command. */
-static int spawn_nodes(const options *o, const cluster_config *cfg, cluster_master *m,
+static int spawn_nodes(const master_options *o, const cluster_config *cfg, cluster_master *m,
                        spawn_set *children)
 {
     char exe[PATH_MAX], config_abs[PATH_MAX], connect_buf[256], err[1024];
@@ -201,7 +139,7 @@ static int spawn_nodes(const options *o, const cluster_config *cfg, cluster_mast
 
 /* --frames frames (0: until stopped), paced at --fps. Returns 0, or 1 when every node is
  * gone for --wait-ms. */
-static int run_frames(session *s, const options *o, double *wall_s)
+static int run_frames(session *s, const master_options *o, int wait_ms, double *wall_s)
 {
     double start = clock_now_ms();
     int rc = 0;
@@ -215,8 +153,8 @@ static int run_frames(session *s, const options *o, double *wall_s)
             break;
         }
         if (step == SESSION_NO_NODES) {
-            fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", o->wait_ms);
-            if (session_wait_nodes(s, 1, o->wait_ms, &stop_requested) == 0) {
+            fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", wait_ms);
+            if (session_wait_nodes(s, 1, wait_ms, &stop_requested) == 0) {
                 fprintf(stderr, "cavelight-master: no node came back: stopping\n");
                 rc = 1;
                 break;
@@ -276,7 +214,7 @@ static int keygen(const cluster_config *cfg)
     return 0;
 }
 
-static int master_run(const options *o)
+static int master_run(const master_options *o)
 {
     static cluster_config cfg;
     static spawn_set children;
@@ -287,13 +225,16 @@ static int master_run(const options *o)
     }
     if (o->keygen)
         return keygen(&cfg);
+    for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
+        if (cfg.screens[i].fit_mm >= 0.05f)
+            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
+                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
+                    cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
-                       .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt};
-    if (o->gi && frame_gi_parse(o->gi, &sd.gi) != 0) {
-        fprintf(stderr, "cavelight-master: --gi %s: use ilpv or none\n", o->gi);
-        return 2;
-    }
+                       .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
+                       .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
+                       .print_poses = o->print_poses, .gi = o->gi};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);
@@ -306,24 +247,30 @@ static int master_run(const options *o)
         session_destroy(s);
         return 1;
     }
-    int live = session_wait_nodes(s, cfg.node_count, o->wait_ms, &stop_requested);
+    int wait_ms = o->wait_ms ? o->wait_ms : cfg.join_timeout_ms;
+    int live = session_wait_nodes(s, cfg.node_count, wait_ms, &stop_requested);
     if (live < cfg.node_count)
         fprintf(stderr, "cavelight-master: %d of %d nodes joined within %d ms; going on with them\n", live,
-                cfg.node_count, o->wait_ms);
+                cfg.node_count, wait_ms);
     if (!o->quiet)
         fprintf(stderr, "cavelight-master: %d nodes live, running %s%d frames\n", live,
                 o->frames ? "" : "until stopped, ", o->frames);
     double wall_s;
-    int exit_code = run_frames(s, o, &wall_s);
-    if (o->report && session_write_report(s, o->report, wall_s) != 0)
+    int exit_code = run_frames(s, o, wait_ms, &wall_s);
+    if (o->report && folder_create_for(o->report, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: report: %s\n", err);
         exit_code = 1;
+    } else if (o->report && session_write_report(s, o->report, wall_s) != 0) {
+        exit_code = 1;
+    }
     cluster_master_stats st;
     cluster_master_stats_get(m, &st);
     session_destroy(s); /* BYE: spawned nodes leave by themselves */
     stop_children(&children);
     /* After the nodes are gone, every image on disk is from the last frame. */
     if (o->overview) {
-        if (overview_compose(&cfg, o->out_dir ? o->out_dir : ".", o->overview, err, sizeof err) != 0) {
+        if (folder_create_for(o->overview, err, sizeof err) != 0 ||
+            overview_compose(&cfg, o->out_dir, o->overview, err, sizeof err) != 0) {
             fprintf(stderr, "cavelight-master: %s\n", err);
             exit_code = 1;
         } else if (!o->quiet) {
@@ -336,10 +283,10 @@ static int master_run(const options *o)
 
 int main(int argc, char **argv)
 {
-    options o;
-    if (parse_args(argc, argv, &o) != 0) {
-        usage();
-        return 2;
+    master_options o;
+    switch (master_cli_parse(argc, argv, &o)) {
+    case CLI_HELP: return 0;
+    case CLI_ERROR: return 2;
+    default: return master_run(&o);
     }
-    return master_run(&o);
 }

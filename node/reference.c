@@ -289,8 +289,8 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
     job->exposure = p->exposure > 0 ? p->exposure : 1.0f;
     job->width = v->width;
     job->height = v->height;
-    job->samples = d->samples > 0 ? d->samples : 64;
-    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : 8;
+    job->samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES;
+    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : REFERENCE_DEFAULT_BOUNCES;
     job->seed = d->seed;
     return 0;
 }

@@ -109,7 +109,8 @@ int reference_cli_run(const reference_cli_desc *d)
         rc = 1;
     }
     if (rc == 0) {
-        int samples = d->samples > 0 ? d->samples : 64, bounces = d->bounces > 0 ? d->bounces : 8;
+        int samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES,
+            bounces = d->bounces > 0 ? d->bounces : REFERENCE_DEFAULT_BOUNCES;
         double ms = img.render_ms, rays = (double)img.rays;
         printf("reference: scene %s (%zu triangles), %dx%d, 2 x %d paths per pixel, %d bounces, "
                "%.0f ms, %.2f Mrays/s\n", d->scene_name, d->scene->triangle_count, img.width,

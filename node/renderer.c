@@ -224,7 +224,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     r->gl = desc->gl;
     r->scene = desc->scene;
     frame_params_default(&r->frame);
-    int rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
+    int rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     r->desc = *desc;
     r->gi_desc = (gi_desc){

@@ -30,17 +30,17 @@ void frame_params_default(frame_params *p)
     p->gi = FRAME_GI_ILPV;
 }
 
-static const char *const gi_names[FRAME_GI_COUNT] = {"ilpv", "none"};
+const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none"};
 
 const char *frame_gi_name(frame_gi gi)
 {
-    return (unsigned)gi < FRAME_GI_COUNT ? gi_names[gi] : NULL;
+    return (unsigned)gi < FRAME_GI_COUNT ? frame_gi_names[gi] : NULL;
 }
 
 int frame_gi_parse(const char *name, frame_gi *out)
 {
     for (int i = 0; i < FRAME_GI_COUNT; i++)
-        if (strcmp(name, gi_names[i]) == 0) {
+        if (strcmp(name, frame_gi_names[i]) == 0) {
             *out = (frame_gi)i;
             return 0;
         }
@@ -159,6 +159,10 @@ int frame_params_sanitize(frame_params *p)
     changed += clamp_or(&p->lambda_incr, 0.0f, 0.999f, 0.0f, 0.999f, 0.0f);
     changed += clamp_or(&p->absorption, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
     changed += clamp_or(&p->scattering, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
+    if (p->pattern != 0 && p->pattern != 1) {
+        p->pattern = 0;
+        changed++;
+    }
     if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
         p->environment != FRAME_ENV_OFFICE) {
         p->environment = FRAME_ENV_DIM;

@@ -56,6 +56,7 @@ typedef struct frame_params {
     float display_gamma;    /* 2.2 by default */
     float exposure;         /* linear scale before tone mapping, 1 by default */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
+    int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
     frame_gi gi;            /* indirect-light method */
 } frame_params;
 
@@ -86,6 +87,8 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s);
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in
  * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
+/* The methods' names, indexed by frame_gi (command lines, reports). */
+extern const char *const frame_gi_names[FRAME_GI_COUNT];
 /* "ilpv", "none"; NULL for a value outside the enum. */
 const char *frame_gi_name(frame_gi gi);
 /* Returns 0 and the method named name, or -1. */

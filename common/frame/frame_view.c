@@ -22,15 +22,18 @@ static void begin(const float eye[3], int width, int height, frame_view *out)
 
 int frame_view_screen(const float bottom_left[3], const float bottom_right[3],
                       const float top_left[3], const float eye[3], float far_plane, int width,
-                      int height, frame_view *out)
+                      int height, frame_view *out, float *distance)
 {
     offaxis_screen_desc d = {.near_plane = FRAME_VIEW_NEAR_PLANE, .far_plane = far_plane};
+    int moved = offaxis_eye_in_front(bottom_left, bottom_right, top_left, eye,
+                                     FRAME_VIEW_NEAR_PLANE, d.eye, distance);
+    if (moved < 0)
+        return -1;
     memcpy(d.bottom_left, bottom_left, sizeof d.bottom_left);
     memcpy(d.bottom_right, bottom_right, sizeof d.bottom_right);
     memcpy(d.top_left, top_left, sizeof d.top_left);
-    memcpy(d.eye, eye, sizeof d.eye);
-    begin(eye, width, height, out);
-    return offaxis_screen(&d, out->view, out->projection);
+    begin(d.eye, width, height, out);
+    return offaxis_screen(&d, out->view, out->projection) != 0 ? -1 : moved;
 }
 
 int frame_view_camera(const float eye[3], const float target[3], float yfov, float far_plane,

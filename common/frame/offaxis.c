@@ -67,6 +67,28 @@ int offaxis_screen(const offaxis_screen_desc *d, float view[16], float projectio
     return 0;
 }
 
+int offaxis_eye_in_front(const float bottom_left[3], const float bottom_right[3],
+                         const float top_left[3], const float eye[3], float min_distance,
+                         float out[3], float *distance)
+{
+    float vr[3], vu[3], vn[3], rel[3];
+    vec3_sub(bottom_right, bottom_left, vr);
+    vec3_sub(top_left, bottom_left, vu);
+    vec3_cross(vr, vu, vn);
+    if (normalize(vn) || !isfinite(eye[0]) || !isfinite(eye[1]) || !isfinite(eye[2]))
+        return -1;
+    vec3_sub(eye, bottom_left, rel);
+    float d = vec3_dot(rel, vn);
+    memcpy(out, eye, 3 * sizeof(float));
+    if (distance)
+        *distance = d;
+    if (d >= min_distance)
+        return 0;
+    for (int i = 0; i < 3; i++)
+        out[i] = eye[i] + (min_distance - d) * vn[i];
+    return 1;
+}
+
 int offaxis_view(const float position[3], const float target[3], const float *up,
                  float view[16])
 {

@@ -18,6 +18,15 @@ typedef struct offaxis_screen_desc {
 /* Returns 0, or -1 when the corners are degenerate or the eye lies in the screen plane. */
 int offaxis_screen(const offaxis_screen_desc *desc, float view[16], float projection[16]);
 
+/* The eye offaxis_screen() can use: eye itself when it lies at least min_distance in front
+ * of the screen's plane (on the side its normal, right x up, points to), else eye moved
+ * along the normal to min_distance in front. Returns 0 (unchanged), 1 (moved; *distance
+ * is how far in front it was, negative behind), or -1 when the corners are degenerate or
+ * the eye is not finite. */
+int offaxis_eye_in_front(const float bottom_left[3], const float bottom_right[3],
+                         const float top_left[3], const float eye[3], float min_distance,
+                         float out[3], float *distance);
+
 /* Symmetric perspective camera at position looking at target, up = +y (or +z when the
  * view is vertical). yfov in radians. Returns -1 if position == target. */
 int offaxis_look_at(const float position[3], const float target[3], float yfov, float aspect,

@@ -144,8 +144,9 @@ void scene_default_view(const scene *s, float position[3], float target[3]);
 void scene_default_camera(const scene *s, scene_camera *out);
 /* The light scene_load() gives a scene without lights or emitters: a white point light
  * inside the bounds, three quarters of the way up over the middle (a ceiling lamp),
- * moved to the first free point of a grid over the bounds when that spot lies inside a
- * solid object; its intensity gives 2 W/m^2 on the floor of the bounds straight below. */
+ * moved to the first point of a grid over the bounds that is free (scene_point_is_free())
+ * and D/16 from every surface the probes meet (D the bounds' diagonal) when that spot is
+ * not; its intensity gives 2 W/m^2 on the floor of the bounds straight below. */
 void scene_default_light(const scene *s, scene_light *out);
 /* 1 when p is outside every closed solid as far as 14 rays from p can tell: no ray's first
  * hit is the back of a surface (the side its vertex normals turn away from). *fronts (if

@@ -45,9 +45,11 @@ static double ray_triangle(const float *p, const float o[3], const float d[3])
     return t > 0 ? t : INFINITY;
 }
 
-int scene_point_is_free(const scene *s, const float p[3], int *fronts)
+/* scene_point_is_free(), and the distance to the nearest surface a probe met. */
+static int probe(const scene *s, const float p[3], int *fronts, double *nearest)
 {
     int met = 0, free_point = 1;
+    *nearest = INFINITY;
     for (int r = 0; r < PROBES; r++) {
         double best = INFINITY;
         size_t first = 0;
@@ -60,6 +62,7 @@ int scene_point_is_free(const scene *s, const float p[3], int *fronts)
         }
         if (!isfinite(best))
             continue;
+        *nearest = fmin(*nearest, best);
         const float *n = s->normals + 9 * first;
         float side = 0;
         for (int k = 0; k < 3; k++)
@@ -74,6 +77,12 @@ int scene_point_is_free(const scene *s, const float p[3], int *fronts)
     return free_point;
 }
 
+int scene_point_is_free(const scene *s, const float p[3], int *fronts)
+{
+    double nearest;
+    return probe(s, p, fronts, &nearest);
+}
+
 /* The point at fractions f of the bounds on each axis. */
 static void at(const scene *s, const float f[3], float p[3])
 {
@@ -86,6 +95,9 @@ void scene_default_light(const scene *s, scene_light *out)
     static const float height[] = {0.75f, 0.5f, 0.9f, 0.25f};
     static const float across[] = {0.5f, 0.3f, 0.7f, 0.15f, 0.85f};
     enum { NH = sizeof height / sizeof height[0], NA = sizeof across / sizeof across[0] };
+    /* A lamp clear of every surface by D/16 (40 cm in the default room): one next to a
+     * surface lights a hot spot and little else. */
+    double clearance = scene_diagonal(s) / 16.0, nearest;
     float p[3], first[3];
     int found = 0;
     for (int h = 0; h < NH && !found; h++)
@@ -93,7 +105,7 @@ void scene_default_light(const scene *s, scene_light *out)
             at(s, (const float[3]){across[i % NA], height[h], across[i / NA]}, p);
             if (h == 0 && i == 0)
                 memcpy(first, p, sizeof first);
-            found = scene_point_is_free(s, p, NULL);
+            found = probe(s, p, NULL, &nearest) && nearest >= clearance;
         }
     if (!found) /* no free point: a closed solid everywhere, or normals that all face out */
         memcpy(p, first, sizeof p);

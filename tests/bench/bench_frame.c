@@ -12,6 +12,7 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
+#include "lpv/lattice.h"
 #include "glctx.h"
 #include "frame/frame_view.h"
 #include "renderer.h"
@@ -35,33 +36,28 @@ static void bunny_path(char *out, size_t n)
 
 int bench_frame(int argc, char **argv)
 {
-    const char *scene_arg = "default", *gl_name = "egl";
-    int width = 320, height = 240, frames = 10, rsm = 256, lattice = 32;
-    renderer_lpv_backend lpv = RENDERER_LPV_AUTO;
-    renderer_tiles tiles = RENDERER_TILES_AUTO;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (strcmp(argv[i], "--scene") == 0) scene_arg = argv[i + 1];
-        else if (strcmp(argv[i], "--width") == 0) width = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--height") == 0) height = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--frames") == 0) frames = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--rsm") == 0) rsm = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--lattice") == 0) lattice = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--gl") == 0) gl_name = argv[i + 1];
-        else if (strcmp(argv[i], "--tiles") == 0)
-            tiles = strcmp(argv[i + 1], "on") == 0 ? RENDERER_TILES_ON
-                    : strcmp(argv[i + 1], "off") == 0 ? RENDERER_TILES_OFF : RENDERER_TILES_AUTO;
-        else if (strcmp(argv[i], "--lpv") == 0)
-            lpv = strcmp(argv[i + 1], "gl") == 0 ? RENDERER_LPV_GL
-                  : strcmp(argv[i + 1], "cpu") == 0 ? RENDERER_LPV_CPU : RENDERER_LPV_AUTO;
-        else {
-            fprintf(stderr, "bench frame: unknown option %s\n", argv[i]);
-            return 2;
-        }
-    }
-    if (width < 1 || height < 1 || frames <= WARMUP) {
-        fprintf(stderr, "bench frame: need a positive size and more than %d frames\n", WARMUP);
-        return 2;
-    }
+    const char *scene_arg = "default";
+    int width = 320, height = 240, frames = 10, rsm = RENDERER_DEFAULT_RSM_SIZE;
+    int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
+    int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO;
+    static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
+    static const char *const lpv_names[] = {"auto", "cpu", "gl"};
+    static const char *const tiles_names[] = {"auto", "on", "off"};
+    const bench_option opts[] = {
+        BENCH_TEXT("scene", "default|bunny|FILE", "scene (bunny: ../shared/scenes/bunny)", &scene_arg),
+        BENCH_INT("width", "W", "image width", &width, 1, 16384),
+        BENCH_INT("height", "H", "image height", &height, 1, 16384),
+        BENCH_INT("frames", "N", "frames (the first ones warm up)", &frames, WARMUP + 1, 1000000),
+        BENCH_INT("rsm", "N", "reflective shadow map size", &rsm, 8, 4096),
+        BENCH_INT("lattice", "N", "LPV cells along the longest axis", &lattice, 2, 512),
+        BENCH_CHOICE("gl", "egl|osmesa|glfw", "GL context", &gl_index, gl_names),
+        BENCH_CHOICE("lpv", "auto|cpu|gl", "where the LPV runs", &lpv, lpv_names),
+        BENCH_CHOICE("tiles", "auto|on|off", "GL propagation tiles", &tiles, tiles_names),
+    };
+    int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
+    const char *gl_name = gl_names[gl_index];
     char path[4096], err[512];
     snprintf(path, sizeof path, "%s", scene_arg);
     if (strcmp(scene_arg, "bunny") == 0) {

@@ -124,4 +124,34 @@ grep -q "receives no light" "$out/ref.err" && { cat "$out/ref.err" >&2; fail "th
 "$node" --standalone --renderer reference --samples 1 --bounces 1 --width 32 \
     --scene "$out/off.gltf" --out "$out/ref_off" > /dev/null 2> "$out/ref_off.err" || fail "reference failed"
 grep -q "receives no light" "$out/ref_off.err" || fail "the reference did not warn about a black view"
-echo "glTF CLI: cameras, --camera, default light and the no-light warnings ok"
+
+# A 2-node local cluster on the point-light file: the light's type travels in the parameter
+# store, so both nodes render the same light (equal checksums, no desync). On the room
+# without lights the master says so once; the nodes, which load the scene too, do not.
+master="$build/cavelight-master"
+cat > "$out/c2.json" <<'JSON'
+{"name": "gltf", "master": {"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"},
+ "security": {"mode": "insecure"},
+ "timeouts": {"barrier_ms": 20000, "heartbeat_ms": 100, "master_ms": 3000, "stall_min_ms": 20000},
+ "observer": {"eye_separation": 0.064, "home": [0.5, 1.6, 1.0]},
+ "screens": [
+  {"name": "l", "bottom_left": [-1.5,0,-1.5], "bottom_right": [0,0,-1.5], "top_left": [-1.5,3,-1.5]},
+  {"name": "r", "bottom_left": [0,0,-1.5], "bottom_right": [1.5,0,-1.5], "top_left": [0,3,-1.5]}],
+ "nodes": [{"name": "a", "screens": ["l"], "resolution": [32, 32], "output": "headless"},
+           {"name": "b", "screens": ["r"], "resolution": [32, 32], "output": "headless"}]}
+JSON
+for scene in cams dark; do
+    "$master" --config "$out/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --scene "$out/$scene.gltf" \
+        --frames 4 --report "$out/$scene.json" --node-args "--lpv-threads 1 --lattice 16 --rsm 64" \
+        --quiet 2> "$out/$scene-master.log" || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene failed"; }
+    python3 - "$out/$scene.json" <<'PY' || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene: desync"; }
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["frames"] == 4 and r["desyncs"] == 0, r
+assert len(set(n["last_checksum"] for n in r["per_node"])) == 1, r["per_node"]
+PY
+done
+[ "$(grep -c "has no lights" "$out/cams-master.log")" -eq 0 ] || fail "the lit file got a 'has no lights' line"
+[ "$(grep -c "has no lights: added a point light" "$out/dark-master.log")" -eq 1 ] \
+    || { cat "$out/dark-master.log" >&2; fail "not exactly one 'has no lights' line from the cluster"; }
+echo "glTF CLI: cameras, --camera, default light, the no-light warnings and a 2-node cluster ok"
