@@ -226,6 +226,14 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->scene_loaded = 1;
     v->far_plane = scene_far_plane(&v->sc);
     if (v->output == CLUSTER_OUTPUT_WINDOW) {
+        /* Started over ssh or as a service, a node has no DISPLAY: the config names the
+         * display its projectors hang on. */
+        const char *display = getenv("DISPLAY");
+        if ((!display || !*display) && !getenv("WAYLAND_DISPLAY")) {
+            setenv("DISPLAY", n->display, 1);
+            fprintf(stderr, "cavelight-node %s: DISPLAY is not set: using %s (the node's \"display\" in "
+                    "the config)\n", n->name, n->display);
+        }
         if (open_windows(v, err, errlen) != 0) {
             size_t used = strlen(err);
             snprintf(err + used, errlen - used, "; or render without a window: --output headless or "

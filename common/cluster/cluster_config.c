@@ -394,6 +394,16 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         fail(c, field, "must be true or false");
     }
     node->fullscreen = fs && cJSON_IsTrue(fs);
+    static const struct { const char *key; size_t offset; const char *def; } texts[] = {
+        {"exe", offsetof(cluster_node, exe), ""},
+        {"workdir", offsetof(cluster_node, workdir), ""},
+        {"config", offsetof(cluster_node, config), ""},
+        {"display", offsetof(cluster_node, display), ":0"},
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+        snprintf(field, sizeof field, "nodes[%d].%s", index, texts[i].key);
+        get_string(c, n, texts[i].key, field, (char *)node + texts[i].offset, CLUSTER_TEXT_MAX, texts[i].def);
+    }
 }
 
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,

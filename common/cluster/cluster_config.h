@@ -11,7 +11,11 @@
  *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution"}],
  *               "resolution": [w, h], "eyes": "mono|stereo|left|right",
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
- *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
+ *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool,
+ *               "exe", "workdir", "config" (the node program, its working folder and this
+ *               file's path on the node's host, for --spawn-remote and scripts/
+ *               install_nodes.py; default: the master's), "display" (X display for window
+ *               output when DISPLAY is unset, default ":0")}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
  *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
  *                          "join_ms"},
@@ -90,6 +94,10 @@ typedef struct cluster_node {
     cluster_stereo stereo;
     int monitor;    /* GLFW monitor index for fullscreen windows */
     int fullscreen;
+    char exe[CLUSTER_TEXT_MAX];     /* "" = the master's choice (--node-exe, or beside it) */
+    char workdir[CLUSTER_TEXT_MAX]; /* "" = wherever the launch starts it */
+    char config[CLUSTER_TEXT_MAX];  /* this config's path on the host; "" = the master's */
+    char display[CLUSTER_TEXT_MAX]; /* window output without DISPLAY set: this one */
 } cluster_node;
 
 typedef struct cluster_observer {

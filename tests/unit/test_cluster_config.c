@@ -111,6 +111,23 @@ static void test_bad_configs(void **state)
     assert_int_equal(cfg.nodes[0].output, CLUSTER_OUTPUT_WINDOW);
     assert_int_equal(cfg.barrier_timeout_ms, 2000);
     assert_string_equal(cfg.nodes[0].host, "localhost");
+    /* Where a node's program, folder and config lie on its host: the master's by default. */
+    assert_string_equal(cfg.nodes[0].exe, "");
+    assert_string_equal(cfg.nodes[0].workdir, "");
+    assert_string_equal(cfg.nodes[0].config, "");
+    assert_string_equal(cfg.nodes[0].display, ":0");
+    const char *placed = NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], "
+                               "\"exe\": \"/opt/c/bin/node\", \"workdir\": \"/srv/cave\", "
+                               "\"config\": \"cave.json\", \"display\": \":1\"}");
+    assert_int_equal(cluster_config_parse(placed, strlen(placed), "ok.json", &cfg, err, sizeof err), 0);
+    assert_string_equal(cfg.nodes[0].exe, "/opt/c/bin/node");
+    assert_string_equal(cfg.nodes[0].workdir, "/srv/cave");
+    assert_string_equal(cfg.nodes[0].config, "cave.json");
+    assert_string_equal(cfg.nodes[0].display, ":1");
+    expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"exe\": 1}"),
+                 "nodes[0].exe");
+    expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"display\": [0]}"),
+                 "nodes[0].display");
 }
 
 static void test_missing_file(void **state)
