@@ -93,7 +93,7 @@ static inline double stab_energy(const lpv_volume *v)
 }
 
 /* Mean over colours of what a spot emits into its cone (the renderer's own estimate,
- * node/renderer_lpv.c): I * mean(colour) * 2 pi (1 - cos outer). */
+ * node/gi_ilpv.c): I * mean(colour) * 2 pi (1 - cos outer). */
 static inline double stab_spot_energy(const frame_light *l)
 {
     double outer = fmin(fmax(l->outer_angle, 0.01), 1.45);
