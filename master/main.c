@@ -33,13 +33,13 @@ static void usage(void)
             "         [--dt S] [--fps F] [--wait-ms MS] [--report FILE] [--node-exe PATH]\n"
             "         [--render gl|none] [--output window|headless|png] [--out DIR] [--node-args \"...\"]\n"
             "         [--barrier-ms MS] [--scene FILE|default] [--overview FILE.png]\n"
-            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--gi ilpv|none] [--quiet]\n"
+            "         [--endpoint-file FILE] [--input CONFIG|RECORDING] [--gi " FRAME_GI_NAMES "] [--vpl-count N] [--quiet]\n"
             "       cavelight-master --config FILE --keygen   (CURVE keys into the config's security.keys)\n");
 }
 
 typedef struct options {
     const char *config, *bind, *report, *node_exe, *render, *output, *out_dir, *node_args, *scene, *overview, *endpoint_file, *input, *gi;
-    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen;
+    int spawn_local, spawn_remote, frames, wait_ms, barrier_ms, quiet, keygen, vpl_count;
     double dt, fps;
 } options;
 
@@ -72,6 +72,7 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--endpoint-file") == 0) o->endpoint_file = v;
         else if (strcmp(a, "--input") == 0) o->input = v;
         else if (strcmp(a, "--gi") == 0) o->gi = v;
+        else if (strcmp(a, "--vpl-count") == 0) o->vpl_count = atoi(v);
         else if (strcmp(a, "--frames") == 0) o->frames = atoi(v);
         else if (strcmp(a, "--wait-ms") == 0) o->wait_ms = atoi(v);
         else if (strcmp(a, "--barrier-ms") == 0) o->barrier_ms = atoi(v);
@@ -291,9 +292,15 @@ static int master_run(const options *o)
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt};
     if (o->gi && frame_gi_parse(o->gi, &sd.gi) != 0) {
-        fprintf(stderr, "cavelight-master: --gi %s: use ilpv or none\n", o->gi);
+        fprintf(stderr, "cavelight-master: --gi %s: use " FRAME_GI_NAMES "\n", o->gi);
         return 2;
     }
+    if (o->vpl_count && (o->vpl_count < FRAME_VPL_MIN || o->vpl_count > FRAME_VPL_MAX)) {
+        fprintf(stderr, "cavelight-master: --vpl-count %d: use %d to %d\n", o->vpl_count,
+                FRAME_VPL_MIN, FRAME_VPL_MAX);
+        return 2;
+    }
+    sd.vpl_count = o->vpl_count;
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);

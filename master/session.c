@@ -43,14 +43,17 @@ struct session {
 };
 
 /* The frame every node starts from: the defaults and the scene's lights. */
-static int seed(session *s, const char *scene_path, frame_gi gi, char *err, size_t errlen)
+static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
+                size_t errlen)
 {
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
         return -1;
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
-    s->frame.gi = gi;
+    s->frame.gi = d->gi;
+    if (d->vpl_count > 0)
+        s->frame.vpl_count = d->vpl_count;
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     return 0;
@@ -64,7 +67,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
                               .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
-    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d->gi, err, errlen) != 0)
+    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;

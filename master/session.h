@@ -34,6 +34,7 @@ typedef struct session_desc {
     const char *input;      /* input config or recording; NULL = the scripted path */
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
     frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
+    int vpl_count;          /* its VPLs when that is vpl (0 = FRAME_VPL_DEFAULT) */
 } session_desc;
 
 typedef enum session_step {

@@ -150,7 +150,7 @@ static void usage(void)
     fprintf(stderr,
             "usage: cavelight-node --cluster FILE --name NODE [--master ENDPOINT] [--render gl|none]\n"
             "         [--output window|headless|png] [--out DIR] [--scene FILE] [--lpv-threads N]\n"
-            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic] [--gi ilpv|none]\n"
+            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic] [--gi " FRAME_GI_NAMES "]\n"
             "         [--converge-threshold R]\n"
             "         [--exit-with-master] [--quiet]\n");
 }
@@ -187,7 +187,7 @@ int cluster_node_main(int argc, char **argv)
         else if (strcmp(a, "--gi") == 0 && v) {
             frame_gi gi;
             if (frame_gi_parse(v, &gi) != 0) {
-                fprintf(stderr, "cavelight-node: --gi %s: use ilpv or none\n", v);
+                fprintf(stderr, "cavelight-node: --gi %s: use " FRAME_GI_NAMES "\n", v);
                 return 2;
             }
             d.gi = gi;

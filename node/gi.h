@@ -7,14 +7,18 @@
  *     desync detection covers whatever the method computes;
  *   eye pass (per screen and eye): eye_bind() with the shading program bound, to set the
  *     method's uniforms and textures. shaders/shade.frag adds the indirect light through
- *     its LPV lookup (u_lpv_enabled, the samplers u_lpv_r/g/b, ...); a method that does not
- *     use it calls gi_shade_without_lpv().
+ *     its LPV lookup (u_lpv_enabled, the samplers u_lpv_r/g/b, ...) or its VPL gather
+ *     (u_vpl_count, u_vpls, u_vpl_shadow, ...); gi_eye_bind() turns both off and gives
+ *     every method's samplers their own units (GI_UNIT_*) before the method's eye_bind()
+ *     turns its own on: a sampler left on unit 0 beside the G-buffer's textures of
+ *     another type makes the draw a GL error.
  * stats() reports its stage timings for the frame report.
  *
- * Methods, indexed by frame_gi: ilpv (gi_ilpv.c) and none (gi_none.c: direct light only).
+ * Methods, indexed by frame_gi: ilpv (gi_ilpv.c), none (gi_none.c: direct light only) and
+ * vpl (gi_vpl.c: virtual point lights with shadow maps).
  * A method is one module that defines a const gi_method; gi.c's table lists them. To add
- * one (e.g. vpl: VPL set and shadow maps in frame(), per-eye gather in eye_bind()): a
- * gi_vpl.c, its name in frame_gi (common/frame/frame_params.h) and one line in the table.
+ * one: a gi_X.c, its name in frame_gi (common/frame/frame_params.h) and one line in the
+ * table.
  * Every method must give every node the same result for the same frames_params. */
 #ifndef CAVELIGHT_GI_H
 #define CAVELIGHT_GI_H
@@ -41,6 +45,14 @@ typedef struct gi_rsm {
     int layers;                    /* lights rendered, one layer each */
     const GLuint *fbo;             /* per layer: position, normal, flux in attachments 0..2 */
 } gi_rsm;
+
+/* Texture units of the shading program's GI samplers, from gi_eye.first_unit on
+ * (first_unit + 3 is the renderer's). */
+enum {
+    GI_UNIT_LPV = 0,        /* u_lpv_r, u_lpv_g, u_lpv_b: three units */
+    GI_UNIT_VPL_DATA = 4,   /* u_vpls */
+    GI_UNIT_VPL_SHADOW = 5, /* u_vpl_shadow */
+};
 
 typedef struct gi_eye {
     GLuint program;                /* the bound shading program */
@@ -73,10 +85,6 @@ int gi_reuse(gi *g, const frame_params *p);
 uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm);
 void gi_eye_bind(gi *g, const gi_eye *eye);
 void gi_stats_get(const gi *g, gi_stats *out);
-/* For eye_bind() of a method without the LPV lookup: turns it off and parks its samplers
- * on the method's texture units (a sampler3D left on unit 0 beside the G-buffer's 2D
- * textures makes the draw a GL error). */
-void gi_shade_without_lpv(const gl_functions *gl, const gi_eye *eye);
 /* The method's own state, for its inspection functions (gi_ilpv.h). */
 void *gi_state(const gi *g);
 

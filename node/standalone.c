@@ -29,7 +29,10 @@ static void usage(FILE *f)
         "  --scene FILE|NAME            glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
         "                               corridor, doorway, courtyard, leak-lid, leak-panel,\n"
         "                               leak-wall (docs/node.md)\n"
-        "  --gi ilpv|none               indirect light: ILPV (default) or none (direct only)\n"
+        "  --gi ilpv|none|vpl           indirect light: ILPV (default), none (direct only) or\n"
+        "                               virtual point lights with shadow maps\n"
+        "  --vpl-count N --vpl-seed S   vpl: lights chosen per frame (64..4096, default 256)\n"
+        "                               and the seed of their random choice (default 0)\n"
         "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
         "  --pfm                        also write linear final/direct/indirect PFMs\n"
         "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
@@ -142,6 +145,12 @@ int standalone_parse(int argc, char **argv, node_options *o)
         else if (strcmp(a, "--gl") == 0) bad = glctx_parse_backend(v, &o->gl);
         else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--gi") == 0) bad = frame_gi_parse(v, &fp->gi);
+        else if (strcmp(a, "--vpl-count") == 0) bad = parse_int(v, &fp->vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX);
+        else if (strcmp(a, "--vpl-seed") == 0) {
+            int seed = 0;
+            bad = parse_int(v, &seed, 0, 2147483647);
+            fp->vpl_seed = (uint32_t)seed;
+        }
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
         else if (strcmp(a, "--width") == 0) bad = parse_int(v, &o->width, 1, 16384);

@@ -94,10 +94,11 @@ static void test_encoding_unchanged(void **state)
     size_t dn = params_encode_delta(&s, v - 1, delta, sizeof delta);
     size_t n = from_hex(golden_delta, want);
     assert_int_equal(dn, n);
-    /* The light keys moved up by the one global key protocol 2 added. */
+    /* The light keys moved up by the global keys protocols 2 (gi) and 3 (vpl_count,
+     * vpl_seed) added. */
     assert_memory_equal(delta, want, n - 14);
     assert_int_equal(delta[n - 14] | delta[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
-    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 1);
+    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 3);
     assert_memory_equal(delta + n - 12, want + n - 12, 12);
 }
 
