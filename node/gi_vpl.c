@@ -31,6 +31,7 @@ typedef struct gi_vpl {
     const scene *scene;
     float *rsm_read[3];      /* position, normal, flux of one RSM layer */
     int rsm_size;
+    int point;               /* renderer_desc.vpl_point */
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
     size_t capacity;
@@ -291,7 +292,7 @@ static void upload_vpls(gi_vpl *v)
         const vpl *l = &v->chosen[i];
         float *t = v->upload + 12 * i;
         memcpy(t, l->position, 3 * sizeof(float));
-        t[3] = l->area;
+        t[3] = v->point ? 0.0f : l->area;
         memcpy(t + 4, l->normal, 3 * sizeof(float));
         t[7] = 0.0f;
         memcpy(t + 8, l->flux, 3 * sizeof(float));
@@ -312,6 +313,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->gl = d->gl;
     v->scene = d->scene;
     v->rsm_size = d->rsm_size;
+    v->point = d->settings->vpl_point;
     if (init(v, err, errlen) != 0) {
         release(v);
         free(v);

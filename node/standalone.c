@@ -33,6 +33,8 @@ static void usage(FILE *f)
         "                               virtual point lights with shadow maps\n"
         "  --vpl-count N --vpl-seed S   vpl: lights chosen per frame (64..4096, default 256)\n"
         "                               and the seed of their random choice (default 0)\n"
+        "  --vpl-bound disk|point       vpl: each VPL a disk of its area near it (default), or\n"
+        "                               a point (unbounded; to measure the disk's bias)\n"
         "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
         "  --pfm                        also write linear final/direct/indirect PFMs\n"
         "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
@@ -150,6 +152,10 @@ int standalone_parse(int argc, char **argv, node_options *o)
             int seed = 0;
             bad = parse_int(v, &seed, 0, 2147483647);
             fp->vpl_seed = (uint32_t)seed;
+        }
+        else if (strcmp(a, "--vpl-bound") == 0) {
+            o->vpl_point = strcmp(v, "point") == 0;
+            bad = !o->vpl_point && strcmp(v, "disk") != 0;
         }
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
@@ -406,7 +412,7 @@ static const char *const stage_names[M_COUNT] = {
     "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms",
 };
 
-/* What the run is: context, scene, GI method and, for ILPV, its lattice. */
+/* What the run is: context, scene, GI method and, for ILPV, its lattice, for vpl its VPLs. */
 static void report_setup(cJSON *report, const node_options *o, glctx *ctx, renderer *r,
                          const scene *sc, const frame_params *fp)
 {
@@ -436,6 +442,12 @@ static void report_setup(cJSON *report, const node_options *o, glctx *ctx, rende
                                 renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
                                                                                  : "incremental");
         cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
+    }
+    if (renderer_get_gi(r) == FRAME_GI_VPL) {
+        frame_params sane = *fp; /* the count the renderer uses */
+        frame_params_sanitize(&sane);
+        cJSON_AddNumberToObject(report, "vpl_count", sane.vpl_count);
+        cJSON_AddNumberToObject(report, "vpl_seed", sane.vpl_seed);
     }
     cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
@@ -560,7 +572,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
-        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative, .vpl_point = o->vpl_point,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
         .gi = fp->gi,
     };

@@ -13,6 +13,8 @@
  *   accuracy path     frame-to-frame change for a light moving smoothly (same file)
  *   accuracy savings  what skipping converged frames and a fitted lattice save
  *                     (bench_accuracy_savings.c)
+ *   accuracy vpl      the vpl method's error and GI ms per VPL count, and the bias of its
+ *                     disk bound (bench_accuracy_vpl.c)
  *
  * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
 #include <math.h>
@@ -362,7 +364,9 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_path(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "savings") == 0)
         return accuracy_savings(argc - 1, argv + 1);
-    fprintf(stderr, "bench accuracy: sweep|move|path|savings [options] (see scripts/chart.sh)\n");
+    if (argc >= 2 && strcmp(argv[1], "vpl") == 0)
+        return accuracy_vpl(argc - 1, argv + 1);
+    fprintf(stderr, "bench accuracy: sweep|move|path|savings|vpl [options] (see scripts/chart.sh)\n");
     return 2;
 }
 #else
