@@ -10,9 +10,9 @@
  * bound's bias, the disk mean image against the point mean image: the level lost,
  * 1 - mean(disk) / mean(point), and the RMS of the difference over the point mean's mean
  * (the point estimate's variance is infinite near its VPLs, so this RMS keeps noise that
- * few seeds do not remove; the level converges much faster). GI ms: selection + shadow maps + gather, the gather being
- * the shading pass's ms less that of the same view with --gi none; medians over the timed
- * frames. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
+ * few seeds do not remove; the level converges much faster). GI ms: selection + shadow
+ * maps + gather, the gather being the eye pass's host ms less that of the same view with
+ * --gi none; medians over the timed frames. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,7 +25,7 @@
 enum { MAX_COUNTS = 8, TIMED = 3 };
 
 typedef struct vpl_timing {
-    double select_ms, shadow_ms, shade_ms, frame_ms;
+    double select_ms, shadow_ms, eye_ms, frame_ms;
 } vpl_timing;
 
 /* TIMED frames of fp from r (timer queries arrive a frame late); the last frame's indirect
@@ -33,7 +33,7 @@ typedef struct vpl_timing {
 static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_reference *ref,
                float *sum, image_metrics *m, vpl_timing *t)
 {
-    double sel[TIMED], sh[TIMED], shade[TIMED], frame[TIMED];
+    double sel[TIMED], sh[TIMED], eye[TIMED], frame[TIMED];
     renderer_image img = {0};
     for (int f = 0; f < TIMED; f++) {
         renderer_frame_pass(r, fp);
@@ -45,10 +45,10 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_refe
         renderer_get_timings(r, &rt);
         sel[f] = rt.inject_ms;
         sh[f] = rt.propagate_ms;
-        shade[f] = rt.shade_ms;
+        eye[f] = rt.eye_host_ms;
         frame[f] = rt.frame_host_ms + rt.eye_host_ms;
     }
-    *t = (vpl_timing){acc_median(sel, TIMED), acc_median(sh, TIMED), acc_median(shade, TIMED),
+    *t = (vpl_timing){acc_median(sel, TIMED), acc_median(sh, TIMED), acc_median(eye, TIMED),
                       acc_median(frame, TIMED)};
     size_t n = (size_t)s->opt.width * s->opt.height * 3;
     if (sum)
@@ -144,7 +144,7 @@ int accuracy_vpl(int argc, char **argv)
             scale += m.best_scale / k;
             sel[seed] = t.select_ms;
             sh[seed] = t.shadow_ms;
-            gather[seed] = t.shade_ms - none.shade_ms;
+            gather[seed] = t.eye_ms - none.eye_ms;
             frame[seed] = t.frame_ms;
         }
         if (rc)

@@ -1,8 +1,9 @@
 /* cavelight-bench frame: milliseconds per pass of the render node (frame pass and one
  * mono eye pass) on a scene, and the GI method's share of the frame. With --gi vpl the
  * frame pass's stages are RSM, selection (RSM readback and choice) and shadow maps, and
- * the gather is the shading pass's time less that of the same frames with --gi none,
- * measured in the same run. GPU passes use the
+ * the gather is the eye pass's host time less that of the same frames with --gi none,
+ * measured in the same run (host clocks: llvmpipe's timer queries of a long pass can
+ * exceed the host time around it). GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
  * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
@@ -143,7 +144,7 @@ int bench_frame(int argc, char **argv)
         for (int p = 0; p < PASSES; p++)
             s[(size_t)p * n + (f - WARMUP)] = vals[p];
     }
-    /* vpl: the same frames without indirect light, for the gather's share of shading. */
+    /* vpl: the same frames without indirect light: the eye pass less the gather. */
     double *base = s + (size_t)PASSES * n;
     frame_params direct_only = fp;
     direct_only.gi = FRAME_GI_NONE;
@@ -154,7 +155,7 @@ int bench_frame(int argc, char **argv)
         renderer_timings t;
         renderer_get_timings(r, &t);
         if (f >= WARMUP)
-            base[f - WARMUP] = t.shade_ms;
+            base[f - WARMUP] = t.eye_host_ms;
     }
     static const char *lpv_names[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
@@ -182,9 +183,9 @@ int bench_frame(int argc, char **argv)
             printf(",\"vpl_count\":%d", fp.vpl_count);
         for (int p = 0; p < PASSES; p++)
             printf(",\"%s\":%.3f", names[p], med[p]);
-        double total = med[6] + med[7], gather = med[4] - med[PASSES];
+        double total = med[6] + med[7], gather = med[7] - med[PASSES];
         if (gi == FRAME_GI_VPL)
-            printf(",\"shade_direct_only_ms\":%.3f,\"gather_ms\":%.3f", med[PASSES], gather);
+            printf(",\"eye_direct_only_ms\":%.3f,\"gather_ms\":%.3f", med[PASSES], gather);
         /* The method's work: injection and propagation, or selection, shadows, gather. */
         double work = med[1] + med[2] + (gi == FRAME_GI_VPL ? gather : 0.0);
         printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
