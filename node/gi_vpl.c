@@ -12,6 +12,7 @@
 #include "gi/vpl_source.h"
 #include "gi_vpl.h"
 #include "gltools.h"
+#include "lpv/lpv_converge.h"
 
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
  * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
@@ -32,6 +33,9 @@ typedef struct gi_vpl {
     float *rsm_read[3];      /* position, normal, flux of one RSM layer */
     int rsm_size;
     int point;               /* renderer_desc.vpl_point */
+    int never_reuse;         /* renderer_desc.converge_threshold < 0: measure every frame */
+    frame_params last;       /* the last frame's parameters */
+    int have_last;
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
     size_t capacity;
@@ -190,8 +194,7 @@ static size_t collect(gi_vpl *v, const gi_rsm *rsm)
 {
     const gl_functions *gl = v->gl;
     size_t texels = (size_t)rsm->size * rsm->size;
-    if (rsm->size != v->rsm_size ||
-        reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
+    if (reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
         fprintf(stderr, "cavelight-node: out of memory for %d RSM layers of VPL candidates\n",
                 rsm->layers);
         return 0;
@@ -314,6 +317,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->scene = d->scene;
     v->rsm_size = d->rsm_size;
     v->point = d->settings->vpl_point;
+    v->never_reuse = d->settings->converge_threshold < 0;
     if (init(v, err, errlen) != 0) {
         release(v);
         free(v);
@@ -328,11 +332,19 @@ static void destroy(void *state)
     free(state);
 }
 
+/* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
+ * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed): a frame that changes none
+ * of them, a moving head's, keeps last frame's. */
 static int reuse(void *state, const frame_params *p)
 {
-    (void)state;
-    (void)p;
-    return 0;
+    gi_vpl *v = state;
+    int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
+               p->vpl_count == v->last.vpl_count && p->vpl_seed == v->last.vpl_seed;
+    v->last = *p;
+    v->have_last = 1;
+    if (same)
+        v->timings.inject_ms = v->timings.propagate_ms = 0;
+    return same;
 }
 
 static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)

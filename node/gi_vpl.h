@@ -9,6 +9,10 @@
  * once per frame and shared by every screen and eye. eye_bind(): the VPLs and the maps for
  * shaders/shade.frag, which gathers every VPL per pixel (brute force).
  *
+ * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
+ * moving head's) keeps its VPLs and shadow maps, unless renderer_desc.converge_threshold
+ * is negative (the benchmarks measure every frame).
+ *
  * A VPL stands for a patch of surface of area A (its texel's or triangle's, times its
  * weight 1 / (N p)); the gather treats it as a disk of that area seen on its axis, so the
  * irradiance it gives is flux cos cos / (A + pi r^2) instead of flux cos cos / (pi r^2):

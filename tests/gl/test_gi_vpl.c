@@ -1,7 +1,7 @@
 /* The vpl GI method (node/gi_vpl.h) on llvmpipe, default room, 64x48: it lights the room
  * with the same direct light as ILPV; the same parameters give the same VPLs, checksum
- * and images in two renderers with different thread counts and frame after frame; the
- * seed and a moved light change them; and with exact visibility the indirect image
+ * and images in two renderers with different thread counts and frame after frame (the
+ * frame pass then reuses them); the seed and a moved light change them; and with exact visibility the indirect image
  * approaches the many-VPL image as N grows. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -85,13 +85,18 @@ static void test_lights_and_is_deterministic(void **state)
     assert_true(ca == cb);
     assert_memory_equal(ia, ib, sizeof ia);
     assert_memory_equal(rgb_a, rgb_b, sizeof rgb_a);
-    p.time = 0.5; /* a static light keeps its VPLs */
+    p.time = 0.5; /* a static light keeps its VPLs: the frame pass reuses them */
     assert_true(frame(&a, &p, NULL, ib, NULL) == ca);
     assert_memory_equal(ia, ib, sizeof ia);
+    renderer_timings t;
+    renderer_get_timings(a.r, &t);
+    assert_true(t.inject_ms == 0 && t.propagate_ms == 0);
 
     /* Another seed, a moved light: other VPLs. */
     frame_params q = vpl_params(&a, 64, 1);
     assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
+    renderer_get_timings(a.r, &t);
+    assert_true(t.propagate_ms > 0); /* computed: the shadow maps took time */
     q = p;
     q.lights[0].position[0] += 0.05f;
     assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
