@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/folder.h"
+#include "cluster/cluster_config.h"
 #include "input_desk.h"
 #include "input_dtrack.h"
 #include "input_playback.h"
@@ -37,6 +39,12 @@ input *input_create(const input_desc *desc, char *err, size_t errlen)
     memcpy(in->tracker_to_cave, desc->tracker_to_cave, sizeof in->tracker_to_cave);
     in->t0_ms = clock_now_ms();
     if (desc->record_path) {
+        char why[300];
+        if (folder_create_for(desc->record_path, why, sizeof why) != 0) {
+            snprintf(err, errlen, "input record %s: %s", desc->record_path, why);
+            free(in);
+            return NULL;
+        }
         in->rec = input_playback_record_open(desc->record_path, err, errlen);
         if (!in->rec) {
             free(in);
@@ -75,12 +83,18 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
 {
     double now = (clock_now_ms() - in->t0_ms) / 1000.0;
     int rc = 0;
-    char e[256];
+    char e[512];
+    size_t used = 0;
+    if (errlen)
+        err[0] = '\0';
+    /* Every source's line, joined into one: a warning (-1) outranks a notice (1). */
     for (int i = 0; i < in->count; i++) {
-        if (in->src[i]->poll(in->src[i], now, e, sizeof e) && rc == 0) {
-            snprintf(err, errlen, "%s", e);
-            rc = -1;
-        }
+        int r = in->src[i]->poll(in->src[i], now, e, sizeof e);
+        if (r == 0)
+            continue;
+        if (used < errlen)
+            used += (size_t)snprintf(err + used, errlen - used, "%s%s", used ? "; " : "", e);
+        rc = r < 0 || rc < 0 ? -1 : 1;
     }
     memset(out, 0, sizeof *out);
     out->time = now;
@@ -114,8 +128,9 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
     }
     in->polled = 1;
     in->last_time = out->time;
-    if (in->rec && input_playback_record(in->rec, out, e, sizeof e) && rc == 0) {
-        snprintf(err, errlen, "%s", e);
+    if (in->rec && input_playback_record(in->rec, out, e, sizeof e)) {
+        if (used < errlen)
+            snprintf(err + used, errlen - used, "%s%s", used ? "; " : "", e);
         rc = -1;
     }
     return rc;
@@ -286,6 +301,7 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
     if (strcmp(type, "dtrack") == 0) {
         input_dtrack_desc d = {.name = name,
                                .port = get_int(j, "port", INPUT_DTRACK_DEFAULT_PORT),
+                               .bind = get_str(j, "bind"), .sender = get_str(j, "sender"),
                                .head_id = get_int(j, "head", 0),
                                .wand_id = get_int(j, "wand", 0)};
         const char *kind = get_str(j, "wand_kind");
@@ -402,7 +418,11 @@ input *input_open(const input_desc *desc, char *err, size_t errlen)
     char rec[4096];
     const char *record = get_str(root, "record");
     if (!d.record_path && record) {
-        resolve_path(desc->path, record, rec, sizeof rec);
+        const char *dir = desc->out_dir ? desc->out_dir : CLUSTER_DEFAULT_OUT;
+        if (record[0] == '/')
+            snprintf(rec, sizeof rec, "%s", record);
+        else
+            snprintf(rec, sizeof rec, "%s/%s", dir, record);
         d.record_path = rec;
     }
     const cJSON *sources = cJSON_GetObjectItemCaseSensitive(root, "sources");

@@ -13,7 +13,8 @@
  * release between two polls is not lost; axes come from the source that moved them last.
  * Poses are in CAVE space (metres, Y up, wand pointing along its -Z): tracker sources are
  * mapped through desc.tracker_to_cave, playback and the desk simulator are already in CAVE
- * space. A recording (input_desc.record_path) stores each merged state exactly as polled,
+ * space. A recording (input_desc.record_path, or the config's "record" inside
+ * input_desc.out_dir; its folder is created) stores each merged state exactly as polled,
  * so playing it back stepped (one recorded poll per input_poll) reproduces the same
  * interaction and parameter stream bit for bit. See docs/input.md for the file formats. */
 #ifndef CAVELIGHT_INPUT_H
@@ -70,6 +71,9 @@ typedef struct input_desc {
     float tracker_to_cave[16];
     /* Record every merged state to this file (overrides the config's "record"), or NULL. */
     const char *record_path;
+    /* Where a relative "record" of the input config goes (never beside the config, which
+     * may be in the source tree); NULL = CLUSTER_DEFAULT_OUT. */
+    const char *out_dir;
 } input_desc;
 
 typedef struct input input;
@@ -79,8 +83,10 @@ typedef struct input_source input_source;
 input *input_open(const input_desc *desc, char *err, size_t errlen);
 /* Takes ownership of src (from one of the input_*_open() source constructors). */
 int input_add_source(input *in, input_source *src, char *err, size_t errlen);
-/* Reads everything the sources have received and merges it. Returns 0, or -1 with a
- * one-line reason (a source failed; the others keep working on the next poll). */
+/* Reads everything the sources have received and merges it. Returns 0; -1 with a
+ * one-line warning (a source failed or went silent; the others keep working, and so does
+ * the session); or 1 with a one-line notice (a source connected, or its data resumed).
+ * Several sources' lines are joined with "; ". */
 int input_poll(input *in, input_state *out, char *err, size_t errlen);
 void input_close(input *in);
 
@@ -90,7 +96,9 @@ input *input_create(const input_desc *desc, char *err, size_t errlen);
 
 /* Pose helpers shared by sources and layouts. */
 void input_pose_to_mat4(const input_pose *p, float out[16]);
-/* Applies the column-major rigid transform m (all zeros = identity) to p in place. */
+/* Applies the column-major transform m (rotation, uniform scale, translation; all zeros
+ * = identity) to p in place: the position takes all of it, the orientation only the
+ * rotation, so it stays orthonormal whatever the scale. */
 void input_pose_transform(input_pose *p, const float m[16]);
 
 #endif

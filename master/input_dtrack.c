@@ -7,9 +7,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
+
+#include "base/clock.h"
 
 /* Bounds that keep a hostile datagram from costing more than a linear scan. */
 enum { MAX_TOKEN = 63, MAX_BLOCK_VALUES = 4096, MAX_BUTTONS_DECLARED = 1024,
@@ -280,64 +285,170 @@ typedef struct dtrack_source {
     input_dtrack_desc desc;
     int fd;
     int port;
+    char where[96];              /* "UDP port 5000" or "UDP 10.0.0.2:5000", for messages */
+    int filtered;                /* only datagrams from `sender` count */
+    struct in_addr sender;
+    char sender_text[64];
+    double last_datagram;        /* input clock */
+    uint64_t datagrams, refused;
+    ratelog refused_log;
     input_dtrack_frame frame;
     char buf[65536];
 } dtrack_source;
 
+/* Datagrams from another host than the configured sender (the last from `from`) were
+ * dropped in this poll: at most one line per poll, rate-limited. */
+static int refused_line(dtrack_source *d, const struct sockaddr_in *from, char *err, size_t errlen)
+{
+    if (!ratelog_event(&d->refused_log, clock_now_ms(), NULL))
+        return 0;
+    char addr[INET_ADDRSTRLEN] = "?";
+    inet_ntop(AF_INET, &from->sin_addr, addr, sizeof addr);
+    snprintf(err, errlen, "input %s: datagrams from %s on %s dropped: only %s may send "
+             "(\"sender\" in the input config; %llu dropped so far)", d->base.name, addr, d->where,
+             d->sender_text, (unsigned long long)d->refused);
+    return -1;
+}
+
 static int dtrack_poll(input_source *s, double now, char *err, size_t errlen)
 {
     dtrack_source *d = (dtrack_source *)s;
+    int rc = 0, got = 0, refused = 0;
+    struct sockaddr_in refused_from;
     for (;;) {
-        ssize_t n = recv(d->fd, d->buf, sizeof d->buf, MSG_DONTWAIT);
+        struct sockaddr_in from;
+        socklen_t flen = sizeof from;
+        ssize_t n = recvfrom(d->fd, d->buf, sizeof d->buf, MSG_DONTWAIT, (struct sockaddr *)&from, &flen);
         if (n < 0) {
             if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
-                return 0;
+                break;
             char why[256];
-            snprintf(why, sizeof why, "DTrack receive on UDP port %d failed: %s", d->port,
-                     strerror(errno));
+            snprintf(why, sizeof why, "DTrack receive on %s failed: %s", d->where, strerror(errno));
             return input_source_lost(s, now, why, err, errlen);
         }
+        if (d->filtered && (flen < sizeof from || from.sin_addr.s_addr != d->sender.s_addr)) {
+            d->refused++;
+            refused = 1;
+            refused_from = from;
+            continue;
+        }
+        got = 1;
+        d->datagrams++;
         input_dtrack_parse(d->buf, (size_t)n, &d->frame);
         input_dtrack_apply(&d->desc, &d->frame, &s->st, now);
     }
+    if (refused)
+        rc = refused_line(d, &refused_from, err, errlen);
+    char text[256];
+    if (got) {
+        d->last_datagram = now;
+        if ((s->ups == 0 || s->outage_reported) && rc == 0) {
+            snprintf(text, sizeof text, "DTrack datagrams on %s", d->where);
+            rc = input_source_up(s, now, text, err, errlen);
+        }
+    } else if (now - d->last_datagram >= d->desc.silence_s && !s->outage_reported && rc == 0) {
+        snprintf(text, sizeof text, "no DTrack datagram on %s for %.1f s: tracking stands still, "
+                 "buttons released, the session goes on", d->where, now - d->last_datagram);
+        rc = input_source_lost(s, now, text, err, errlen);
+    }
+    return rc;
 }
 
 static void dtrack_close(input_source *s)
 {
     dtrack_source *d = (dtrack_source *)s;
-    close(d->fd);
+    if (d->fd >= 0)
+        close(d->fd);
     free(d);
+}
+
+/* An IPv4 address, or the first IPv4 address of the interface with that name. */
+static int bind_address(const char *text, struct in_addr *out)
+{
+    if (inet_pton(AF_INET, text, out) == 1)
+        return 0;
+    struct ifaddrs *list;
+    if (getifaddrs(&list) != 0)
+        return -1;
+    int rc = -1;
+    for (struct ifaddrs *i = list; i && rc; i = i->ifa_next)
+        if (i->ifa_addr && i->ifa_addr->sa_family == AF_INET && strcmp(i->ifa_name, text) == 0) {
+            *out = ((const struct sockaddr_in *)i->ifa_addr)->sin_addr;
+            rc = 0;
+        }
+    freeifaddrs(list);
+    return rc;
+}
+
+static input_source *open_failed(dtrack_source *d)
+{
+    dtrack_close(&d->base);
+    return NULL;
 }
 
 input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t errlen)
 {
     dtrack_source *d = input_source_alloc(sizeof *d, desc->name, "dtrack", dtrack_poll, dtrack_close);
     d->desc = *desc;
-    d->desc.name = NULL;
-    d->fd = socket(AF_INET, SOCK_DGRAM, 0);
+    d->desc.name = d->desc.bind = d->desc.sender = NULL; /* the caller's strings are not kept */
+    if (!(d->desc.silence_s > 0))
+        d->desc.silence_s = INPUT_DTRACK_SILENCE_S;
+    d->fd = -1;
     struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)desc->port),
                             .sin_addr.s_addr = htonl(INADDR_ANY)};
-    int one = 1;
-    /* A large receive buffer so that a stalled master frame does not drop datagrams. */
+    if (desc->bind && bind_address(desc->bind, &a.sin_addr) != 0) {
+        snprintf(err, errlen, "input %s: \"bind\" %s is neither an IPv4 address nor an interface "
+                 "with one (see ip -4 addr)", d->base.name, desc->bind);
+        return open_failed(d);
+    }
+    if (desc->sender) {
+        struct addrinfo hints = {.ai_family = AF_INET, .ai_socktype = SOCK_DGRAM}, *ai = NULL;
+        int rc = getaddrinfo(desc->sender, NULL, &hints, &ai);
+        if (rc) {
+            snprintf(err, errlen, "input %s: \"sender\" %s: %s (give the DTrack controller's "
+                     "IPv4 address or host name)", d->base.name, desc->sender, gai_strerror(rc));
+            return open_failed(d);
+        }
+        d->sender = ((const struct sockaddr_in *)ai->ai_addr)->sin_addr;
+        freeaddrinfo(ai);
+        d->filtered = 1;
+        snprintf(d->sender_text, sizeof d->sender_text, "%s", desc->sender);
+    }
+    d->fd = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    /* A large receive buffer so that a stalled master frame does not drop datagrams. No
+     * SO_REUSEADDR: a second socket on this port (another user's) must fail to bind, not
+     * share or steal the tracker's datagrams. */
     int rcvbuf = 1 << 20;
-    if (d->fd < 0 || setsockopt(d->fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) ||
-        setsockopt(d->fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf) ||
+    if (d->fd < 0 || setsockopt(d->fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf) ||
         bind(d->fd, (struct sockaddr *)&a, sizeof a)) {
-        snprintf(err, errlen, "input %s: cannot listen for DTrack on UDP port %d: %s "
-                 "(is another program using it? set \"port\" in the input config)",
-                 d->base.name, desc->port, strerror(errno));
-        if (d->fd >= 0)
-            close(d->fd);
-        free(d);
-        return NULL;
+        char addr[INET_ADDRSTRLEN] = "";
+        inet_ntop(AF_INET, &a.sin_addr, addr, sizeof addr);
+        snprintf(err, errlen, "input %s: cannot listen for DTrack on UDP %s:%d: %s "
+                 "(is another program using the port? set \"port\" or \"bind\" in the input config)",
+                 d->base.name, addr, desc->port, strerror(errno));
+        return open_failed(d);
     }
     socklen_t alen = sizeof a;
     getsockname(d->fd, (struct sockaddr *)&a, &alen);
     d->port = ntohs(a.sin_port);
+    if (desc->bind)
+        snprintf(d->where, sizeof d->where, "UDP %s:%d", desc->bind, d->port);
+    else
+        snprintf(d->where, sizeof d->where, "UDP port %d", d->port);
     return &d->base;
 }
 
 int input_dtrack_port(const input_source *s)
 {
     return ((const dtrack_source *)s)->port;
+}
+
+uint64_t input_dtrack_datagrams(const input_source *s)
+{
+    return ((const dtrack_source *)s)->datagrams;
+}
+
+uint64_t input_dtrack_refused(const input_source *s)
+{
+    return ((const dtrack_source *)s)->refused;
 }

@@ -10,7 +10,13 @@
  *
  * input_dtrack_open() makes a source that listens on a UDP port and maps one 6d body to
  * the head and one flystick (or body) to the wand, the flystick's buttons and
- * controllers to logical buttons and axes. */
+ * controllers to logical buttons and axes. The port is bound without SO_REUSEADDR, so no
+ * other program can share it (and read the datagrams instead); on the address of `bind`
+ * (an IPv4 address or an interface name) or on every interface. With `sender` set, only
+ * datagrams from that host count; others are dropped, counted and logged, rate-limited.
+ * When no datagram has arrived for silence_s seconds the source says so once, releases
+ * its buttons and the session goes on without tracking; the first datagram after that
+ * says so too (input_source_lost() and input_source_up()). */
 #ifndef CAVELIGHT_INPUT_DTRACK_H
 #define CAVELIGHT_INPUT_DTRACK_H
 
@@ -26,6 +32,7 @@ enum {
     INPUT_DTRACK_MAX_CONTROLLERS = 8,   /* per flystick; more are ignored */
     INPUT_DTRACK_DEFAULT_PORT = 5000,
 };
+#define INPUT_DTRACK_SILENCE_S 1.0      /* default: no datagram this long is an outage */
 
 typedef struct input_dtrack_body {
     int id;
@@ -79,6 +86,9 @@ typedef enum input_dtrack_wand {
 typedef struct input_dtrack_desc {
     const char *name;
     int port;                           /* UDP port; 0 = any free port (tests) */
+    const char *bind;                   /* IPv4 address or interface; NULL = all interfaces */
+    const char *sender;                 /* only datagrams from this host; NULL = any */
+    double silence_s;                   /* outage after this long without data; 0 = default */
     int head_id;                        /* 6d body id of the head, default 0; -1 none */
     int wand_id;                        /* flystick or body id of the wand, default 0 */
     input_dtrack_wand wand_kind;
@@ -89,6 +99,9 @@ typedef struct input_dtrack_desc {
 input_source *input_dtrack_open(const input_dtrack_desc *desc, char *err, size_t errlen);
 /* The UDP port the source listens on (useful with port 0). */
 int input_dtrack_port(const input_source *s);
+/* Datagrams used, and dropped for coming from another host than `sender`. */
+uint64_t input_dtrack_datagrams(const input_source *s);
+uint64_t input_dtrack_refused(const input_source *s);
 /* Applies one parsed frame to a source state at input clock t (exposed for tests). */
 void input_dtrack_apply(const input_dtrack_desc *desc, const input_dtrack_frame *f,
                         input_source_state *st, double t);

@@ -17,6 +17,20 @@ void *input_source_alloc(size_t size, const char *name, const char *fallback,
     return s;
 }
 
+/* One line of the source's loss and recovery story, unless the rate limit leaves it out. */
+static int outage_line(input_source *s, double now, char *err, size_t errlen, const char *text)
+{
+    uint64_t skipped = 0;
+    if (!ratelog_event(&s->log, now * 1000.0, &skipped))
+        return 0;
+    if (skipped)
+        snprintf(err, errlen, "input %s: %s (%llu such lines left out)", s->name, text,
+                 (unsigned long long)skipped);
+    else
+        snprintf(err, errlen, "input %s: %s", s->name, text);
+    return 1;
+}
+
 int input_source_lost(input_source *s, double now, const char *why, char *err, size_t errlen)
 {
     input_source_set_buttons(&s->st, 0, now);
@@ -24,11 +38,13 @@ int input_source_lost(input_source *s, double now, const char *why, char *err, s
     if (s->outage_reported)
         return 0;
     s->outage_reported = 1;
+    s->outage_since = now;
+    char text[512];
     if (s->retry_interval > 0)
-        snprintf(err, errlen, "input %s: %s; retrying every %g s", s->name, why, s->retry_interval);
+        snprintf(text, sizeof text, "%s; retrying every %g s", why, s->retry_interval);
     else
-        snprintf(err, errlen, "input %s: %s", s->name, why);
-    return -1;
+        snprintf(text, sizeof text, "%s", why);
+    return outage_line(s, now, err, errlen, text) ? -1 : 0;
 }
 
 int input_source_retry_due(const input_source *s, double now)
@@ -36,9 +52,19 @@ int input_source_retry_due(const input_source *s, double now)
     return s->retry_interval > 0 && now >= s->next_attempt;
 }
 
-void input_source_up(input_source *s)
+int input_source_up(input_source *s, double now, const char *what, char *err, size_t errlen)
 {
+    char text[512];
+    int say = 1;
+    if (s->outage_reported)
+        snprintf(text, sizeof text, "%s again after %.1f s", what, now - s->outage_since);
+    else if (s->ups == 0)
+        snprintf(text, sizeof text, "%s", what);
+    else
+        say = 0;
     s->outage_reported = 0;
+    s->ups++;
+    return say && outage_line(s, now, err, errlen, text);
 }
 
 void input_source_set_buttons(input_source_state *st, uint32_t held, double t)
@@ -119,14 +145,21 @@ void input_pose_transform(input_pose *p, const float m[16])
         for (int k = 0; k < 3; k++)
             pos[r] += m[k * 4 + r] * p->position[k];
     }
+    /* m's 3x3 is a rotation times a uniform scale (units, e.g. 0.001 for millimetres):
+     * positions take the scale, an orientation only the rotation (the columns' unit
+     * vectors), or the head-to-eye offset would shrink with it. */
+    float inv_scale[3];
+    for (int k = 0; k < 3; k++) {
+        float len = sqrtf(m[k * 4] * m[k * 4] + m[k * 4 + 1] * m[k * 4 + 1] + m[k * 4 + 2] * m[k * 4 + 2]);
+        inv_scale[k] = len > 0.0f ? 1.0f / len : 0.0f;
+    }
     for (int c = 0; c < 3; c++)
         for (int r = 0; r < 3; r++) {
             float s = 0.0f;
             for (int k = 0; k < 3; k++)
-                s += m[k * 4 + r] * p->rotation[c * 3 + k];
+                s += m[k * 4 + r] * inv_scale[k] * p->rotation[c * 3 + k];
             rot[c * 3 + r] = s;
         }
     memcpy(p->position, pos, sizeof pos);
     memcpy(p->rotation, rot, sizeof rot);
 }
-

@@ -10,12 +10,18 @@
  * input_source_lost() releases its buttons (nothing stays held, e.g. C = fly), schedules
  * the next attempt retry_interval seconds later (0: the source does not retry) and reports
  * the first loss of an outage in one line; input_source_retry_due() says when to try
- * again and input_source_up() ends the outage. */
+ * again and input_source_up() ends the outage with one line (and says when the device
+ * first answers). A device that comes and goes cannot flood the log: these lines share
+ * one ratelog per source.
+ *
+ * poll() returns 0 with nothing to say, -1 with a warning or error in err (a loss, a
+ * refused sender, a failed read) or 1 with a notice (connected, data again). */
 #ifndef CAVELIGHT_INPUT_SOURCE_H
 #define CAVELIGHT_INPUT_SOURCE_H
 
 #include <stddef.h>
 #include <stdint.h>
+#include "base/ratelog.h"
 #include "input.h"
 
 enum { INPUT_MAP_SIZE = 32 };
@@ -41,8 +47,12 @@ struct input_source {
     double retry_interval;     /* seconds between attempts after a loss; 0 = no retry */
     double next_attempt;       /* input clock of the next attempt */
     int outage_reported;       /* the current outage was reported: stay quiet until up */
+    double outage_since;       /* input clock when the current outage began */
+    int ups;                   /* times the device answered (connects, first data) */
+    ratelog log;               /* this source's loss and recovery lines */
     input_source_state st;
-    /* now: input clock, seconds. Returns 0, or -1 with a one-line reason in err. */
+    /* now: input clock, seconds. Returns 0, -1 with a warning or 1 with a notice (one
+     * line in err). */
     int (*poll)(input_source *s, double now, char *err, size_t errlen);
     void (*close)(input_source *s);
 };
@@ -55,12 +65,15 @@ typedef void (*input_source_close_fn)(input_source *s);
 void *input_source_alloc(size_t size, const char *name, const char *fallback,
                          input_source_poll_fn poll, input_source_close_fn close);
 /* The device went away (why: what happened). Returns -1 with "input NAME: WHY[; retrying
- * every S s]" for the first loss of an outage, 0 for the later ones. */
+ * every S s]" for the first loss of an outage, 0 for the later ones and for lines the
+ * rate limit leaves out. */
 int input_source_lost(input_source *s, double now, const char *why, char *err, size_t errlen);
 /* 1 when a retrying source may try to reach its device again. */
 int input_source_retry_due(const input_source *s, double now);
-/* The device answers again: the next loss is reported. */
-void input_source_up(input_source *s);
+/* The device answers (what: e.g. "connected to VRPN server h:3883"). Returns 1 with
+ * "input NAME: WHAT" the first time, or with "input NAME: WHAT again after S s" at the end
+ * of a reported outage; otherwise (or rate-limited) 0. The next loss is reported. */
+int input_source_up(input_source *s, double now, const char *what, char *err, size_t errlen);
 
 /* Sets the held buttons at time t and records press edges. */
 void input_source_set_buttons(input_source_state *st, uint32_t held, double t);

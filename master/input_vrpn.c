@@ -319,6 +319,7 @@ static int vrpn_poll(input_source *s, double now, char *err, size_t errlen)
 {
     vrpn_source *v = (vrpn_source *)s;
     char why[300];
+    int said = 0; /* a notice (connected) is in err */
     if (v->state == VRPN_IDLE) {
         if (!input_source_retry_due(s, now))
             return 0;
@@ -371,7 +372,10 @@ static int vrpn_poll(input_source *s, double now, char *err, size_t errlen)
                 return fail(v, now, err, errlen, "bad cookie, not a VRPN 07 server");
             v->state = VRPN_OPEN;
             v->connections++;
-            input_source_up(s);
+            char what[sizeof v->host + 128];
+            snprintf(what, sizeof what, "connected to VRPN server %s:%d (%s)", v->host, v->desc.port,
+                     v->tracker);
+            said = input_source_up(s, now, what, err, errlen);
             used = INPUT_VRPN_COOKIE_SIZE;
         }
         long c = input_vrpn_decode(&v->desc, &v->session, v->in + used, v->in_len - used,
@@ -382,7 +386,7 @@ static int vrpn_poll(input_source *s, double now, char *err, size_t errlen)
         memmove(v->in, v->in + used, v->in_len - used);
         v->in_len -= used;
     }
-    return 0;
+    return said;
 }
 
 static void vrpn_close(input_source *s)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image/font.h"
 #include "image/image.h"
 
 static uint8_t *read_png(const char *path, int *w, int *h, char *err, size_t errlen)
@@ -77,6 +78,11 @@ int overview_compose(const cluster_config *cfg, const char *dir, const char *out
                 memcpy(canvas + ((size_t)(sc->overview[1] + y) * cw + x0) * 3, img + (size_t)y * w * 3, (size_t)cols * 3);
             }
             free(img);
+            /* The wall's name in its corner, readable on any picture. */
+            static const uint8_t text[3] = {255, 255, 255}, back[3] = {0, 0, 0};
+            int scale = h >= 256 && w >= 128 ? 2 : 1;
+            font_draw(canvas, cw, ch, sc->overview[0] + 3 * scale, sc->overview[1] + 3 * scale, scale, sc->name,
+                      text, back);
         }
     if (rc == 0)
         rc = image_write_png(out_path, cw, ch, canvas, err, errlen);

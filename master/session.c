@@ -11,6 +11,7 @@
 #include "base/clock.h"
 #include "input.h"
 #include "interaction.h"
+#include "pose_guard.h"
 #include "scene/scene.h"
 #include "script.h"
 
@@ -35,6 +36,9 @@ struct session {
     frame_params frame;     /* what the input and interaction edit (live input only) */
     script script;
     input *in;              /* NULL: the scripted path */
+    pose_guard guard;       /* tracked poses checked before they reach the nodes */
+    int print_poses;
+    double next_pose_print; /* clock_now_ms() */
     interaction ia;
     double dt, start_ms, created_ms;
     int frames;
@@ -49,8 +53,14 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
         return -1;
+    if (sc.light_added) { /* the nodes load it too; the master says it once */
+        char note[400];
+        scene_light_added_note(&sc, scene_path, note, sizeof note);
+        fprintf(stderr, "cavelight-master: warning: %s\n", note);
+    }
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
+    s->frame.pattern = d->pattern;
     s->frame.gi = d->gi;
     if (d->vpl_count > 0)
         s->frame.vpl_count = d->vpl_count;
@@ -64,6 +74,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     session *s = xcalloc(1, sizeof *s); /* large (the statistics): never on the stack */
     s->cfg = d->config;
     s->dt = d->dt;
+    s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
                               .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
@@ -73,12 +84,13 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->rs.nodes_wait_ms = -1;
     script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
-        input_desc idesc = {.path = d->input};
+        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))
             goto fail;
         interaction_init(&s->ia, &(interaction_desc){0});
+        pose_guard_init(&s->guard, d->config);
     }
     return s;
 fail:
@@ -112,18 +124,65 @@ int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomi
     return live;
 }
 
+/* A CAVE-space point back in tracker space: the inverse of tracker_to_cave (a rotation
+ * times a uniform scale, then a translation): M^T (p - t) / s^2. */
+static void cave_to_tracker(const float m[16], const float p[3], double out[3])
+{
+    double s2 = (double)m[0] * m[0] + (double)m[1] * m[1] + (double)m[2] * m[2];
+    for (int c = 0; c < 3; c++) {
+        out[c] = 0;
+        for (int r = 0; r < 3; r++)
+            out[c] += (double)m[c * 4 + r] * (p[r] - m[12 + r]);
+        out[c] /= s2;
+    }
+}
+
+/* One line on stdout per PRINT_POSES_MS: what a person measuring corners or the
+ * tracker-to-CAVE transform reads (docs/calibration.md). */
+static void print_poses(session *s, const input_state *ist)
+{
+    enum { PRINT_POSES_MS = 250 };
+    double now = clock_now_ms();
+    if (now < s->next_pose_print)
+        return;
+    s->next_pose_print = now + PRINT_POSES_MS;
+    const float *m = s->cfg->observer.tracker_to_cave;
+    const input_pose *pose[2] = {&ist->head, &ist->wand};
+    printf("t %.2f", ist->time);
+    for (int k = 0; k < 2; k++) {
+        const input_pose *p = pose[k];
+        if (!p->valid) {
+            printf("  %s -", k ? "wand" : "head");
+            continue;
+        }
+        double tr[3];
+        cave_to_tracker(m, p->position, tr);
+        /* The pointing direction: -Z of the pose, in CAVE space. */
+        printf("  %s cave %.4f %.4f %.4f tracker %.4f %.4f %.4f dir %.3f %.3f %.3f", k ? "wand" : "head",
+               p->position[0], p->position[1], p->position[2], tr[0], tr[1], tr[2], 0.0f - p->rotation[6],
+               0.0f - p->rotation[7], 0.0f - p->rotation[8]); /* 0 - x: no "-0.000" */
+    }
+    printf("  buttons %02x\n", (unsigned)ist->buttons);
+    fflush(stdout);
+}
+
 /* Live or recorded input through the interaction layouts into the store. Returns
  * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
 static session_step apply_input(session *s, params_store *store)
 {
     input_state ist;
-    char err[512];
+    char err[1024];
     if (input_poll(s->in, &ist, err, sizeof err) != 0)
-        fprintf(stderr, "cavelight-master: %s\n", err); /* a source failed; the others go on */
+        fprintf(stderr, "cavelight-master: %s\n", err); /* a warning or notice; the session goes on */
     if (ist.failed)
         return SESSION_INPUT_FAILED;
     if (ist.finished)
         return SESSION_INPUT_ENDED;
+    double now = clock_now_ms();
+    pose_guard_apply(&s->guard, &s->guard.head, &ist.head, now);
+    pose_guard_apply(&s->guard, &s->guard.wand, &ist.wand, now);
+    if (s->print_poses)
+        print_poses(s, &ist);
     interaction_update(&s->ia, &ist, ist.dt, &s->frame);
     s->frame.time = ist.time;
     s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */

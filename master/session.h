@@ -10,7 +10,8 @@
  *   session_destroy(s);                                    BYE to every node
  *
  * The store starts from frame_params_default() with the scene's lights, the same frame a
- * standalone node starts from. Live or recorded input (docs/input.md) drives the
+ * standalone node starts from. Live or recorded input (docs/input.md), its head and wand
+ * poses checked by pose_guard.h (a bad pose never reaches the nodes), drives the
  * interaction layouts; without it the scripted head and light path (script.h) moves at
  * desc.dt seconds per frame (or with the wall clock). No processes, no signals, no
  * command line: those are master/main.c's. */
@@ -32,7 +33,11 @@ typedef struct session_desc {
     int quiet;              /* 1: log only errors */
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
+    const char *record;     /* record the merged input there; NULL = the input config's */
+    const char *out_dir;    /* the session's output folder; NULL = CLUSTER_DEFAULT_OUT */
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
+    int pattern;            /* 1: every screen shows the calibration pattern (pattern.h) */
+    int print_poses;        /* 1: the head and wand poses on stdout, 4 lines a second */
     frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
     int vpl_count;          /* its VPLs when that is vpl (0 = FRAME_VPL_DEFAULT) */
 } session_desc;

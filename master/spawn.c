@@ -1,6 +1,7 @@
 #include "spawn.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -9,16 +10,78 @@
 #include <time.h>
 #include <unistd.h>
 
-static int start(spawn_set *s, const char *label, const char *path, char *const argv[], char *err, size_t errlen)
+/* The log relay: copies what a child writes to its log file and to the master's standard
+ * error, until every writer has closed the pipe. It holds nothing else of the master's (its
+ * sockets would outlive the master otherwise), and leaves the stopping to the child. */
+static void relay(int in, int log_fd)
+{
+    signal(SIGINT, SIG_IGN);
+    signal(SIGTERM, SIG_IGN);
+    long max_fd = sysconf(_SC_OPEN_MAX);
+    for (int fd = 3; fd < (max_fd > 0 && max_fd < 65536 ? max_fd : 65536); fd++)
+        if (fd != in && fd != log_fd)
+            close(fd);
+    char buf[4096];
+    for (;;) {
+        ssize_t n = read(in, buf, sizeof buf);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            _exit(0);
+        if (write(log_fd, buf, (size_t)n) < 0 || write(STDERR_FILENO, buf, (size_t)n) < 0) {
+            /* a full disk or a closed terminal: keep draining so the child never blocks */
+        }
+    }
+}
+
+/* Starts the relay for log_path; returns the pipe's write end for the child, or -1. */
+static int start_relay(spawn_set *s, int i, const char *log_path, char *err, size_t errlen)
+{
+    int log_fd = open(log_path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644), fds[2];
+    if (log_fd < 0) {
+        snprintf(err, errlen, "spawn %s: cannot create its log %s: %s", s->label[i], log_path, strerror(errno));
+        return -1;
+    }
+    if (pipe(fds) != 0) {
+        snprintf(err, errlen, "spawn %s: pipe for its log: %s", s->label[i], strerror(errno));
+        close(log_fd);
+        return -1;
+    }
+    s->relay[i] = fork();
+    if (s->relay[i] == 0) {
+        close(fds[1]);
+        relay(fds[0], log_fd);
+    }
+    close(fds[0]);
+    close(log_fd);
+    if (s->relay[i] < 0) {
+        snprintf(err, errlen, "spawn %s: fork for its log failed: %s", s->label[i], strerror(errno));
+        close(fds[1]);
+        return -1;
+    }
+    return fds[1];
+}
+
+static int start(spawn_set *s, const char *label, const char *path, char *const argv[],
+                 const char *workdir, const char *log_path, char *err, size_t errlen)
 {
     if (s->count >= SPAWN_MAX) {
         snprintf(err, errlen, "spawn %s: more than %d children", label, SPAWN_MAX);
         return -1;
     }
+    int i = s->count;
+    snprintf(s->label[i], sizeof s->label[i], "%s", label);
+    snprintf(s->log[i], sizeof s->log[i], "%s", log_path ? log_path : "");
+    s->relay[i] = 0;
+    int log_fd = log_path ? start_relay(s, i, log_path, err, errlen) : -1;
+    if (log_path && log_fd < 0)
+        return -1;
     pid_t parent = getpid();
     pid_t pid = fork();
     if (pid < 0) {
         snprintf(err, errlen, "spawn %s: fork failed: %s", label, strerror(errno));
+        if (log_fd >= 0)
+            close(log_fd); /* the relay sees the end of its pipe and leaves */
         return -1;
     }
     if (pid == 0) {
@@ -28,25 +91,89 @@ static int start(spawn_set *s, const char *label, const char *path, char *const 
             _exit(127);
         /* Own process group: stopping the child also stops what a launch shell started. */
         setpgid(0, 0);
+        if (log_fd >= 0 && (dup2(log_fd, STDOUT_FILENO) < 0 || dup2(log_fd, STDERR_FILENO) < 0))
+            _exit(127);
+        if (log_fd >= 0)
+            close(log_fd);
+        if (workdir && chdir(workdir) != 0) {
+            fprintf(stderr, "cavelight-master: %s: cannot enter %s: %s\n", label, workdir, strerror(errno));
+            _exit(127);
+        }
         execv(path, argv);
         fprintf(stderr, "cavelight-master: cannot run %s: %s\n", path, strerror(errno));
         _exit(127);
     }
-    int i = s->count++;
+    if (log_fd >= 0)
+        close(log_fd);
+    s->count++;
     s->pid[i] = pid;
     s->exited[i] = 0;
     s->status[i] = 0;
-    snprintf(s->label[i], sizeof s->label[i], "%s", label);
     return 0;
 }
 
-int spawn_local(spawn_set *s, const char *label, char *const argv[], char *err, size_t errlen)
+int spawn_find(const spawn_set *s, const char *label)
+{
+    for (int i = 0; i < s->count; i++)
+        if (strcmp(s->label[i], label) == 0)
+            return i;
+    return -1;
+}
+
+/* Waits up to timeout_ms for child i's relay to copy the child's last words, then stops it. */
+static void end_relay(spawn_set *s, int i, int timeout_ms)
+{
+    struct timespec step = {0, 10 * 1000 * 1000};
+    for (int waited = 0; s->relay[i] > 0; waited += 10) {
+        if (waitpid(s->relay[i], NULL, WNOHANG) == s->relay[i]) {
+            s->relay[i] = 0;
+        } else if (waited >= timeout_ms) {
+            kill(s->relay[i], SIGKILL); /* a grandchild that left the group still holds the pipe */
+            waitpid(s->relay[i], NULL, 0);
+            s->relay[i] = 0;
+        } else {
+            nanosleep(&step, NULL);
+        }
+    }
+}
+
+void spawn_log_tail(spawn_set *s, int i, int lines, const char *prefix, FILE *f)
+{
+    enum { TAIL_BYTES = 4096 };
+    if (s->exited[i])
+        end_relay(s, i, 1000);
+    FILE *in = s->log[i][0] ? fopen(s->log[i], "r") : NULL;
+    if (!in)
+        return;
+    char buf[TAIL_BYTES + 1];
+    fseek(in, 0, SEEK_END);
+    long size = ftell(in);
+    fseek(in, size > TAIL_BYTES ? size - TAIL_BYTES : 0, SEEK_SET);
+    size_t n = fread(buf, 1, TAIL_BYTES, in);
+    fclose(in);
+    buf[n] = 0;
+    while (n > 0 && buf[n - 1] == '\n')
+        buf[--n] = 0;
+    char *start = buf + n;
+    for (int seen = 0; start > buf && seen < lines; start--)
+        if (start[-1] == '\n' && ++seen == lines)
+            break;
+    for (char *line = start; *line;) {
+        size_t len = strcspn(line, "\n");
+        fprintf(f, "%s%.*s\n", prefix, (int)len, line);
+        line += len + (line[len] == '\n');
+    }
+}
+
+int spawn_local(spawn_set *s, const char *label, char *const argv[], const char *workdir,
+                const char *log_path, char *err, size_t errlen)
 {
     if (access(argv[0], X_OK) != 0) {
-        snprintf(err, errlen, "spawn %s: %s is not an executable: build it or pass --node-exe", label, argv[0]);
+        snprintf(err, errlen, "spawn %s: %s is not an executable: build it, or give the node's "
+                 "\"exe\" in the config or --node-exe", label, argv[0]);
         return -1;
     }
-    return start(s, label, argv[0], argv, err, errlen);
+    return start(s, label, argv[0], argv, workdir, log_path, err, errlen);
 }
 
 int spawn_shell_quote(const char *s, char *out, size_t cap)
@@ -72,7 +199,7 @@ int spawn_shell_quote(const char *s, char *out, size_t cap)
 }
 
 int spawn_remote(spawn_set *s, const char *label, const char *tmpl, const char *host, const char *command,
-                 char *err, size_t errlen)
+                 const char *log_path, char *err, size_t errlen)
 {
     char qhost[512], qcmd[4096], line[8192];
     if (spawn_shell_quote(host, qhost, sizeof qhost) || spawn_shell_quote(command, qcmd, sizeof qcmd)) {
@@ -101,13 +228,15 @@ int spawn_remote(spawn_set *s, const char *label, const char *tmpl, const char *
     }
     line[n] = 0;
     char *argv[] = {"/bin/sh", "-c", line, NULL};
-    return start(s, label, "/bin/sh", argv, err, errlen);
+    return start(s, label, "/bin/sh", argv, NULL, log_path, err, errlen);
 }
 
 int spawn_reap(spawn_set *s)
 {
     int running = 0;
     for (int i = 0; i < s->count; i++) {
+        if (s->relay[i] > 0 && waitpid(s->relay[i], NULL, WNOHANG) == s->relay[i])
+            s->relay[i] = 0;
         if (s->exited[i])
             continue;
         int status;
@@ -137,4 +266,6 @@ void spawn_stop_all(spawn_set *s, int timeout_ms)
             waitpid(s->pid[i], &s->status[i], 0);
             s->exited[i] = 1;
         }
+    for (int i = 0; i < s->count; i++)
+        end_relay(s, i, 1000);
 }

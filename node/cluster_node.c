@@ -27,7 +27,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                                 .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
                                 .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size,
                                 .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold,
-                                .gi = d->gi};
+                                .gi = d->gi, .keep_frames = d->keep_frames};
         view = cluster_view_create(&vd, err, errlen);
         if (!view)
             return 1;
@@ -66,7 +66,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                         (unsigned long long)skipped);
             uint64_t checksum = params_checksum(ps);
             float timings[WIRE_TIMING_COUNT] = {0};
-            if (view && cluster_view_render(view, &f, lattice, &checksum, timings, err, errlen) != 0) {
+            if (view && cluster_view_render(view, &check, lattice, &checksum, timings, err, errlen) != 0) {
                 rc = 1;
                 goto out;
             }
@@ -129,14 +129,6 @@ out:
     return rc;
 }
 
-int cluster_node_wanted(int argc, char **argv)
-{
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--cluster") == 0)
-            return 1;
-    return 0;
-}
-
 static volatile sig_atomic_t node_stop;
 
 static void on_signal(int sig)
@@ -145,107 +137,28 @@ static void on_signal(int sig)
     node_stop = 1;
 }
 
-static void usage(void)
+int cluster_node_start(const char *config_path, cluster_node_desc *d)
 {
-    fprintf(stderr,
-            "usage: cavelight-node --cluster FILE --name NODE [--master ENDPOINT] [--render gl|none]\n"
-            "         [--output window|headless|png] [--out DIR] [--scene FILE] [--lpv-threads N]\n"
-            "         [--lattice CELLS] [--rsm SIZE] [--lpv-mode incremental|classic] [--gi " FRAME_GI_NAMES "]\n"
-            "         [--converge-threshold R]\n"
-            "         [--exit-with-master] [--quiet]\n");
-}
-
-int cluster_node_main(int argc, char **argv)
-{
-    const char *config_path = NULL;
-    cluster_node_desc d = {.output = -1, .render = CLUSTER_RENDER_GL, .stop = &node_stop};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
-        if (strcmp(a, "--cluster") == 0 && v)
-            config_path = v;
-        else if (strcmp(a, "--name") == 0 && v)
-            d.name = v;
-        else if (strcmp(a, "--master") == 0 && v)
-            d.endpoint = v;
-        else if (strcmp(a, "--out") == 0 && v)
-            d.out_dir = v;
-        else if (strcmp(a, "--scene") == 0 && v)
-            d.scene = v;
-        else if (strcmp(a, "--lpv-threads") == 0 && v)
-            d.lpv_threads = atoi(v);
-        else if (strcmp(a, "--lattice") == 0 && v)
-            d.lattice_cells = atoi(v);
-        else if (strcmp(a, "--rsm") == 0 && v)
-            d.rsm_size = atoi(v);
-        else if (strcmp(a, "--converge-threshold") == 0 && v)
-            d.converge_threshold = atof(v);
-        else if (strcmp(a, "--lpv-mode") == 0 && v && (strcmp(v, "incremental") == 0 ||
-                                                      strcmp(v, "classic") == 0))
-            d.lpv_mode = strcmp(v, "classic") == 0 ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL;
-        else if (strcmp(a, "--gi") == 0 && v) {
-            frame_gi gi;
-            if (frame_gi_parse(v, &gi) != 0) {
-                fprintf(stderr, "cavelight-node: --gi %s: use " FRAME_GI_NAMES "\n", v);
-                return 2;
-            }
-            d.gi = gi;
-        }
-        else if (strcmp(a, "--fault-checksum-from") == 0 && v)
-            d.fault_checksum_from = strtoull(v, NULL, 10);
-        else if (strcmp(a, "--render") == 0 && v) {
-            if (strcmp(v, "none") == 0)
-                d.render = CLUSTER_RENDER_NONE;
-            else if (strcmp(v, "gl") == 0)
-                d.render = CLUSTER_RENDER_GL;
-            else {
-                fprintf(stderr, "cavelight-node: --render %s: use gl or none\n", v);
-                return 2;
-            }
-        } else if (strcmp(a, "--output") == 0 && v) {
-            d.output = cluster_output_parse(v);
-            if (d.output < 0) {
-                fprintf(stderr, "cavelight-node: --output %s: use window, headless or png\n", v);
-                return 2;
-            }
-        } else {
-            takes = 0;
-            if (strcmp(a, "--exit-with-master") == 0)
-                d.exit_with_master = 1;
-            else if (strcmp(a, "--quiet") == 0)
-                d.quiet = 1;
-            else {
-                fprintf(stderr, "cavelight-node: unknown or incomplete option %s\n", a);
-                usage();
-                return 2;
-            }
-        }
-        i += takes;
-    }
-    if (!config_path || !d.name) {
-        usage();
-        return 2;
-    }
     static cluster_config cfg;
     char err[512];
     if (cluster_config_load(config_path, &cfg, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
-    d.config = &cfg;
+    d->config = &cfg;
+    d->stop = &node_stop;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     cluster_node_stats st;
-    if (cluster_node_run(&d, &st, err, sizeof err) != 0) {
+    if (cluster_node_run(d, &st, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
-    if (!d.quiet)
-        fprintf(stderr, "cavelight-node %s: %llu frames, %llu swaps, last version %llu\n", d.name,
+    if (!d->quiet)
+        fprintf(stderr, "cavelight-node %s: %llu frames, %llu swaps, last version %llu\n", d->name,
                 (unsigned long long)st.frames, (unsigned long long)st.swaps, (unsigned long long)st.last_version);
     return 0;
 }

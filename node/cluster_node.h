@@ -5,7 +5,7 @@
  * present or write. With render "none" no GL is touched and the checksum is the
  * parameter store's (params_checksum): the stub used by the benchmark and fast tests.
  * cluster_node_run() is a library call (the benchmark runs nodes as threads);
- * cluster_node_main() parses the command line. */
+ * cluster_node_start() is the program's cluster mode (the command line is node_cli.h's). */
 #ifndef CAVELIGHT_CLUSTER_NODE_H
 #define CAVELIGHT_CLUSTER_NODE_H
 
@@ -26,7 +26,7 @@ typedef struct cluster_node_desc {
     const char *endpoint;       /* NULL = config master.connect */
     cluster_render_mode render;
     int output;                 /* cluster_output, or -1 for the config's */
-    const char *out_dir;        /* png output folder, NULL = "." */
+    const char *out_dir;        /* png output folder, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;          /* NULL = config scene or the built-in default */
     int lpv_threads;            /* CPU LPV threads, 0 = all cores */
     int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
@@ -35,6 +35,7 @@ typedef struct cluster_node_desc {
                                    key (the master's) decides from then on */
     double converge_threshold;  /* renderer_desc.converge_threshold; the same on every node */
     int exit_with_master;       /* 1: leave when the master ends the session */
+    int keep_frames;            /* png output: also SCREEN-EYE-NNNNNN.png for every frame */
     int quiet;
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */
     volatile sig_atomic_t *stop;  /* set to leave the loop, may be NULL */
@@ -47,8 +48,8 @@ typedef struct cluster_node_stats {
 
 /* Returns 0 on a clean exit, 1 on error (message in err). */
 int cluster_node_run(const cluster_node_desc *desc, cluster_node_stats *stats, char *err, size_t errlen);
-/* 1 when argv asks for cluster mode (--cluster). */
-int cluster_node_wanted(int argc, char **argv);
-int cluster_node_main(int argc, char **argv);
+/* cavelight-node --cluster: loads the config, runs until the master ends the session or a
+ * signal (SIGINT, SIGTERM) arrives. d comes from node_cli_parse(). Returns the exit status. */
+int cluster_node_start(const char *config_path, cluster_node_desc *d);
 
 #endif

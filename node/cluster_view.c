@@ -6,8 +6,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
+#include "base/clock.h"
+#include "base/folder.h"
+#include "base/ratelog.h"
+#include "frame/pattern.h"
 #include "cluster_window.h"
 #include "glctx.h"
 #include "image/image.h"
@@ -39,6 +42,9 @@ struct cluster_view {
     float far_plane;
     eye_image img[CLUSTER_NODE_MAX_SCREENS][CLUSTER_VIEW_MAX_EYES];
     int rendered;
+    int keep_frames;
+    uint64_t version;    /* of the last rendered frame */
+    ratelog eye_log;     /* eyes moved in front of a screen, screens without a projection */
 };
 
 int cluster_view_eye_count(const cluster_config *cfg, int node)
@@ -63,7 +69,8 @@ const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye)
 }
 
 int cluster_view_compute(const cluster_config *cfg, int screen, int side, const frame_params *f,
-                         int width, int height, float far_plane, renderer_view *out)
+                         int width, int height, float far_plane, renderer_view *out,
+                         float *distance)
 {
     const cluster_screen *s = &cfg->screens[screen];
     const cluster_observer *o = &cfg->observer;
@@ -80,7 +87,8 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     mat4_transform_point(f->navigation, s->bottom_right, corner[1]);
     mat4_transform_point(f->navigation, s->top_left, corner[2]);
     mat4_transform_point(f->navigation, eye_cave, eye);
-    return frame_view_screen(corner[0], corner[1], corner[2], eye, far_plane, width, height, out);
+    return frame_view_screen(corner[0], corner[1], corner[2], eye, far_plane, width, height, out,
+                             distance);
 }
 
 /* Window output: one window (or one per eye) sized for the node's screens in its stereo mode. */
@@ -204,11 +212,12 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->gi = desc->gi;
     v->converge_threshold = desc->converge_threshold;
     v->lattice_desc = desc->lattice_cells;
-    snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : ".");
+    v->keep_frames = desc->keep_frames;
+    snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : CLUSTER_DEFAULT_OUT);
     const cluster_node *n = &v->cfg->nodes[v->node];
-    if (v->output == CLUSTER_OUTPUT_PNG && mkdir(v->out_dir, 0777) != 0 && errno != EEXIST) {
-        snprintf(err, errlen, "cluster node %s: cannot create output folder %s (%s)", n->name, v->out_dir,
-                 strerror(errno));
+    char why[300];
+    if (v->output == CLUSTER_OUTPUT_PNG && folder_create(v->out_dir, why, sizeof why) != 0) {
+        snprintf(err, errlen, "cluster node %s: %s", n->name, why);
         goto fail;
     }
     const char *scene_path = desc->scene ? desc->scene : v->cfg->scene[0] ? v->cfg->scene : "default";
@@ -217,8 +226,20 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->scene_loaded = 1;
     v->far_plane = scene_far_plane(&v->sc);
     if (v->output == CLUSTER_OUTPUT_WINDOW) {
-        if (open_windows(v, err, errlen) != 0)
+        /* Started over ssh or as a service, a node has no DISPLAY: the config names the
+         * display its projectors hang on. */
+        const char *display = getenv("DISPLAY");
+        if ((!display || !*display) && !getenv("WAYLAND_DISPLAY")) {
+            setenv("DISPLAY", n->display, 1);
+            fprintf(stderr, "cavelight-node %s: DISPLAY is not set: using %s (the node's \"display\" in "
+                    "the config)\n", n->name, n->display);
+        }
+        if (open_windows(v, err, errlen) != 0) {
+            size_t used = strlen(err);
+            snprintf(err + used, errlen - used, "; or render without a window: --output headless or "
+                     "png (or the node's \"output\" in the config)");
             goto fail;
+        }
     } else {
         glctx_desc gd = {.backend = GLCTX_EGL};
         v->ctx = glctx_create(&gd, err, errlen);
@@ -271,6 +292,26 @@ void cluster_view_destroy(cluster_view *v)
     free(v);
 }
 
+/* A pose the view had to correct, rate-limited (ratelog.h): it never ends the session. */
+static void report_eye(cluster_view *v, uint64_t version, int screen, int eye, int placed, float distance)
+{
+    uint64_t skipped;
+    if (!ratelog_event(&v->eye_log, clock_now_ms(), &skipped))
+        return;
+    const char *node = v->cfg->nodes[v->node].name, *name = v->cfg->screens[screen].name;
+    if (placed > 0)
+        fprintf(stderr, "cavelight-node %s: frame %llu: the %s eye is %.3f m %s the plane of screen %s: "
+                "rendered from %g m in front (%llu corrected views so far, %llu not logged)\n", node,
+                (unsigned long long)version, cluster_view_eye_name(v->cfg, v->node, eye), fabsf(distance),
+                distance < 0 ? "behind" : "in front of", name, FRAME_VIEW_NEAR_PLANE,
+                (unsigned long long)v->eye_log.count, (unsigned long long)skipped);
+    else
+        fprintf(stderr, "cavelight-node %s: frame %llu: no projection for screen %s (degenerate "
+                "navigation or pose): keeping its last image (%llu so far, %llu not logged)\n", node,
+                (unsigned long long)version, name, (unsigned long long)v->eye_log.count,
+                (unsigned long long)skipped);
+}
+
 int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
                         float timings[WIRE_TIMING_COUNT], char *err, size_t errlen)
 {
@@ -294,13 +335,22 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
     for (int s = 0; s < n->screen_count; s++)
         for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
             eye_image *im = &v->img[s][e];
-            renderer_view view;
-            if (cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f, im->width,
-                                     im->height, v->far_plane, &view) != 0) {
-                snprintf(err, errlen, "cluster node %s: eye lies in the plane of screen %s: no projection",
-                         n->name, v->cfg->screens[n->screens[s].screen].name);
-                return -1;
+            if (f->pattern) { /* on the screen's surface: the same for both eyes */
+                const cluster_screen *sc = &v->cfg->screens[n->screens[s].screen];
+                pattern_desc pd = {.bottom_left = sc->bottom_left, .bottom_right = sc->bottom_right,
+                                   .top_left = sc->top_left, .name = sc->name, .head = f->head,
+                                   .wand = f->wand};
+                pattern_draw(&pd, im->width, im->height, im->rgb);
+                continue;
             }
+            renderer_view view;
+            float distance = 0;
+            int placed = cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f,
+                                              im->width, im->height, v->far_plane, &view, &distance);
+            if (placed != 0)
+                report_eye(v, f->version, n->screens[s].screen, e, placed, distance);
+            if (placed < 0)
+                continue; /* no projection at all: the screen keeps its last image */
             renderer_image out;
             if (renderer_eye_pass(v->r, &view, 0, &out) != 0) {
                 snprintf(err, errlen, "cluster node %s: eye pass failed", n->name);
@@ -313,6 +363,23 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
         }
     timings[WIRE_TIMING_EYES] = (float)eyes;
     v->rendered = 1;
+    v->version = f->version;
+    return 0;
+}
+
+/* Write then rename: a reader never sees half a file. */
+static int write_png_atomic(const char *node, const char *path, const eye_image *im, char *err,
+                            size_t errlen)
+{
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s.%s.tmp", path, node);
+    if (image_write_png(tmp, im->width, im->height, im->rgb, err, errlen) != 0)
+        return -1;
+    if (rename(tmp, path) != 0) {
+        snprintf(err, errlen, "cluster node %s: cannot rename %s to %s (%s)", node, tmp, path,
+                 strerror(errno));
+        return -1;
+    }
     return 0;
 }
 
@@ -325,19 +392,16 @@ int cluster_view_present(cluster_view *v, char *err, size_t errlen)
     const cluster_node *n = &v->cfg->nodes[v->node];
     for (int s = 0; s < n->screen_count; s++)
         for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
-            char path[1200], tmp[1300];
+            char base[1100], path[1200];
             const char *screen = v->cfg->screens[n->screens[s].screen].name;
-            snprintf(path, sizeof path, "%s/%s-%s.png", v->out_dir, screen, cluster_view_eye_name(v->cfg, v->node, e));
-            /* Write then rename: a reader never sees half a file. */
-            snprintf(tmp, sizeof tmp, "%s.%s.tmp", path, n->name);
+            snprintf(base, sizeof base, "%s/%s-%s", v->out_dir, screen, cluster_view_eye_name(v->cfg, v->node, e));
+            snprintf(path, sizeof path, "%s.png", base);
             const eye_image *im = &v->img[s][e];
-            if (image_write_png(tmp, im->width, im->height, im->rgb, err, errlen) != 0)
+            if (write_png_atomic(n->name, path, im, err, errlen) != 0)
                 return -1;
-            if (rename(tmp, path) != 0) {
-                snprintf(err, errlen, "cluster node %s: cannot rename %s to %s (%s)", n->name, tmp, path,
-                         strerror(errno));
+            snprintf(path, sizeof path, "%s-%06llu.png", base, (unsigned long long)v->version);
+            if (v->keep_frames && write_png_atomic(n->name, path, im, err, errlen) != 0)
                 return -1;
-            }
         }
     return 0;
 }

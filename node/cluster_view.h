@@ -5,8 +5,11 @@
  * node, with an off-axis projection from the tracked head: the eyes sit at the head pose
  * times observer.head_to_eye, offset by +-eye_separation/2 along the head's right axis;
  * screens and eyes go from CAVE space to world space through the navigation transform.
+ * While the frame asks for the calibration pattern (frame_params.pattern), every screen
+ * shows it (frame/pattern.h) instead of the scene; the frame pass still runs.
  * cluster_view_present() shows the images of the last rendered frame: PNG files
- * (DIR/SCREEN-EYE.png, replaced atomically), a GLFW window in the node's stereo mode
+ * (DIR/SCREEN-EYE.png, replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png
+ * numbered by the frame's version, so that a replay can be reviewed frame by frame), a GLFW window in the node's stereo mode
  * (the node's screens side by side; stereo as side-by-side, top-bottom, red-cyan
  * anaglyph, quad-buffered when the driver offers it (else side-by-side), or one window
  * per eye), or nothing (headless). The renderer is rebuilt when the LPV resolution key changes. */
@@ -27,7 +30,7 @@ typedef struct cluster_view_desc {
     const cluster_config *config;
     int node;                 /* index into config->nodes */
     cluster_output output;
-    const char *out_dir;      /* PNG output, NULL = "." */
+    const char *out_dir;      /* PNG output, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;        /* NULL = config scene, "" there = "default" */
     int lpv_threads;          /* 0 = all cores */
     int lattice_cells;        /* 0 = renderer default (overridden by the lpv_resolution key) */
@@ -35,6 +38,7 @@ typedef struct cluster_view_desc {
     int lpv_mode;             /* renderer_lpv_mode */
     int gi;                   /* frame_gi: renderer_desc.gi */
     double converge_threshold;/* renderer_desc.converge_threshold */
+    int keep_frames;          /* PNG output: also SCREEN-EYE-NNNNNN.png (frame version) */
 } cluster_view_desc;
 
 enum { CLUSTER_VIEW_MAX_EYES = 2 };
@@ -53,8 +57,11 @@ int cluster_view_eye_count(const cluster_config *cfg, int node);
 const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye);
 
 /* The view of one screen for one eye: side -1 left, 0 centre, +1 right. Pure maths,
- * no GL: the seam test and other tools use it too. Returns 0 or -1 (degenerate). */
+ * no GL: the seam test and other tools use it too. Returns 0, 1 when the eye was nearer the
+ * screen's plane than the near plane or behind it and was moved in front (frame_view_screen();
+ * *distance, if not NULL: where it was), or -1 (degenerate corners or pose). */
 int cluster_view_compute(const cluster_config *cfg, int screen, int side, const frame_params *f,
-                         int width, int height, float far_plane, renderer_view *out);
+                         int width, int height, float far_plane, renderer_view *out,
+                         float *distance);
 
 #endif

@@ -50,6 +50,7 @@ void gi_destroy(gi *g)
 frame_gi gi_active(const gi *g) { return g->active; }
 int gi_reuse(gi *g, const frame_params *p) { return g->m->reuse(g->state, p); }
 uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm) { return g->m->frame(g->state, p, rsm); }
+
 /* Every method's lookup off and its samplers on their own units; then the active one. */
 void gi_eye_bind(gi *g, const gi_eye *eye)
 {
@@ -64,5 +65,6 @@ void gi_eye_bind(gi *g, const gi_eye *eye)
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), 0);
     g->m->eye_bind(g->state, eye);
 }
+
 void gi_stats_get(const gi *g, gi_stats *out) { g->m->stats(g->state, out); }
 void *gi_state(const gi *g) { return g->state; }

@@ -1,6 +1,7 @@
-/* gi_ilpv: the ILPV method (gi_ilpv.h). RSM texels become VPLs (host, in texel order, so
- * the injection is deterministic), are injected with the CPU core, then merged and
- * propagated either by the CPU ILPV core or by GL compute shaders.
+/* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the source every light type feeds
+ * (renderer_rsm_vpls(), in texel order, so the injection is deterministic) are injected
+ * with the CPU core, then merged and propagated either by the CPU ILPV core or by GL
+ * compute shaders.
  *
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
  * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
@@ -22,6 +23,7 @@
 #include "lpv/lpv_geometry.h"
 #include "base/workpool.h"
 #include "base/xalloc.h"
+#include "frame/light_view.h"
 #include "gi_ilpv.h"
 #include "gltools.h"
 #include "lpv/ilpv.h"
@@ -33,7 +35,6 @@
 struct gi_ilpv {
     const gl_functions *gl;
     const scene *scene;
-    int rsm_size;
     renderer_lpv_backend backend;
     int clamp_negative;
     int gl_tiles;            /* GL propagation through shared-memory tiles */
@@ -49,12 +50,11 @@ struct gi_ilpv {
     lpv_converge converge;
     uint64_t checksum;       /* of the last computed result */
     workpool *pool;
-    lpv_vpl *vpls;
+    lpv_vpl *vpls;           /* what the LPV injects: RSM VPLs (flux / pi) and emitters */
     size_t vpl_capacity;
     lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
     size_t emitter_count;
     double emitter_energy;
-    float *rsm_read[3];      /* position, normal, flux of all RSM layers */
     float *upload;           /* 4 floats per cell, one colour at a time */
     GLuint lpv_tex[3];       /* what the shading samples (CPU backend) */
     uint32_t reset_epoch;
@@ -295,16 +295,10 @@ static int init(gi_ilpv *r, const renderer_desc *desc, int software, char *err, 
                         : r->mode == RENDERER_LPV_CLASSIC ? 1.0f
                                                           : auto_indirect_scale(r);
     size_t cells = lattice_cell_count(&r->lattice);
-    size_t texels = (size_t)r->rsm_size * r->rsm_size;
     r->upload = malloc(cells * 4 * sizeof(float));
-    for (int i = 0; i < 3; i++)
-        r->rsm_read[i] = malloc(texels * 4 * sizeof(float));
-    r->vpl_capacity = FRAME_MAX_LIGHTS * texels + r->emitter_count;
-    r->vpls = malloc(r->vpl_capacity * sizeof *r->vpls);
     r->pool = workpool_create(desc->threads);
-    if (!r->upload || !r->rsm_read[0] || !r->rsm_read[1] || !r->rsm_read[2] || !r->vpls ||
-        !r->pool) {
-        snprintf(err, errlen, "renderer: out of memory for RSM readback and VPLs");
+    if (!r->upload || !r->pool) {
+        snprintf(err, errlen, "renderer: out of memory for the LPV upload");
         return -1;
     }
     if (r->backend == RENDERER_LPV_GL)
@@ -347,8 +341,6 @@ static void release(gi_ilpv *r)
     free(r->emitters);
     free(r->vpls);
     free(r->upload);
-    for (int i = 0; i < 3; i++)
-        free(r->rsm_read[i]);
 }
 
 static void textures(const gi_ilpv *r, GLuint out[3])
@@ -359,50 +351,38 @@ static void textures(const gi_ilpv *r, GLuint out[3])
                                                    : r->gl_volume[r->gl_current][c];
 }
 
-/* RSM texels of every rendered light, in layer then texel order, plus the emitters. */
-static size_t collect_vpls(gi_ilpv *r, const gi_rsm *rsm)
+/* The shared VPL source (renderer_rsm_vpls()) as the lattice wants it, Phi / pi (the units
+ * above), then the emitters. NULL when out of memory (the frame injects nothing). */
+static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
 {
-    const gl_functions *gl = r->gl;
-    int size = rsm->size;
-    size_t texels = (size_t)size * size, n = 0;
-    for (int layer = 0; layer < rsm->layers; layer++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, rsm->fbo[layer]);
-        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        for (int b = 0; b < 3; b++) {
-            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
-            gl->ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, r->rsm_read[b]);
+    lpv_vpl *source;
+    size_t n = renderer_rsm_vpls(rsm->maps, &source), need = n + r->emitter_count;
+    if (need > r->vpl_capacity) {
+        lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
+        if (!v) {
+            *count = 0;
+            return NULL;
         }
-        const float *pos = r->rsm_read[0], *nrm = r->rsm_read[1], *flux = r->rsm_read[2];
-        for (size_t i = 0; i < texels; i++) {
-            const float *f = flux + 4 * i;
-            if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
-                continue;
-            lpv_vpl *v = &r->vpls[n++];
-            for (int k = 0; k < 3; k++) {
-                v->position[k] = pos[4 * i + k];
-                v->normal[k] = nrm[4 * i + k];
-                v->flux[k] = f[k] * (float)(1.0 / PI);
-            }
-        }
+        r->vpls = v;
+        r->vpl_capacity = need;
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    for (size_t i = 0; i < n; i++) {
+        r->vpls[i] = source[i];
+        for (int k = 0; k < 3; k++)
+            r->vpls[i].flux[k] = source[i].flux[k] * (float)(1.0 / PI);
+    }
     if (r->emitter_count) /* a scene without emitters has no emitter array */
         memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
-    return n + r->emitter_count;
+    *count = need;
+    return r->vpls;
 }
 
 /* Emitted energy for the incremental merge, from the lights' parameters (paper 3.4). */
 static double emitted_energy(const gi_ilpv *r, const frame_params *p)
 {
     double e = r->emitter_energy;
-    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
-        const frame_light *l = &p->lights[i];
-        if (!l->enabled || !(l->intensity > 0))
-            continue;
-        double outer = fmin(fmax(l->outer_angle, 0.01), 1.45);
-        e += l->intensity * (l->color[0] + l->color[1] + l->color[2]) / 3.0 * 2.0 * PI *
-             (1.0 - cos(outer));
-    }
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
+        e += light_power(&p->lights[i], r->scene);
     return e;
 }
 
@@ -518,10 +498,11 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         r->reset_epoch = p->reset_epoch;
     }
     double t0 = clock_now_ms();
-    size_t count = collect_vpls(r, rsm);
+    size_t count;
+    const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
     ilpv_begin_frame(&r->cpu);
     memset(&r->inject_stats, 0, sizeof r->inject_stats);
-    lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, r->vpls, count, &r->inject_stats);
+    lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, vpls, count, &r->inject_stats);
     double t1 = clock_now_ms();
     double energy = emitted_energy(r, p);
     lpv_propagate_desc pd = {
@@ -636,7 +617,6 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     gi_ilpv *r = xcalloc(1, sizeof *r);
     r->gl = d->gl;
     r->scene = d->scene;
-    r->rsm_size = d->rsm_size;
     if (init(r, d->settings, d->software, err, errlen) != 0) {
         release(r);
         free(r);

@@ -15,7 +15,7 @@
 #ifndef CAVELIGHT_GI_ILPV_H
 #define CAVELIGHT_GI_ILPV_H
 
-#include "gi.h"
+#include "gi_method.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_volume.h"
 

@@ -3,7 +3,7 @@
 #ifndef CAVELIGHT_GI_NONE_H
 #define CAVELIGHT_GI_NONE_H
 
-#include "gi.h"
+#include "gi_method.h"
 
 extern const gi_method gi_none_method;
 

@@ -79,6 +79,7 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first,
     X(PFNGLUNIFORM1IPROC, Uniform1i) \
     X(PFNGLUNIFORM1FPROC, Uniform1f) \
     X(PFNGLUNIFORM2FPROC, Uniform2f) \
+    X(PFNGLUNIFORM2FVPROC, Uniform2fv) \
     X(PFNGLUNIFORM3FPROC, Uniform3f) \
     X(PFNGLUNIFORM3IPROC, Uniform3i) \
     X(PFNGLUNIFORM3FVPROC, Uniform3fv) \

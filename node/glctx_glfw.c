@@ -30,7 +30,7 @@ int glctx_glfw_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen
         const char *why = NULL;
         glfwGetError(&why);
         snprintf(err, errlen, "GLFW: cannot start (%s; set DISPLAY or WAYLAND_DISPLAY to a "
-                 "running display server, or use --gl egl)", why ? why : "no display");
+                 "running display server)", why ? why : "no display");
         return -1;
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -45,8 +45,8 @@ int glctx_glfw_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen
         const char *why = NULL;
         glfwGetError(&why);
         glfwTerminate();
-        snprintf(err, errlen, "GLFW: no OpenGL 4.3 core window (%s; update the GPU driver "
-                 "or use --gl egl)", why ? why : "unknown reason");
+        snprintf(err, errlen, "GLFW: no OpenGL 4.3 core window (%s; update the GPU driver)",
+                 why ? why : "unknown reason");
         return -1;
     }
     glfwMakeContextCurrent(w);

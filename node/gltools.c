@@ -4,14 +4,39 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/textfile.h"
 
+/* CAVELIGHT_SHADERS; else the source tree's shaders/ when it is there; else
+ * PREFIX/share/cavelight/shaders beside an installed PREFIX/bin/cavelight-node, as
+ * scripts/install_nodes.py lays a render host out. */
+static void shader_dir(char *dir, size_t cap)
+{
+    const char *env = getenv("CAVELIGHT_SHADERS");
+    if (env && *env) {
+        snprintf(dir, cap, "%s", env);
+        return;
+    }
+    snprintf(dir, cap, "%s", CAVELIGHT_SHADER_DIR);
+    char exe[992], probe[1100]; /* exe and the suffix fit a 1024-byte dir */
+    snprintf(probe, sizeof probe, "%s/common.glsl", dir);
+    ssize_t n = access(probe, R_OK) == 0 ? -1 : readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return;
+    exe[n] = 0;
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return;
+    *slash = 0;
+    snprintf(dir, cap, "%s/../share/cavelight/shaders", exe);
+}
+
 static char *read_text(const char *name, char *err, size_t errlen)
 {
-    const char *dir = getenv("CAVELIGHT_SHADERS");
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir && *dir ? dir : CAVELIGHT_SHADER_DIR, name);
+    char dir[1024], path[1100];
+    shader_dir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     char why[128];
     char *s = textfile_read(path, NULL, why, sizeof why);
     if (!s)

@@ -1,6 +1,7 @@
 /* gltools: the small GL toolkit every GL module of the node uses, on a gl_functions table.
  *
- * Programs from the shaders/ folder (CAVELIGHT_SHADERS, else the source tree's): each stage
+ * Programs from the shaders/ folder (CAVELIGHT_SHADERS, else the source tree's, else
+ * ../share/cavelight/shaders beside the installed program): each stage
  * is "#version 430 core", the caller's defines, common.glsl, then the file, with a
  * "// @BODY@" line in a compute shader replaced by generated code; a compile or link
  * failure is one line naming the file and the driver's first message. Immutable textures

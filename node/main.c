@@ -1,22 +1,17 @@
 /* cavelight-node: a render node. `--standalone` renders without a master and writes
  * images and a timing report (standalone.h); --cluster runs the master's FRAME/SWAP loop
- * (cluster_node.h). */
-#include <stdio.h>
-
-#include "cluster_node.h"
-#include "standalone.h"
+ * (cluster_node.h). One option table for both (node_cli.h). */
+#include "node_cli.h"
 
 int main(int argc, char **argv)
 {
-    /* Cluster mode has its own options (cluster_node.h). */
-    if (cluster_node_wanted(argc, argv))
-        return cluster_node_main(argc, argv);
-    node_options o;
-    if (standalone_parse(argc, argv, &o) != 0)
-        return 2;
-    if (!o.standalone) {
-        fprintf(stderr, "cavelight-node: no mode given: use --standalone, or --cluster FILE --name NODE\n");
-        return 2;
+    static node_cli cli;
+    switch (node_cli_parse(argc, argv, &cli)) {
+    case CLI_HELP: return 0;
+    case CLI_ERROR: return 2;
+    default: break;
     }
-    return standalone_run(&o);
+    if (cli.mode == NODE_MODE_CLUSTER)
+        return cluster_node_start(cli.config_path, &cli.cluster);
+    return standalone_run(&cli.standalone);
 }

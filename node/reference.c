@@ -6,8 +6,9 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "base/xalloc.h"
 #include "base/vec3.h"
+#include "base/xalloc.h"
+#include "frame/light_view.h"
 #include "reference_internal.h"
 
 static float srgb_to_linear(int c)
@@ -213,7 +214,8 @@ static int all_finite(const float *v, int n)
     return 1;
 }
 
-/* Lights as renderer.c hands them to shade.frag: enabled with intensity > 0, angles clamped. */
+/* Lights as the renderer hands them to shade.frag: lit ones (light_is_lit()), angles clamped
+ * (light_cone()). */
 static int setup_job(reference_job *job, const reference_render_desc *d, char *err, size_t errlen)
 {
     const frame_params *p = d->params;
@@ -223,8 +225,8 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
                  v->height);
         return -1;
     }
-    if (!isfinite(p->absorption) || !all_finite(v->eye_position, 3)) {
-        snprintf(err, errlen, "reference: absorption or eye position is not finite");
+    if (!isfinite(p->absorption)) {
+        snprintf(err, errlen, "reference: absorption is not finite");
         return -1;
     }
     for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
@@ -238,11 +240,18 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
                      "colour, intensity or angle: fix or disable it", i);
             return -1;
         }
-        if (!(l->intensity > 0))
+        if ((unsigned)l->type >= SCENE_LIGHT_TYPES ||
+            (l->type != SCENE_LIGHT_POINT && !(vec3_dot(l->direction, l->direction) > 0))) {
+            snprintf(err, errlen, "reference: light %d has an unknown type or no direction: fix "
+                     "or disable it", i);
+            return -1;
+        }
+        if (!light_is_lit(l))
             continue;
-        reference_spot *s = &job->spots[job->spot_count++];
-        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
-        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
+        reference_light *s = &job->lights[job->light_count++];
+        float outer, inner;
+        light_cone(l, &outer, &inner);
+        s->type = l->type;
         memcpy(s->position, l->position, sizeof s->position);
         memcpy(s->direction, l->direction, sizeof s->direction);
         memcpy(s->axis, l->direction, sizeof s->axis);
@@ -252,6 +261,15 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
             s->radiance[c] = l->color[c] * l->intensity;
         s->cos_outer = cosf(outer);
         s->cos_inner = cosf(inner);
+        s->sample_cos = l->type == SCENE_LIGHT_POINT ? -1.0f : s->cos_outer;
+        if (l->type == SCENE_LIGHT_DIRECTIONAL) {
+            light_view lv;
+            light_directional_view(job->ref->scene, s->axis, &lv);
+            const float origin[3] = {0, 0, 0};
+            s->travel0 = light_directional_travel(job->ref->scene, s->axis, origin);
+            memcpy(s->window, lv.window, sizeof s->window);
+            s->window_area = 4.0f * lv.extent[0] * lv.extent[1];
+        }
     }
     double vp[16];
     for (int c = 0; c < 4; c++)
@@ -269,11 +287,10 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
     float closest = scene_min_light_distance(job->ref->scene);
     job->min_light_distance2 = closest * closest;
     job->exposure = p->exposure > 0 ? p->exposure : 1.0f;
-    memcpy(job->eye, v->eye_position, sizeof job->eye);
     job->width = v->width;
     job->height = v->height;
-    job->samples = d->samples > 0 ? d->samples : 64;
-    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : 8;
+    job->samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES;
+    job->max_bounces = d->max_bounces > 0 ? d->max_bounces : REFERENCE_DEFAULT_BOUNCES;
     job->seed = d->seed;
     return 0;
 }

@@ -28,6 +28,8 @@
 #include "renderer.h"
 #include "scene/scene.h"
 
+enum { REFERENCE_DEFAULT_SAMPLES = 64, REFERENCE_DEFAULT_BOUNCES = 8 };
+
 typedef struct reference reference; /* Embree device + committed scene, built once */
 
 /* The scene must outlive the reference. threads: 0 = all cores. NULL + one line in err. */
@@ -37,8 +39,8 @@ void reference_destroy(reference *ref);
 typedef struct reference_render_desc {
     const frame_params *params; /* lights, absorption, exposure: as the rasterizer gets them */
     const renderer_view *view;  /* view, projection, eye_position, width, height */
-    int samples;                /* paths per pixel, 0 = 64 */
-    int max_bounces;            /* reflections before the visible point, 0 = 8 */
+    int samples;                /* paths per pixel, 0 = REFERENCE_DEFAULT_SAMPLES */
+    int max_bounces;            /* reflections before the visible point, 0 = REFERENCE_DEFAULT_BOUNCES */
     uint64_t seed;
 } reference_render_desc;
 

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "frame/light_view.h"
 #include "image/image.h"
 #include "reference.h"
 #include "reference_cli.h"
@@ -108,7 +109,8 @@ int reference_cli_run(const reference_cli_desc *d)
         rc = 1;
     }
     if (rc == 0) {
-        int samples = d->samples > 0 ? d->samples : 64, bounces = d->bounces > 0 ? d->bounces : 8;
+        int samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES,
+            bounces = d->bounces > 0 ? d->bounces : REFERENCE_DEFAULT_BOUNCES;
         double ms = img.render_ms, rays = (double)img.rays;
         printf("reference: scene %s (%zu triangles), %dx%d, 2 x %d paths per pixel, %d bounces, "
                "%.0f ms, %.2f Mrays/s\n", d->scene_name, d->scene->triangle_count, img.width,
@@ -131,10 +133,16 @@ int reference_cli_run(const reference_cli_desc *d)
         cJSON_AddNumberToObject(report, "e2e_gamma", frame_params_e2e_gamma(d->params->environment));
         cJSON_AddItemToObject(report, "eye_position",
                               cJSON_CreateFloatArray(d->view->eye_position, 3));
-        int spots = 0;
+        int lights = 0;
         for (int i = 0; i < d->params->light_count && i < FRAME_MAX_LIGHTS; i++)
-            spots += d->params->lights[i].enabled && d->params->lights[i].intensity > 0;
-        cJSON_AddNumberToObject(report, "spots", spots);
+            lights += light_is_lit(&d->params->lights[i]);
+        cJSON_AddNumberToObject(report, "lights", lights);
+        double sum = 0;
+        for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
+            sum += img.direct[i] + img.indirect[i];
+        if (!(sum > 0))
+            fprintf(stderr, "cavelight-node: warning: the view receives no light: %s\n",
+                    light_dark_reason(lights > 0 || scene_has_emitter(d->scene)));
         cJSON_AddNumberToObject(report, "render_ms", ms);
         cJSON_AddNumberToObject(report, "rays", rays);
         cJSON_AddNumberToObject(report, "mrays_per_s", ms > 0 ? rays / ms / 1e3 : 0);

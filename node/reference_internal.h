@@ -1,6 +1,6 @@
 /* reference_internal: state shared by reference.c (Embree scene, threads, images),
- * reference_sample.c (one pixel's paths) and reference_light.c (light arriving at a path
- * vertex). Not for other modules. */
+ * reference_ray.c (ray primitives), reference_sample.c (one pixel's paths) and
+ * reference_light.c (light arriving at a path vertex). Not for other modules. */
 #ifndef CAVELIGHT_REFERENCE_INTERNAL_H
 #define CAVELIGHT_REFERENCE_INTERNAL_H
 
@@ -28,21 +28,27 @@ struct reference {
     float *emitter_area_pdf;  /* per emitter: probability of picking it / its area */
 };
 
-typedef struct reference_spot {
+/* A light as the paths see it (light_view.h has the rules shared with the rasterizer). */
+typedef struct reference_light {
+    scene_light_type type;
     float position[3], direction[3], radiance[3];
-    float axis[3];            /* direction normalized: the cone the spot strategy samples */
-    float cos_outer, cos_inner;
-} reference_spot;
+    float axis[3];            /* direction normalized */
+    float cos_outer, cos_inner; /* spot */
+    float sample_cos;         /* the light strategy samples directions with cos to the axis
+                                 above this: a spot's outer cone, a point light's sphere (-1) */
+    float travel0;            /* directional: light_directional_travel() at the origin */
+    float window[3][3];       /* directional: where its light enters the scene, corner and edges */
+    float window_area;
+} reference_light;
 
 /* Per-render constants and outputs, read by every row. */
 typedef struct reference_job {
     const reference *ref;
-    int spot_count;
-    reference_spot spots[FRAME_MAX_LIGHTS];
+    int light_count;
+    reference_light lights[FRAME_MAX_LIGHTS];
     float absorption, exposure;
     float min_light_distance2;      /* falloff bound, squared: scene_min_light_distance() */
     double inv_view_projection[16]; /* column-major, clip -> world */
-    float eye[3];
     int width, height, samples, max_bounces;
     uint64_t seed;
     float *direct, *indirect1, *indirect;
@@ -50,7 +56,7 @@ typedef struct reference_job {
     uint64_t *row_rays;             /* per row, summed after the run (no atomics) */
 } reference_job;
 
-/* Small helpers shared by reference_sample.c and reference_light.c. */
+/* Small helpers shared by the reference's modules. */
 static const float PI_F = 3.14159265358979f;
 
 /* PCG32 (O'Neill), seeded per pixel through splitmix64. */
@@ -92,38 +98,39 @@ static inline void basis(const float n[3], float t[3], float bt[3])
     bt[2] = -n[1];
 }
 
+/* reference_ray.c: the ray primitives */
+/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
+void reference_ray_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
+                       hit *h);
+/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
+void reference_ray_offset(const hit *h, float o[3]);
+/* Closest hit along o + t d, t < tfar; 1 when something was hit. Counts the ray. */
+int reference_ray_trace(const reference_job *job, const float o[3], const float d[3],
+                        float tfar, struct RTCRayHit *rh, uint64_t *rays);
+/* 1 when nothing lies between o and o + d * dist (d unit). Counts the ray. */
+int reference_ray_visible(const reference_job *job, const float o[3], const float d[3],
+                          float dist, uint64_t *rays);
+
 /* reference_sample.c */
 /* workpool_fn: renders row `row` of job (a reference_job *). */
 void reference_sample_row(void *job, int row);
-/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
-void reference_sample_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
-                          hit *h);
-/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
-void reference_sample_offset(const hit *h, float o[3]);
-/* Closest hit along o + t d, t < tfar; 1 when something was hit. Counts the ray. */
-int reference_sample_trace(const reference_job *job, const float o[3], const float d[3],
-                           float tfar, struct RTCRayHit *rh, uint64_t *rays);
-/* 1 when nothing lies between o and o + d * dist (d unit). Counts the ray. */
-int reference_sample_visible(const reference_job *job, const float o[3], const float d[3],
-                             float dist, uint64_t *rays);
-
 /* reference_light.c: light arriving at a vertex (docs/reference.md, "Sampling"). */
-/* Spot i at h: irradiance on the shading normal and the unit direction to the light; 0
+/* Light i at h: irradiance on the shading normal and the unit direction to the light; 0
  * when it does not reach h. As shade.frag, with an exact shadow ray (shadow = 1) instead
  * of PCF; shadow = 0 when h is known to see the light. */
-int reference_light_spot(const reference_job *job, int i, const hit *h, int shadow, float e[3],
-                         float l[3], uint64_t *rays);
-/* All spots at h; cosine_pdf > 0 weights against the spot strategy (see the .c). */
-void reference_light_spots(const reference_job *job, const hit *h, float cosine_pdf, float e[3],
-                           uint64_t *rays);
+int reference_light_one(const reference_job *job, int i, const hit *h, int shadow, float e[3],
+                        float l[3], uint64_t *rays);
+/* All lights at h; cosine_pdf > 0 weights against the light strategy (see the .c). */
+void reference_light_all(const reference_job *job, const hit *h, float cosine_pdf, float e[3],
+                         uint64_t *rays);
 /* One-sample irradiance at h from the emitters' front sides; mis: a cosine ray leaves h. */
 void reference_light_emitters(const reference_job *job, const hit *h, int mis, rng *g,
                               float e[3], uint64_t *rays);
 /* MIS weight of a cosine ray from `from` (direction d, length t) that hit triangle tri. */
 float reference_light_emitter_hit_weight(const reference *ref, const hit *from, const float d[3],
                                          float t, uint32_t tri);
-/* Spot strategy for spot i -> y -> x0; adds x0's albedo / pi times the radiance to out. */
-void reference_light_spot_connect(const reference_job *job, int i, const hit *x0, rng *g,
-                                  float out[3], uint64_t *rays);
+/* Light strategy for light i -> y -> x0; adds x0's albedo / pi times the radiance to out. */
+void reference_light_connect(const reference_job *job, int i, const hit *x0, rng *g,
+                             float out[3], uint64_t *rays);
 
 #endif

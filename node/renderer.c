@@ -8,16 +8,19 @@
 #include "base/clock.h"
 #include "base/xalloc.h"
 #include "base/mat4.h"
-#include "frame/offaxis.h"
+#include "base/ratelog.h"
+#include "frame/light_view.h"
 #include "gi.h"
 #include "gi_ilpv.h"
 #include "gltools.h"
 #include "renderer.h"
 #include "renderer_hud.h"
+#include "renderer_rsm.h"
+#include "scene_gl.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
 
-enum { RENDERER_QUERY_RING = 4 };
+enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
 
 /* GL timer queries read a few frames later, never waited for (paper 4.6). */
 typedef struct renderer_queries {
@@ -28,29 +31,16 @@ typedef struct renderer_queries {
     double ms[4];            /* latest results that arrived */
 } renderer_queries;
 
-typedef struct renderer_draw_range {
-    uint32_t material;
-    GLint first;
-    GLsizei count;
-} renderer_draw_range;
-
 struct renderer {
     const gl_functions *gl;
     const scene *scene;
-    GLuint vao, vbo, empty_vao;
-    renderer_draw_range *ranges;
-    int range_count;
-    GLuint *textures;
+    scene_gl *mesh;          /* the scene's triangles and textures */
+    GLuint empty_vao;        /* the full-screen passes' */
+    int emits;               /* some surface of the scene emits light */
 
-    GLuint prog_gbuffer, prog_rsm, prog_shade, prog_final;
+    GLuint prog_gbuffer, prog_shade, prog_final;
 
-    int rsm_size;
-    GLuint rsm_fbo[FRAME_MAX_LIGHTS];
-    GLuint rsm_position, rsm_normal, rsm_flux, rsm_depth;
-    float light_view_projection[FRAME_MAX_LIGHTS][16];
-    float rsm_tan_half_fov[FRAME_MAX_LIGHTS];
-    int rsm_lights;          /* lights rendered in the last frame pass */
-    int rsm_layer_of[FRAME_MAX_LIGHTS];
+    renderer_rsm *rsm;       /* the lights' shadow maps and the VPL source */
 
     int eye_w, eye_h;
     GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
@@ -66,6 +56,12 @@ struct renderer {
     renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
                                 passes render */
+    /* Views that show no light: a query over the final pass, whose shader leaves black
+     * pixels out; one warning when the k-th view of a frame turns black. */
+    GLuint lit_query;
+    int eye_index;           /* eye passes since the frame pass */
+    int view_dark[RENDERER_DARK_VIEWS];
+    ratelog dark_log;
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
     char error[256];         /* why the last eye pass failed */
@@ -79,34 +75,6 @@ static GLint loc(renderer *r, GLuint prog, const char *name)
 
 static const GLenum draw_buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                        GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-
-static int create_rsm(renderer *r, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    int s = r->rsm_size;
-    r->rsm_position = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_normal = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_flux = gltools_texture_array(r->gl, GL_RGBA32F, s, FRAME_MAX_LIGHTS);
-    r->rsm_depth = gltools_texture_array(r->gl, GL_DEPTH_COMPONENT32F, s, FRAME_MAX_LIGHTS);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    gl->GenFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
-    for (int i = 0; i < FRAME_MAX_LIGHTS; i++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[i]);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, r->rsm_position, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, r->rsm_normal, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, r->rsm_flux, 0, i);
-        gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, r->rsm_depth, 0, i);
-        gl->DrawBuffers(3, draw_buffers);
-        if (gltools_fbo_complete(r->gl, "RSM", err, errlen))
-            return -1;
-    }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    return 0;
-}
 
 static void free_eye_targets(renderer *r)
 {
@@ -186,104 +154,6 @@ static int eye_targets(renderer *r, int w, int h)
     return 0;
 }
 
-/* Triangles grouped by material (stable), one draw per group. */
-static int upload_scene(renderer *r, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    const scene *s = r->scene;
-    size_t nt = s->triangle_count;
-    float *v = malloc(nt * 3 * 8 * sizeof(float));
-    size_t *order = malloc(nt * sizeof *order);
-    size_t *start = calloc(s->material_count + 1, sizeof *start);
-    r->ranges = calloc(s->material_count, sizeof *r->ranges);
-    if (!v || !order || !start || !r->ranges) {
-        free(v); free(order); free(start);
-        snprintf(err, errlen, "renderer: out of memory for %zu triangles", nt);
-        return -1;
-    }
-    for (size_t t = 0; t < nt; t++)
-        start[s->triangle_material[t] + 1]++;
-    for (size_t m = 0; m < s->material_count; m++)
-        start[m + 1] += start[m];
-    for (size_t m = 0; m < s->material_count; m++)
-        if (start[m + 1] > start[m])
-            r->ranges[r->range_count++] = (renderer_draw_range){
-                (uint32_t)m, (GLint)(3 * start[m]), (GLsizei)(3 * (start[m + 1] - start[m]))};
-    for (size_t t = 0; t < nt; t++)
-        order[start[s->triangle_material[t]]++] = t;
-    for (size_t i = 0; i < nt; i++)
-        for (int k = 0; k < 3; k++) {
-            float *d = v + (i * 3 + k) * 8;
-            size_t t = order[i];
-            memcpy(d, s->positions + 9 * t + 3 * k, 3 * sizeof(float));
-            memcpy(d + 3, s->normals + 9 * t + 3 * k, 3 * sizeof(float));
-            memcpy(d + 6, s->uvs + 6 * t + 2 * k, 2 * sizeof(float));
-        }
-    gl->GenVertexArrays(1, &r->vao);
-    gl->GenVertexArrays(1, &r->empty_vao);
-    gl->BindVertexArray(r->vao);
-    gl->GenBuffers(1, &r->vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nt * 3 * 8 * sizeof(float)), v, GL_STATIC_DRAW);
-    for (GLuint a = 0; a < 3; a++) {
-        gl->EnableVertexAttribArray(a);
-        gl->VertexAttribPointer(a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float),
-                                (const void *)(uintptr_t)(a * 3 * sizeof(float)));
-    }
-    gl->BindVertexArray(0);
-    free(v); free(order); free(start);
-
-    r->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *r->textures);
-    if (!r->textures)
-        return snprintf(err, errlen, "renderer: out of memory"), -1;
-    for (size_t i = 0; i < s->texture_count; i++) {
-        const scene_texture *t = &s->textures[i];
-        int levels = 1;
-        while ((t->width >> levels) > 0 || (t->height >> levels) > 0)
-            levels++;
-        gl->GenTextures(1, &r->textures[i]);
-        gl->BindTexture(GL_TEXTURE_2D, r->textures[i]);
-        gl->TexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, t->width, t->height);
-        gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA,
-                          GL_UNSIGNED_BYTE, t->rgba);
-        gl->GenerateMipmap(GL_TEXTURE_2D);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    }
-    return 0;
-}
-
-/* Material uniforms shared by the G-buffer and RSM programs (same names). */
-static void bind_material(renderer *r, GLuint prog, uint32_t mi)
-{
-    const gl_functions *gl = r->gl;
-    const scene_material *m = &r->scene->materials[mi];
-    gl->Uniform4fv(loc(r, prog, "u_base_color"), 1, m->base_color);
-    int tex = m->base_color_texture >= 0 && (size_t)m->base_color_texture < r->scene->texture_count;
-    gl->Uniform1i(loc(r, prog, "u_has_texture"), tex);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, tex ? r->textures[m->base_color_texture] : 0);
-    gl->Uniform1i(loc(r, prog, "u_base_texture"), 0);
-    GLint e = loc(r, prog, "u_emissive");
-    if (e >= 0)
-        gl->Uniform3fv(e, 1, m->emissive);
-    GLint ro = loc(r, prog, "u_roughness");
-    if (ro >= 0)
-        gl->Uniform1f(ro, m->roughness);
-}
-
-static void draw_scene(renderer *r, GLuint prog)
-{
-    const gl_functions *gl = r->gl;
-    gl->BindVertexArray(r->vao);
-    for (int i = 0; i < r->range_count; i++) {
-        bind_material(r, prog, r->ranges[i].material);
-        gl->DrawArrays(GL_TRIANGLES, r->ranges[i].first, r->ranges[i].count);
-    }
-    gl->BindVertexArray(0);
-}
-
 /* ---- timer queries ---------------------------------------------------------------- */
 
 static void queries_init(renderer *r, renderer_queries *q)
@@ -354,19 +224,19 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     r->gl = desc->gl;
     r->scene = desc->scene;
     frame_params_default(&r->frame);
-    r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : 256;
+    int rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     r->desc = *desc;
     r->gi_desc = (gi_desc){
-        .gl = r->gl, .scene = r->scene, .settings = &r->desc, .rsm_size = r->rsm_size,
+        .gl = r->gl, .scene = r->scene, .settings = &r->desc, .rsm_size = rsm_size,
         .software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                     strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast")),
     };
     if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_rsm = gltools_program(r->gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
-        upload_scene(r, err, errlen) || create_rsm(r, err, errlen) ||
+        !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
+        !(r->rsm = renderer_rsm_create(r->gl, r->scene, rsm_size, err, errlen)) ||
         !(r->gi = gi_create(desc->gi, &r->gi_desc, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
@@ -374,6 +244,9 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     }
     queries_init(r, &r->frame_queries);
     queries_init(r, &r->eye_queries);
+    r->gl->GenVertexArrays(1, &r->empty_vao);
+    r->gl->GenQueries(1, &r->lit_query);
+    r->emits = scene_has_emitter(r->scene);
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
         snprintf(err, errlen, "renderer: GL error 0x%x while creating resources", (unsigned)e);
@@ -391,93 +264,26 @@ void renderer_destroy(renderer *r)
     gi_destroy(r->gi);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
-    GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
-    for (int i = 0; i < 4; i++)
+    GLuint progs[] = {r->prog_gbuffer, r->prog_shade, r->prog_final};
+    for (int i = 0; i < 3; i++)
         if (progs[i])
             gl->DeleteProgram(progs[i]);
-    GLuint tex[] = {r->rsm_position, r->rsm_normal, r->rsm_flux, r->rsm_depth};
-    for (int i = 0; i < 4; i++)
-        if (tex[i])
-            gl->DeleteTextures(1, &tex[i]);
-    if (r->rsm_fbo[0])
-        gl->DeleteFramebuffers(FRAME_MAX_LIGHTS, r->rsm_fbo);
-    if (r->textures && r->scene->texture_count)
-        gl->DeleteTextures((GLsizei)r->scene->texture_count, r->textures);
-    if (r->vbo)
-        gl->DeleteBuffers(1, &r->vbo);
-    if (r->vao)
-        gl->DeleteVertexArrays(1, &r->vao);
+    renderer_rsm_destroy(r->rsm);
+    scene_gl_destroy(r->mesh);
     if (r->empty_vao)
         gl->DeleteVertexArrays(1, &r->empty_vao);
+    if (r->lit_query)
+        gl->DeleteQueries(1, &r->lit_query);
     for (int i = 0; i < RENDERER_QUERY_RING; i++) {
         if (r->frame_queries.id[i][0])
             gl->DeleteQueries(4, r->frame_queries.id[i]);
         if (r->eye_queries.id[i][0])
             gl->DeleteQueries(4, r->eye_queries.id[i]);
     }
-    free(r->textures);
-    free(r->ranges);
     free(r);
 }
 
 /* ---- frame pass ------------------------------------------------------------------- */
-
-/* The shadow map's near plane follows the scene's size (as the falloff bound does,
- * scene_min_light_distance()), so that a 4 cm model and a 4 km site render alike
- * (docs/stability.md): a fixed 5 cm left a 4 cm model's RSM empty. D / 128 gives the 6.4 m
- * default room the former value. The shadow test's offset is in texels (shade.frag). */
-static void render_rsms(renderer *r, const frame_params *p)
-{
-    const gl_functions *gl = r->gl;
-    GLuint prog = r->prog_rsm;
-    float diagonal = scene_diagonal(r->scene);
-    r->rsm_lights = 0;
-    gl->UseProgram(prog);
-    gl->Viewport(0, 0, r->rsm_size, r->rsm_size);
-    gl->Enable(GL_DEPTH_TEST);
-    gl->DepthFunc(GL_LESS);
-    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++) {
-        const frame_light *l = &p->lights[i];
-        if (!l->enabled || !(l->intensity > 0))
-            continue;
-        int layer = r->rsm_lights++;
-        r->rsm_layer_of[layer] = i;
-        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
-        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
-        float target[3], view[16], proj[16];
-        for (int a = 0; a < 3; a++)
-            target[a] = l->position[a] + l->direction[a];
-        float dist = 0;
-        for (int a = 0; a < 3; a++) {
-            float c = 0.5f * (r->scene->bounds_min[a] + r->scene->bounds_max[a]) - l->position[a];
-            dist += c * c;
-        }
-        float fp = diagonal + sqrtf(dist) + diagonal / 6.4f;
-        offaxis_look_at(l->position, target, 2.0f * outer, 1.0f, diagonal / 128.0f, fp, view,
-                        proj);
-        mat4_mul(proj, view, r->light_view_projection[layer]);
-        r->rsm_tan_half_fov[layer] = tanf(outer);
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->rsm_fbo[layer]);
-        const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
-        for (int b = 0; b < 3; b++)
-            gl->ClearBufferfv(GL_COLOR, b, zero);
-        gl->ClearBufferfv(GL_DEPTH, 0, &one);
-        gl->UniformMatrix4fv(loc(r, prog, "u_view_projection"), 1, GL_FALSE,
-                             r->light_view_projection[layer]);
-        gl->Uniform3fv(loc(r, prog, "u_light_position"), 1, l->position);
-        gl->Uniform3fv(loc(r, prog, "u_light_direction"), 1, l->direction);
-        float radiance[3] = {l->color[0] * l->intensity, l->color[1] * l->intensity,
-                             l->color[2] * l->intensity};
-        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), 1, radiance);
-        gl->Uniform1f(loc(r, prog, "u_cos_outer"), cosf(outer));
-        gl->Uniform1f(loc(r, prog, "u_cos_inner"), cosf(inner));
-        gl->Uniform1f(loc(r, prog, "u_tan_half_fov"), r->rsm_tan_half_fov[layer]);
-        gl->Uniform1f(loc(r, prog, "u_size"), (float)r->rsm_size);
-        gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
-        draw_scene(r, prog);
-    }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-}
 
 /* A frame that asks for another GI method gets a fresh one: every node switches in the
  * same frame and starts it alike, without history. One that cannot be built (memory)
@@ -505,6 +311,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
      * per frame; the eye passes render this copy. */
     r->frame = *params;
     frame_params_sanitize(&r->frame);
+    r->eye_index = 0;
     const frame_params *p = &r->frame;
     switch_gi(r, p->gi);
     if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
@@ -514,9 +321,10 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     }
     int slot = queries_begin_frame(r, &r->frame_queries, 1);
     query_begin(r, &r->frame_queries, slot, Q_RSM);
-    render_rsms(r, p);
+    renderer_rsm_render(r->rsm, r->mesh, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    gi_rsm rsm = {.size = r->rsm_size, .layers = r->rsm_lights, .fbo = r->rsm_fbo};
+    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
+    rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
     r->checksum = gi_frame(r->gi, p, &rsm);
     gi_stats gs;
     gi_stats_get(r->gi, &gs);
@@ -544,6 +352,49 @@ static void read_rgb_float(renderer *r, GLenum attachment, float *out)
             out[y * row + i] = out[(size_t)(h - 1 - y) * row + i];
             out[(size_t)(h - 1 - y) * row + i] = t;
         }
+}
+
+/* Where the eye is, for the sides and the specular: its position (w 1), or for an
+ * orthographic projection (no perspective divide: the last row is 0 0 0 1) the direction
+ * towards it, the view's +z axis in the world (w 0). */
+static void eye_towards(const renderer_view *v, float eye[4])
+{
+    if (v->projection[3] == 0 && v->projection[7] == 0 && v->projection[11] == 0) {
+        for (int a = 0; a < 3; a++)
+            eye[a] = v->view[4 * a + 2];
+        eye[3] = 0;
+    } else {
+        memcpy(eye, v->eye_position, 3 * sizeof(float));
+        eye[3] = 1;
+    }
+}
+
+/* One line when the k-th view of a frame turns black (it showed light before, or it is the
+ * first), whatever the cause; not again while it stays black, and rate limited (a view
+ * that flickers between black and lit). */
+static void warn_if_dark(renderer *r, int lit)
+{
+    int k = r->eye_index < RENDERER_DARK_VIEWS ? r->eye_index : RENDERER_DARK_VIEWS - 1;
+    r->eye_index++;
+    if (lit) {
+        r->view_dark[k] = 0;
+        return;
+    }
+    if (r->view_dark[k])
+        return;
+    r->view_dark[k] = 1;
+    uint64_t skipped;
+    if (!ratelog_event(&r->dark_log, clock_now_ms(), &skipped))
+        return;
+    const frame_params *p = &r->frame;
+    int lights = 0;
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
+        lights += light_is_lit(&p->lights[i]) &&
+                  (p->lights[i].color[0] > 0 || p->lights[i].color[1] > 0 || p->lights[i].color[2] > 0);
+    fprintf(stderr, "cavelight-node: warning: frame %llu, view %d receives no light: %s%s\n",
+            (unsigned long long)p->version, k,
+            light_dark_reason(lights || r->emits),
+            skipped ? " (more such lines left out)" : "");
 }
 
 int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
@@ -576,8 +427,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->ClearBufferfv(GL_DEPTH, 0, &one);
     gl->UseProgram(r->prog_gbuffer);
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
-    gl->Uniform3fv(loc(r, r->prog_gbuffer, "u_eye"), 1, view->eye_position);
-    draw_scene(r, r->prog_gbuffer);
+    float eye[4];
+    eye_towards(view, eye);
+    gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
+    scene_gl_draw(r->mesh, r->prog_gbuffer);
     gl->Disable(GL_DEPTH_TEST);
     query_end(r, &r->eye_queries, slot, Q_GBUFFER);
 
@@ -593,42 +446,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->BindTexture(GL_TEXTURE_2D, gtex[i]);
         gl->Uniform1i(loc(r, prog, gname[i]), i);
     }
-    gl->ActiveTexture(GL_TEXTURE4);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_depth);
-    gl->Uniform1i(loc(r, prog, "u_shadow"), 4);
-    gl->ActiveTexture(GL_TEXTURE8);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, r->rsm_normal);
-    gl->Uniform1i(loc(r, prog, "u_rsm_normal"), 8);
+    renderer_rsm_bind_shading(r->rsm, prog, p, 4, 8);
     gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5});
-    float lpos[FRAME_MAX_LIGHTS][3], ldir[FRAME_MAX_LIGHTS][3], lrad[FRAME_MAX_LIGHTS][3];
-    float cos_outer[FRAME_MAX_LIGHTS], cos_inner[FRAME_MAX_LIGHTS];
-    for (int k = 0; k < r->rsm_lights; k++) {
-        const frame_light *l = &p->lights[r->rsm_layer_of[k]];
-        float outer = fminf(fmaxf(l->outer_angle, 0.01f), 1.45f);
-        float inner = fminf(fmaxf(l->inner_angle, 0.0f), outer);
-        memcpy(lpos[k], l->position, sizeof lpos[k]);
-        memcpy(ldir[k], l->direction, sizeof ldir[k]);
-        for (int c = 0; c < 3; c++)
-            lrad[k][c] = l->color[c] * l->intensity;
-        cos_outer[k] = cosf(outer);
-        cos_inner[k] = cosf(inner);
-    }
-    int nl = r->rsm_lights;
-    gl->Uniform1i(loc(r, prog, "u_light_count"), nl);
-    if (nl > 0) {
-        gl->Uniform3fv(loc(r, prog, "u_light_position"), nl, lpos[0]);
-        gl->Uniform3fv(loc(r, prog, "u_light_direction"), nl, ldir[0]);
-        gl->Uniform3fv(loc(r, prog, "u_light_radiance"), nl, lrad[0]);
-        gl->Uniform1fv(loc(r, prog, "u_cos_outer"), nl, cos_outer);
-        gl->Uniform1fv(loc(r, prog, "u_cos_inner"), nl, cos_inner);
-        gl->UniformMatrix4fv(loc(r, prog, "u_light_view_projection"), nl, GL_FALSE,
-                             r->light_view_projection[0]);
-        gl->Uniform1fv(loc(r, prog, "u_light_tan_half_fov"), nl, r->rsm_tan_half_fov);
-    }
-    gl->Uniform1f(loc(r, prog, "u_shadow_texel"), 1.0f / (float)r->rsm_size);
-    gl->Uniform1f(loc(r, prog, "u_min_light_distance"), scene_min_light_distance(r->scene));
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
-    gl->Uniform3fv(loc(r, prog, "u_eye"), 1, view->eye_position);
+    gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);
     gl->BindVertexArray(r->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
@@ -644,7 +465,11 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
     float encoding = frame_params_e2e_gamma(p->environment) / display;
     gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"), encoding);
+    /* final.frag leaves black pixels out; any sample written means the view shows light. */
+    gl->ClearBufferfv(GL_COLOR, 0, zero);
+    gl->BeginQuery(GL_ANY_SAMPLES_PASSED, r->lit_query);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
     gi_stats gs;
@@ -658,6 +483,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             memcpy(r->rgb + ((size_t)y * w + x) * 3, r->rgba + ((size_t)(h - 1 - y) * w + x) * 4, 3);
+    GLint any = 0;
+    gl->GetQueryObjectiv(r->lit_query, GL_QUERY_RESULT, &any); /* ready: ReadPixels waited */
+    out->lit = any != 0;
+    warn_if_dark(r, out->lit);
     out->width = w;
     out->height = h;
     out->rgb = r->rgb;
@@ -713,6 +542,7 @@ static gi_ilpv *active_ilpv(const renderer *r)
     return gi_active(r->gi) == FRAME_GI_ILPV ? gi_state(r->gi) : NULL;
 }
 
+renderer_rsm *renderer_get_rsm(renderer *r) { return r->rsm; }
 frame_gi renderer_get_gi(const renderer *r) { return gi_active(r->gi); }
 
 renderer_lpv_backend renderer_get_lpv_backend(const renderer *r)

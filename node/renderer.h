@@ -2,7 +2,8 @@
  *
  *   renderer_frame_pass()  once per frame, view independent: frame_params_sanitize(), the
  *                          GI method the frame asks for (gi.h; a switch builds it fresh),
- *                          one reflective shadow map per spotlight, then the method's frame
+ *                          the reflective shadow maps of every light view (renderer_rsm.h:
+ *                          spots one, point lights six, directional one), then the method's frame
  *                          (ILPV: VPLs -> injection -> merge and propagation). Returns the
  *                          method's checksum, which the master compares across nodes. When
  *                          the method can reuse last frame's result (ILPV: unchanged inputs,
@@ -33,6 +34,8 @@ typedef frame_view renderer_view;
 typedef struct renderer_image {
     int width, height;
     uint8_t *rgb;          /* width*height*3, top row first; owned by the renderer */
+    int lit;               /* some pixel shows light (before the HUD); a view that turns
+                              black is also reported on stderr, once */
     const float *final;    /* linear RGB floats, or NULL unless requested */
     const float *direct;
     const float *indirect;
@@ -59,6 +62,9 @@ const char *renderer_last_error(const renderer *r);
 /* Copies the last eye pass's final image into the default framebuffer (a window),
  * scaled to width x height; for the GLFW backend before glctx_swap(). */
 void renderer_present(renderer *r, int width, int height);
+/* The last frame pass's shadow maps and the VPL source every GI method shares
+ * (renderer_rsm.h); the renderer owns them. */
+struct renderer_rsm *renderer_get_rsm(renderer *r);
 /* The active GI method (renderer_desc.gi at first, then the frames' gi). */
 frame_gi renderer_get_gi(const renderer *r);
 /* While ILPV is the active method (else AUTO, NULL, NULL, 0, the desc's mode, zeros with an

@@ -24,11 +24,13 @@ typedef enum renderer_lpv_mode {
     RENDERER_LPV_CLASSIC,         /* classic LPV (lpv_classic.h): sum of this frame's steps */
 } renderer_lpv_mode;
 
+enum { RENDERER_DEFAULT_RSM_SIZE = 256 };
+
 typedef struct renderer_desc {
     const gl_functions *gl; /* the current context's table (glctx_gl()) */
     const scene *scene;
     renderer_lpv_backend lpv_backend;
-    int rsm_size;        /* 0 = 256 */
+    int rsm_size;        /* 0 = RENDERER_DEFAULT_RSM_SIZE */
     int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
     long lattice_cell_budget; /* > 0: instead, as many cells in total, spent on the scene's
                                  shape (a long corridor gets finer cells than a cube would) */

@@ -321,6 +321,48 @@ static void draw_cone(renderer_hud *r, const float base[16], const float apex[3]
 
 static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 
+/* Light 0 at its real pose, in world space, RENDERER_HUD_LIGHT_MARKER long: a spot's cone
+ * (opened by angle), a point light's star of three bars (light goes every way), a
+ * directional light's arrow along its direction (where it comes from does not matter). */
+static void draw_light_marker(renderer_hud *r, const hud *h, float angle, const float color[3])
+{
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const float len = RENDERER_HUD_LIGHT_MARKER, thick = 0.12f * RENDERER_HUD_LIGHT_MARKER;
+    const float *p = h->light_position;
+    float axis[3], local[16];
+    memcpy(axis, h->light_direction, sizeof axis);
+    vec3_normalize(axis);
+    if (h->light_type == SCENE_LIGHT_POINT) {
+        for (int a = 0; a < 3; a++) {
+            float c[3][3] = {{thick, 0, 0}, {0, thick, 0}, {0, 0, thick}};
+            c[a][a] = len;
+            columns(c[0], c[1], c[2], p, local);
+            draw(r, RENDERER_HUD_BOX, local, color);
+        }
+    } else if (h->light_type == SCENE_LIGHT_DIRECTIONAL) {
+        float u[3], v[3], helper[3] = {1, 0, 0}, mid[3], apex[3];
+        if (fabsf(axis[0]) > 0.9f)
+            helper[0] = 0, helper[1] = 1;
+        vec3_cross(axis, helper, u);
+        vec3_normalize(u);
+        vec3_cross(axis, u, v);
+        float x[3], y[3], z[3];
+        for (int k = 0; k < 3; k++) {
+            x[k] = u[k] * thick;
+            y[k] = v[k] * thick;
+            z[k] = axis[k] * 0.7f * len;
+            mid[k] = p[k] + axis[k] * 0.35f * len;
+            apex[k] = p[k] + axis[k] * len;
+        }
+        columns(x, y, z, mid, local);
+        draw(r, RENDERER_HUD_BOX, local, color);
+        const float back[3] = {-axis[0], -axis[1], -axis[2]};
+        draw_cone(r, identity, apex, back, 0.4f, 0.3f * len, color);
+    } else {
+        draw_cone(r, identity, p, axis, angle, len, color);
+    }
+}
+
 void renderer_hud_draw(renderer_hud *r, const frame_params *p, int cells,
                        const float view_projection[16], const float eye[3], float encoding_gamma)
 {
@@ -346,7 +388,8 @@ void renderer_hud_draw(renderer_hud *r, const frame_params *p, int cells,
     draw_cone(r, h.wand_world, (const float[3]){cx, cy + 0.02f, z}, (const float[3]){0, -1, 0},
               atanf(0.011f / 0.016f), 0.016f, ind[HUD_SHAPE_ARROW].color);
     /* Cone (lighting): opened by the spot's angle, shortened so that it fits its slot. */
-    float angle = clampf(h.has_spot ? h.spot_angle : 0.5f, 0.05f, 1.45f);
+    int spot = h.has_light && h.light_type == SCENE_LIGHT_SPOT;
+    float angle = clampf(spot ? h.light_angle : 0.5f, 0.05f, 1.45f);
     float len = fminf(0.036f, 0.02f / tanf(angle));
     cy = INDICATOR_Y[HUD_SHAPE_CONE];
     draw_cone(r, h.wand_world, (const float[3]){cx, cy + 0.5f * len, z}, (const float[3]){0, -1, 0},
@@ -356,15 +399,8 @@ void renderer_hud_draw(renderer_hud *r, const frame_params *p, int cells,
     draw_local(r, &h, RENDERER_HUD_TORUS, (const float[3]){s, 0, 0}, (const float[3]){0, s, 0},
                (const float[3]){0, 0, s}, (const float[3]){cx, INDICATOR_Y[HUD_SHAPE_TORUS], z},
                ind[HUD_SHAPE_TORUS].color);
-    /* The spot's own cone at its real pose, in world space. */
-    if (h.has_spot) {
-        static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-        float axis[3];
-        memcpy(axis, h.spot_direction, sizeof axis);
-        vec3_normalize(axis);
-        draw_cone(r, identity, h.spot_position, axis, angle, RENDERER_HUD_SPOT_CONE,
-                  ind[HUD_SHAPE_CONE].color);
-    }
+    if (h.has_light)
+        draw_light_marker(r, &h, angle, ind[HUD_SHAPE_CONE].color);
     /* Bars: a dark track of full length inside a bar as long as the value. */
     const float track[3] = {TRACK_GREY, TRACK_GREY, TRACK_GREY};
     for (int i = 0; i < HUD_BAR_COUNT; i++) {

@@ -4,8 +4,9 @@
  * right, +Y its up), RENDERER_HUD_DISTANCE in front of the wand's origin and facing the
  * user behind it: the three layout indicators (arrow, cone, torus; top to bottom) on the
  * left, the bars A, S, I, P (top to bottom) on the right, each growing along the wand's
- * +X from its start by value * RENDERER_HUD_BAR_LENGTH, with its letter between. The
- * spot's own cone is drawn in addition at the spot's real pose, opened by its outer angle.
+ * +X from its start by value * RENDERER_HUD_BAR_LENGTH, with its letter between. Light 0
+ * gets a marker at its real pose: a spot's cone opened by its outer angle, a point
+ * light's star, a directional light's arrow along its direction.
  * The renderer draws this in world space with each eye's view and projection, so it
  * appears at the right stereo depth on every screen; renderer_hud_layout() gives the same
  * positions to callers (tests, picking). */
@@ -17,7 +18,7 @@
 
 #define RENDERER_HUD_DISTANCE 0.12f   /* panel in front of the wand origin, metres */
 #define RENDERER_HUD_BAR_LENGTH 0.12f /* a bar at value 1 */
-#define RENDERER_HUD_SPOT_CONE 0.08f  /* length of the cone drawn at the spot */
+#define RENDERER_HUD_LIGHT_MARKER 0.08f /* size of the marker drawn at light 0 */
 
 typedef struct renderer_hud renderer_hud;
 

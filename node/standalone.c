@@ -1,12 +1,11 @@
 /* standalone: cavelight-node --standalone (see standalone.h). */
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
+#include "base/folder.h"
 #include "frame/frame_params.h"
 #include "glctx.h"
 #include "image/image.h"
@@ -15,105 +14,12 @@
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "frame/frame_view.h"
+#include "frame/offaxis.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
 #include "scene/scene.h"
 #include "standalone.h"
-
-static void usage(FILE *f)
-{
-    fprintf(f,
-        "usage: cavelight-node --standalone [options]\n"
-        "  --gl egl|osmesa|glfw         GL context (default egl)\n"
-        "  --scene FILE|NAME            glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
-        "                               corridor, doorway, courtyard, leak-lid, leak-panel,\n"
-        "                               leak-wall (docs/node.md)\n"
-        "  --gi ilpv|none|vpl           indirect light: ILPV (default), none (direct only) or\n"
-        "                               virtual point lights with shadow maps\n"
-        "  --vpl-count N --vpl-seed S   vpl: lights chosen per frame (64..4096, default 256)\n"
-        "                               and the seed of their random choice (default 0)\n"
-        "  --vpl-bound disk|point       vpl: each VPL a disk of its area near it (default), or\n"
-        "                               a point (unbounded; to measure the disk's bias)\n"
-        "  --frames N --width W --height H --out DIR   (default 1, 320x240, no images)\n"
-        "  --pfm                        also write linear final/direct/indirect PFMs\n"
-        "  --position x,y,z --target x,y,z --fov DEG   symmetric camera\n"
-        "  --screen blx,bly,blz,brx,bry,brz,tlx,tly,tlz --eye x,y,z   off-axis screen\n"
-        "  --eyes mono|stereo --eye-separation M       (default mono, 0.065)\n"
-        "  --lpv auto|cpu|gl --rsm N --lattice N --threads T --steps S --lambda L\n"
-        "  --lattice-cells N            instead of --lattice: N cells in all, fitted to the\n"
-        "                               scene's shape (finer cells in a long, thin scene)\n"
-        "  --absorption S --scattering S --clamp-negative\n"
-        "  --gl-tiles auto|on|off       GL propagation through shared-memory tiles\n"
-        "  --lpv-mode incremental|classic   ILPV (default) or classic LPV accumulation\n"
-        "  --converge-threshold R       skip the frame pass once the LPV residual is below R\n"
-        "                               and nothing changed (0 = 1e-4, negative = never)\n"
-        "  --budget-ms X                choose --lattice and --steps so that the LPV work\n"
-        "                               (inject + propagate) takes about X ms per frame on\n"
-        "                               this machine (standalone only)\n"
-        "  --env dark|dim|office --display-gamma G --exposure E\n"
-        "  --hud 0|1|2 --wand x,y,z     show the HUD for that layout (navigation, lighting,\n"
-        "                               settings) at a wand pointing along -Z (default: in\n"
-        "                               front of the first eye)\n"
-        "  --renderer raster|reference  GL rasterizer + LPV (default), or the Embree path\n"
-        "                               tracer (mono, writes reference_*.pfm/png/json)\n"
-        "  --samples N --bounces B --seed S   reference: paths per pixel per half image\n"
-        "                               (default 64), reflections (8), seed (1; halves S, S+1)\n");
-}
-
-static int parse_floats(const char *s, float *out, int n)
-{
-    for (int i = 0; i < n; i++) {
-        char *end;
-        errno = 0;
-        out[i] = strtof(s, &end);
-        if (end == s || errno || !isfinite(out[i]))
-            return -1;
-        s = end;
-        if (i + 1 < n) {
-            if (*s != ',')
-                return -1;
-            s++;
-        }
-    }
-    return *s ? -1 : 0;
-}
-
-static int parse_int(const char *s, int *out, int lo, int hi)
-{
-    char *end;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || v < lo || v > hi)
-        return -1;
-    *out = (int)v;
-    return 0;
-}
-
-/* The frame's ranges are frame_params_sanitize()'s alone: a value it would change is
- * refused here with the option's name rather than changed behind the user's back. */
-static int check_frame_options(const node_options *o)
-{
-    frame_params sane = o->frame;
-    if (frame_params_sanitize(&sane) == 0)
-        return 0;
-    const frame_params *f = &o->frame;
-    struct { const char *option; double given; int changed; } field[] = {
-        {"--steps", f->lpv_steps, f->lpv_steps != sane.lpv_steps},
-        {"--lambda", f->lambda_incr, f->lambda_incr != sane.lambda_incr},
-        {"--absorption", f->absorption, f->absorption != sane.absorption},
-        {"--scattering", f->scattering, f->scattering != sane.scattering},
-        {"--display-gamma", f->display_gamma, f->display_gamma != sane.display_gamma},
-        {"--exposure", f->exposure, f->exposure != sane.exposure},
-    };
-    for (size_t i = 0; i < sizeof field / sizeof field[0]; i++)
-        if (field[i].changed) {
-            fprintf(stderr, "cavelight-node: %s %g is outside what a frame accepts (see "
-                    "frame_params_sanitize() in common/frame/frame_params.h)\n", field[i].option,
-                    field[i].given);
-            return -1;
-        }
-    return 0;
-}
 
 void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
                              frame_params *out)
@@ -127,134 +33,6 @@ void standalone_frame_params(const node_options *o, const scene *s, const render
         renderer_hud_wand_in_front(first_eye->view, out->wand);
 }
 
-int standalone_parse(int argc, char **argv, node_options *o)
-{
-    *o = (node_options){
-        .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
-        .yfov = -1, .eye_separation = 0.065f, .seed = 1,
-    };
-    frame_params_default(&o->frame);
-    frame_params *fp = &o->frame;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int bad = 0, takes = 1;
-        if (strcmp(a, "--standalone") == 0) { o->standalone = 1; takes = 0; }
-        else if (strcmp(a, "--pfm") == 0) { o->pfm = 1; takes = 0; }
-        else if (strcmp(a, "--clamp-negative") == 0) { o->clamp_negative = 1; takes = 0; }
-        else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout); exit(0); }
-        else if (!v) bad = 1;
-        else if (strcmp(a, "--gl") == 0) bad = glctx_parse_backend(v, &o->gl);
-        else if (strcmp(a, "--scene") == 0) o->scene = v;
-        else if (strcmp(a, "--gi") == 0) bad = frame_gi_parse(v, &fp->gi);
-        else if (strcmp(a, "--vpl-count") == 0) bad = parse_int(v, &fp->vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX);
-        else if (strcmp(a, "--vpl-seed") == 0) {
-            int seed = 0;
-            bad = parse_int(v, &seed, 0, 2147483647);
-            fp->vpl_seed = (uint32_t)seed;
-        }
-        else if (strcmp(a, "--vpl-bound") == 0) {
-            o->vpl_point = strcmp(v, "point") == 0;
-            bad = !o->vpl_point && strcmp(v, "disk") != 0;
-        }
-        else if (strcmp(a, "--out") == 0) o->out = v;
-        else if (strcmp(a, "--frames") == 0) bad = parse_int(v, &o->frames, 1, 1000000);
-        else if (strcmp(a, "--width") == 0) bad = parse_int(v, &o->width, 1, 16384);
-        else if (strcmp(a, "--height") == 0) bad = parse_int(v, &o->height, 1, 16384);
-        else if (strcmp(a, "--rsm") == 0) bad = parse_int(v, &o->rsm, 8, 4096);
-        else if (strcmp(a, "--lattice") == 0) bad = parse_int(v, &o->lattice, 2, 512);
-        else if (strcmp(a, "--lattice-cells") == 0) bad = parse_int(v, &o->lattice_total, 8, 1 << 24);
-        else if (strcmp(a, "--threads") == 0) bad = parse_int(v, &o->threads, 0, 256);
-        else if (strcmp(a, "--steps") == 0) { bad = parse_int(v, &fp->lpv_steps, 0, 1000); o->have_steps = 1; }
-        else if (strcmp(a, "--lambda") == 0) bad = parse_floats(v, &fp->lambda_incr, 1);
-        else if (strcmp(a, "--converge-threshold") == 0) bad = parse_floats(v, &o->converge_threshold, 1);
-        else if (strcmp(a, "--budget-ms") == 0) bad = parse_floats(v, &o->budget_ms, 1) || o->budget_ms <= 0;
-        else if (strcmp(a, "--absorption") == 0) bad = parse_floats(v, &fp->absorption, 1);
-        else if (strcmp(a, "--scattering") == 0) bad = parse_floats(v, &fp->scattering, 1);
-        else if (strcmp(a, "--display-gamma") == 0) bad = parse_floats(v, &fp->display_gamma, 1);
-        else if (strcmp(a, "--exposure") == 0) bad = parse_floats(v, &fp->exposure, 1);
-        else if (strcmp(a, "--position") == 0) { bad = parse_floats(v, o->position, 3); o->have_position = 1; }
-        else if (strcmp(a, "--target") == 0) { bad = parse_floats(v, o->target, 3); o->have_target = 1; }
-        else if (strcmp(a, "--fov") == 0) {
-            float deg;
-            bad = parse_floats(v, &deg, 1) || deg <= 0 || deg >= 179;
-            o->yfov = deg * 3.14159265f / 180.0f;
-        }
-        else if (strcmp(a, "--screen") == 0) { bad = parse_floats(v, o->screen, 9); o->have_screen = 1; }
-        else if (strcmp(a, "--eye") == 0) { bad = parse_floats(v, o->eye, 3); o->have_eye = 1; }
-        else if (strcmp(a, "--hud") == 0) bad = parse_int(v, &fp->hud_layout, 0, HUD_INDICATOR_COUNT - 1);
-        else if (strcmp(a, "--wand") == 0) { bad = parse_floats(v, o->wand, 3); o->have_wand = 1; }
-        else if (strcmp(a, "--samples") == 0) bad = parse_int(v, &o->samples, 1, 1 << 20);
-        else if (strcmp(a, "--bounces") == 0) bad = parse_int(v, &o->bounces, 1, 1000);
-        else if (strcmp(a, "--seed") == 0) {
-            char *end;
-            errno = 0;
-            o->seed = strtoull(v, &end, 10);
-            bad = end == v || *end || errno || v[0] == '-';
-        } else if (strcmp(a, "--renderer") == 0) {
-            o->reference = strcmp(v, "reference") == 0;
-            bad = !o->reference && strcmp(v, "raster") != 0;
-        } else if (strcmp(a, "--eye-separation") == 0) bad = parse_floats(v, &o->eye_separation, 1);
-        else if (strcmp(a, "--eyes") == 0) {
-            o->stereo = strcmp(v, "stereo") == 0;
-            bad = !o->stereo && strcmp(v, "mono") != 0;
-        } else if (strcmp(a, "--lpv") == 0) {
-            if (strcmp(v, "auto") == 0) o->lpv = RENDERER_LPV_AUTO;
-            else if (strcmp(v, "cpu") == 0) o->lpv = RENDERER_LPV_CPU;
-            else if (strcmp(v, "gl") == 0) o->lpv = RENDERER_LPV_GL;
-            else bad = 1;
-        } else if (strcmp(a, "--lpv-mode") == 0) {
-            if (strcmp(v, "incremental") == 0) o->mode = RENDERER_LPV_INCREMENTAL;
-            else if (strcmp(v, "classic") == 0) o->mode = RENDERER_LPV_CLASSIC;
-            else bad = 1;
-        } else if (strcmp(a, "--gl-tiles") == 0) {
-            if (strcmp(v, "auto") == 0) o->tiles = RENDERER_TILES_AUTO;
-            else if (strcmp(v, "on") == 0) o->tiles = RENDERER_TILES_ON;
-            else if (strcmp(v, "off") == 0) o->tiles = RENDERER_TILES_OFF;
-            else bad = 1;
-        } else if (strcmp(a, "--env") == 0) {
-            if (strcmp(v, "dark") == 0) fp->environment = FRAME_ENV_DARK;
-            else if (strcmp(v, "dim") == 0) fp->environment = FRAME_ENV_DIM;
-            else if (strcmp(v, "office") == 0) fp->environment = FRAME_ENV_OFFICE;
-            else bad = 1;
-        } else {
-            fprintf(stderr, "cavelight-node: unknown option %s (see --help)\n", a);
-            return -1;
-        }
-        if (bad) {
-            fprintf(stderr, "cavelight-node: bad or missing value for %s%s%s (see --help)\n",
-                    a, v ? ": " : "", v && takes ? v : "");
-            return -1;
-        }
-        i += takes;
-    }
-    if (check_frame_options(o) != 0)
-        return -1;
-    if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->have_steps)) {
-        fprintf(stderr, "cavelight-node: --budget-ms chooses --lattice and --steps: give "
-                "either the budget or those two\n");
-        return -1;
-    }
-    if (o->budget_ms > 0 && o->frame.gi != FRAME_GI_ILPV) {
-        fprintf(stderr, "cavelight-node: --budget-ms chooses the ILPV lattice: it needs --gi ilpv\n");
-        return -1;
-    }
-    if (o->lattice > 0 && o->lattice_total > 0) {
-        fprintf(stderr, "cavelight-node: give --lattice (cells along the longest axis) or "
-                "--lattice-cells (cells in all), not both\n");
-        return -1;
-    }
-    if (o->have_screen != o->have_eye) {
-        fprintf(stderr, "cavelight-node: --screen and --eye go together\n");
-        return -1;
-    }
-    if (o->reference && o->stereo) {
-        fprintf(stderr, "cavelight-node: --renderer reference renders one eye: use --eyes mono\n");
-        return -1;
-    }
-    return 0;
-}
-
 typedef struct eye_setup {
     const char *name;
     renderer_view view;
@@ -262,7 +40,8 @@ typedef struct eye_setup {
 
 /* Mono: one view; stereo: left and right eyes offset along the screen's (or camera's)
  * right vector, with off-axis frusta for screens and parallel axes for cameras. */
-static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], int *count)
+static int make_views(const node_options *o, const scene *s, const scene_camera *cam,
+                      eye_setup eyes[2], int *count)
 {
     float right[3], head[3];
     if (o->have_screen) {
@@ -270,11 +49,12 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
         vec3_normalize(right);
         memcpy(head, o->eye, sizeof head);
     } else {
-        memcpy(head, o->position, sizeof head);
-        float f[3], up[3] = {0, 1, 0};
-        vec3_sub(o->target, o->position, f);
-        vec3_cross(f, up, right);
-        if (!(vec3_normalize(right) > 0)) /* looking straight up or down */
+        memcpy(head, cam->position, sizeof head);
+        float view[16];
+        if (offaxis_view(cam->position, cam->target, cam->up, view) == 0)
+            for (int i = 0; i < 3; i++)
+                right[i] = view[4 * i]; /* the view's first row */
+        else
             memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
     }
     static const char *const names[3] = {"left", "mono", "right"};
@@ -287,18 +67,21 @@ static int make_views(const node_options *o, const scene *s, eye_setup eyes[2], 
         eyes[e].name = names[side + 1];
         int rc;
         if (o->have_screen) {
+            float distance;
             rc = frame_view_screen(o->screen, o->screen + 3, o->screen + 6, eye, far_plane,
-                                   o->width, o->height, &eyes[e].view);
+                                   o->width, o->height, &eyes[e].view, &distance);
+            if (rc == 1)
+                fprintf(stderr, "cavelight-node: the %s eye is %.3g m %s the screen's plane: "
+                        "rendered from %g m in front\n", eyes[e].name, fabsf(distance),
+                        distance < 0 ? "behind" : "in front of", FRAME_VIEW_NEAR_PLANE);
+            rc = rc == 1 ? 0 : rc;
         } else {
-            float target[3];
-            for (int i = 0; i < 3; i++)
-                target[i] = o->target[i] + eye[i] - head[i];
-            rc = frame_view_camera(eye, target, o->yfov, far_plane, o->width, o->height,
-                                   &eyes[e].view);
+            rc = frame_view_scene_camera(cam, eye, far_plane, o->width, o->height,
+                                         &eyes[e].view);
         }
         if (rc != 0) {
-            fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, eye "
-                    "in the screen plane, or position equal to target)\n");
+            fprintf(stderr, "cavelight-node: degenerate camera (screen corners collinear, or "
+                    "position equal to target)\n");
             return -1;
         }
     }
@@ -452,7 +235,7 @@ static void report_setup(cJSON *report, const node_options *o, glctx *ctx, rende
     cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
     cJSON_AddNumberToObject(report, "height", o->height);
-    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
+    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : RENDERER_DEFAULT_RSM_SIZE);
     cJSON_AddNumberToObject(report, "steps", fp->lpv_steps);
 }
 
@@ -566,7 +349,9 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
                      .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
     glctx *ctx = glctx_create(&gd, err, sizeof err);
     if (!ctx) {
-        fprintf(stderr, "cavelight-node: %s\n", err);
+        /* The context's own message names no option: the one to try is this mode's. */
+        fprintf(stderr, "cavelight-node: %s%s\n", err,
+                o->gl == GLCTX_GLFW ? "; or render without a window: --gl egl" : "");
         return 1;
     }
     renderer_desc rd = {
@@ -614,9 +399,8 @@ out:
 int standalone_run(const node_options *o)
 {
     char err[512];
-    if (o->out && mkdir(o->out, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "cavelight-node: cannot create output folder %s (%s)\n", o->out,
-                strerror(errno));
+    if (o->out && folder_create(o->out, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
     scene sc;
@@ -624,18 +408,36 @@ int standalone_run(const node_options *o)
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (o->camera && scene_pick_camera(&sc, o->camera, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: --camera: %s\n", err);
+        scene_free(&sc);
+        return 1;
+    }
+    if (sc.light_added) {
+        char note[400];
+        scene_light_added_note(&sc, o->scene, note, sizeof note);
+        fprintf(stderr, "cavelight-node: warning: %s\n", note);
+    }
     node_options opt = *o;
-    float view_position[3], view_target[3];
-    scene_default_view(&sc, view_position, view_target);
-    if (!opt.have_position)
-        memcpy(opt.position, view_position, sizeof view_position);
-    if (!opt.have_target)
-        memcpy(opt.target, view_target, sizeof view_target);
-    if (opt.yfov <= 0)
-        opt.yfov = scene_default_yfov(&sc);
+    /* The scene's camera (the file's first, or --camera's), else the default view; the
+     * command line's position, target and field of view win. */
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    if (opt.have_position)
+        memcpy(cam.position, opt.position, sizeof opt.position);
+    if (opt.have_target)
+        memcpy(cam.target, opt.target, sizeof opt.target);
+    if (opt.have_position || opt.have_target)
+        memset(cam.up, 0, sizeof cam.up);
+    if (opt.yfov > 0) {
+        cam.yfov = opt.yfov;
+        cam.orthographic = 0;
+    }
+    if (!opt.have_height && cam.aspect > 0 && !opt.have_screen)
+        opt.height = (int)fmin(fmax(lround(opt.width / cam.aspect), 1), 16384);
     eye_setup eyes[2];
     int eye_count, rc = 1;
-    if (make_views(&opt, &sc, eyes, &eye_count) == 0) {
+    if (make_views(&opt, &sc, &cam, eyes, &eye_count) == 0) {
         frame_params fp;
         standalone_frame_params(o, &sc, &eyes[0].view, &fp);
         if (o->reference) {
@@ -645,7 +447,7 @@ int standalone_run(const node_options *o)
                                      .seed = o->seed, .out = o->out};
             rc = reference_cli_run(&rd);
         } else {
-            rc = run_gl(o, &sc, eyes, eye_count, &fp);
+            rc = run_gl(&opt, &sc, eyes, eye_count, &fp);
         }
     }
     scene_free(&sc);

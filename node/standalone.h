@@ -1,6 +1,6 @@
 /* standalone: cavelight-node --standalone, a render node without a master.
  *
- * Parses the standalone command line, loads the scene, renders --frames frames (frame
+ * Loads the scene (the command line is node_cli.h's), renders --frames frames (frame
  * pass, then an eye pass per eye) and writes images and a timing report (report.json);
  * --renderer reference runs the path tracer instead (reference_cli.h). The cluster mode
  * is cluster_node.h. */
@@ -25,8 +25,10 @@ typedef struct node_options {
     int frames, width, height;
     const char *out;
     int pfm;
-    /* camera: look-at unless a screen is given */
-    int have_position, have_target, have_screen, have_eye;
+    /* camera: the scene's (--camera picks one of a file's), or look-at, unless a screen is
+     * given; without --height, a file camera's aspect ratio sets the height */
+    const char *camera;
+    int have_position, have_target, have_screen, have_eye, have_height;
     float position[3], target[3], yfov; /* radians, <= 0: the scene's */
     float screen[9], eye[3];
     int stereo;
@@ -42,8 +44,6 @@ typedef struct node_options {
     unsigned long long seed;
 } node_options;
 
-/* Returns 0, or -1 after printing one line about the bad option. */
-int standalone_parse(int argc, char **argv, node_options *o);
 /* The frame a standalone run starts from: o->frame (frame_params_default() and the
  * command line), the scene's lights, and the wand in front of the first eye when the HUD
  * is shown without --wand. Frame version and time are 0. */

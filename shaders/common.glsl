@@ -3,6 +3,10 @@ const float PI = 3.14159265358979;
 const float SH_C0 = 0.886226925452758;  // sqrt(pi) / 2
 const float SH_C1 = 1.023326707946488;  // sqrt(pi / 3)
 const int MAX_LIGHTS = 8;
+const int MAX_LIGHT_VIEWS = 48;           // light_view.h: six cube faces per light
+const int LIGHT_SPOT = 0;                 // scene_light_type
+const int LIGHT_POINT = 1;
+const int LIGHT_DIRECTIONAL = 2;
 
 // Clamped-cosine lobe around unit n in 2-band SH (paper 3.3.1, same signs as the CPU core).
 vec4 sh_cosine_lobe(vec3 n)

@@ -8,7 +8,7 @@ uniform int u_has_texture;
 uniform sampler2D u_base_texture;   // sRGB texture: sampled values are linear
 uniform vec3 u_emissive;
 uniform float u_roughness;
-uniform vec3 u_eye;
+uniform vec4 u_eye;                 // the eye (w 1), or the direction towards it (w 0: orthographic)
 
 layout(location = 0) out vec4 out_position;  // xyz world, w = 1 where geometry is
 layout(location = 1) out vec4 out_normal;    // xyz unit normal, w = roughness
@@ -19,7 +19,7 @@ void main()
 {
     vec3 n = normalize(v_normal);
     // Two-sided surfaces: shade the side the eye sees.
-    if (dot(n, u_eye - v_position) < 0.0)
+    if (dot(n, u_eye.xyz - v_position * u_eye.w) < 0.0)
         n = -n;
     vec4 albedo = u_base_color;
     if (u_has_texture != 0)

@@ -11,22 +11,46 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/cli.h"
 #include "image/image.h"
 #include "image/image_metrics.h"
 
-static void usage(FILE *f)
+enum { O_MASK_BACKGROUND, O_SSIM_RANGE, O_CROP, O_ALLOW_NO_SIGNAL };
+
+static const cli_option options[] = {
+    {O_MASK_BACKGROUND, "mask-background", NULL, NULL, 0, 0,
+     "count only pixels where the reference is not 0 in all channels"},
+    {O_SSIM_RANGE, "ssim-range", "L", "the largest reference luminance", 0, 0, "SSIM dynamic range"},
+    {O_CROP, "crop", "x,y,w,h", "the whole image", 0, 0, "compare only this rectangle (top-left origin)"},
+    {O_ALLOW_NO_SIGNAL, "allow-no-signal", NULL, NULL, 0, 0,
+     "exit 0 even when the reference is black (no signal)"},
+};
+
+typedef struct compare_options {
+    int mask_background, allow_no_signal, cropping;
+    int crop[4];
+    image_metrics_desc desc;
+} compare_options;
+
+static const char *set(void *user, int id, const char *v)
 {
-    fprintf(f, "usage: cavelight-compare IMAGE REFERENCE [--mask-background] "
-               "[--ssim-range L] [--crop x,y,w,h] [--allow-no-signal]\n"
-               "  IMAGE, REFERENCE  PFM (linear) or PNG (8-bit display values / 255, "
-               "not linearised)\n"
-               "  --mask-background count only pixels where the reference is not 0 in "
-               "all channels\n"
-               "  --ssim-range L    SSIM dynamic range (default: max reference luminance)\n"
-               "  --crop x,y,w,h    compare only this rectangle (top-left origin)\n"
-               "  --allow-no-signal exit 0 even when the reference is black (no signal)\n"
-               "Prints one JSON object with the metrics of common/image/image_metrics.h.\n"
-               "Exit 0; 2 on bad input; 3 when the reference has no signal.\n");
+    compare_options *o = user;
+    char extra;
+    switch (id) {
+    case O_MASK_BACKGROUND: o->mask_background = 1; break;
+    case O_ALLOW_NO_SIGNAL: o->allow_no_signal = 1; break;
+    case O_SSIM_RANGE:
+        if (sscanf(v, "%lf%c", &o->desc.ssim_range, &extra) != 1 || !(o->desc.ssim_range > 0))
+            return "a positive number";
+        break;
+    case O_CROP:
+        if (sscanf(v, "%d,%d,%d,%d%c", &o->crop[0], &o->crop[1], &o->crop[2], &o->crop[3], &extra) != 4 ||
+            o->crop[0] < 0 || o->crop[1] < 0 || o->crop[2] <= 0 || o->crop[3] <= 0)
+            return "x,y,w,h with x,y >= 0 and w,h > 0";
+        o->cropping = 1;
+        break;
+    }
+    return NULL;
 }
 
 /* Reads a PFM or PNG (told apart by their magic bytes) into linear-layout floats. */
@@ -78,52 +102,33 @@ static float *crop_image(const float *rgb, int w, int x, int y, int cw, int ch)
 
 int main(int argc, char **argv)
 {
+    static const char *const groups[] = {"Options"};
+    compare_options opt = {0};
+    cli_program p = {
+        .name = "cavelight-compare",
+        .usage = "usage: cavelight-compare IMAGE REFERENCE [options]\n"
+                 "  IMAGE, REFERENCE  PFM (linear) or PNG (8-bit display values / 255, not linearised)\n",
+        .groups = groups, .group_count = 1,
+        .options = options, .count = (int)(sizeof options / sizeof *options),
+        .epilogue = "Prints one JSON object with the metrics of common/image/image_metrics.h.\n"
+                    "Exit 0; 2 on bad input; 3 when the reference has no signal.\n",
+        .set = set, .user = &opt,
+    };
     const char *paths[2] = {NULL, NULL};
-    int npaths = 0, mask_background = 0, crop[4] = {0, 0, 0, 0}, cropping = 0;
-    int allow_no_signal = 0;
-    image_metrics_desc desc = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        char extra;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--mask-background") == 0) {
-            mask_background = 1;
-        } else if (strcmp(a, "--allow-no-signal") == 0) {
-            allow_no_signal = 1;
-        } else if (strcmp(a, "--ssim-range") == 0 && i + 1 < argc) {
-            if (sscanf(argv[++i], "%lf%c", &desc.ssim_range, &extra) != 1 ||
-                !(desc.ssim_range > 0)) {
-                fprintf(stderr, "cavelight-compare: --ssim-range '%s': give a positive "
-                                "number\n", argv[i]);
-                return 2;
-            }
-        } else if (strcmp(a, "--crop") == 0 && i + 1 < argc) {
-            if (sscanf(argv[++i], "%d,%d,%d,%d%c", &crop[0], &crop[1], &crop[2], &crop[3],
-                       &extra) != 4 || crop[0] < 0 || crop[1] < 0 || crop[2] <= 0 ||
-                crop[3] <= 0) {
-                fprintf(stderr, "cavelight-compare: --crop '%s': give x,y,w,h with x,y >= 0 "
-                                "and w,h > 0\n", argv[i]);
-                return 2;
-            }
-            cropping = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            fprintf(stderr, "cavelight-compare: unknown or incomplete option '%s' (see "
-                            "--help)\n", a);
-            return 2;
-        } else if (npaths < 2) {
-            paths[npaths++] = a;
-        } else {
-            fprintf(stderr, "cavelight-compare: extra argument '%s': give IMAGE and "
-                            "REFERENCE only\n", a);
-            return 2;
-        }
+    int npaths;
+    cli_given given;
+    switch (cli_parse(&p, argc, argv, paths, 2, &npaths, &given)) {
+    case CLI_HELP: return 0;
+    case CLI_ERROR: return 2;
+    default: break;
     }
     if (npaths != 2) {
-        usage(stderr);
+        fprintf(stderr, "cavelight-compare: give IMAGE and REFERENCE (see --help)\n");
         return 2;
     }
+    int mask_background = opt.mask_background, allow_no_signal = opt.allow_no_signal;
+    int cropping = opt.cropping, *crop = opt.crop;
+    image_metrics_desc desc = opt.desc;
 
     int w[2], h[2];
     float *rgb[2] = {NULL, NULL};

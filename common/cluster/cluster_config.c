@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "base/textfile.h"
+#include "frame/frame_view.h"
+#include "frame/screen_fit.h"
 #include "cluster/wire.h"
 
 typedef struct parse_ctx {
@@ -157,7 +159,7 @@ static void rigid_transform(const float t[3], const float deg[3], float scale, f
 
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
 {
-    obs->eye_separation = 0.064f;
+    obs->eye_separation = FRAME_VIEW_EYE_SEPARATION;
     obs->home[1] = 1.7f;
     identity(obs->tracker_to_cave);
     if (!o)
@@ -166,7 +168,7 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         fail(c, "observer", "must be an object");
         return;
     }
-    obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", 0.064, 0, 0, 0.2);
+    obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", FRAME_VIEW_EYE_SEPARATION, 0, 0, 0.2);
     const cJSON *h = cJSON_GetObjectItemCaseSensitive(o, "head_to_eye");
     if (h)
         get_vector(c, h, "observer.head_to_eye", obs->head_to_eye, 3, -1, 1);
@@ -252,22 +254,30 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
         if (get_vector(c, v, field, dst[k], 3, -1e4, 1e4))
             return;
     }
-    double u[3], w[3], uu = 0, ww = 0, uw = 0;
-    for (int i = 0; i < 3; i++) {
-        u[i] = scr->bottom_right[i] - scr->bottom_left[i];
-        w[i] = scr->top_left[i] - scr->bottom_left[i];
-        uu += u[i] * u[i];
-        ww += w[i] * w[i];
-        uw += u[i] * w[i];
-    }
+    /* Measured corners: the nearest rectangle, within the tolerance. */
+    float top_right[3];
+    const cJSON *tr = cJSON_GetObjectItemCaseSensitive(s, "top_right");
+    snprintf(field, sizeof field, "screens[%d].top_right", index);
+    if (tr && get_vector(c, tr, field, top_right, 3, -1e4, 1e4))
+        return;
     snprintf(field, sizeof field, "screens[%d]", index);
-    if (uu < 1e-6 || ww < 1e-6) {
-        fail(c, field, "'%s' has zero width or height", scr->name);
+    screen_fit fit;
+    if (screen_fit_rectangle(scr->bottom_left, scr->bottom_right, scr->top_left, tr ? top_right : NULL, &fit) != 0 ||
+        fit.deviation * 1000 > cfg->corner_tolerance_mm) {
+        if (fit.deviation * 1000 > cfg->corner_tolerance_mm)
+            fail(c, field, "'%s' corners are %.1f mm from the nearest rectangle, more than corner_tolerance_mm "
+                 "%g: measure them again (docs/calibration.md)", scr->name, fit.deviation * 1000,
+                 cfg->corner_tolerance_mm);
+        else
+            fail(c, field, "'%s' corners span no rectangle (zero width or height, or on one line)", scr->name);
         return;
     }
-    if (fabs(uw) > 1e-3 * sqrt(uu * ww)) {
-        fail(c, field, "'%s' corners do not form a rectangle (bottom edge not perpendicular to left edge)", scr->name);
-        return;
+    scr->fit_mm = (float)(fit.deviation * 1000);
+    /* A rectangle as given (to float precision) stays bit for bit what the file says. */
+    if (fit.deviation > SCREEN_EXACT_M) {
+        memcpy(scr->bottom_left, fit.bottom_left, sizeof fit.bottom_left);
+        memcpy(scr->bottom_right, fit.bottom_right, sizeof fit.bottom_right);
+        memcpy(scr->top_left, fit.top_left, sizeof fit.top_left);
     }
     scr->overview[0] = scr->overview[1] = -1;
     const cJSON *o = cJSON_GetObjectItemCaseSensitive(s, "overview");
@@ -384,6 +394,16 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         fail(c, field, "must be true or false");
     }
     node->fullscreen = fs && cJSON_IsTrue(fs);
+    static const struct { const char *key; size_t offset; const char *def; } texts[] = {
+        {"exe", offsetof(cluster_node, exe), ""},
+        {"workdir", offsetof(cluster_node, workdir), ""},
+        {"config", offsetof(cluster_node, config), ""},
+        {"display", offsetof(cluster_node, display), ":0"},
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+        snprintf(field, sizeof field, "nodes[%d].%s", index, texts[i].key);
+        get_string(c, n, texts[i].key, field, (char *)node + texts[i].offset, CLUSTER_TEXT_MAX, texts[i].def);
+    }
 }
 
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
@@ -434,7 +454,9 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 250, 0, 10, 60000);
     cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
     cfg->stall_min_ms = (int)get_number(&c, t, "stall_min_ms", "timeouts.stall_min_ms", 250, 0, 10, 600000);
+    cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 
+    cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
     parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
     parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);
 

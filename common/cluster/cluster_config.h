@@ -3,14 +3,22 @@
  *   master    {"bind": "tcp://0.0.0.0:5570", "connect": "tcp://host:5570"}
  *   observer  {"eye_separation": m, "head_to_eye": [x,y,z] (head space), "home": [x,y,z],
  *              "tracker_to_cave": {"translation": [..], "rotation_deg": [x,y,z], "scale": s}}
- *   screens   [{"name", "bottom_left", "bottom_right", "top_left" (CAVE space),
+ *   screens   [{"name", "bottom_left", "bottom_right", "top_left" (CAVE space, metres),
+ *               "top_right" (optional, when measured too),
  *               "overview": [x, y] (pixel offset in the unfolded overview, optional)}]
+ *             Measured corners are fitted to the nearest rectangle (screen_fit.h) and
+ *             refused when one moves more than "corner_tolerance_mm" (top level, 20).
  *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution"}],
  *               "resolution": [w, h], "eyes": "mono|stereo|left|right",
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
- *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool}]
+ *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool,
+ *               "exe", "workdir", "config" (the node program, its working folder and this
+ *               file's path on the node's host, for --spawn-remote and scripts/
+ *               install_nodes.py; default: the master's), "display" (X display for window
+ *               output when DISPLAY is unset, default ":0")}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
- *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms"},
+ *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
+ *                          "join_ms"},
  *             "security": {"mode": "curve" (default) | "insecure", "keys": DIR}
  *             (curve: every connection authenticated and encrypted with the key files
  *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
@@ -29,6 +37,10 @@ enum {
     CLUSTER_NAME_MAX = 32,
     CLUSTER_TEXT_MAX = 256,
 };
+
+/* Where the master and the nodes write what they make (images, overview, report, logs,
+ * recordings) unless told otherwise: relative to each program's working folder. */
+#define CLUSTER_DEFAULT_OUT "out"
 
 typedef enum cluster_eyes {
     CLUSTER_EYES_MONO = 0, /* one centre eye */
@@ -56,9 +68,14 @@ typedef enum cluster_security {
     CLUSTER_SECURITY_INSECURE,   /* anyone who reaches the port; local runs and tests */
 } cluster_security;
 
+/* Corners nearer a rectangle than this (1 micrometre, float rounding at CAVE sizes) are
+ * kept as written. */
+#define SCREEN_EXACT_M 1e-6
+
 typedef struct cluster_screen {
     char name[CLUSTER_NAME_MAX + 1];
-    float bottom_left[3], bottom_right[3], top_left[3];
+    float bottom_left[3], bottom_right[3], top_left[3]; /* a rectangle (fitted, see below) */
+    float fit_mm;    /* how far the fit moved the furthest measured corner, millimetres */
     int overview[2]; /* pixel offset in the overview; -1 = not shown */
 } cluster_screen;
 
@@ -77,6 +94,10 @@ typedef struct cluster_node {
     cluster_stereo stereo;
     int monitor;    /* GLFW monitor index for fullscreen windows */
     int fullscreen;
+    char exe[CLUSTER_TEXT_MAX];     /* "" = the master's choice (--node-exe, or beside it) */
+    char workdir[CLUSTER_TEXT_MAX]; /* "" = wherever the launch starts it */
+    char config[CLUSTER_TEXT_MAX];  /* this config's path on the host; "" = the master's */
+    char display[CLUSTER_TEXT_MAX]; /* window output without DISPLAY set: this one */
 } cluster_node;
 
 typedef struct cluster_observer {
@@ -99,6 +120,8 @@ typedef struct cluster_config {
     int heartbeat_ms;        /* idle heartbeat period (default 250) */
     int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
     int stall_min_ms;        /* floor of the adaptive stall timeout (default 250) */
+    int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
+    double corner_tolerance_mm; /* measured corners further from a rectangle are refused (20) */
     cluster_observer observer;
     int screen_count;
     cluster_screen screens[CLUSTER_MAX_SCREENS];

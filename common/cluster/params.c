@@ -9,18 +9,19 @@
 static const char *const global_names[PARAMS_LIGHT_BASE] = {
     "head", "wand", "navigation", "time", "reset_epoch", "lpv_steps", "lambda_incr",
     "absorption", "scattering", "lpv_resolution", "environment", "display_gamma",
-    "exposure", "hud_layout", "gi", "vpl_count", "vpl_seed", "light_count",
+    "exposure", "hud_layout", "pattern", "gi", "vpl_count", "vpl_seed", "light_count",
 };
 static const params_type global_types[PARAMS_LIGHT_BASE] = {
     PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_F64, PARAMS_T_U32, PARAMS_T_I32,
     PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_F32,
-    PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_U32, PARAMS_T_I32,
+    PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_U32,
+    PARAMS_T_I32,
 };
 static const char *const light_names[PARAMS_LIGHT_FIELDS] = {
-    "enabled", "pose", "color", "intensity", "cone",
+    "enabled", "pose", "color", "intensity", "cone", "type",
 };
 static const params_type light_types[PARAMS_LIGHT_FIELDS] = {
-    PARAMS_T_I32, PARAMS_T_POSE, PARAMS_T_VEC3, PARAMS_T_F32, PARAMS_T_VEC2,
+    PARAMS_T_I32, PARAMS_T_POSE, PARAMS_T_VEC3, PARAMS_T_F32, PARAMS_T_VEC2, PARAMS_T_I32,
 };
 
 int params_light_key(int light, int field)
@@ -136,6 +137,7 @@ static void set_light(params_store *s, int i, const frame_light *l)
     params_set(s, params_light_key(i, PARAMS_LIGHT_COLOR), l->color, 12);
     params_set_f32(s, params_light_key(i, PARAMS_LIGHT_INTENSITY), l->intensity);
     params_set(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
+    params_set_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE), (int32_t)l->type);
 }
 
 void params_set_from_frame(params_store *s, const frame_params *f)
@@ -153,6 +155,7 @@ void params_set_from_frame(params_store *s, const frame_params *f)
     params_set_f32(s, PARAMS_DISPLAY_GAMMA, f->display_gamma);
     params_set_f32(s, PARAMS_EXPOSURE, f->exposure);
     params_set_i32(s, PARAMS_HUD_LAYOUT, f->hud_layout);
+    params_set_i32(s, PARAMS_PATTERN, f->pattern);
     params_set_i32(s, PARAMS_GI, (int32_t)f->gi);
     params_set_i32(s, PARAMS_VPL_COUNT, f->vpl_count);
     params_set_u32(s, PARAMS_VPL_SEED, f->vpl_seed);
@@ -300,13 +303,14 @@ void params_to_frame(const params_store *s, frame_params *f)
     f->display_gamma = params_get_f32(s, PARAMS_DISPLAY_GAMMA);
     f->exposure = params_get_f32(s, PARAMS_EXPOSURE);
     f->hud_layout = params_get_i32(s, PARAMS_HUD_LAYOUT);
+    f->pattern = params_get_i32(s, PARAMS_PATTERN);
     f->gi = (frame_gi)params_get_i32(s, PARAMS_GI);
     f->vpl_count = params_get_i32(s, PARAMS_VPL_COUNT);
     f->vpl_seed = params_get_u32(s, PARAMS_VPL_SEED);
     f->light_count = params_get_i32(s, PARAMS_LIGHT_COUNT);
     for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++) {
         frame_light *l = &f->lights[i];
-        float pose[6], cone[2];
+        float pose[6] = {0}, cone[2] = {0};
         l->enabled = params_get_i32(s, params_light_key(i, PARAMS_LIGHT_ENABLED));
         params_get(s, params_light_key(i, PARAMS_LIGHT_POSE), pose, sizeof pose);
         memcpy(l->position, pose, 12);
@@ -316,6 +320,7 @@ void params_to_frame(const params_store *s, frame_params *f)
         params_get(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
         l->outer_angle = cone[0];
         l->inner_angle = cone[1];
+        l->type = (scene_light_type)params_get_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE));
     }
 }
 

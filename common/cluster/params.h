@@ -1,6 +1,6 @@
 /* params: the versioned parameter store the master commits and every node mirrors.
  *
- * A fixed set of typed keys (head, wand, navigation, per-light pose/colour/intensity/cone,
+ * A fixed set of typed keys (head, wand, navigation, per-light pose/colour/intensity/cone/type,
  * LPV settings, tone mapping, history-reset epoch, time). Setting a key to a new value
  * stamps it with the version the next params_commit() creates; a delta since version b
  * carries exactly the keys stamped after b, a snapshot carries every key. Encodings are
@@ -42,6 +42,7 @@ enum {
     PARAMS_DISPLAY_GAMMA,  /* f32 */
     PARAMS_EXPOSURE,       /* f32 */
     PARAMS_HUD_LAYOUT,     /* i32 */
+    PARAMS_PATTERN,        /* i32, 1: the screens show the calibration pattern */
     PARAMS_GI,             /* i32, frame_gi */
     PARAMS_VPL_COUNT,      /* i32, VPLs of the vpl method */
     PARAMS_VPL_SEED,       /* u32, their random numbers' seed */
@@ -55,6 +56,7 @@ enum {
     PARAMS_LIGHT_COLOR,       /* vec3, linear RGB */
     PARAMS_LIGHT_INTENSITY,   /* f32 */
     PARAMS_LIGHT_CONE,        /* vec2: outer, inner half angle (radians) */
+    PARAMS_LIGHT_TYPE,        /* i32, scene_light_type: spot, point, directional */
     PARAMS_LIGHT_FIELDS
 };
 

@@ -32,17 +32,17 @@ void frame_params_default(frame_params *p)
     p->vpl_seed = 0;
 }
 
-static const char *const gi_names[FRAME_GI_COUNT] = {"ilpv", "none", "vpl"};
+const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none", "vpl"};
 
 const char *frame_gi_name(frame_gi gi)
 {
-    return (unsigned)gi < FRAME_GI_COUNT ? gi_names[gi] : NULL;
+    return (unsigned)gi < FRAME_GI_COUNT ? frame_gi_names[gi] : NULL;
 }
 
 int frame_gi_parse(const char *name, frame_gi *out)
 {
     for (int i = 0; i < FRAME_GI_COUNT; i++)
-        if (strcmp(name, gi_names[i]) == 0) {
+        if (strcmp(name, frame_gi_names[i]) == 0) {
             *out = (frame_gi)i;
             return 0;
         }
@@ -66,6 +66,7 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s)
         const scene_light *l = &s->lights[i];
         frame_light *f = &p->lights[p->light_count++];
         f->enabled = 1;
+        f->type = l->type;
         memcpy(f->position, l->position, sizeof f->position);
         memcpy(f->direction, l->direction, sizeof f->direction);
         memcpy(f->color, l->color, sizeof f->color);
@@ -73,25 +74,6 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s)
         f->outer_angle = l->outer_angle;
         f->inner_angle = l->inner_angle;
     }
-    if (p->light_count > 0)
-        return;
-    /* No lights in the file: one spot above the middle, wide enough for the whole scene. */
-    frame_light *f = &p->lights[p->light_count++];
-    float size = 0;
-    for (int a = 0; a < 3; a++) {
-        float e = s->bounds_max[a] - s->bounds_min[a];
-        size = e > size ? e : size;
-        f->position[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
-    }
-    float h = s->bounds_max[1] - s->bounds_min[1];
-    f->position[1] = s->bounds_max[1] + 1.5f * (h > 0 ? h : size);
-    f->enabled = 1;
-    f->direction[1] = -1.0f;
-    f->color[0] = f->color[1] = f->color[2] = 1.0f;
-    float dist = f->position[1] - s->bounds_min[1];
-    f->intensity = 2.0f * dist * dist; /* about 2 W/m^2 at the bottom of the bounds */
-    f->outer_angle = 0.6f;
-    f->inner_angle = 0.45f;
 }
 
 static int all_finite(const float *x, int n)
@@ -120,6 +102,18 @@ static int clamp_or(float *x, float lo, float hi, float below, float above, floa
 static int sanitize_light(frame_light *l)
 {
     int changed = 0;
+    if ((unsigned)l->type >= SCENE_LIGHT_TYPES) {
+        changed = l->enabled != 0;
+        l->enabled = 0;
+        return changed;
+    }
+    if (l->type == SCENE_LIGHT_POINT && !(all_finite(l->direction, 3) &&
+                                          (l->direction[0] != 0 || l->direction[1] != 0 ||
+                                           l->direction[2] != 0))) {
+        l->direction[0] = l->direction[2] = 0.0f;
+        l->direction[1] = -1.0f;
+        changed++;
+    }
     float len2 = l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
                  l->direction[2] * l->direction[2];
     if (!all_finite(l->position, 3) || !all_finite(l->direction, 3) || !all_finite(l->color, 3) ||
@@ -167,6 +161,10 @@ int frame_params_sanitize(frame_params *p)
     changed += clamp_or(&p->lambda_incr, 0.0f, 0.999f, 0.0f, 0.999f, 0.0f);
     changed += clamp_or(&p->absorption, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
     changed += clamp_or(&p->scattering, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
+    if (p->pattern != 0 && p->pattern != 1) {
+        p->pattern = 0;
+        changed++;
+    }
     if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
         p->environment != FRAME_ENV_OFFICE) {
         p->environment = FRAME_ENV_DIM;

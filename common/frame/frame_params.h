@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-struct scene;
+#include "scene/scene.h"
 
 enum { FRAME_MAX_LIGHTS = 8 };
 
@@ -27,14 +27,17 @@ typedef enum frame_gi {
     FRAME_GI_COUNT
 } frame_gi;
 
+/* One light as the master and every node hold it; the fields mean what scene_light's do
+ * (units there). */
 typedef struct frame_light {
     int enabled;
-    float position[3];    /* world space, metres */
-    float direction[3];   /* unit, spot axis */
+    float position[3];    /* world space, metres (directional: where the HUD shows it) */
+    float direction[3];   /* unit: spot axis, direction a directional light travels */
     float color[3];       /* linear RGB, 0..1 */
-    float intensity;      /* candela-like scale: radiant intensity on the axis, W/sr */
-    float outer_angle;    /* radians, half angle where the cone reaches 0 */
-    float inner_angle;    /* radians, half angle where the penumbra starts */
+    float intensity;      /* spot, point: radiant intensity, W/sr; directional: W/m^2 */
+    float outer_angle;    /* spot: radians, half angle where the cone reaches 0 */
+    float inner_angle;    /* spot: radians, half angle where the penumbra starts */
+    scene_light_type type;
 } frame_light;
 
 typedef struct frame_params {
@@ -54,6 +57,7 @@ typedef struct frame_params {
     float display_gamma;    /* 2.2 by default */
     float exposure;         /* linear scale before tone mapping, 1 by default */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
+    int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
     frame_gi gi;            /* indirect-light method */
     int vpl_count;          /* vpl: virtual point lights chosen per frame */
     uint32_t vpl_seed;      /* vpl: which random numbers choose them (the same on every node) */
@@ -68,9 +72,9 @@ enum { FRAME_VPL_MIN = 64, FRAME_VPL_MAX = 4096, FRAME_VPL_DEFAULT = 256 };
  * environment, display gamma 2.2, exposure 1, no HUD, ILPV, FRAME_VPL_DEFAULT VPLs with
  * seed 0. */
 void frame_params_default(frame_params *p);
-/* Copies the scene's spot lights (at most FRAME_MAX_LIGHTS); a scene without lights gets
- * one spot 1.5 x its height above the centre of its bounds, pointing down. */
-void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
+/* Copies the scene's lights (at most FRAME_MAX_LIGHTS), enabled. A scene loaded without
+ * lights has one already (scene_load(), scene_default_light()). */
+void frame_params_lights_from_scene(frame_params *p, const scene *s);
 /* Largest values frame_params_sanitize() lets through: beyond them float shading overflows
  * or a frame never ends. */
 #define FRAME_MAX_LPV_STEPS 256
@@ -78,8 +82,9 @@ void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
 #define FRAME_MAX_EXPOSURE 1e6f
 
 /* Makes every field usable, in place, whatever a master, a config or a command line sent:
- * a light whose position, direction (or a zero one), colour, intensity or angles are not
- * finite is disabled; a non-unit direction is normalized; negative colours and intensities
+ * a light of an unknown type, or whose position, direction (or a zero one), colour,
+ * intensity or angles are not finite, is disabled (a point light's direction means nothing:
+ * a zero or non-finite one becomes -y); a non-unit direction is normalized; negative colours and intensities
  * become 0, intensities are capped at FRAME_MAX_INTENSITY; lambda_incr NaN or < 0 becomes
  * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
@@ -91,8 +96,8 @@ void frame_params_lights_from_scene(frame_params *p, const struct scene *s);
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in
  * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
-/* The methods' names as the command lines take them. */
-#define FRAME_GI_NAMES "ilpv|none|vpl"
+/* The methods' names, indexed by frame_gi (command lines, reports). */
+extern const char *const frame_gi_names[FRAME_GI_COUNT];
 /* "ilpv", "none", "vpl"; NULL for a value outside the enum. */
 const char *frame_gi_name(frame_gi gi);
 /* Returns 0 and the method named name, or -1. */

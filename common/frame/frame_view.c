@@ -22,21 +22,45 @@ static void begin(const float eye[3], int width, int height, frame_view *out)
 
 int frame_view_screen(const float bottom_left[3], const float bottom_right[3],
                       const float top_left[3], const float eye[3], float far_plane, int width,
-                      int height, frame_view *out)
+                      int height, frame_view *out, float *distance)
 {
     offaxis_screen_desc d = {.near_plane = FRAME_VIEW_NEAR_PLANE, .far_plane = far_plane};
+    int moved = offaxis_eye_in_front(bottom_left, bottom_right, top_left, eye,
+                                     FRAME_VIEW_NEAR_PLANE, d.eye, distance);
+    if (moved < 0)
+        return -1;
     memcpy(d.bottom_left, bottom_left, sizeof d.bottom_left);
     memcpy(d.bottom_right, bottom_right, sizeof d.bottom_right);
     memcpy(d.top_left, top_left, sizeof d.top_left);
-    memcpy(d.eye, eye, sizeof d.eye);
-    begin(eye, width, height, out);
-    return offaxis_screen(&d, out->view, out->projection);
+    begin(d.eye, width, height, out);
+    return offaxis_screen(&d, out->view, out->projection) != 0 ? -1 : moved;
 }
 
 int frame_view_camera(const float eye[3], const float target[3], float yfov, float far_plane,
                       int width, int height, frame_view *out)
 {
+    scene_camera c = {.valid = 1, .yfov = yfov};
+    memcpy(c.position, eye, sizeof c.position);
+    memcpy(c.target, target, sizeof c.target);
+    return frame_view_scene_camera(&c, eye, far_plane, width, height, out);
+}
+
+int frame_view_scene_camera(const scene_camera *c, const float eye[3], float far_plane,
+                            int width, int height, frame_view *out)
+{
     begin(eye, width, height, out);
-    return offaxis_look_at(eye, target, yfov, (float)width / (float)height,
-                           FRAME_VIEW_NEAR_PLANE, far_plane, out->view, out->projection);
+    float target[3];
+    for (int i = 0; i < 3; i++)
+        target[i] = c->target[i] + eye[i] - c->position[i];
+    if (offaxis_view(eye, target, c->up, out->view) != 0)
+        return -1;
+    float aspect = (float)width / (float)height;
+    float near_plane = c->znear > 0 ? c->znear : FRAME_VIEW_NEAR_PLANE;
+    float far_clip = c->zfar > near_plane ? c->zfar : far_plane;
+    if (c->orthographic)
+        offaxis_orthographic(-c->ymag * aspect, c->ymag * aspect, -c->ymag, c->ymag, near_plane,
+                             far_clip, out->projection);
+    else
+        offaxis_perspective(c->yfov, aspect, near_plane, far_clip, out->projection);
+    return 0;
 }

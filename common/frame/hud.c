@@ -22,18 +22,19 @@ void hud_describe(const frame_params *p, int lattice_cells, hud *out)
         ind->active = p->hud_layout == i;
         grey(ind->color, ind->active ? HUD_WHITE : HUD_GREY);
     }
-    out->has_spot = p->light_count > 0 && p->lights[0].enabled;
-    if (out->has_spot) {
+    out->has_light = p->light_count > 0 && p->lights[0].enabled;
+    if (out->has_light) {
         const frame_light *l = &p->lights[0];
-        /* The cone shows the spot's hue at full brightness, whatever its intensity. */
+        /* The cone shows the light's hue at full brightness, whatever its intensity. */
         float mx = l->color[0];
         for (int k = 1; k < 3; k++)
             mx = l->color[k] > mx ? l->color[k] : mx;
         for (int k = 0; k < 3; k++)
             out->indicators[HUD_SHAPE_CONE].color[k] = mx > 0 ? l->color[k] / mx : 0.0f;
-        memcpy(out->spot_position, l->position, sizeof out->spot_position);
-        memcpy(out->spot_direction, l->direction, sizeof out->spot_direction);
-        out->spot_angle = l->outer_angle;
+        out->light_type = l->type;
+        memcpy(out->light_position, l->position, sizeof out->light_position);
+        memcpy(out->light_direction, l->direction, sizeof out->light_direction);
+        out->light_angle = l->outer_angle;
     }
     const char letters[HUD_BAR_COUNT] = {'A', 'S', 'I', 'P'};
     float cells = (float)(lattice_cells > 0 ? lattice_cells : 32);

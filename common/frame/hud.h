@@ -4,8 +4,9 @@
  * HUD from the same frame version without any extra message:
  *   - three layout indicators on the wand's left side (arrow = navigation, cone =
  *     lighting, torus = renderer settings): white when their layout is active, grey
- *     otherwise; the cone always has the spot's colour and sits at the spot's real pose
- *     with the spot's opening angle;
+ *     otherwise; the cone always has the colour of light 0 (the light the lighting layout
+ *     moves), and a marker in that colour sits at the light's real pose: a spot's cone
+ *     with its opening angle, a point light's star, a directional light's arrow;
  *   - four bars on the wand's right side, values in [0, 1]: absorption (A), scattering
  *     (S), lambda_incr (I, white while incremental rendering is on, lambda > 0) and
  *     propagation steps (P) normalised by the lattice resolution.
@@ -37,10 +38,12 @@ typedef struct hud {
     float wand_world[16];  /* navigation * wand, column-major: the HUD's anchor */
     hud_indicator indicators[HUD_INDICATOR_COUNT];
     hud_bar bars[HUD_BAR_COUNT];
-    int has_spot;          /* lights[0] exists and is enabled */
-    float spot_position[3];/* world space, for the cone */
-    float spot_direction[3];
-    float spot_angle;      /* outer half angle, radians: the cone's opening */
+    int has_light;         /* lights[0] exists and is enabled */
+    scene_light_type light_type; /* its marker: a spot's cone, a point light's star, a
+                                    directional light's arrow */
+    float light_position[3];/* world space, where the marker is drawn */
+    float light_direction[3];
+    float light_angle;     /* a spot's outer half angle, radians: the cone's opening */
 } hud;
 
 /* lattice_cells: cells along the lattice's longest axis (normalises the P bar). */

@@ -67,25 +67,77 @@ int offaxis_screen(const offaxis_screen_desc *d, float view[16], float projectio
     return 0;
 }
 
-int offaxis_look_at(const float position[3], const float target[3], float yfov, float aspect,
-                    float near_plane, float far_plane, float view[16], float projection[16])
+int offaxis_eye_in_front(const float bottom_left[3], const float bottom_right[3],
+                         const float top_left[3], const float eye[3], float min_distance,
+                         float out[3], float *distance)
+{
+    float vr[3], vu[3], vn[3], rel[3];
+    vec3_sub(bottom_right, bottom_left, vr);
+    vec3_sub(top_left, bottom_left, vu);
+    vec3_cross(vr, vu, vn);
+    if (normalize(vn) || !isfinite(eye[0]) || !isfinite(eye[1]) || !isfinite(eye[2]))
+        return -1;
+    vec3_sub(eye, bottom_left, rel);
+    float d = vec3_dot(rel, vn);
+    memcpy(out, eye, 3 * sizeof(float));
+    if (distance)
+        *distance = d;
+    if (d >= min_distance)
+        return 0;
+    for (int i = 0; i < 3; i++)
+        out[i] = eye[i] + (min_distance - d) * vn[i];
+    return 1;
+}
+
+int offaxis_view(const float position[3], const float target[3], const float *up,
+                 float view[16])
 {
     float f[3], r[3], u[3], back[3];
     vec3_sub(target, position, f);
     if (normalize(f))
         return -1;
-    float up[3] = {0, 1, 0};
-    if (fabsf(f[1]) > 0.999f) {
-        up[1] = 0;
-        up[2] = 1;
+    float y[3] = {0, 1, 0};
+    if (up && (up[0] != 0 || up[1] != 0 || up[2] != 0)) {
+        memcpy(y, up, sizeof y);
+    } else if (fabsf(f[1]) > 0.999f) {
+        y[1] = 0;
+        y[2] = 1;
     }
-    vec3_cross(f, up, r);
-    normalize(r);
+    vec3_cross(f, y, r);
+    if (normalize(r))
+        return -1;
     vec3_cross(r, f, u);
     back[0] = -f[0]; back[1] = -f[1]; back[2] = -f[2];
     basis_view(r, u, back, position, view);
+    return 0;
+}
+
+void offaxis_perspective(float yfov, float aspect, float near_plane, float far_plane,
+                         float projection[16])
+{
     float t = near_plane * tanf(0.5f * yfov), rr = t * aspect;
     frustum(-rr, rr, -t, t, near_plane, far_plane, projection);
+}
+
+void offaxis_orthographic(float left, float right, float bottom, float top, float near_plane,
+                          float far_plane, float m[16])
+{
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = 2 / (right - left);
+    m[5] = 2 / (top - bottom);
+    m[10] = -2 / (far_plane - near_plane);
+    m[12] = -(right + left) / (right - left);
+    m[13] = -(top + bottom) / (top - bottom);
+    m[14] = -(far_plane + near_plane) / (far_plane - near_plane);
+    m[15] = 1;
+}
+
+int offaxis_look_at(const float position[3], const float target[3], float yfov, float aspect,
+                    float near_plane, float far_plane, float view[16], float projection[16])
+{
+    if (offaxis_view(position, target, NULL, view) != 0)
+        return -1;
+    offaxis_perspective(yfov, aspect, near_plane, far_plane, projection);
     return 0;
 }
 

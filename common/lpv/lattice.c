@@ -33,7 +33,7 @@ int lattice_fit(const lattice_fit_desc *desc, lattice_desc *out, char *err, size
     }
     if (!(longest > 0.0))
         return fail(err, errlen, "lattice: scene bounds have zero size; the scene needs geometry with extent");
-    int axis_cells = desc->max_axis_cells ? desc->max_axis_cells : 32;
+    int axis_cells = desc->max_axis_cells ? desc->max_axis_cells : LATTICE_DEFAULT_AXIS_CELLS;
     long budget = desc->max_cells ? desc->max_cells : 64L * 64 * 64;
     double margin = desc->margin_cells < 0.0f ? 0.0 : desc->margin_cells;
     if (axis_cells < 1 || axis_cells > (1 << 16))

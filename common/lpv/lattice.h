@@ -9,6 +9,8 @@
 
 #include <stddef.h>
 
+enum { LATTICE_DEFAULT_AXIS_CELLS = 32 };
+
 typedef struct lattice_desc {
     float origin[3]; /* world position of the lattice's minimum corner */
     float cell;      /* cell edge length in metres, > 0 */
@@ -17,7 +19,7 @@ typedef struct lattice_desc {
 
 typedef struct lattice_fit_desc {
     float bounds_min[3], bounds_max[3]; /* scene bounds in world space */
-    int max_axis_cells;  /* cells along the longest axis; 0 = 32 */
+    int max_axis_cells;  /* cells along the longest axis; 0 = LATTICE_DEFAULT_AXIS_CELLS */
     long max_cells;      /* total cell budget; 0 = 64^3. The cell grows until it fits. */
     float margin_cells;  /* empty cells added around the bounds on each side; < 0 = 0.5 */
 } lattice_fit_desc;

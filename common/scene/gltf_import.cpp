@@ -1,7 +1,9 @@
 // gltf_import: glTF 2.0 (.gltf, .glb) into the C scene model, through tinygltf.
 // The one C++ file of the project: everything C++ stays in here behind gltf_import().
 // Reads meshes (TRIANGLES), node transforms, base colour factor and texture, emissive
-// factor (times KHR_materials_emissive_strength) and KHR_lights_punctual spot lights.
+// factor (times KHR_materials_emissive_strength), KHR_lights_punctual lights (spot, point,
+// directional; `range` is a hint the spec lets renderers ignore, and we do) and cameras
+// (perspective and orthographic) with their nodes' transforms.
 //
 // A scene file is untrusted input that every node loads: before anything is read, every
 // index, offset, stride, count and type in the file is checked against what it refers to
@@ -289,6 +291,7 @@ struct validator {
             const tinygltf::Node &n = model.nodes[i];
             std::string at = item("nodes", i);
             check_index(n.mesh, model.meshes.size(), at + ".mesh", "meshes", true);
+            check_index(n.camera, model.cameras.size(), at + ".camera", "cameras", true);
             for (size_t c = 0; c < n.children.size(); c++) {
                 std::string field = item(at + ".children", c);
                 check_index(n.children[c], model.nodes.size(), field, "nodes", false);
@@ -328,12 +331,74 @@ struct validator {
         }
     }
 
+    // A number the importer uses: finite and within [lo, hi] (open ends where asked).
+    static void check_number(double v, const std::string &field, double lo, double hi,
+                             bool lo_open, bool hi_open, const char *range)
+    {
+        if (!std::isfinite(v) || v < lo || v > hi || (lo_open && v == lo) || (hi_open && v == hi))
+            refuse(field + " " + std::to_string(v) + " invalid (" + range + ")");
+    }
+
+    void lights()
+    {
+        const double half_pi = 1.5707963267948966;
+        for (size_t i = 0; i < model.lights.size(); i++) {
+            const tinygltf::Light &l = model.lights[i];
+            std::string at = item("extensions.KHR_lights_punctual.lights", i);
+            if (l.type != "spot" && l.type != "point" && l.type != "directional")
+                refuse(at + ".type \"" + l.type.substr(0, 40) +
+                       "\" unknown (spot, point or directional)");
+            check_number(l.intensity, at + ".intensity", 0, 1e12, false, false, "0 to 1e12");
+            if (!l.color.empty() && l.color.size() != 3)
+                refuse(at + ".color has " + std::to_string(l.color.size()) + " values, expected 3");
+            for (size_t c = 0; c < l.color.size(); c++)
+                check_number(l.color[c], item(at + ".color", c), 0, 1e12, false, false, "0 to 1e12");
+            if (l.type != "spot")
+                continue;
+            check_number(l.spot.outerConeAngle, at + ".spot.outerConeAngle", 0, half_pi, true,
+                         false, "0 < outer <= pi/2");
+            check_number(l.spot.innerConeAngle, at + ".spot.innerConeAngle", 0,
+                         l.spot.outerConeAngle, false, false, "0 <= inner <= outer");
+        }
+    }
+
+    void cameras()
+    {
+        const double pi = 3.141592653589793;
+        for (size_t i = 0; i < model.cameras.size(); i++) {
+            const tinygltf::Camera &c = model.cameras[i];
+            std::string at = item("cameras", i);
+            if (c.type == "perspective") {
+                const tinygltf::PerspectiveCamera &p = c.perspective;
+                check_number(p.yfov, at + ".perspective.yfov", 0, pi, true, true, "0 < yfov < pi");
+                check_number(p.znear, at + ".perspective.znear", 0, 1e30, true, false, "> 0");
+                check_number(p.aspectRatio, at + ".perspective.aspectRatio", 0, 1e6, false, false,
+                             "> 0");
+                if (p.zfar != 0)
+                    check_number(p.zfar, at + ".perspective.zfar", p.znear, 1e30, true, false,
+                                 "> znear");
+            } else if (c.type == "orthographic") {
+                const tinygltf::OrthographicCamera &o = c.orthographic;
+                check_number(o.xmag, at + ".orthographic.xmag", 0, 1e30, true, false, "> 0");
+                check_number(o.ymag, at + ".orthographic.ymag", 0, 1e30, true, false, "> 0");
+                check_number(o.znear, at + ".orthographic.znear", 0, 1e30, false, false, ">= 0");
+                check_number(o.zfar, at + ".orthographic.zfar", o.znear, 1e30, true, false,
+                             "> znear");
+            } else {
+                refuse(at + ".type \"" + c.type.substr(0, 40) +
+                       "\" unknown (perspective or orthographic)");
+            }
+        }
+    }
+
     void run()
     {
         buffer_views();
         accessors();
         meshes();
         materials();
+        lights();
+        cameras();
         nodes();
     }
 };
@@ -505,6 +570,78 @@ struct importer {
         }
     }
 
+    // The node's -Z axis in the world, unit; false when its transform flattens it.
+    static bool axis(const mat4 &world, int column, double sign, float out[3])
+    {
+        double d[3] = {sign * world.m[4 * column], sign * world.m[4 * column + 1],
+                       sign * world.m[4 * column + 2]};
+        double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(len > 0) || !std::isfinite(len))
+            return false;
+        for (int a = 0; a < 3; a++)
+            out[a] = (float)(d[a] / len);
+        return true;
+    }
+
+    void light(int li, const mat4 &world)
+    {
+        const tinygltf::Light &l = model.lights[li];
+        scene_light sl{};
+        const float zero[3] = {0, 0, 0};
+        transform_point(world, zero, sl.position);
+        if (!axis(world, 2, -1.0, sl.direction)) // spot axis and travel: the node's -Z
+            sl.direction[1] = -1.0f;
+        for (int a = 0; a < 3; a++)
+            sl.color[a] = l.color.size() == 3 ? (float)l.color[a] : 1.0f;
+        sl.intensity = (float)l.intensity;
+        if (l.type == "spot") {
+            sl.type = SCENE_LIGHT_SPOT;
+            sl.outer_angle = (float)l.spot.outerConeAngle;
+            sl.inner_angle = (float)l.spot.innerConeAngle;
+        } else {
+            sl.type = l.type == "point" ? SCENE_LIGHT_POINT : SCENE_LIGHT_DIRECTIONAL;
+        }
+        if (scene_add_light(out, &sl) < 0)
+            std::fprintf(stderr, "glTF: more than %d lights, light %d ignored\n", SCENE_MAX_LIGHTS,
+                         li);
+    }
+
+    static void name_copy(char *dst, size_t n, const std::string &src)
+    {
+        std::snprintf(dst, n, "%s", src.c_str());
+    }
+
+    void camera(const tinygltf::Node &n, const mat4 &world, const std::string &at)
+    {
+        const tinygltf::Camera &c = model.cameras[n.camera];
+        scene_camera sc{};
+        const float zero[3] = {0, 0, 0};
+        transform_point(world, zero, sc.position);
+        float forward[3];
+        if (!axis(world, 2, -1.0, forward) || !axis(world, 1, 1.0, sc.up) ||
+            std::fabs(forward[0] * sc.up[0] + forward[1] * sc.up[1] + forward[2] * sc.up[2]) > 0.999f)
+            refuse(at + ": the camera's transform has no view direction or up (zero scale?)");
+        for (int a = 0; a < 3; a++)
+            sc.target[a] = sc.position[a] + forward[a];
+        sc.valid = 1;
+        if (c.type == "orthographic") {
+            sc.orthographic = 1;
+            sc.ymag = (float)c.orthographic.ymag;
+            sc.aspect = (float)(c.orthographic.xmag / c.orthographic.ymag);
+            sc.znear = (float)c.orthographic.znear;
+            sc.zfar = (float)c.orthographic.zfar;
+        } else {
+            sc.yfov = (float)c.perspective.yfov;
+            sc.aspect = (float)c.perspective.aspectRatio;
+            sc.znear = (float)c.perspective.znear;
+            sc.zfar = (float)c.perspective.zfar;
+        }
+        name_copy(sc.name, sizeof sc.name, n.name.empty() ? c.name : n.name);
+        name_copy(sc.camera_name, sizeof sc.camera_name, c.name);
+        if (scene_add_camera(out, &sc) < 0)
+            refuse("out of memory");
+    }
+
     void node(int index, const mat4 &parent)
     {
         const tinygltf::Node &n = model.nodes[index];
@@ -515,27 +652,10 @@ struct importer {
                 primitive(m.primitives[p], world, item(item("meshes", n.mesh) + ".primitives", p));
         }
         auto ext = n.extensions.find("KHR_lights_punctual");
-        if (ext != n.extensions.end() && ext->second.Has("light")) {
-            int li = ext->second.Get("light").GetNumberAsInt();
-            if (model.lights[li].type == "spot") {
-                const tinygltf::Light &l = model.lights[li];
-                scene_light sl{};
-                const float zero[3] = {0, 0, 0};
-                transform_point(world, zero, sl.position);
-                double d[3] = {-world.m[8], -world.m[9], -world.m[10]}; // -Z axis
-                double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                for (int a = 0; a < 3; a++) {
-                    sl.direction[a] = len > 0 ? (float)(d[a] / len) : (a == 1 ? -1.0f : 0.0f);
-                    sl.color[a] = l.color.size() == 3 ? (float)l.color[a] : 1.0f;
-                }
-                sl.intensity = (float)l.intensity;
-                sl.outer_angle = (float)l.spot.outerConeAngle;
-                sl.inner_angle = (float)l.spot.innerConeAngle;
-                if (scene_add_light(out, &sl) < 0)
-                    std::fprintf(stderr, "glTF: more than %d spot lights, light %d ignored\n",
-                                 SCENE_MAX_LIGHTS, li);
-            }
-        }
+        if (ext != n.extensions.end() && ext->second.Has("light"))
+            light(ext->second.Get("light").GetNumberAsInt(), world);
+        if (n.camera >= 0)
+            camera(n, world, item("nodes", (size_t)index));
         for (int child : n.children)
             node(child, world);
     }
@@ -612,6 +732,13 @@ struct importer {
     void run()
     {
         materials();
+        roots();
+        if (out->camera_count > 0) // the file's first camera is the view
+            out->camera = out->cameras[0];
+    }
+
+    void roots()
+    {
         if (model.scenes.empty()) { // no scenes: every node that is nobody's child is a root
             std::vector<bool> child(model.nodes.size(), false);
             for (const tinygltf::Node &n : model.nodes)

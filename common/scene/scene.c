@@ -152,6 +152,45 @@ int scene_add_light(scene *s, const scene_light *l)
     return s->light_count++;
 }
 
+int scene_add_camera(scene *s, const scene_camera *c)
+{
+    scene_camera *q = realloc(s->cameras, (s->camera_count + 1) * sizeof *q);
+    if (!q)
+        return -1;
+    s->cameras = q;
+    q[s->camera_count] = *c;
+    return (int)s->camera_count++;
+}
+
+int scene_pick_camera(scene *s, const char *which, char *err, size_t errlen)
+{
+    char *end;
+    long index = strtol(which, &end, 10);
+    int found = -1;
+    if (end != which && *end == '\0') {
+        if (index >= 0 && (size_t)index < s->camera_count)
+            found = (int)index;
+    } else {
+        for (size_t i = 0; i < s->camera_count && found < 0; i++)
+            if (strcmp(which, s->cameras[i].name) == 0 || strcmp(which, s->cameras[i].camera_name) == 0)
+                found = (int)i;
+    }
+    if (found >= 0) {
+        s->camera = s->cameras[found];
+        return 0;
+    }
+    if (s->camera_count == 0) {
+        snprintf(err, errlen, "camera %s: the scene has no cameras (leave out --camera, or give "
+                 "--position and --target)", which);
+        return -1;
+    }
+    int n = snprintf(err, errlen, "camera %s: no such camera; the scene has", which);
+    for (size_t i = 0; i < s->camera_count && n >= 0 && (size_t)n < errlen; i++)
+        n += snprintf(err + n, errlen - (size_t)n, "%s %zu \"%s\"", i ? "," : "", i,
+                      s->cameras[i].name);
+    return -1;
+}
+
 int scene_finish(scene *s, char *err, size_t errlen)
 {
     if (s->triangle_count == 0) {
@@ -192,7 +231,18 @@ void scene_free(scene *s)
     for (size_t i = 0; i < s->texture_count; i++)
         free(s->textures[i].rgba);
     free(s->textures);
+    free(s->cameras);
     memset(s, 0, sizeof *s);
+}
+
+int scene_has_emitter(const scene *s)
+{
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *e = s->materials[s->triangle_material[t]].emissive;
+        if (e[0] > 0 || e[1] > 0 || e[2] > 0)
+            return 1;
+    }
+    return 0;
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -244,28 +294,6 @@ float scene_far_plane(const scene *s)
     return 4.0f * scene_diagonal(s) + 10.0f;
 }
 
-void scene_default_view(const scene *s, float position[3], float target[3])
-{
-    if (s->camera.valid) {
-        memcpy(position, s->camera.position, sizeof s->camera.position);
-        memcpy(target, s->camera.target, sizeof s->camera.target);
-        return;
-    }
-    float size = 0;
-    for (int a = 0; a < 3; a++) {
-        target[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
-        size = fmaxf(size, s->bounds_max[a] - s->bounds_min[a]);
-    }
-    position[0] = target[0];
-    position[1] = target[1] + 0.3f * size;
-    position[2] = target[2] + 1.5f * size;
-}
-
-float scene_default_yfov(const scene *s)
-{
-    return s->camera.valid ? s->camera.yfov : 60.0f * 3.14159265f / 180.0f;
-}
-
 static const struct {
     const char *name;
     int (*build)(scene *s, char *err, size_t errlen);
@@ -309,6 +337,12 @@ int scene_load(const char *path, scene *out, char *err, size_t errlen)
         rc = scene_finish(out, why, sizeof why);
         if (rc != 0)
             snprintf(err, errlen, "scene %s: %s", path, why);
+    }
+    if (rc == 0 && out->light_count == 0 && !scene_has_emitter(out)) {
+        scene_light l;
+        scene_default_light(out, &l);
+        scene_add_light(out, &l);
+        out->light_added = 1;
     }
     if (rc != 0)
         scene_free(out);

@@ -3,7 +3,8 @@
  * Meshes are flattened to world-space triangles (3 vertices each, no index buffer) with
  * per-vertex unit normals and uvs and one material index per triangle. Materials carry a
  * linear base colour factor, an optional base colour texture (RGBA8, sRGB-encoded as in
- * glTF) and emitted radiance (emissive surfaces are surface lights). Lights are spots.
+ * glTF) and emitted radiance (emissive surfaces are surface lights). Lights are spots,
+ * point lights or directional lights (glTF's KHR_lights_punctual); cameras are the file's.
  *
  * scene_load() picks the loader: a built-in scene's name (scene_builtin_name(): the chart's
  * rooms in scene_default.c, scene_corridor.c, scene_doorway.c, scene_courtyard.c and the
@@ -30,19 +31,39 @@ typedef struct scene_texture {
     uint8_t *rgba;          /* width*height*4, first row first, sRGB-encoded */
 } scene_texture;
 
+/* Spot is 0, so a zeroed light is a spot. */
+typedef enum scene_light_type {
+    SCENE_LIGHT_SPOT = 0,        /* from position into a cone around direction */
+    SCENE_LIGHT_POINT = 1,       /* from position in every direction */
+    SCENE_LIGHT_DIRECTIONAL = 2, /* parallel, along direction, from outside the scene */
+    SCENE_LIGHT_TYPES
+} scene_light_type;
+
+/* Units (one rule for every light): glTF's photometric units are taken 1:1 as radiometric
+ * ones in our linear units, 1 cd = 1 W/sr and 1 lx = 1 W/m^2 (1 cd at 1 m gives 1 lx, and
+ * 1 W/sr at 1 m gives 1 W/m^2, so the rule keeps the file's lights in proportion). */
 typedef struct scene_light {
-    float position[3];
-    float direction[3];     /* unit spot axis */
+    float position[3];      /* spot, point; directional: where the file put it (HUD only) */
+    float direction[3];     /* unit: spot axis, direction a directional light travels */
     float color[3];         /* linear RGB */
-    float intensity;        /* radiant intensity on the axis, W/sr (glTF candela taken as W/sr) */
-    float outer_angle;      /* half angle, radians */
+    float intensity;        /* spot, point: radiant intensity, W/sr (glTF candela);
+                               directional: irradiance on a surface facing it, W/m^2 (lux) */
+    float outer_angle;      /* spot: half angle, radians */
     float inner_angle;
+    scene_light_type type;
 } scene_light;
 
 typedef struct scene_camera {
     int valid;
     float position[3], target[3];
-    float yfov;             /* radians */
+    float yfov;             /* radians (perspective) */
+    float up[3];            /* the camera's up; zero: +y (+z when looking straight up/down) */
+    int orthographic;       /* glTF orthographic: ymag instead of yfov */
+    float ymag;             /* orthographic: half height of the view, metres */
+    float aspect;           /* width / height the file asks for, 0 = the image's */
+    float znear, zfar;      /* clip distances, 0 = the node's defaults */
+    char name[64];          /* the glTF node's name, else the camera's, else "" */
+    char camera_name[64];   /* the glTF camera's own name */
 } scene_camera;
 
 typedef struct scene {
@@ -58,12 +79,18 @@ typedef struct scene {
     scene_texture *textures;
     int light_count;
     scene_light lights[SCENE_MAX_LIGHTS];
-    scene_camera camera;    /* suggested view, if the scene has one */
+    int light_added;        /* 1: the file had no light (and no emitter), so scene_load()
+                               added lights[0] inside the bounds (scene_default_light()) */
+    scene_camera camera;    /* the view to use: the file's first camera, or a built-in
+                               scene's; scene_pick_camera() chooses another */
+    size_t camera_count;    /* the file's cameras, in the order the scene graph lists them */
+    scene_camera *cameras;
     float bounds_min[3], bounds_max[3]; /* valid after scene_finish() */
 } scene;
 
 /* A built-in scene's name or a .gltf/.glb path. Returns 0, or -1 with one line in err (and
- * *out empty). */
+ * *out empty). A scene with neither lights nor emissive surfaces gets scene_default_light()
+ * and light_added = 1 (the caller says so to the user: scene_light_added_note()). */
 int scene_load(const char *path, scene *out, char *err, size_t errlen);
 /* The i-th built-in scene's name ("default", "corridor", ...), NULL past the last. */
 const char *scene_builtin_name(int i);
@@ -92,6 +119,8 @@ void scene_light_aim(scene_light *l, const float target[3]);
 /* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
 int scene_finish(scene *s, char *err, size_t errlen);
 
+/* 1 when some triangle's material emits light. */
+int scene_has_emitter(const scene *s);
 /* Length of the bounds' diagonal. Needs scene_finish(). */
 float scene_diagonal(const scene *s);
 /* Inverse-square falloff is bounded at this distance from a light (diagonal / 64: 10 cm in
@@ -101,12 +130,40 @@ float scene_min_light_distance(const scene *s);
 /* Far clip distance that keeps the whole scene visible from in or near its bounds:
  * 4 x the bounds' diagonal + 10 m. Needs scene_finish(). */
 float scene_far_plane(const scene *s);
-/* Where to look from when nothing else says: the scene's own camera if it has one, else
- * from in front of the bounds' centre (+0.3 x the largest extent up, +1.5 x towards +z),
- * looking at the centre. Needs scene_finish(). */
+/* Where to look from when nothing else says (scene_place.c). The scene's own camera if it
+ * has one. Else from inside, when the scene is a room: at eye height (min(1.6 m, half the
+ * height) above the floor of the bounds) at the first free point (scene_point_is_free())
+ * of 10%, 25%, 40% along the longest horizontal extent (middle, then 30% and 70% across),
+ * looking along that axis, if most rays from there meet the front of a surface. Else (an
+ * object seen from outside) from in front of the bounds' centre (+0.3 x the largest extent
+ * up, +1.5 x towards +z), looking at the centre. Needs scene_finish(). */
 void scene_default_view(const scene *s, float position[3], float target[3]);
-/* The vertical field of view that goes with it: the scene camera's, else 60 degrees. */
-float scene_default_yfov(const scene *s);
+/* The camera to look through when nothing else says: the scene's own (a file's first, or
+ * the one scene_pick_camera() chose), else a 60 degree perspective camera at
+ * scene_default_view(). */
+void scene_default_camera(const scene *s, scene_camera *out);
+/* The light scene_load() gives a scene without lights or emitters: a white point light
+ * inside the bounds, three quarters of the way up over the middle (a ceiling lamp),
+ * moved to the first point of a grid over the bounds that is free (scene_point_is_free())
+ * and D/16 from every surface the probes meet (D the bounds' diagonal) when that spot is
+ * not; its intensity gives 2 W/m^2 on the floor of the bounds straight below. */
+void scene_default_light(const scene *s, scene_light *out);
+/* 1 when p is outside every closed solid as far as 14 rays from p can tell: no ray's first
+ * hit is the back of a surface (the side its vertex normals turn away from). *fronts (if
+ * not NULL) counts the rays whose first hit is the front of a surface. Brute force over
+ * the triangles. */
+int scene_point_is_free(const scene *s, const float p[3], int *fronts);
+/* The one line that tells a user about the added light, e.g. "scene room.gltf has no
+ * lights: added a point light at (0, 2.25, 0), 10.1 W/sr, inside its bounds (add a
+ * KHR_lights_punctual light to choose your own)". */
+void scene_light_added_note(const scene *s, const char *path, char *out, size_t n);
+
+/* Adds a copy of c to cameras. Returns its index or -1 when out of memory. */
+int scene_add_camera(scene *s, const scene_camera *c);
+/* Makes a file camera the scene's camera: `which` is a camera's name (its node's or its
+ * own) or its index in cameras. Returns 0, or -1 with one line naming the cameras there
+ * are. */
+int scene_pick_camera(scene *s, const char *which, char *err, size_t errlen);
 
 /* Built-in room: 4 x 3 x 4 m, red left wall, green right wall, white rest, two boxes,
  * a small emissive panel and one spotlight. Needs no files. */

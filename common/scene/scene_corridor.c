@@ -51,7 +51,8 @@ int scene_corridor_build(scene *s, char *err, size_t errlen)
     if (scene_add_light(s, &spot) < 0)
         goto oom;
 
-    s->camera = (scene_camera){1, {0.2f, 1.7f, 0.9f}, {12.0f, 0.9f, -0.5f}, 1.0f};
+    s->camera = (scene_camera){.valid = 1, .position = {0.2f, 1.7f, 0.9f},
+                               .target = {12.0f, 0.9f, -0.5f}, .yfov = 1.0f};
     return 0;
 oom:
     snprintf(err, errlen, "corridor scene: out of memory");

@@ -50,7 +50,8 @@ int scene_courtyard_build(scene *s, char *err, size_t errlen)
     scene_light_aim(&sun, target);
     if (scene_add_light(s, &sun) < 0)
         goto oom;
-    s->camera = (scene_camera){1, {-2.7f, 1.6f, 2.7f}, {1.5f, 2.6f, -2.0f}, 1.25f};
+    s->camera = (scene_camera){.valid = 1, .position = {-2.7f, 1.6f, 2.7f},
+                               .target = {1.5f, 2.6f, -2.0f}, .yfov = 1.25f};
     return 0;
 oom:
     snprintf(err, errlen, "courtyard scene: out of memory");

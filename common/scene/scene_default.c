@@ -60,7 +60,8 @@ int scene_default_build(scene *s, char *err, size_t errlen)
     if (scene_add_light(s, &spot) < 0)
         goto oom;
 
-    s->camera = (scene_camera){1, {1.3f, 1.6f, 1.9f}, {-0.5f, 0.9f, -1.2f}, 1.15f};
+    s->camera = (scene_camera){.valid = 1, .position = {1.3f, 1.6f, 1.9f},
+                               .target = {-0.5f, 0.9f, -1.2f}, .yfov = 1.15f};
     return 0;
 oom:
     snprintf(err, errlen, "default scene: out of memory");

@@ -59,7 +59,8 @@ int scene_doorway_build(scene *s, char *err, size_t errlen)
     scene_light_aim(&spot, target);
     if (scene_add_light(s, &spot) < 0)
         goto oom;
-    s->camera = (scene_camera){1, {8.8f, 1.7f, 1.6f}, {4.0f, 0.9f, -1.2f}, 1.2f};
+    s->camera = (scene_camera){.valid = 1, .position = {8.8f, 1.7f, 1.6f},
+                               .target = {4.0f, 0.9f, -1.2f}, .yfov = 1.2f};
     return 0;
 oom:
     snprintf(err, errlen, "doorway scene: out of memory");

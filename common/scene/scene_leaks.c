@@ -42,7 +42,8 @@ int scene_leak_lid_build(scene *s, char *err, size_t errlen)
                         .intensity = 16.0f, .outer_angle = 0.6f, .inner_angle = 0.45f};
     if (scene_add_light(s, &spot) < 0)
         goto oom;
-    s->camera = (scene_camera){1, {0.8f, 1.8f, 0.8f}, {-0.7f, 0.3f, -0.7f}, 1.4f};
+    s->camera = (scene_camera){.valid = 1, .position = {0.8f, 1.8f, 0.8f},
+                               .target = {-0.7f, 0.3f, -0.7f}, .yfov = 1.4f};
     return 0;
 oom:
     snprintf(err, errlen, "leak-lid scene: out of memory");
@@ -66,7 +67,8 @@ int scene_leak_panel_build(scene *s, char *err, size_t errlen)
         rect(s, P, H, -P, 2, H, P, -1, 0) ||
         rect(s, -P, H, -P, P, H, P, -1, 1))     /* the panel, flush, facing down */
         goto oom;
-    s->camera = (scene_camera){1, {1.8f, 0.4f, 1.8f}, {-0.6f, 2.2f, -0.6f}, 1.4f};
+    s->camera = (scene_camera){.valid = 1, .position = {1.8f, 0.4f, 1.8f},
+                               .target = {-0.6f, 2.2f, -0.6f}, .yfov = 1.4f};
     return 0;
 oom:
     snprintf(err, errlen, "leak-panel scene: out of memory");
@@ -86,7 +88,8 @@ int scene_leak_wall_build(scene *s, char *err, size_t errlen)
     scene_light_aim(&spot, target);
     if (scene_add_light(s, &spot) < 0)
         goto oom;
-    s->camera = (scene_camera){1, {3.8f, 2.7f, 1.8f}, {0.2f, 0.3f, -0.6f}, 1.3f};
+    s->camera = (scene_camera){.valid = 1, .position = {3.8f, 2.7f, 1.8f},
+                               .target = {0.2f, 0.3f, -0.6f}, .yfov = 1.3f};
     return 0;
 oom:
     snprintf(err, errlen, "leak-wall scene: out of memory");

@@ -2,6 +2,33 @@
 #ifndef CAVELIGHT_BENCH_H
 #define CAVELIGHT_BENCH_H
 
+#include "base/cli.h"
+
+/* One option of a benchmark: a whole number in [lo, hi] (value), a text (text), or one
+ * of choices (its index into value). The variable's value before parsing is the default
+ * --help shows. */
+typedef struct bench_option {
+    const char *name, *arg, *help;
+    int *value;
+    int lo, hi;
+    const char **text;
+    const char *const *choices;
+    int choice_count;
+} bench_option;
+
+/* Parses a benchmark's options (argv[0] is its name). Returns 0, 1 when --help was
+ * printed (exit 0), -1 after one line on stderr (exit 2). */
+int bench_parse(const char *bench, const char *summary, const bench_option *opts, int count,
+                int argc, char **argv);
+#define BENCH_INT(name_, arg_, help_, ptr, lo_, hi_)                                           \
+    {.name = name_, .arg = arg_, .help = help_, .value = ptr, .lo = lo_, .hi = hi_}
+#define BENCH_TEXT(name_, arg_, help_, ptr) {.name = name_, .arg = arg_, .help = help_, .text = ptr}
+#define BENCH_CHOICE(name_, arg_, help_, ptr, names)                                           \
+    {.name = name_, .arg = arg_, .help = help_, .value = ptr, .choices = names,                 \
+     .choice_count = (int)(sizeof names / sizeof *names)}
+#define BENCH_PARSE(bench, summary, opts, argc, argv)                                          \
+    bench_parse(bench, summary, opts, (int)(sizeof opts / sizeof *opts), argc, argv)
+
 int bench_lpv(int argc, char **argv);
 int bench_cluster(int argc, char **argv);
 int bench_frame(int argc, char **argv);

@@ -366,8 +366,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_savings(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "vpl") == 0)
         return accuracy_vpl(argc - 1, argv + 1);
-    fprintf(stderr, "bench accuracy: sweep|move|path|savings|vpl [options] (see scripts/chart.sh)\n");
-    return 2;
+    int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl [options]\n"
+            "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
+    return help ? 0 : 2;
 }
 #else
 int bench_accuracy(int argc, char **argv)

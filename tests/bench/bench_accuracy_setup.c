@@ -52,10 +52,10 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
         scene_free(&s->sc);
         return -1;
     }
-    float eye[3], target[3];
-    scene_default_view(&s->sc, eye, target);
-    frame_view_camera(eye, target, scene_default_yfov(&s->sc), scene_far_plane(&s->sc), o->width,
-                      o->height, &s->view);
+    scene_camera cam;
+    scene_default_camera(&s->sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&s->sc), o->width, o->height,
+                            &s->view);
     frame_params_default(&s->base);
     frame_params_lights_from_scene(&s->base, &s->sc);
     s->encoding_gamma = frame_params_e2e_gamma(s->base.environment) / s->base.display_gamma;

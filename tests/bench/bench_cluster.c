@@ -120,20 +120,17 @@ static int tcp_ping_pong(int bytes, int rounds, double *median, double *p99)
 
 int bench_cluster(int argc, char **argv)
 {
-    int nodes = 10, frames = 2000;
-    const char *transport = "tcp";
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (strcmp(argv[i], "--nodes") == 0)
-            nodes = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--frames") == 0)
-            frames = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--transport") == 0)
-            transport = argv[i + 1];
-    }
-    if (nodes < 1 || nodes > CLUSTER_MAX_NODES || frames < 10) {
-        fprintf(stderr, "cavelight-bench cluster: --nodes 1..%d, --frames >= 10\n", CLUSTER_MAX_NODES);
-        return 2;
-    }
+    int nodes = 10, frames = 2000, transport_index = 0;
+    static const char *const transports[] = {"tcp", "ipc"};
+    const bench_option opts[] = {
+        BENCH_INT("nodes", "N", "stub nodes (threads, no GL)", &nodes, 1, CLUSTER_MAX_NODES),
+        BENCH_INT("frames", "F", "frames through the barrier", &frames, 10, 10000000),
+        BENCH_CHOICE("transport", "tcp|ipc", "ZeroMQ transport", &transport_index, transports),
+    };
+    int pr = BENCH_PARSE("cluster", "frame round trips of a master and stub nodes", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
+    const char *transport = transports[transport_index];
     /* A config with N one-screen nodes on an ephemeral loopback port. */
     static char json[16384];
     int n = snprintf(json, sizeof json,

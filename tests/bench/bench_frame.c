@@ -16,6 +16,7 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
+#include "lpv/lattice.h"
 #include "glctx.h"
 #include "frame/frame_view.h"
 #include "renderer.h"
@@ -39,42 +40,32 @@ static void bunny_path(char *out, size_t n)
 
 int bench_frame(int argc, char **argv)
 {
-    const char *scene_arg = "default", *gl_name = "egl";
-    int width = 320, height = 240, frames = 10, rsm = 256, lattice = 32;
-    renderer_lpv_backend lpv = RENDERER_LPV_AUTO;
-    renderer_tiles tiles = RENDERER_TILES_AUTO;
-    frame_gi gi = FRAME_GI_ILPV;
-    int vpl_count = 0;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (strcmp(argv[i], "--scene") == 0) scene_arg = argv[i + 1];
-        else if (strcmp(argv[i], "--width") == 0) width = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--height") == 0) height = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--frames") == 0) frames = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--rsm") == 0) rsm = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--lattice") == 0) lattice = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--gl") == 0) gl_name = argv[i + 1];
-        else if (strcmp(argv[i], "--vpl-count") == 0) vpl_count = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--gi") == 0) {
-            if (frame_gi_parse(argv[i + 1], &gi) != 0) {
-                fprintf(stderr, "bench frame: --gi %s: use " FRAME_GI_NAMES "\n", argv[i + 1]);
-                return 2;
-            }
-        }
-        else if (strcmp(argv[i], "--tiles") == 0)
-            tiles = strcmp(argv[i + 1], "on") == 0 ? RENDERER_TILES_ON
-                    : strcmp(argv[i + 1], "off") == 0 ? RENDERER_TILES_OFF : RENDERER_TILES_AUTO;
-        else if (strcmp(argv[i], "--lpv") == 0)
-            lpv = strcmp(argv[i + 1], "gl") == 0 ? RENDERER_LPV_GL
-                  : strcmp(argv[i + 1], "cpu") == 0 ? RENDERER_LPV_CPU : RENDERER_LPV_AUTO;
-        else {
-            fprintf(stderr, "bench frame: unknown option %s\n", argv[i]);
-            return 2;
-        }
-    }
-    if (width < 1 || height < 1 || frames <= WARMUP) {
-        fprintf(stderr, "bench frame: need a positive size and more than %d frames\n", WARMUP);
-        return 2;
-    }
+    const char *scene_arg = "default";
+    int width = 320, height = 240, frames = 10, rsm = RENDERER_DEFAULT_RSM_SIZE;
+    int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
+    int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO, gi_index = FRAME_GI_ILPV;
+    int vpl_count = FRAME_VPL_DEFAULT;
+    static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
+    static const char *const lpv_names[] = {"auto", "cpu", "gl"};
+    static const char *const tiles_names[] = {"auto", "on", "off"};
+    const bench_option opts[] = {
+        BENCH_TEXT("scene", "default|bunny|FILE", "scene (bunny: ../shared/scenes/bunny)", &scene_arg),
+        BENCH_INT("width", "W", "image width", &width, 1, 16384),
+        BENCH_INT("height", "H", "image height", &height, 1, 16384),
+        BENCH_INT("frames", "N", "frames (the first ones warm up)", &frames, WARMUP + 1, 1000000),
+        BENCH_INT("rsm", "N", "reflective shadow map size", &rsm, 8, 4096),
+        BENCH_INT("lattice", "N", "LPV cells along the longest axis", &lattice, 2, 512),
+        BENCH_CHOICE("gl", "egl|osmesa|glfw", "GL context", &gl_index, gl_names),
+        BENCH_CHOICE("lpv", "auto|cpu|gl", "where the LPV runs", &lpv, lpv_names),
+        BENCH_CHOICE("tiles", "auto|on|off", "GL propagation tiles", &tiles, tiles_names),
+        BENCH_CHOICE("gi", "ilpv|none|vpl", "indirect-light method", &gi_index, frame_gi_names),
+        BENCH_INT("vpl-count", "N", "vpl: lights per frame", &vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX),
+    };
+    int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
+    const char *gl_name = gl_names[gl_index];
+    frame_gi gi = (frame_gi)gi_index;
     char path[4096], err[512];
     snprintf(path, sizeof path, "%s", scene_arg);
     if (strcmp(scene_arg, "bunny") == 0) {
@@ -115,14 +106,11 @@ int bench_frame(int argc, char **argv)
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc);
     fp.gi = gi;
-    if (vpl_count)
-        fp.vpl_count = vpl_count;
-    frame_params_sanitize(&fp); /* the count reported is the one rendered */
+    fp.vpl_count = vpl_count;
     renderer_view v;
-    float eye[3], target[3];
-    scene_default_view(&sc, eye, target);
-    frame_view_camera(eye, target, scene_default_yfov(&sc), scene_far_plane(&sc), width, height,
-                      &v);
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
 
     int n = frames - WARMUP;
     double *s = calloc((size_t)n * (PASSES + 1), sizeof *s);
@@ -157,11 +145,11 @@ int bench_frame(int argc, char **argv)
         if (f >= WARMUP)
             base[f - WARMUP] = t.eye_host_ms;
     }
-    static const char *lpv_names[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
-                                            "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
-    static const char *vpl_names[PASSES] = {"rsm_ms", "select_ms", "shadow_ms", "gbuffer_ms",
-                                            "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
-    const char *const *names = gi == FRAME_GI_VPL ? vpl_names : lpv_names;
+    static const char *lpv_passes[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
+                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
+    static const char *vpl_passes[PASSES] = {"rsm_ms", "select_ms", "shadow_ms", "gbuffer_ms",
+                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
+    const char *const *names = gi == FRAME_GI_VPL ? vpl_passes : lpv_passes;
     double med[PASSES + 1];
     for (int p = 0; p <= PASSES; p++) {
         qsort(s + (size_t)p * n, (size_t)n, sizeof *s, cmp_double);

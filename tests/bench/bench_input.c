@@ -40,13 +40,12 @@ static double pct(double *v, int n, double p)
 int bench_input(int argc, char **argv)
 {
     int iterations = 2000;
-    for (int i = 1; i + 1 < argc; i += 2)
-        if (strcmp(argv[i], "--iterations") == 0)
-            iterations = atoi(argv[i + 1]);
-    if (iterations < 10) {
-        fprintf(stderr, "bench input: --iterations must be at least 10\n");
-        return 2;
-    }
+    const bench_option opts[] = {
+        BENCH_INT("iterations", "N", "input polls measured", &iterations, 10, 100000000),
+    };
+    int pr = BENCH_PARSE("input", "input parsing and merging per master frame", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
     char err[256];
     input *in = input_create(&(input_desc){0}, err, sizeof err);
     input_source *src = input_dtrack_open(&(input_dtrack_desc){.name = "bench"}, err, sizeof err);

@@ -103,34 +103,18 @@ static double load_average(void)
     return l;
 }
 
-static void usage(void)
-{
-    fprintf(stderr, "usage: cavelight-bench lpv --res N --steps S [--threads T] [--naive-repeats R]\n");
-}
-
 int bench_lpv(int argc, char **argv)
 {
     int res = 64, steps = 8, threads = 0, naive_repeats = 3;
-    for (int i = 1; i < argc; i++) {
-        int *dst = NULL;
-        if (strcmp(argv[i], "--res") == 0)
-            dst = &res;
-        else if (strcmp(argv[i], "--steps") == 0)
-            dst = &steps;
-        else if (strcmp(argv[i], "--threads") == 0)
-            dst = &threads;
-        else if (strcmp(argv[i], "--naive-repeats") == 0)
-            dst = &naive_repeats;
-        if (!dst || i + 1 >= argc) {
-            usage();
-            return 2;
-        }
-        *dst = atoi(argv[++i]);
-    }
-    if (res < 2 || res > 512 || steps < 1 || steps > 1000 || naive_repeats < 1) {
-        fprintf(stderr, "bench lpv: --res must be 2..512, --steps 1..1000, --naive-repeats >= 1\n");
-        return 2;
-    }
+    const bench_option opts[] = {
+        BENCH_INT("res", "N", "lattice cells per axis", &res, 2, 512),
+        BENCH_INT("steps", "S", "propagation steps", &steps, 1, 1000),
+        BENCH_INT("threads", "T", "worker threads (0: all cores)", &threads, 0, 256),
+        BENCH_INT("naive-repeats", "R", "repeats of the naive baseline", &naive_repeats, 1, 1000),
+    };
+    int pr = BENCH_PARSE("lpv", "CPU propagation against a naive baseline", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
     workpool *pool = workpool_create(threads);
     if (!pool) {
         fprintf(stderr, "bench lpv: cannot start the worker threads\n");

@@ -1,4 +1,5 @@
-/* cavelight-bench: benchmarks that print one JSON line each. One subcommand per file. */
+/* cavelight-bench: benchmarks that print one JSON line each. One subcommand per file;
+ * each subcommand's options are its own table (bench_parse(), base/cli.h). */
 #include <stdio.h>
 #include <string.h>
 
@@ -7,27 +8,48 @@
 static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
-    const char *usage;
 } benches[] = {
-    {"lpv", bench_lpv, "lpv --res N --steps S [--threads T]"},
-    {"cluster", bench_cluster, "cluster --nodes N [--frames F] [--transport tcp|ipc]"},
-    {"frame", bench_frame, "frame [--scene default|bunny|FILE] [--width W --height H --frames N "
-                           "--rsm N --lattice N --gl egl|osmesa --lpv auto|cpu|gl --tiles auto|on|off]"},
-    {"input", bench_input, "input [--iterations N]"},
-    {"accuracy", bench_accuracy, "accuracy sweep|move|path|savings [--scene S --out DIR --width W "
-                                 "--height H --ref-samples N ...] (scripts/chart.sh)"},
-    {"reference", bench_reference, "reference [--width W --height H --samples N --bounces B --runs R]"},
+    {"lpv", bench_lpv}, {"cluster", bench_cluster}, {"frame", bench_frame},
+    {"input", bench_input}, {"accuracy", bench_accuracy}, {"reference", bench_reference},
 };
+enum { BENCH_COUNT = sizeof benches / sizeof benches[0] };
+
+/* Every subcommand's own --help, one after the other. */
+static int help(void)
+{
+    printf("usage: cavelight-bench BENCHMARK [options]   (each prints one JSON line)\n"
+           "benchmarks:");
+    for (int i = 0; i < BENCH_COUNT; i++)
+        printf(" %s", benches[i].name);
+    printf("\n");
+    for (int i = 0; i < BENCH_COUNT; i++) {
+        char *argv[] = {(char *)benches[i].name, "--help", NULL};
+        printf("\n");
+        fflush(stdout);
+        if (benches[i].run(2, argv) != 0)
+            return 1;
+    }
+    return 0;
+}
 
 int main(int argc, char **argv)
 {
-    if (argc >= 2) {
-        for (size_t i = 0; i < sizeof benches / sizeof benches[0]; i++)
+    if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        return help();
+    if (argc >= 2)
+        for (int i = 0; i < BENCH_COUNT; i++)
             if (strcmp(argv[1], benches[i].name) == 0)
                 return benches[i].run(argc - 1, argv + 1);
+    if (argc < 2) {
+        fprintf(stderr, "cavelight-bench: name a benchmark: lpv, cluster, frame, input, accuracy or "
+                "reference (see --help)\n");
+        return 2;
     }
-    fprintf(stderr, "usage: cavelight-bench <benchmark> [options]\n");
-    for (size_t i = 0; i < sizeof benches / sizeof benches[0]; i++)
-        fprintf(stderr, "  %s\n", benches[i].usage);
+    const char *names[BENCH_COUNT];
+    for (int i = 0; i < BENCH_COUNT; i++)
+        names[i] = benches[i].name;
+    const char *close = cli_nearest(argv[1], names, BENCH_COUNT);
+    fprintf(stderr, "cavelight-bench: unknown benchmark '%s'%s%s%s (see --help)\n", argv[1],
+            close ? ": did you mean " : "", close ? close : "", close ? "?" : "");
     return 2;
 }

@@ -51,21 +51,16 @@ static int measure(const scene *sc, const reference_render_desc *rd, int threads
 int bench_reference(int argc, char **argv)
 {
     int width = 160, height = 120, samples = 16, bounces = 8, runs = 3;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (strcmp(argv[i], "--width") == 0) width = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--height") == 0) height = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--samples") == 0) samples = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--bounces") == 0) bounces = atoi(argv[i + 1]);
-        else if (strcmp(argv[i], "--runs") == 0) runs = atoi(argv[i + 1]);
-        else {
-            fprintf(stderr, "bench reference: unknown option %s\n", argv[i]);
-            return 2;
-        }
-    }
-    if (width < 1 || height < 1 || samples < 1 || bounces < 1 || runs < 1 || runs > 16) {
-        fprintf(stderr, "bench reference: need a positive size, samples, bounces and 1..16 runs\n");
-        return 2;
-    }
+    const bench_option opts[] = {
+        BENCH_INT("width", "W", "image width", &width, 1, 16384),
+        BENCH_INT("height", "H", "image height", &height, 1, 16384),
+        BENCH_INT("samples", "N", "paths per pixel", &samples, 1, 1 << 20),
+        BENCH_INT("bounces", "B", "reflections per path", &bounces, 1, 1000),
+        BENCH_INT("runs", "R", "timed runs (the median is printed)", &runs, 1, 16),
+    };
+    int pr = BENCH_PARSE("reference", "the Embree path tracer's speed", opts, argc, argv);
+    if (pr)
+        return pr > 0 ? 0 : 2;
     char err[512];
     scene sc;
     if (scene_load("default", &sc, err, sizeof err) != 0) {
@@ -76,10 +71,9 @@ int bench_reference(int argc, char **argv)
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &sc);
     renderer_view v;
-    float eye[3], target[3];
-    scene_default_view(&sc, eye, target);
-    frame_view_camera(eye, target, scene_default_yfov(&sc), scene_far_plane(&sc), width, height,
-                      &v);
+    scene_camera cam;
+    scene_default_camera(&sc, &cam);
+    frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
     reference_render_desc rd = {.params = &p, .view = &v, .samples = samples,
                                 .max_bounces = bounces, .seed = 1};
     workpool *probe = workpool_create(0);

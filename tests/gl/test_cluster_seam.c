@@ -97,8 +97,8 @@ static void test_view_maths(void **state)
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1.7f, 0, 1};
     memcpy(f.head, head, sizeof head);
     renderer_view lv, rv;
-    assert_int_equal(cluster_view_compute(&cfg, 0, -1, &f, 64, 128, 100, &lv), 0);
-    assert_int_equal(cluster_view_compute(&cfg, 0, 1, &f, 64, 128, 100, &rv), 0);
+    assert_int_equal(cluster_view_compute(&cfg, 0, -1, &f, 64, 128, 100, &lv, NULL), 0);
+    assert_int_equal(cluster_view_compute(&cfg, 0, 1, &f, 64, 128, 100, &rv, NULL), 0);
     /* Eyes 6.4 cm apart along the head's right axis, 6 cm below and 8 cm in front of the sensor. */
     assert_float_equal(rv.eye_position[0] - lv.eye_position[0], 0.064f, 1e-6);
     assert_float_equal(lv.eye_position[1], 1.64f, 1e-6);
@@ -106,7 +106,7 @@ static void test_view_maths(void **state)
     /* Navigation moves the world, not the picture: eye and screens move together. */
     f.navigation[12] = 5;
     renderer_view nv;
-    assert_int_equal(cluster_view_compute(&cfg, 0, -1, &f, 64, 128, 100, &nv), 0);
+    assert_int_equal(cluster_view_compute(&cfg, 0, -1, &f, 64, 128, 100, &nv, NULL), 0);
     assert_float_equal(nv.eye_position[0], lv.eye_position[0] + 5, 1e-5);
     for (int i = 0; i < 16; i++)
         assert_float_equal(nv.projection[i], lv.projection[i], 1e-4);

@@ -331,7 +331,7 @@ static void test_cone_at_spot(void **state)
     const frame_light *l = &p.lights[0];
     float eye[3] = {l->position[0], l->position[1] - 0.5f, l->position[2] + 0.6f}, mid[3];
     for (int k = 0; k < 3; k++)
-        mid[k] = l->position[k] + 0.5f * RENDERER_HUD_SPOT_CONE * l->direction[k];
+        mid[k] = l->position[k] + 0.5f * RENDERER_HUD_LIGHT_MARKER * l->direction[k];
     renderer_view v;
     gltest_look_at(&v, eye, mid, 0.6f, W, H);
     memcpy(p.wand + 12, (const float[3]){eye[0], eye[1], eye[2] + 3.0f}, 3 * sizeof(float));
@@ -344,7 +344,7 @@ static void test_cone_at_spot(void **state)
     gltest_project(&v, l->position, c);
     lo[0] = hi[0] = c[0];
     lo[1] = hi[1] = c[1];
-    float rim = RENDERER_HUD_SPOT_CONE * tanf(l->outer_angle);
+    float rim = RENDERER_HUD_LIGHT_MARKER * tanf(l->outer_angle);
     for (int s = 0; s < 64; s++) {
         float q[3], px[2], dx = cosf(s * 0.0982f), dy = sinf(s * 0.0982f);
         /* any two unit vectors spanning the base plane */
@@ -355,7 +355,7 @@ static void test_cone_at_spot(void **state)
                       l->direction[2] * u[0] - l->direction[0] * u[2],
                       l->direction[0] * u[1] - l->direction[1] * u[0]};
         for (int k = 0; k < 3; k++)
-            q[k] = l->position[k] + RENDERER_HUD_SPOT_CONE * l->direction[k] +
+            q[k] = l->position[k] + RENDERER_HUD_LIGHT_MARKER * l->direction[k] +
                    rim * (dx * u[k] + dy * w[k]);
         gltest_project(&v, q, px);
         for (int a = 0; a < 2; a++) {
@@ -379,6 +379,64 @@ static void test_cone_at_spot(void **state)
     gltest_close(&t);
 }
 
+/* A point light's star and a directional light's arrow sit at light 0 too: every HUD pixel
+ * lies in the projection of the marker's bounding box (a cube of the marker's size around
+ * a point light; along a directional light, as wide as the arrow's head). */
+static void test_markers_by_type(void **state)
+{
+    (void)state;
+    gltest t;
+    frame_params p;
+    setup(&t, &p);
+    frame_light *l = &p.lights[0];
+    memcpy(l->direction, (const float[3]){0, -1, 0}, sizeof l->direction);
+    float eye[3] = {l->position[0] + 0.1f, l->position[1] - 0.5f, l->position[2] + 0.6f};
+    renderer_view v;
+    gltest_look_at(&v, eye, l->position, 0.6f, W, H);
+    memcpy(p.wand + 12, (const float[3]){eye[0], eye[1], eye[2] + 3.0f}, 3 * sizeof(float));
+    const float len = RENDERER_HUD_LIGHT_MARKER;
+    for (int type = SCENE_LIGHT_POINT; type <= SCENE_LIGHT_DIRECTIONAL; type++) {
+        l->type = (scene_light_type)type;
+        p.hud_layout = -1;
+        uint8_t *hidden = render(&t, &p, &v);
+        p.hud_layout = 1;
+        uint8_t *shown = render(&t, &p, &v);
+        float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+        for (int k = 0; k < 8; k++) { /* the corners of the marker's box */
+            float q[3], px[2];
+            for (int a = 0; a < 3; a++) {
+                float side = (k >> a) & 1 ? 0.5f : -0.5f;
+                q[a] = type == SCENE_LIGHT_POINT
+                           ? l->position[a] + side * len
+                           : l->position[a] + ((k & 1) ? len * l->direction[a] : 0.0f) +
+                                 (a ? side * 0.3f * len : 0.0f);
+            }
+            if (type == SCENE_LIGHT_DIRECTIONAL) /* along -y: as wide across x as across z */
+                q[0] = l->position[0] + ((k >> 1) & 1 ? 0.15f : -0.15f) * len;
+            gltest_project(&v, q, px);
+            for (int a = 0; a < 2; a++) {
+                lo[a] = fminf(lo[a], px[a]);
+                hi[a] = fmaxf(hi[a], px[a]);
+            }
+        }
+        int inside = 0, outside = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++)
+                if (changed(shown, hidden, x, y)) {
+                    int in = x + 1 >= lo[0] && x <= hi[0] + 1 && y + 1 >= lo[1] && y <= hi[1] + 1;
+                    inside += in;
+                    outside += !in;
+                }
+        printf("%s marker: %d pixels in its projected box, %d outside\n",
+               type == SCENE_LIGHT_POINT ? "point light" : "directional light", inside, outside);
+        assert_true(inside > 30);
+        assert_int_equal(outside, 0);
+        free(hidden);
+        free(shown);
+    }
+    gltest_close(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -388,6 +446,7 @@ int main(void)
         cmocka_unit_test(test_active_indicator_brighter),
         cmocka_unit_test(test_bar_length_follows_value),
         cmocka_unit_test(test_cone_at_spot),
+        cmocka_unit_test(test_markers_by_type),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,12 @@
  * energy <L|1> is exactly the flux injected, so it can be checked against closed forms.
  *   - a spot straight down onto the floor: the floor reflects albedo * I * integral of
  *     the cone factor over solid angle (the RSM's per-texel solid angles must add up);
- *   - the emissive panel alone (a surface light): pi * L_e * area. */
+ *   - the emissive panel alone (a surface light): pi * L_e * area;
+ *   - a point light inside a closed box: albedo * 4 pi * I (the six cube faces cover every
+ *     direction exactly once: their margins carry no flux), in the lattice and in the VPL
+ *     source every GI method shares (renderer_rsm_vpls());
+ *   - a directional light onto a floor: albedo * E * area * cos(slant), in the VPL source
+ *     (a flat scene's lattice is one cell thick, so the half-cell offset leaves it). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +15,8 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
+#include "renderer.h"
+#include "renderer_rsm.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -78,11 +85,99 @@ static void test_surface_light_flux(void **state)
     gltest_close(&t);
 }
 
+/* A renderer with 0 steps and no history on a scene built in code (one material): the
+ * lattice's energy and the summed flux of the VPL source. */
+static void code_scene_energy(scene *s, const frame_light *l, int rsm, double e[3],
+                              double vpl[3])
+{
+    char err[512];
+    assert_int_equal(scene_finish(s, err, sizeof err), 0);
+    glctx_desc gd = {.backend = GLCTX_EGL};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    assert_non_null(ctx);
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
+                        .rsm_size = rsm, .lattice_cells = 16};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    assert_non_null(r);
+    frame_params p;
+    frame_params_default(&p);
+    p.light_count = 1;
+    p.lights[0] = *l;
+    p.lpv_steps = 0;
+    p.lambda_incr = 0.0f;
+    renderer_frame_pass(r, &p);
+    lpv_volume_energy(renderer_get_lpv(r), e);
+    lpv_vpl *v;
+    size_t n = renderer_rsm_vpls(renderer_get_rsm(r), &v);
+    vpl[0] = vpl[1] = vpl[2] = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            vpl[c] += v[i].flux[c];
+    renderer_destroy(r);
+    glctx_destroy(ctx);
+}
+
+static void test_point_flux_in_closed_box(void **state)
+{
+    (void)state;
+    for (int rsm = 64; rsm <= 256; rsm *= 4) {
+        scene s;
+        memset(&s, 0, sizeof s);
+        const float albedo = 0.6f, lo[3] = {-1, 0, -1.5f}, hi[3] = {1.5f, 2, 1};
+        assert_int_equal(scene_add_material(&s, &(scene_material){.base_color = {albedo, albedo, albedo, 1},
+                                                                  .base_color_texture = -1,
+                                                                  .roughness = 1}), 0);
+        assert_int_equal(scene_add_box(&s, lo, hi, 1, 0), 0);
+        frame_light l = {.enabled = 1, .type = SCENE_LIGHT_POINT, .position = {0.1f, 1.2f, -0.15f},
+                         .direction = {0, -1, 0}, .color = {1.0f, 0.5f, 0.25f}, .intensity = 3};
+        double e[3], vpl[3];
+        code_scene_energy(&s, &l, rsm, e, vpl);
+        for (int c = 0; c < 3; c++) {
+            double want = albedo * 4.0 * PI * l.intensity * l.color[c];
+            printf("point light, RSM %d: channel %d: lattice %.5f W, VPLs %.5f W, albedo 4 pi I "
+                   "%.5f W\n", rsm, c, e[c], vpl[c], want);
+            assert_true(fabs(e[c] - want) < 0.001 * want);
+            assert_true(fabs(vpl[c] - want) < 0.001 * want);
+        }
+        scene_free(&s);
+    }
+}
+
+static void test_directional_flux_on_floor(void **state)
+{
+    (void)state;
+    const float d[2][3] = {{0, -1, 0}, {0.3f, -1, 0.2f}};
+    for (int k = 0; k < 2; k++) {
+        scene s;
+        memset(&s, 0, sizeof s);
+        const float albedo = 0.5f, lo[3] = {-2, 0, -2}, hi[3] = {2, 0, 2};
+        assert_int_equal(scene_add_material(&s, &(scene_material){.base_color = {albedo, albedo, albedo, 1},
+                                                                  .base_color_texture = -1,
+                                                                  .roughness = 1}), 0);
+        assert_int_equal(scene_add_rect(&s, lo, hi, 1, 0), 0);
+        frame_light l = {.enabled = 1, .type = SCENE_LIGHT_DIRECTIONAL, .color = {1, 1, 1},
+                         .intensity = 2};
+        float len = sqrtf(d[k][0] * d[k][0] + d[k][1] * d[k][1] + d[k][2] * d[k][2]);
+        for (int a = 0; a < 3; a++)
+            l.direction[a] = d[k][a] / len;
+        double e[3], vpl[3];
+        code_scene_energy(&s, &l, 128, e, vpl);
+        double want = albedo * l.intensity * 16.0 * -l.direction[1];
+        printf("directional light, slant %.3f rad: VPLs %.5f W, albedo E A cos %.5f W\n",
+               acos(-l.direction[1]), vpl[0], want);
+        /* Straight down the window is the floor; slanted, its texels cut the floor's edges. */
+        assert_true(fabs(vpl[0] - want) < (k ? 0.01 : 1e-5) * want);
+        scene_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spot_flux_on_floor),
         cmocka_unit_test(test_surface_light_flux),
+        cmocka_unit_test(test_point_flux_in_closed_box),
+        cmocka_unit_test(test_directional_flux_on_floor),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -45,4 +45,4 @@ wait_for_file() {
 }
 
 # Renderer settings that keep a 2-core machine responsive with several nodes.
-small_render="--lpv-threads 1 --lattice 16 --rsm 64"
+small_render="--threads 1 --lattice 16 --rsm 64"

@@ -46,7 +46,7 @@ echo "live switch ILPV -> none -> vpl on 2 nodes: no desync"
   || { cat "$tmp/m2.log"; fail "master --gi none failed"; }
 [ "$(json 'r["per_node"][1]["last_checksum"]' "$tmp/r_gi.json")" = $none ] || fail "--gi none not applied"
 bad=$("$build/cavelight-master" --config "$tmp/c2.json" --gi bogus 2>&1 || true)
-grep -q -- "--gi bogus: use ilpv|none|vpl" <<< "$bad" || fail "bad --gi accepted: $bad"
+grep -q -- "--gi bogus: expected one of ilpv, none or vpl" <<< "$bad" || fail "bad --gi accepted: $bad"
 echo "--gi none on the master: every node on none"
 
 "$build/cavelight-master" --config "$tmp/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --gi vpl \
@@ -56,5 +56,5 @@ echo "--gi none on the master: every node on none"
 [ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$tmp/r_v.json")" = 1 ] || fail "vpl checksums differ"
 [ "$(json 'r["per_node"][1]["last_checksum"]' "$tmp/r_v.json")" != $none ] || fail "--gi vpl not applied"
 bad=$("$build/cavelight-master" --config "$tmp/c2.json" --vpl-count 5000 2>&1 || true)
-grep -q -- "--vpl-count 5000: use 64 to 4096" <<< "$bad" || fail "bad --vpl-count accepted: $bad"
+grep -q -- "--vpl-count 5000: expected a whole number in 64..4096" <<< "$bad" || fail "bad --vpl-count accepted: $bad"
 echo "--gi vpl on the master: 2 nodes with equal VPL checksums in every frame"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Window output on a virtual X display (Xvfb): a stereo node with two screens runs every
 # stereo mode (side-by-side, top-bottom, anaglyph, quad-buffered with its fallback, one
-# window per eye) through a few frames of the barrier and leaves cleanly. Skipped where
-# Xvfb is missing.
+# window per eye) through a few frames of the barrier and leaves cleanly; a node started
+# without DISPLAY (over ssh, as a service) opens its window on the config's "display".
+# Skipped where Xvfb is missing.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
 if ! command -v xvfb-run >/dev/null; then echo "SKIP: xvfb-run not installed"; exit 77; fi
@@ -19,7 +20,24 @@ PY
     --bind 'tcp://127.0.0.1:*' --spawn-local --frames 4 --report "$tmp/$mode-r.json" \
     --node-args "$small_render" 2> "$tmp/$mode.log" || { cat "$tmp/$mode.log"; fail "$mode: cluster failed"; }
   [ "$(json 'r["per_node"][0]["frames_ready"]' "$tmp/$mode-r.json")" = 4 ] || { cat "$tmp/$mode.log"; fail "$mode: not 4 frames"; }
-  ! grep -q "exited abnormally" "$tmp/$mode.log" || { cat "$tmp/$mode.log"; fail "$mode: node crashed"; }
+  ! grep -q "node d \(exited\|was killed\)" "$tmp/$mode.log" || { cat "$tmp/$mode.log"; fail "$mode: node crashed"; }
   note=""; grep -q "no quad-buffered window" "$tmp/$mode.log" && note=" (no quad buffers on this driver: side-by-side)"
   echo "window $mode: 4 frames$note"
 done
+
+# No DISPLAY in the node's environment: the node's "display" from the config is used.
+xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 640x480x24" sh -c '
+  python3 - "$1" "$2" "$DISPLAY" <<PY
+import json, sys
+c = json.load(open(sys.argv[1]))
+c["nodes"][0].update({"output": "window", "stereo": "side-by-side", "display": sys.argv[3]})
+json.dump(c, open(sys.argv[2], "w"))
+PY
+  echo "$DISPLAY" > "$3"
+  exec env -u DISPLAY "$4/cavelight-master" --config "$2" --bind "tcp://127.0.0.1:*" --spawn-local --frames 4 \
+    --report "$5" --node-args "$6"' sh "$tmp/base.json" "$tmp/nodisplay.json" "$tmp/display" "$build" \
+  "$tmp/nodisplay-r.json" "$small_render" 2> "$tmp/nodisplay.log" || { cat "$tmp/nodisplay.log"; fail "no DISPLAY: cluster failed"; }
+grep -q "DISPLAY is not set: using $(cat "$tmp/display") (the node's \"display\" in the config)" "$tmp/nodisplay.log" \
+  || { cat "$tmp/nodisplay.log"; fail "the node did not say which display it took"; }
+[ "$(json 'r["per_node"][0]["frames_ready"]' "$tmp/nodisplay-r.json")" = 4 ] || { cat "$tmp/nodisplay.log"; fail "no DISPLAY: not 4 frames"; }
+echo "window without DISPLAY: the config's display $(cat "$tmp/display"), 4 frames"

@@ -1,5 +1,7 @@
 /* DTrack2 ASCII parser and UDP source: recorded-style and synthetic datagrams, including
- * truncated, oversized, non-numeric and NaN input; real UDP sockets for the source. */
+ * truncated, oversized, non-numeric and NaN input; real UDP sockets for the source: the
+ * port is not shared, only the configured sender counts, silence and resumption are said
+ * once each and rate-limited; a scaled tracker transform keeps orientations orthonormal. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,6 +16,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/ratelog.h"
+#include "cluster/cluster_config.h"
 #include "input.h"
 #include "input_dtrack.h"
 
@@ -218,14 +222,27 @@ static void test_apply_mapping(void **state)
     assert_int_equal(s2.buttons, 0);
 }
 
-static void send_to(int port, const char *msg)
+/* One datagram to 127.0.0.1:port from the loopback address `from` (NULL: the default). */
+static void send_from(const char *from, int port, const char *msg)
 {
     int fd = socket(AF_INET, SOCK_DGRAM, 0);
+    if (from) {
+        struct sockaddr_in b = {.sin_family = AF_INET};
+        inet_pton(AF_INET, from, &b.sin_addr);
+        assert_int_equal(bind(fd, (struct sockaddr *)&b, sizeof b), 0);
+    }
     struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)port)};
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     assert_int_equal(sendto(fd, msg, strlen(msg), 0, (struct sockaddr *)&a, sizeof a),
                      (ssize_t)strlen(msg));
     close(fd);
+}
+
+static void send_to(int port, const char *msg) { send_from(NULL, port, msg); }
+
+static void sleep_s(double s)
+{
+    nanosleep(&(struct timespec){(time_t)s, (long)((s - (time_t)s) * 1e9)}, NULL);
 }
 
 /* Real UDP: datagrams in, merged state out, with the tracker-to-CAVE transform applied
@@ -238,7 +255,8 @@ static void test_udp_source(void **state)
     memcpy(desc.tracker_to_cave, m, sizeof m);
     input *in = input_create(&desc, err, sizeof err);
     assert_non_null(in);
-    input_dtrack_desc dd = {.name = "art", .port = 0, .head_id = 0, .wand_id = 0};
+    /* silence_s: a loaded machine must not see an outage between two polls here */
+    input_dtrack_desc dd = {.name = "art", .port = 0, .head_id = 0, .wand_id = 0, .silence_s = 3600};
     input_source *src = input_dtrack_open(&dd, err, sizeof err);
     assert_non_null(src);
     int port = input_dtrack_port(src);
@@ -253,7 +271,10 @@ static void test_udp_source(void **state)
                   "6df2 1 1 [0 1.0 4 2][0 1000 -500][1 0 0 0 1 0 0 0 1][4 0.25 -0.5]\n");
     send_to(port, "fr 2\n6df2 1 1 [0 1.0 4 2][0 1000 -500][1 0 0 0 1 0 0 0 1][0 0.25 -0.5]\n");
     nanosleep(&(struct timespec){0, 20000000}, NULL);
-    assert_int_equal(input_poll(in, &s, err, sizeof err), 0);
+    assert_int_equal(input_poll(in, &s, err, sizeof err), 1); /* the first datagrams, announced */
+    char want[64];
+    snprintf(want, sizeof want, "input art: DTrack datagrams on UDP port %d", port);
+    assert_string_equal(err, want);
     assert_true(s.head.valid && s.wand.valid);
     /* x=1 maps to -z, then shifted by -1.5 */
     assert_float_equal(s.head.position[0], 0.0f, 1e-6);
@@ -269,6 +290,171 @@ static void test_udp_source(void **state)
     assert_int_equal(input_poll(in, &s, err, sizeof err), 0);
     assert_int_equal(s.pressed, 0);
     input_close(in);
+}
+
+/* The port is this source's alone: a second socket cannot bind it, even with
+ * SO_REUSEADDR (how a local user once read the head stream); and a port someone else
+ * holds is refused in one line. */
+static void test_port_not_shared(void **state)
+{
+    char err[512];
+    input_source *src = input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = 0}, err, sizeof err);
+    assert_non_null(src);
+    int port = input_dtrack_port(src);
+    int thief = socket(AF_INET, SOCK_DGRAM, 0), one = 1;
+    setsockopt(thief, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)port)};
+    assert_int_not_equal(bind(thief, (struct sockaddr *)&a, sizeof a), 0);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    assert_int_not_equal(bind(thief, (struct sockaddr *)&a, sizeof a), 0);
+    close(thief);
+    src->close(src);
+
+    /* the other way round: someone holds the port first */
+    thief = socket(AF_INET, SOCK_DGRAM, 0);
+    setsockopt(thief, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    a.sin_port = 0;
+    assert_int_equal(bind(thief, (struct sockaddr *)&a, sizeof a), 0);
+    socklen_t alen = sizeof a;
+    getsockname(thief, (struct sockaddr *)&a, &alen);
+    port = ntohs(a.sin_port);
+    err[0] = '\0';
+    assert_null(input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = port}, err, sizeof err));
+    if (!strstr(err, "input art: cannot listen for DTrack on UDP 0.0.0.0:") || !strstr(err, "in use"))
+        fail_msg("unclear refusal: %s", err);
+    close(thief);
+}
+
+/* bind and sender: only the configured host moves the head; the others are dropped,
+ * counted and logged at most once per poll. Bad addresses are refused in one line. */
+static void test_bind_and_sender(void **state)
+{
+    char err[512];
+    input *in = input_create(&(input_desc){0}, err, sizeof err);
+    input_source *src = input_dtrack_open(&(input_dtrack_desc){.name = "art", .bind = "127.0.0.1",
+                                                               .sender = "127.0.0.1", .silence_s = 3600},
+                                          err, sizeof err);
+    assert_non_null(src);
+    int port = input_dtrack_port(src);
+    input_add_source(in, src, err, sizeof err);
+    for (int i = 0; i < 3; i++)
+        send_from("127.0.0.2", port, "6d 1 [0 1.0][9000 9000 9000][1 0 0 0 1 0 0 0 1]\n");
+    send_from("127.0.0.1", port, "6d 1 [0 1.0][0 1700 0][1 0 0 0 1 0 0 0 1]\n");
+    sleep_s(0.02);
+    input_state s;
+    assert_int_equal(input_poll(in, &s, err, sizeof err), -1);
+    char want[160];
+    snprintf(want, sizeof want, "input art: datagrams from 127.0.0.2 on UDP 127.0.0.1:%d dropped: only "
+             "127.0.0.1 may send (\"sender\" in the input config; 3 dropped so far)", port);
+    assert_string_equal(err, want);
+    assert_true(s.head.valid);
+    assert_float_equal(s.head.position[0], 0.0f, 0);
+    assert_float_equal(s.head.position[1], 1.7f, 1e-6);
+    assert_int_equal(input_dtrack_refused(src), 3);
+    assert_int_equal(input_dtrack_datagrams(src), 1);
+    input_close(in);
+
+    err[0] = '\0';
+    assert_null(input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = 0, .bind = "no-such-if0"},
+                                  err, sizeof err));
+    assert_non_null(strstr(err, "input art: \"bind\" no-such-if0 is neither an IPv4 address nor an interface"));
+    err[0] = '\0';
+    assert_null(input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = 0, .sender = "no-such-host.invalid"},
+                                  err, sizeof err));
+    assert_non_null(strstr(err, "input art: \"sender\" no-such-host.invalid"));
+    /* an interface name binds its address */
+    input_source *lo = input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = 0, .bind = "lo"},
+                                         err, sizeof err);
+    if (!lo)
+        fail_msg("%s", err);
+    lo->close(lo);
+}
+
+/* No datagram for silence_s: said once, buttons released, the pose kept; data again:
+ * said once with the outage's length. A tracker that comes and goes is rate-limited. */
+static void test_silence_and_resumption(void **state)
+{
+    char err[512];
+    input *in = input_create(&(input_desc){0}, err, sizeof err);
+    input_source *src = input_dtrack_open(&(input_dtrack_desc){.name = "art", .port = 0, .silence_s = 0.05},
+                                          err, sizeof err);
+    assert_non_null(src);
+    int port = input_dtrack_port(src);
+    input_add_source(in, src, err, sizeof err);
+    const char *held = "6d 1 [0 1.0][0 1700 0][1 0 0 0 1 0 0 0 1]\n"
+                       "6df2 1 1 [0 1.0 4 0][0 1000 -500][1 0 0 0 1 0 0 0 1][8]\n";
+    send_to(port, held);
+    sleep_s(0.01);
+    input_state s;
+    int lines = 0, rc = input_poll(in, &s, err, sizeof err);
+    assert_int_equal(rc, 1);
+    lines++;
+    assert_int_equal(s.buttons, 1u << INPUT_BUTTON_C);
+    sleep_s(0.1);
+    assert_int_equal(input_poll(in, &s, err, sizeof err), -1);
+    lines++;
+    char want[96];
+    snprintf(want, sizeof want, "input art: no DTrack datagram on UDP port %d for ", port);
+    if (!strstr(err, want) || !strstr(err, "tracking stands still, buttons released, the session goes on"))
+        fail_msg("silence line: %s", err);
+    assert_int_equal(s.buttons, 0);       /* C (fly) does not stay held */
+    assert_true(s.head.valid);            /* the last pose stays */
+    assert_float_equal(s.head.position[1], 1.7f, 1e-6);
+    assert_int_equal(input_poll(in, &s, err, sizeof err), 0); /* said once */
+    send_to(port, held);
+    sleep_s(0.01);
+    assert_int_equal(input_poll(in, &s, err, sizeof err), 1);
+    lines++;
+    snprintf(want, sizeof want, "input art: DTrack datagrams on UDP port %d again after ", port);
+    if (!strstr(err, want))
+        fail_msg("resumption line: %s", err);
+    /* Coming and going 20 times more: the source's lines stop at the ratelog burst. */
+    for (int i = 0; i < 20; i++) {
+        sleep_s(0.06);
+        lines += input_poll(in, &s, err, sizeof err) != 0;
+        send_to(port, held);
+        sleep_s(0.005);
+        lines += input_poll(in, &s, err, sizeof err) != 0;
+    }
+    assert_true(lines >= RATELOG_BURST && lines <= RATELOG_BURST + 1); /* +1: a run over 10 s */
+    input_close(in);
+}
+
+/* tracker_to_cave with a scale (units) moves and scales positions, and turns orientations
+ * without scaling them: the rotation stays orthonormal and equals the unscaled one's. */
+static void test_scaled_transform_keeps_rotation(void **state)
+{
+    const char *fmt = "{\"master\": {\"bind\": \"tcp://127.0.0.1:1\", \"connect\": \"tcp://127.0.0.1:1\"},"
+                      " \"security\": {\"mode\": \"insecure\"},"
+                      " \"observer\": {\"tracker_to_cave\": {\"translation\": [0.1, -0.2, 1.5],"
+                      " \"rotation_deg\": [30, -45, 60], \"scale\": %s}},"
+                      " \"screens\": [{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0],"
+                      " \"top_left\": [0,1,0]}], \"nodes\": [{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4, 4]}]}";
+    static cluster_config scaled, unit;
+    char text[1024], err[512];
+    snprintf(text, sizeof text, fmt, "0.001");
+    if (cluster_config_parse(text, strlen(text), "scaled.json", &scaled, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    snprintf(text, sizeof text, fmt, "1");
+    if (cluster_config_parse(text, strlen(text), "unit.json", &unit, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    /* a head turned 90 degrees about y, 1000 units from the tracker's origin */
+    input_pose head = {.valid = 1, .position = {1000, 1700, -300}, .rotation = {0, 0, -1, 0, 1, 0, 1, 0, 0}};
+    input_pose a = head, b = head;
+    input_pose_transform(&a, scaled.observer.tracker_to_cave);
+    input_pose_transform(&b, unit.observer.tracker_to_cave);
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) {
+            float dot = 0.0f;
+            for (int r = 0; r < 3; r++)
+                dot += a.rotation[i * 3 + r] * a.rotation[k * 3 + r];
+            assert_float_equal(dot, i == k ? 1.0f : 0.0f, 1e-5);
+        }
+    for (int i = 0; i < 9; i++)
+        assert_float_equal(a.rotation[i], b.rotation[i], 1e-6);
+    const float *t = unit.observer.tracker_to_cave;
+    for (int r = 0; r < 3; r++) /* position: R (s p) + t */
+        assert_float_equal(a.position[r], b.position[r] * 0.001f + t[12 + r] * (1 - 0.001f), 1e-4);
 }
 
 static void write_file(const char *path, const char *text)
@@ -319,6 +505,10 @@ int main(void)
         cmocka_unit_test(test_oversized),
         cmocka_unit_test(test_apply_mapping),
         cmocka_unit_test(test_udp_source),
+        cmocka_unit_test(test_port_not_shared),
+        cmocka_unit_test(test_bind_and_sender),
+        cmocka_unit_test(test_silence_and_resumption),
+        cmocka_unit_test(test_scaled_transform_keeps_rotation),
         cmocka_unit_test(test_config_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

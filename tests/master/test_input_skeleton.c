@@ -1,5 +1,6 @@
 /* The device sources' shared skeleton (input_source.h): naming, one report per outage,
- * buttons released on a loss, retry pacing, and a source that does not retry. */
+ * buttons released on a loss, retry pacing, a source that does not retry, the lines when
+ * a device first answers and answers again, and their rate limit. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "base/ratelog.h"
 #include "input_source.h"
 
 static int no_poll(input_source *s, double now, char *err, size_t errlen) { return 0; }
@@ -46,9 +48,35 @@ static void test_one_report_per_outage_and_retry(void **state)
     err[0] = 0;
     assert_int_equal(input_source_lost(&f->base, 2.5, "still gone", err, sizeof err), 0);
     assert_string_equal(err, "");
-    input_source_up(&f->base);
+    assert_int_equal(input_source_up(&f->base, 3.5, "answers", err, sizeof err), 1);
+    assert_string_equal(err, "input tracker: answers again after 1.5 s"); /* 2.0 to 3.5 */
     assert_int_equal(input_source_lost(&f->base, 9.0, "gone again", err, sizeof err), -1);
     assert_string_equal(err, "input tracker: gone again; retrying every 0.5 s");
+    f->base.close(&f->base);
+}
+
+/* The first answer is said; an answer without a reported outage before it is not; a
+ * device that comes and goes is said RATELOG_BURST times, then once per interval with
+ * the count of lines left out. */
+static void test_first_answer_and_rate_limit(void **state)
+{
+    char err[256] = "";
+    fake_source *f = input_source_alloc(sizeof *f, "tracker", "fake", no_poll, no_close);
+    assert_int_equal(input_source_up(&f->base, 0.5, "connected", err, sizeof err), 1);
+    assert_string_equal(err, "input tracker: connected");
+    err[0] = 0;
+    assert_int_equal(input_source_up(&f->base, 0.6, "connected", err, sizeof err), 0);
+    assert_string_equal(err, "");
+    int said = 0;
+    double t = 1.0;
+    for (int i = 0; i < 10; i++, t += 0.1) {
+        said += input_source_lost(&f->base, t, "gone", err, sizeof err) != 0;
+        said += input_source_up(&f->base, t + 0.05, "connected", err, sizeof err) != 0;
+    }
+    assert_int_equal(said, RATELOG_BURST - 1); /* the first answer was one of the burst */
+    t += RATELOG_INTERVAL_MS / 1000.0;
+    assert_int_equal(input_source_lost(&f->base, t, "gone", err, sizeof err), -1);
+    assert_string_equal(err, "input tracker: gone (16 such lines left out)");
     f->base.close(&f->base);
 }
 
@@ -67,6 +95,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_alloc_names_and_zeroes),
         cmocka_unit_test(test_one_report_per_outage_and_retry),
+        cmocka_unit_test(test_first_answer_and_rate_limit),
         cmocka_unit_test(test_no_retry),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -224,10 +224,19 @@ static void server_stop(server *sv)
 
 static void sleep_ms(int ms) { nanosleep(&(struct timespec){0, ms * 1000000L}, NULL); }
 
+/* Every line the polls returned (warnings and notices), in order. */
+static char said[8192];
+static void keep_line(int rc, const char *line)
+{
+    size_t n = strlen(said);
+    if (rc != 0)
+        snprintf(said + n, sizeof said - n, "%s\n", line);
+}
+
 /* Polls until cond holds or 3 s pass. */
 #define POLL_UNTIL(in, st, cond)                                              \
     for (int i_ = 0; i_ < 300; i_++) {                                        \
-        input_poll(in, &st, err, sizeof err);                                 \
+        keep_line(input_poll(in, &st, err, sizeof err), err);                 \
         if (cond)                                                             \
             break;                                                            \
         sleep_ms(10);                                                         \
@@ -246,8 +255,13 @@ static void test_server_and_reconnect(void **state)
     assert_non_null(src);
     input_add_source(in, src, err, sizeof err);
     input_state st;
+    said[0] = '\0';
     POLL_UNTIL(in, st, st.head.valid && st.wand.valid && st.axes_time > 0);
     assert_true(input_vrpn_connected(src));
+    char want[128];
+    snprintf(want, sizeof want, "connected to VRPN server 127.0.0.1:%d (Tracker0)\n", sv.port);
+    if (!strstr(said, want))
+        fail_msg("no \"%s\" in: %s", want, said);
     assert_float_equal(st.head.position[1], 1.7f, 1e-6);
     assert_float_equal(st.wand.position[0], 0.3f, 1e-6);
     assert_float_equal(st.wand.rotation[2], -1.0f, 1e-6);
@@ -275,6 +289,11 @@ static void test_server_and_reconnect(void **state)
     POLL_UNTIL(in, st, st.head.position[0] == 1.5f);
     assert_float_equal(st.head.position[0], 1.5f, 0);
     assert_int_equal(input_vrpn_connections(src), 2);
+    /* connected, lost, connected again: one line each, in that order */
+    snprintf(want, sizeof want, "connected to VRPN server 127.0.0.1:%d (Tracker0) again after", sv.port);
+    const char *lost = strstr(said, "; retrying every 0.1 s");
+    if (!lost || !strstr(lost, want))
+        fail_msg("no loss followed by \"%s\" in: %s", want, said);
     server_stop(&sv2);
     input_close(in);
 }
@@ -295,7 +314,7 @@ static void test_bad_servers(void **state)
         input_state st;
         int rc = 0;
         err[0] = '\0';
-        for (int i = 0; i < 300 && rc == 0; i++) {
+        for (int i = 0; i < 300 && rc >= 0; i++) { /* past the notice of a connection */
             rc = input_poll(in, &st, err, sizeof err);
             sleep_ms(10);
         }

@@ -5,8 +5,9 @@
  * reference, which must agree with the truth.
  *
  *   lid    spot 2 m above a closed 2 m box with a zero-thickness lid; camera inside
- *   room   the leak-panel room with its panel off, lit by the node's default spot 4.5 m
- *          above the zero-thickness ceiling (what a closed glTF room without lights gets)
+ *   room   the leak-panel room with its panel off, lit by a spot 4.5 m above the
+ *          zero-thickness ceiling (what a closed glTF room without lights got before
+ *          scene_default_light() put the light inside)
  *   wall   a single-sided wall between a lit and a dark room; camera in the dark room
  *   panel  an emissive panel flush with the ceiling, no spot: the ceiling around it gets
  *          no one-bounce light, the walls and floor Lambert's closed form for a polygon
@@ -180,19 +181,28 @@ static void test_lid(void **state)
     leak_close(&lv);
 }
 
-/* A closed room with no light of its own gets the node's default spot above its
- * zero-thickness ceiling; inside, nothing. Lit level: the ceiling's top under the spot. */
-static void test_room_under_default_spot(void **state)
+/* A closed room lit from above its zero-thickness ceiling: inside, nothing. The spot is the
+ * one a scene without lights used to get: 1.5 x the height above the bounds' centre, 2 W/m^2
+ * at the floor, 0.6 / 0.45 rad. Lit level: the ceiling's top under the spot. */
+static void test_room_under_spot_above(void **state)
 {
     (void)state;
     leak_view lv;
     leak_open(&lv, "leak-panel", 0, 1);
     assert_int_equal(lv.s.light_count, 0);
-    assert_int_equal(lv.p.light_count, 1);
+    float h = lv.s.bounds_max[1] - lv.s.bounds_min[1];
+    frame_light *l = &lv.p.lights[0];
+    *l = (frame_light){.enabled = 1, .direction = {0, -1, 0}, .color = {1, 1, 1},
+                       .outer_angle = 0.6f, .inner_angle = 0.45f};
+    for (int a = 0; a < 3; a++)
+        l->position[a] = 0.5f * (lv.s.bounds_min[a] + lv.s.bounds_max[a]);
+    l->position[1] = lv.s.bounds_max[1] + 1.5f * h;
+    float dist = l->position[1] - lv.s.bounds_min[1];
+    l->intensity = 2.0f * dist * dist;
+    lv.p.light_count = 1;
     leak_render(&lv);
     const float top[3] = {0, 3, 0}, up[3] = {0, 1, 0};
-    leak_figures f = dark_view("room under the default spot", &lv,
-                               lit_radiance(&lv.p.lights[0], top, up));
+    leak_figures f = dark_view("room under a spot above it", &lv, lit_radiance(l, top, up));
     assert_true(f.direct_mean <= 1e-6 && f.direct_max <= 2e-3);
     assert_true(f.indirect_mean <= 1e-4);
     leak_close(&lv);
@@ -354,7 +364,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lid),
-        cmocka_unit_test(test_room_under_default_spot),
+        cmocka_unit_test(test_room_under_spot_above),
         cmocka_unit_test(test_wall),
         cmocka_unit_test(test_panel),
     };

@@ -2,7 +2,7 @@
  * and a cluster node must start from the same frame_params. The cluster path is the real
  * one: the master's session seeds its store from the scene, sends the SNAPSHOT over
  * ZeroMQ, and a node's cluster client turns it into frame_params as cluster_node_run()
- * does. The standalone path is standalone_parse() and standalone_frame_params(), what
+ * does. The standalone path is node_cli_parse() and standalone_frame_params(), what
  * cavelight-node --standalone runs. Compared field by field, bytes and all. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,7 +14,7 @@
 
 #include "cluster_client.h"
 #include "session.h"
-#include "standalone.h"
+#include "node_cli.h"
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
@@ -26,8 +26,9 @@ static const char *config_json =
 static void standalone_frame(const char *scene_name, frame_params *out)
 {
     char *argv[] = {"cavelight-node", "--standalone", "--scene", (char *)scene_name};
-    node_options o;
-    assert_int_equal(standalone_parse(4, argv, &o), 0);
+    static node_cli cli;
+    assert_int_equal(node_cli_parse(4, argv, &cli), CLI_OK);
+    const node_options o = cli.standalone;
     scene sc;
     char err[256];
     assert_int_equal(scene_load(scene_name, &sc, err, sizeof err), 0);

@@ -111,6 +111,23 @@ static void test_bad_configs(void **state)
     assert_int_equal(cfg.nodes[0].output, CLUSTER_OUTPUT_WINDOW);
     assert_int_equal(cfg.barrier_timeout_ms, 2000);
     assert_string_equal(cfg.nodes[0].host, "localhost");
+    /* Where a node's program, folder and config lie on its host: the master's by default. */
+    assert_string_equal(cfg.nodes[0].exe, "");
+    assert_string_equal(cfg.nodes[0].workdir, "");
+    assert_string_equal(cfg.nodes[0].config, "");
+    assert_string_equal(cfg.nodes[0].display, ":0");
+    const char *placed = NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], "
+                               "\"exe\": \"/opt/c/bin/node\", \"workdir\": \"/srv/cave\", "
+                               "\"config\": \"cave.json\", \"display\": \":1\"}");
+    assert_int_equal(cluster_config_parse(placed, strlen(placed), "ok.json", &cfg, err, sizeof err), 0);
+    assert_string_equal(cfg.nodes[0].exe, "/opt/c/bin/node");
+    assert_string_equal(cfg.nodes[0].workdir, "/srv/cave");
+    assert_string_equal(cfg.nodes[0].config, "cave.json");
+    assert_string_equal(cfg.nodes[0].display, ":1");
+    expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"exe\": 1}"),
+                 "nodes[0].exe");
+    expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"display\": [0]}"),
+                 "nodes[0].display");
 }
 
 static void test_missing_file(void **state)
@@ -135,9 +152,114 @@ static void test_tracker_transform(void **state)
     assert_float_equal(m[13], 2.0f, 0);
 }
 
+/* A one-screen config with the given corner fields and top-level extras. */
+static int parse_screen(const char *corners, const char *extra, char *err, size_t errlen)
+{
+    static char buf[2048];
+    snprintf(buf, sizeof buf, "{\"master\": {\"bind\": \"tcp://*:1\", \"connect\": \"tcp://h:1\"}, %s"
+             "\"screens\": [{\"name\": \"s\", %s}], \"nodes\": [{\"name\": \"a\", \"screens\": [\"s\"],"
+             " \"resolution\": [4,4]}]}", extra, corners);
+    return cluster_config_parse(buf, strlen(buf), "m.json", &cfg, err, errlen);
+}
+
+/* Sum of squared distances between given corners (3 or 4) and a rectangle's. */
+static double fit_error(const float g[4][3], int n, const float bl[3], const float br[3], const float tl[3])
+{
+    double e = 0;
+    for (int i = 0; i < 3; i++) {
+        double q[4] = {bl[i], br[i], tl[i], br[i] + tl[i] - bl[i]};
+        for (int k = 0; k < n; k++)
+            e += (q[k] - g[k][i]) * (q[k] - g[k][i]);
+    }
+    return e;
+}
+
+/* Rodrigues: v rotated by angle about the unit axis k. */
+static void rotate(const double k[3], double angle, const double v[3], double out[3])
+{
+    double c = cos(angle), s = sin(angle), kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    double x[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int i = 0; i < 3; i++)
+        out[i] = v[i] * c + x[i] * s + k[i] * kv * (1 - c);
+}
+
+/* Measured corners: a 5 mm error is fitted (today's |cos| < 1e-3 check refused it), the
+ * fit is a rectangle, least squares (no nearby rectangle does better), and a corner beyond
+ * the tolerance is refused in millimetres. */
+static void test_measured_corners(void **state)
+{
+    char err[512] = "";
+    /* cave5's front-l half wall, top-left corner 5 mm off to the right and 1 mm off the wall. */
+    const float given[4][3] = {{-1.5f, 0, -1.5f}, {0, 0, -1.5f}, {-1.495f, 3, -1.499f}};
+    assert_int_equal(parse_screen("\"bottom_left\": [-1.5,0,-1.5], \"bottom_right\": [0,0,-1.5],"
+                                  " \"top_left\": [-1.495,3,-1.499]", "", err, sizeof err), 0);
+    const cluster_screen *sc = &cfg.screens[0];
+    assert_true(sc->fit_mm > 1.0f && sc->fit_mm < 5.1f);
+    float u[3], w[3], uw = 0;
+    for (int i = 0; i < 3; i++) {
+        u[i] = sc->bottom_right[i] - sc->bottom_left[i];
+        w[i] = sc->top_left[i] - sc->bottom_left[i];
+        uw += u[i] * w[i];
+    }
+    assert_true(fabsf(uw) < 1e-6f * 1.5f * 3.0f);
+    assert_true(dist(sc->top_left, given[2]) <= sc->fit_mm / 1000 + 1e-6f);
+    /* Least squares: 400 nearby rectangles (turned, moved, resized) all fit worse. */
+    double best = fit_error(given, 3, sc->bottom_left, sc->bottom_right, sc->top_left);
+    double c[3], e1[3], e2[3], a = dist(sc->bottom_right, sc->bottom_left) / 2,
+           b = dist(sc->top_left, sc->bottom_left) / 2;
+    for (int i = 0; i < 3; i++) {
+        c[i] = sc->bottom_left[i] + 0.5 * (u[i] + w[i]);
+        e1[i] = u[i] / (2 * a);
+        e2[i] = w[i] / (2 * b);
+    }
+    unsigned seed = 12345;
+    for (int t = 0; t < 400; t++) {
+        double r[8];
+        for (int k = 0; k < 8; k++) {
+            seed = seed * 1103515245u + 12345u;
+            r[k] = ((seed >> 8) / (double)(1u << 24) - 0.5) * 2e-3;
+        }
+        double axis[3] = {r[0], r[1], r[2]}, len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        for (int i = 0; i < 3; i++)
+            axis[i] /= len;
+        double f1[3], f2[3];
+        rotate(axis, len, e1, f1);
+        rotate(axis, len, e2, f2);
+        float bl[3], br[3], tl[3];
+        for (int i = 0; i < 3; i++) {
+            double cc = c[i] + r[3 + i % 3] * (i == 0 ? 1 : i == 1 ? 0.7 : 0.4);
+            double aa = a + r[6], bb = b + r[7];
+            bl[i] = (float)(cc - aa * f1[i] - bb * f2[i]);
+            br[i] = (float)(cc + aa * f1[i] - bb * f2[i]);
+            tl[i] = (float)(cc - aa * f1[i] + bb * f2[i]);
+        }
+        assert_true(fit_error(given, 3, bl, br, tl) >= best * (1 - 1e-4));
+    }
+    /* Four corners of a keystoned screen (top 2 cm narrower): by symmetry the nearest
+     * rectangle is 1.99 m x 1 m, each corner 5 mm in or out. */
+    assert_int_equal(parse_screen("\"bottom_left\": [0,0,0], \"bottom_right\": [2,0,0], \"top_left\": [0.01,1,0],"
+                                  " \"top_right\": [1.99,1,0]", "", err, sizeof err), 0);
+    assert_float_equal(cfg.screens[0].fit_mm, 5.0f, 1e-3);
+    assert_float_equal(cfg.screens[0].bottom_left[0], 0.005f, 1e-6);
+    assert_float_equal(cfg.screens[0].bottom_right[0], 1.995f, 1e-6);
+    assert_float_equal(cfg.screens[0].top_left[1], 1.0f, 1e-6);
+    /* 30 mm of shear: refused, in millimetres; a larger tolerance takes it. */
+    const char *sheared = "\"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0], \"top_left\": [0.06,1,0]";
+    assert_int_equal(parse_screen(sheared, "", err, sizeof err), -1);
+    assert_non_null(strstr(err, "screens[0]: 's' corners are "));
+    assert_non_null(strstr(err, " mm from the nearest rectangle, more than corner_tolerance_mm 20"));
+    assert_int_equal(parse_screen(sheared, "\"corner_tolerance_mm\": 50,", err, sizeof err), 0);
+    /* An exact rectangle stays exactly as written. */
+    assert_int_equal(parse_screen("\"bottom_left\": [-1.5,0,-1.5], \"bottom_right\": [0,0,-1.5],"
+                                  " \"top_left\": [-1.5,3,-1.5]", "", err, sizeof err), 0);
+    assert_true(cfg.screens[0].fit_mm < 1e-3f);
+    assert_true(cfg.screens[0].top_left[0] == -1.5f && cfg.screens[0].top_left[1] == 3.0f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_measured_corners),
         cmocka_unit_test(test_shipped_configs),
         cmocka_unit_test(test_bad_configs),
         cmocka_unit_test(test_missing_file),

@@ -47,10 +47,11 @@ static void test_valid_unchanged(void **state)
 static void test_bad_light_disabled(void **state)
 {
     (void)state;
-    for (int field = 0; field < 7; field++) {
+    for (int field = 0; field < 8; field++) {
         frame_params p = valid();
         frame_light *l = &p.lights[1];
         switch (field) {
+        case 7: l->type = (scene_light_type)7; break;
         case 0: l->position[2] = NAN; break;
         case 1: l->direction[0] = INFINITY; break;
         case 2: memset(l->direction, 0, sizeof l->direction); break;
@@ -83,6 +84,24 @@ static void test_light_repaired(void **state)
     l->intensity = -2.0f;
     assert_int_equal(frame_params_sanitize(&p), 1);
     assert_true(l->intensity == 0.0f);
+}
+
+/* A point light shines every way: a missing direction becomes -y, the light stays on. A
+ * directional light needs one. */
+static void test_light_types(void **state)
+{
+    (void)state;
+    frame_params p = valid();
+    p.lights[0].type = SCENE_LIGHT_POINT;
+    p.lights[1].type = SCENE_LIGHT_DIRECTIONAL;
+    frame_params q = p;
+    assert_int_equal(frame_params_sanitize(&q), 0);
+    assert_memory_equal(&p, &q, sizeof p);
+    memset(p.lights[0].direction, 0, sizeof p.lights[0].direction);
+    memset(p.lights[1].direction, 0, sizeof p.lights[1].direction);
+    assert_int_equal(frame_params_sanitize(&p), 2);
+    assert_true(p.lights[0].enabled && p.lights[0].direction[1] == -1.0f);
+    assert_false(p.lights[1].enabled);
 }
 
 static void test_globals_repaired(void **state)
@@ -133,6 +152,7 @@ int main(void)
         cmocka_unit_test(test_valid_unchanged),
         cmocka_unit_test(test_bad_light_disabled),
         cmocka_unit_test(test_light_repaired),
+        cmocka_unit_test(test_light_types),
         cmocka_unit_test(test_globals_repaired),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -29,6 +29,12 @@ static const char default_accessors[] =
 static const char default_meshes[] =
     "[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},\"indices\":2}]}]";
 
+/* A mesh node, a light node and a camera node; the lights and one perspective camera. */
+#define LIT_NODES "[{\"mesh\":0,\"children\":[1,2]},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}," \
+                  "{\"camera\":0,\"translation\":[0,0,3]}]"
+#define LIGHTS(l) "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[" l "]}},"
+#define CAMERAS "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":0.1}}],"
+
 static void write_file(const char *path, const void *data, size_t n)
 {
     FILE *f = fopen(path, "wb");
@@ -156,6 +162,35 @@ static void test_refusals(void **state)
          .extra = "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
                   "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"" BIN "\"}],",
          .meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}]"},
+        /* Lights and cameras: what the importer uses is checked too. */
+        {NULL, .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\",\"intensity\":5}") CAMERAS},
+        {"extensions.KHR_lights_punctual.lights[0].type \"area\" unknown (spot, point or directional)",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"area\"}") CAMERAS},
+        {"extensions.KHR_lights_punctual.lights[0].intensity -1.000000 invalid (0 to 1e12)",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"directional\",\"intensity\":-1}") CAMERAS},
+        {"extensions.KHR_lights_punctual.lights[0].color has 2 values, expected 3",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\",\"color\":[1,1]}") CAMERAS},
+        {"extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle 2.000000 invalid (0 < outer <= pi/2)",
+         .nodes = LIT_NODES,
+         .extra = LIGHTS("{\"type\":\"spot\",\"spot\":{\"outerConeAngle\":2}}") CAMERAS},
+        {"extensions.KHR_lights_punctual.lights[0].spot.innerConeAngle 0.500000 invalid (0 <= inner <= outer)",
+         .nodes = LIT_NODES,
+         .extra = LIGHTS("{\"type\":\"spot\",\"spot\":{\"outerConeAngle\":0.4,\"innerConeAngle\":0.5}}") CAMERAS},
+        {"nodes[0].camera 2 out of range (1 cameras)", .nodes = "[{\"mesh\":0,\"camera\":2}]",
+         .extra = CAMERAS},
+        {"cameras[0].perspective.yfov 4.000000 invalid (0 < yfov < pi)",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\"}")
+             "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":4,\"znear\":0.1}}],"},
+        {"cameras[0].perspective.zfar 0.050000 invalid (> znear)",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\"}")
+             "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":0.1,\"zfar\":0.05}}],"},
+        {"cameras[0].orthographic.ymag 0.000000 invalid (> 0)",
+         .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\"}")
+             "\"cameras\":[{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":0,\"znear\":0,\"zfar\":9}}],"},
+        {"nodes[2]: the camera's transform has no view direction or up (zero scale?)",
+         .nodes = "[{\"mesh\":0},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+                  "{\"camera\":0,\"scale\":[1,0,1]}]",
+         .scenes = "[{\"nodes\":[0,1,2]}]", .extra = LIGHTS("{\"type\":\"point\"}") CAMERAS},
     };
     for (int i = 0; i < (int)(sizeof cases / sizeof cases[0]); i++)
         run_case(i, &cases[i]);

@@ -43,15 +43,15 @@ static void test_indicators(void **state)
         assert_float_equal(h.indicators[HUD_SHAPE_CONE].color[1], 0.5f, 1e-6);
         assert_float_equal(h.indicators[HUD_SHAPE_CONE].color[2], 0.25f, 1e-6);
     }
-    assert_true(h.has_spot);
-    assert_float_equal(h.spot_position[2], 3.0f, 0);
-    assert_float_equal(h.spot_angle, 0.6f, 0);
+    assert_true(h.has_light);
+    assert_float_equal(h.light_position[2], 3.0f, 0);
+    assert_float_equal(h.light_angle, 0.6f, 0);
     p.hud_layout = -1;
     hud_describe(&p, 32, &h);
     assert_false(h.visible);
     p.lights[0].enabled = 0;
     hud_describe(&p, 32, &h);
-    assert_false(h.has_spot);
+    assert_false(h.has_light);
 }
 
 static void test_bars_and_anchor(void **state)

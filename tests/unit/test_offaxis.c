@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "frame/frame_view.h"
 #include "frame/offaxis.h"
 
 static void project(const float view[16], const float proj[16], const float p[3], float ndc[3])
@@ -115,6 +116,42 @@ static void test_degenerate_inputs(void **state)
     assert_int_equal(offaxis_look_at(same, same, 1, 1, 0.1f, 10, v, p), -1);
 }
 
+/* An eye on, just before or behind the screen's plane is moved to the near plane in front
+ * along the normal, keeping its position across the screen; the corners then project to
+ * the viewport's corners as for any eye in front. */
+static void test_eye_moved_in_front(void **state)
+{
+    (void)state;
+    const float bl[3] = {-1, -1, -2}, br[3] = {1, -1, -2}, tl[3] = {-1, 1, -2};
+    const float eyes[][3] = {{0.5f, 0.2f, -2}, {0.5f, 0.2f, -1.99f}, {0.5f, 0.2f, -3}, {0, 0, -2.0f + 1e-7f}};
+    for (size_t i = 0; i < sizeof eyes / sizeof eyes[0]; i++) {
+        float moved[3], d;
+        assert_int_equal(offaxis_eye_in_front(bl, br, tl, eyes[i], FRAME_VIEW_NEAR_PLANE, moved, &d), 1);
+        assert_true(fabsf(d - (eyes[i][2] + 2)) < 1e-6f);
+        assert_true(moved[0] == eyes[i][0] && moved[1] == eyes[i][1]);
+        assert_true(fabsf(moved[2] - (-2 + FRAME_VIEW_NEAR_PLANE)) < 1e-6f);
+        frame_view fv;
+        assert_int_equal(frame_view_screen(bl, br, tl, eyes[i], 100, 64, 64, &fv, &d), 1);
+        assert_true(fv.eye_position[2] == moved[2]);
+        float ndc[3];
+        project(fv.view, fv.projection, bl, ndc);
+        assert_true(fabsf(ndc[0] + 1) < 1e-3f && fabsf(ndc[1] + 1) < 1e-3f);
+        project(fv.view, fv.projection, (const float[3]){1, 1, -2}, ndc);
+        assert_true(fabsf(ndc[0] - 1) < 1e-3f && fabsf(ndc[1] - 1) < 1e-3f);
+    }
+    /* Far enough in front: untouched, and the same view as before. */
+    const float ok[3] = {0.3f, 0.1f, 0};
+    float same[3];
+    assert_int_equal(offaxis_eye_in_front(bl, br, tl, ok, FRAME_VIEW_NEAR_PLANE, same, NULL), 0);
+    assert_memory_equal(same, ok, sizeof ok);
+    frame_view fv;
+    assert_int_equal(frame_view_screen(bl, br, tl, ok, 100, 64, 64, &fv, NULL), 0);
+    /* Not finite, or degenerate corners: refused, never a NaN view. */
+    const float nan_eye[3] = {NAN, 0, 0};
+    assert_int_equal(frame_view_screen(bl, br, tl, nan_eye, 100, 64, 64, &fv, NULL), -1);
+    assert_int_equal(frame_view_screen(bl, br, bl, ok, 100, 64, 64, &fv, NULL), -1);
+}
+
 static void test_stereo_eyes(void **state)
 {
     (void)state;
@@ -135,6 +172,7 @@ int main(void)
         cmocka_unit_test(test_look_at_centre_and_edges),
         cmocka_unit_test(test_degenerate_inputs),
         cmocka_unit_test(test_stereo_eyes),
+        cmocka_unit_test(test_eye_moved_in_front),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -264,26 +264,81 @@ static void expect_rejected(const char *path, const char *needle)
     assert_int_equal(s.triangle_count, 0);
 }
 
-/* Far plane and fallback view from the bounds; the scene's own camera wins. */
+/* Far plane and fallback view from the bounds; the scene's own camera wins. A closed room
+ * (a box facing in) is seen from inside: eye height, 10% along its longest horizontal
+ * axis, looking along it. The same box facing out is an object, seen from outside. */
 static void test_far_plane_and_default_view(void **state)
 {
+    (void)state;
+    const float lo[3] = {-1, 0, -2}, hi[3] = {1, 3, 2}; /* extents 2 x 3 x 4 */
+    for (int inward = 1; inward >= 0; inward--) {
+        scene s;
+        memset(&s, 0, sizeof s);
+        assert_true(scene_add_material(&s, &(scene_material){.base_color = {1, 1, 1, 1},
+                                                             .base_color_texture = -1}) == 0);
+        assert_true(scene_add_box(&s, lo, hi, inward, 0) >= 0);
+        char err[128];
+        assert_int_equal(scene_finish(&s, err, sizeof err), 0);
+        assert_true(fabsf(scene_far_plane(&s) - (4.0f * sqrtf(29.0f) + 10.0f)) < 1e-4f);
+        float pos[3], target[3];
+        scene_default_view(&s, pos, target);
+        if (inward) {
+            assert_true(pos[0] == 0 && pos[1] == 1.5f && fabsf(pos[2] + 1.6f) < 1e-6f);
+            assert_true(target[0] == 0 && target[1] == 1.5f && target[2] == 2.0f);
+        } else {
+            assert_true(target[0] == 0 && target[1] == 1.5f && target[2] == 0);
+            assert_true(pos[0] == 0 && fabsf(pos[1] - 2.7f) < 1e-6f && pos[2] == 6.0f);
+        }
+        s.camera = (scene_camera){.valid = 1, .position = {5, 6, 7}, .target = {1, 2, 3}};
+        scene_default_view(&s, pos, target);
+        assert_true(pos[0] == 5 && pos[1] == 6 && pos[2] == 7);
+        assert_true(target[0] == 1 && target[1] == 2 && target[2] == 3);
+        scene_free(&s);
+    }
+}
+
+/* Inside a closed room with a solid block (outward faces) in its middle: the middle is not
+ * free, the room around it is; the default light and view go to free points inside. The
+ * block alone is an object: seen from outside. */
+static void test_free_points(void **state)
+{
+    (void)state;
     scene s;
     memset(&s, 0, sizeof s);
-    const float lo[3] = {-1, 0, -2}, hi[3] = {1, 3, 2}; /* extents 2 x 3 x 4 */
     assert_true(scene_add_material(&s, &(scene_material){.base_color = {1, 1, 1, 1},
                                                          .base_color_texture = -1}) == 0);
+    const float lo[3] = {-2, 0, -3}, hi[3] = {2, 3, 3};
+    const float blo[3] = {-1, 0.5f, -1}, bhi[3] = {1, 2.5f, 1};
     assert_true(scene_add_box(&s, lo, hi, 1, 0) >= 0);
+    assert_true(scene_add_box(&s, blo, bhi, 0, 0) >= 0);
     char err[128];
     assert_int_equal(scene_finish(&s, err, sizeof err), 0);
-    assert_true(fabsf(scene_far_plane(&s) - (4.0f * sqrtf(29.0f) + 10.0f)) < 1e-4f);
+    int fronts;
+    assert_false(scene_point_is_free(&s, (const float[3]){0, 2.25f, 0}, &fronts));
+    assert_int_equal(fronts, 0);
+    assert_true(scene_point_is_free(&s, (const float[3]){1.8f, 2.25f, 0}, &fronts));
+    assert_int_equal(fronts, 14);
+    scene_light l;
+    scene_default_light(&s, &l);
+    assert_int_equal(l.type, SCENE_LIGHT_POINT);
+    assert_true(scene_point_is_free(&s, l.position, NULL));
+    for (int a = 0; a < 3; a++)
+        assert_true(l.position[a] > lo[a] && l.position[a] < hi[a]);
+    assert_true(fabsf(l.intensity - 2.0f * l.position[1] * l.position[1]) < 1e-4f);
     float pos[3], target[3];
     scene_default_view(&s, pos, target);
-    assert_true(target[0] == 0 && target[1] == 1.5f && target[2] == 0);
-    assert_true(pos[0] == 0 && fabsf(pos[1] - 2.7f) < 1e-6f && pos[2] == 6.0f);
-    s.camera = (scene_camera){.valid = 1, .position = {5, 6, 7}, .target = {1, 2, 3}};
+    assert_true(scene_point_is_free(&s, pos, NULL));
+    for (int a = 0; a < 3; a++)
+        assert_true(pos[a] > lo[a] && pos[a] < hi[a]);
+    scene_free(&s);
+
+    memset(&s, 0, sizeof s);
+    assert_true(scene_add_material(&s, &(scene_material){.base_color = {1, 1, 1, 1},
+                                                         .base_color_texture = -1}) == 0);
+    assert_true(scene_add_box(&s, blo, bhi, 0, 0) >= 0);
+    assert_int_equal(scene_finish(&s, err, sizeof err), 0);
     scene_default_view(&s, pos, target);
-    assert_true(pos[0] == 5 && pos[1] == 6 && pos[2] == 7);
-    assert_true(target[0] == 1 && target[1] == 2 && target[2] == 3);
+    assert_true(pos[2] > bhi[2]);
     scene_free(&s);
 }
 
@@ -321,6 +376,7 @@ int main(void)
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),
         cmocka_unit_test(test_far_plane_and_default_view),
+        cmocka_unit_test(test_free_points),
         cmocka_unit_test(test_bad_files_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -50,11 +50,15 @@ static const struct { int type; const char *hex; } golden[] = {
         {WIRE_HEARTBEAT,
          "43564c54010007000c000000c91c79d9036e30312a00000000000000"},
 };
-/* A protocol 1 delta: head pose, time, lambda_incr and light 0's colour, in key order. */
-static const char *golden_delta =
-    "00000000803f000000000000000000000000000000000000803f000000000000"
-    "000000000000000000000000803f000000000000803e9a99d93f000000bf0000"
-    "803f0300111111111111a13f06000000203f11000000003f0000803e0000803f";
+/* A protocol 1 FRAME carrying a delta: head pose, time, lambda_incr and light 0's colour,
+ * in key order. Light 0's colour is key 0x12 there since PARAMS_PATTERN (the calibration
+ * pattern) came before the per-light keys; protocol 2's gi key moves it to 0x13. */
+static const char *golden_frame_delta =
+    "43564c5401000300740000007cee990f02000000000000000100000000000000"
+    "6000000000000000803f000000000000000000000000000000000000803f0000"
+    "00000000000000000000000000000000803f000000000000803e9a99d93f0000"
+    "00bf0000803f0300111111111111a13f06000000203f12000000003f0000803e"
+    "0000803f";
 
 static size_t from_hex(const char *hex, uint8_t *out)
 {
@@ -92,14 +96,19 @@ static void test_encoding_unchanged(void **state)
     uint64_t v = params_commit(&s);
     uint8_t delta[PARAMS_ENCODED_MAX];
     size_t dn = params_encode_delta(&s, v - 1, delta, sizeof delta);
-    size_t n = from_hex(golden_delta, want);
-    assert_int_equal(dn, n);
-    /* The light keys moved up by the global keys protocols 2 (gi) and 3 (vpl_count,
-     * vpl_seed) added. */
-    assert_memory_equal(delta, want, n - 14);
-    assert_int_equal(delta[n - 14] | delta[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
+    wire_msg f = {.type = WIRE_FRAME, .version = v, .base_version = v - 1, .params = delta,
+                  .params_len = dn};
+    size_t n = from_hex(golden_frame_delta, want);
+    assert_int_equal(wire_encode(&f, got, sizeof got), n);
+    assert_memory_equal(got, want, 4);
+    assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
+    assert_memory_equal(got + 6, want + 6, 6);
+    /* Every byte of the payload but light 0's key, which moved up by protocol 2's gi key
+     * and protocol 3's vpl_count and vpl_seed. */
+    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 14 - WIRE_HEADER_SIZE);
+    assert_int_equal(got[n - 14] | got[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
     assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 3);
-    assert_memory_equal(delta + n - 12, want + n - 12, 12);
+    assert_memory_equal(got + n - 12, want + n - 12, 12);
 }
 
 static void test_round_trip_every_type(void **state)

@@ -1,0 +1,177 @@
+/* scene_place: where a scene without a camera is seen from and where a scene without
+ * lights gets its light (scene.h). Both go inside the bounds, away from the inside of solid
+ * objects: a view or a light outside a closed room sees or lights only its outside. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene.h"
+
+/* 6 axes and 8 diagonals: enough to tell a room from open space and to find a surface's
+ * back around a point; unit length. */
+enum { PROBES = 14 };
+static const float D3 = 0.57735027f;
+static const float probe_dir[PROBES][3] = {
+    {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+    {D3, D3, D3}, {D3, D3, -D3}, {D3, -D3, D3}, {D3, -D3, -D3},
+    {-D3, D3, D3}, {-D3, D3, -D3}, {-D3, -D3, D3}, {-D3, -D3, -D3},
+};
+
+/* Distance along unit d from o to triangle t (Moeller-Trumbore), or INFINITY. */
+static double ray_triangle(const float *p, const float o[3], const float d[3])
+{
+    double e1[3], e2[3], s[3], h[3], q[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)p[3 + k] - p[k];
+        e2[k] = (double)p[6 + k] - p[k];
+        s[k] = (double)o[k] - p[k];
+    }
+    h[0] = d[1] * e2[2] - d[2] * e2[1];
+    h[1] = d[2] * e2[0] - d[0] * e2[2];
+    h[2] = d[0] * e2[1] - d[1] * e2[0];
+    double a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+    if (fabs(a) < 1e-30)
+        return INFINITY;
+    double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / a;
+    if (u < 0 || u > 1)
+        return INFINITY;
+    q[0] = s[1] * e1[2] - s[2] * e1[1];
+    q[1] = s[2] * e1[0] - s[0] * e1[2];
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / a;
+    if (v < 0 || u + v > 1)
+        return INFINITY;
+    double t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / a;
+    return t > 0 ? t : INFINITY;
+}
+
+/* scene_point_is_free(), and the distance to the nearest surface a probe met. */
+static int probe(const scene *s, const float p[3], int *fronts, double *nearest)
+{
+    int met = 0, free_point = 1;
+    *nearest = INFINITY;
+    for (int r = 0; r < PROBES; r++) {
+        double best = INFINITY;
+        size_t first = 0;
+        for (size_t t = 0; t < s->triangle_count; t++) {
+            double d = ray_triangle(s->positions + 9 * t, p, probe_dir[r]);
+            if (d < best) {
+                best = d;
+                first = t;
+            }
+        }
+        if (!isfinite(best))
+            continue;
+        *nearest = fmin(*nearest, best);
+        const float *n = s->normals + 9 * first;
+        float side = 0;
+        for (int k = 0; k < 3; k++)
+            side += (n[k] + n[3 + k] + n[6 + k]) * probe_dir[r][k];
+        if (side > 0) /* the ray leaves through the back of the surface: p is inside */
+            free_point = 0;
+        else
+            met++;
+    }
+    if (fronts)
+        *fronts = met;
+    return free_point;
+}
+
+int scene_point_is_free(const scene *s, const float p[3], int *fronts)
+{
+    double nearest;
+    return probe(s, p, fronts, &nearest);
+}
+
+/* The point at fractions f of the bounds on each axis. */
+static void at(const scene *s, const float f[3], float p[3])
+{
+    for (int a = 0; a < 3; a++)
+        p[a] = s->bounds_min[a] + f[a] * (s->bounds_max[a] - s->bounds_min[a]);
+}
+
+void scene_default_light(const scene *s, scene_light *out)
+{
+    static const float height[] = {0.75f, 0.5f, 0.9f, 0.25f};
+    static const float across[] = {0.5f, 0.3f, 0.7f, 0.15f, 0.85f};
+    enum { NH = sizeof height / sizeof height[0], NA = sizeof across / sizeof across[0] };
+    /* A lamp clear of every surface by D/16 (40 cm in the default room): one next to a
+     * surface lights a hot spot and little else. */
+    double clearance = scene_diagonal(s) / 16.0, nearest;
+    float p[3], first[3];
+    int found = 0;
+    for (int h = 0; h < NH && !found; h++)
+        for (int i = 0; i < NA * NA && !found; i++) {
+            at(s, (const float[3]){across[i % NA], height[h], across[i / NA]}, p);
+            if (h == 0 && i == 0)
+                memcpy(first, p, sizeof first);
+            found = probe(s, p, NULL, &nearest) && nearest >= clearance;
+        }
+    if (!found) /* no free point: a closed solid everywhere, or normals that all face out */
+        memcpy(p, first, sizeof p);
+    memset(out, 0, sizeof *out);
+    out->type = SCENE_LIGHT_POINT;
+    memcpy(out->position, p, sizeof p);
+    out->direction[1] = -1.0f;
+    out->color[0] = out->color[1] = out->color[2] = 1.0f;
+    float below = fmaxf(p[1] - s->bounds_min[1], scene_min_light_distance(s));
+    out->intensity = 2.0f * below * below;
+}
+
+void scene_default_view(const scene *s, float position[3], float target[3])
+{
+    if (s->camera.valid) {
+        memcpy(position, s->camera.position, sizeof s->camera.position);
+        memcpy(target, s->camera.target, sizeof s->camera.target);
+        return;
+    }
+    float extent[3];
+    for (int a = 0; a < 3; a++)
+        extent[a] = s->bounds_max[a] - s->bounds_min[a];
+    int along = extent[0] >= extent[2] ? 0 : 2, across = 2 - along;
+    float eye = fminf(1.6f, 0.5f * extent[1]) / fmaxf(extent[1], 1e-30f);
+    /* The first free point of a few along the longest horizontal axis: a room when most
+     * rays from there meet the front of a surface. */
+    static const float start[] = {0.1f, 0.25f, 0.4f}, side[] = {0.5f, 0.3f, 0.7f};
+    for (int i = 0; i < 9; i++) {
+        float f[3];
+        f[along] = start[i % 3];
+        f[across] = side[i / 3];
+        f[1] = eye;
+        at(s, f, position);
+        int fronts;
+        if (!scene_point_is_free(s, position, &fronts))
+            continue;
+        if (2 * fronts <= PROBES)
+            break; /* open space around it: an object */
+        memcpy(target, position, 3 * sizeof(float));
+        target[along] = s->bounds_max[along];
+        return;
+    }
+    float size = 0;
+    for (int a = 0; a < 3; a++) {
+        target[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
+        size = fmaxf(size, extent[a]);
+    }
+    position[0] = target[0];
+    position[1] = target[1] + 0.3f * size;
+    position[2] = target[2] + 1.5f * size;
+}
+
+void scene_default_camera(const scene *s, scene_camera *out)
+{
+    if (s->camera.valid) {
+        *out = s->camera;
+        return;
+    }
+    *out = (scene_camera){.valid = 1, .yfov = 60.0f * 3.14159265f / 180.0f};
+    scene_default_view(s, out->position, out->target);
+}
+
+void scene_light_added_note(const scene *s, const char *path, char *out, size_t n)
+{
+    const scene_light *l = &s->lights[0];
+    snprintf(out, n, "scene %s has no lights: added a point light at (%.3g, %.3g, %.3g), "
+             "%.3g W/sr, inside its bounds (add a KHR_lights_punctual light to choose your own)",
+             path, l->position[0], l->position[1], l->position[2], l->intensity);
+}

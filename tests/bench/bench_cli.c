@@ -1,0 +1,64 @@
+/* bench_cli: the benchmarks' command lines through base/cli.h (see bench.h). */
+#include <stdio.h>
+#include <string.h>
+
+#include "bench.h"
+
+typedef struct parse_state {
+    const bench_option *opts;
+} parse_state;
+
+static const char *set(void *user, int id, const char *v)
+{
+    const bench_option *o = &((parse_state *)user)->opts[id];
+    if (o->choices) {
+        int k = cli_choice(v, o->choices, o->choice_count);
+        if (k < 0)
+            return cli_choice_reason(o->choices, o->choice_count);
+        *o->value = k;
+        return NULL;
+    }
+    if (o->text) {
+        *o->text = v;
+        return NULL;
+    }
+    return cli_int(v, o->lo, o->hi, o->value);
+}
+
+/* The defaults are the variables' values before parsing: shown from there. */
+static const char *show_default(void *user, int id, char *buf, size_t cap)
+{
+    const bench_option *o = &((parse_state *)user)->opts[id];
+    if (o->choices)
+        snprintf(buf, cap, "%s", o->choices[*o->value]);
+    else if (o->text)
+        snprintf(buf, cap, "%s", *o->text ? *o->text : "none");
+    else
+        snprintf(buf, cap, "%d", *o->value);
+    return buf;
+}
+
+int bench_parse(const char *bench, const char *summary, const bench_option *opts, int count,
+                int argc, char **argv)
+{
+    cli_option table[CLI_MAX_OPTIONS];
+    if (count > CLI_MAX_OPTIONS)
+        return -1;
+    for (int i = 0; i < count; i++)
+        table[i] = (cli_option){.id = i, .name = opts[i].name, .arg = opts[i].arg, .help = opts[i].help};
+    static const char *const groups[] = {"Options"};
+    char name[64], usage[512];
+    snprintf(name, sizeof name, "cavelight-bench %s", bench);
+    snprintf(usage, sizeof usage, "usage: cavelight-bench %s [options]\n  %s\n", bench, summary);
+    parse_state st = {opts};
+    cli_program p = {.name = name, .usage = usage, .groups = groups, .group_count = 1,
+                     .options = table, .count = count, .set = set, .show_default = show_default,
+                     .user = &st};
+    int npositional;
+    cli_given given;
+    switch (cli_parse(&p, argc, argv, NULL, 0, &npositional, &given)) {
+    case CLI_OK: return 0;
+    case CLI_HELP: return 1;
+    default: return -1;
+    }
+}

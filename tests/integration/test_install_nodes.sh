@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# scripts/install_nodes.py stages, per host, the node program, the config, that host's own
+# keys (never another host's private key), the systemd unit template and a drop-in per node
+# with the node's program, folder, config and display; --dry-run prints the ssh and scp
+# commands. The unit passes systemd-analyze verify where systemd is there to ask.
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/cluster_lib.sh"
+root=$(cd "$here/../.." && pwd)
+
+CLUSTER_SECURITY=curve make_config "$tmp/cave.json" 2000 a b c
+python3 - "$tmp/cave.json" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c["nodes"][0]["host"] = c["nodes"][1]["host"] = "render1"
+c["nodes"][2].update({"host": "render2", "exe": "/usr/local/bin/cavelight-node", "workdir": "/srv/cave",
+                      "config": "/srv/cave/cave.json", "display": ":1"})
+json.dump(c, open(sys.argv[1], "w"))
+PY
+"$build/cavelight-master" --config "$tmp/cave.json" --keygen 2> /dev/null || fail "keygen failed"
+python3 "$root/scripts/install_nodes.py" "$tmp/cave.json" --build "$build" --dry-run --stage "$tmp/stage" \
+  --user cave > "$tmp/out.txt" || { cat "$tmp/out.txt"; fail "install_nodes failed"; }
+grep -q "staged 3 nodes on 2 hosts" "$tmp/out.txt" || fail "not 3 nodes on 2 hosts: $(cat "$tmp/out.txt")"
+[ "$(grep -c "^ssh render1 " "$tmp/out.txt")" = 2 ] && grep -q "^scp -r .* render2:/tmp/cavelight-install/" "$tmp/out.txt" \
+  || fail "ssh/scp commands: $(cat "$tmp/out.txt")"
+s1=$tmp/stage/render1 s2=$tmp/stage/render2
+[ -x "$s1/cavelight-node" ] && [ -f "$s1/shaders/shade.frag" ] || fail "the program or its shaders were not staged"
+for f in a.key a.pub b.key b.pub master.pub; do [ -f "$s1/keys/$f" ] || fail "render1 lacks $f"; done
+[ ! -e "$s1/keys/c.key" ] && [ ! -e "$s2/keys/a.key" ] && [ ! -e "$s2/keys/b.key" ] \
+  || fail "a host got another host's private key"
+[ ! -e "$tmp/stage/render1/keys/master.key" ] && [ ! -e "$s2/keys/master.key" ] || fail "the master's private key was staged"
+grep -qx "ExecStart=/usr/local/bin/cavelight-node --cluster /srv/cave/cave.json --name c" "$s2/dropins/c.conf" \
+  && grep -qx "WorkingDirectory=/srv/cave" "$s2/dropins/c.conf" && grep -qx "Environment=DISPLAY=:1" "$s2/dropins/c.conf" \
+  || { cat "$s2/dropins/c.conf"; fail "node c's drop-in"; }
+grep -qx "ExecStart=/opt/cavelight/bin/cavelight-node --cluster /etc/cavelight/cave.json --name a" "$s1/dropins/a.conf" \
+  || { cat "$s1/dropins/a.conf"; fail "node a's drop-in"; }
+grep -q "install -m 600 -o cave keys/c.key /srv/cave/cave.keys/c.key" "$s2/install.sh" \
+  || { cat "$s2/install.sh"; fail "node c's key does not go beside its config"; }
+grep -q "systemctl enable cavelight-node@c" "$s2/install.sh" || fail "node c is not enabled"
+! grep -q "@[A-Z]*@" "$s1/cavelight-node@.service" || fail "unfilled fields in the unit"
+sh -n "$s1/install.sh" || fail "install.sh is not valid sh"
+if systemd-analyze --version > /dev/null 2>&1; then
+  sed "s|^ExecStart=.*|ExecStart=/bin/true %i|; s|^User=.*|User=root|" "$s1/cavelight-node@.service" \
+    > "$tmp/cavelight-node@a.service"
+  if systemd-analyze verify "$tmp/cavelight-node@a.service" > "$tmp/verify.txt" 2>&1; then
+    echo "systemd-analyze verify: the unit is valid"
+  elif grep -q "System has not been booted with systemd\|Failed to connect\|Failed to initialize" "$tmp/verify.txt"; then
+    echo "systemd-analyze cannot run here: $(head -1 "$tmp/verify.txt")"
+  else
+    cat "$tmp/verify.txt"; fail "systemd-analyze verify refused the unit"
+  fi
+fi
+# Refusals: no keys yet, no build.
+rm -r "$tmp/cave.keys"
+python3 "$root/scripts/install_nodes.py" "$tmp/cave.json" --build "$build" --dry-run 2> "$tmp/err" > /dev/null \
+  && fail "installed without keys"
+grep -q "run cavelight-master --config .* --keygen first" "$tmp/err" || fail "no keygen hint: $(cat "$tmp/err")"
+echo "install_nodes: staged per host, keys kept apart, drop-ins per node"
