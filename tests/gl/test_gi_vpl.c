@@ -104,6 +104,36 @@ static void test_lights_and_is_deterministic(void **state)
     gltest_close(&b);
 }
 
+/* Point and directional lights: their RSMs are cube faces and an orthographic view. The
+ * point light, emitting in every direction, lights the room more than the spot of the
+ * same intensity; the directional light reaches the closed room only through the
+ * emissive panel's VPLs, but its RSM (the roof seen from above) must not break anything. */
+static void test_light_types(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    static float img[PIXELS];
+    frame_params p = vpl_params(&t, 64, 0);
+    frame(&t, &p, NULL, img, NULL);
+    double spot = mean(img);
+    const scene_light_type types[2] = {SCENE_LIGHT_POINT, SCENE_LIGHT_DIRECTIONAL};
+    double level[2];
+    for (int k = 0; k < 2; k++) {
+        p = vpl_params(&t, 64, 0);
+        p.lights[0].type = types[k];
+        frame(&t, &p, NULL, img, NULL);
+        level[k] = mean(img);
+        for (int i = 0; i < PIXELS; i++)
+            assert_true(isfinite(img[i]) && img[i] >= 0.0f);
+    }
+    printf("mean indirect radiance: spot %.4g, point %.4g, directional %.4g\n", spot, level[0],
+           level[1]);
+    assert_true(level[0] > 2 * spot);
+    assert_true(level[1] > 0);
+    gltest_close(&t);
+}
+
 /* Against the average of 4 seeds at N = 1024 (exact visibility both): the error at 64 and
  * 256 VPLs, each averaged over 2 seeds, falls with N. */
 static void test_error_falls_with_n(void **state)
@@ -137,6 +167,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lights_and_is_deterministic),
+        cmocka_unit_test(test_light_types),
         cmocka_unit_test(test_error_falls_with_n),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
