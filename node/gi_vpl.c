@@ -138,14 +138,19 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     size_t texels = (size_t)v->rsm_size * v->rsm_size;
     for (int i = 0; i < 3; i++)
         v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
-    v->emitter_count = vpl_from_emitters(s, NULL);
+    v->emitter_count = vpl_emitters(s, NULL);
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
-    if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters) {
+    vpl_emitter *raw = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
+    if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters || !raw) {
+        free(raw);
         snprintf(err, errlen, "renderer: out of memory for a %dx%d RSM readback",
                  v->rsm_size, v->rsm_size);
         return -1;
     }
-    vpl_from_emitters(s, v->emitters);
+    vpl_emitters(s, raw);
+    for (size_t i = 0; i < v->emitter_count; i++)
+        v->emitters[i] = vpl_from_emitter(&raw[i]);
+    free(raw);
     float diagonal = scene_diagonal(s);
     v->near = diagonal / 1024.0f;
     v->far = diagonal * 1.01f; /* VPLs and receivers lie within the bounds */

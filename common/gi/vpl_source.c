@@ -1,6 +1,7 @@
 #include "gi/vpl_source.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "base/vec3.h"
 
@@ -72,9 +73,8 @@ size_t vpl_from_rsm(const float *position, const float *normal, const float *flu
     return n;
 }
 
-size_t vpl_from_emitters(const scene *s, vpl *out)
+size_t vpl_emitters(const scene *s, vpl_emitter *out)
 {
-    static const double PI = 3.14159265358979323846;
     size_t n = 0;
     for (size_t t = 0; t < s->triangle_count; t++) {
         const float *e = s->materials[s->triangle_material[t]].emissive;
@@ -89,16 +89,28 @@ size_t vpl_from_emitters(const scene *s, vpl *out)
         if (out) {
             float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
                          f[2] * (vn[2] + vn[5] + vn[8]);
-            float area = 0.5f * len, sign = side < 0 ? -1.0f : 1.0f;
-            vpl *v = &out[n];
+            float sign = side < 0 ? -1.0f : 1.0f;
+            vpl_emitter *v = &out[n];
             for (int k = 0; k < 3; k++) {
                 v->position[k] = (p[k] + p[3 + k] + p[6 + k]) / 3.0f;
                 v->normal[k] = sign * f[k] / len;
-                v->flux[k] = (float)(PI * e[k] * area);
+                v->radiance[k] = e[k];
             }
-            v->area = area;
+            v->area = 0.5f * len;
         }
         n++;
     }
     return n;
+}
+
+vpl vpl_from_emitter(const vpl_emitter *e)
+{
+    static const double PI = 3.14159265358979323846;
+    vpl v;
+    memcpy(v.position, e->position, sizeof v.position);
+    memcpy(v.normal, e->normal, sizeof v.normal);
+    for (int k = 0; k < 3; k++)
+        v.flux[k] = (float)(PI * e->radiance[k] * e->area);
+    v.area = e->area;
+    return v;
 }

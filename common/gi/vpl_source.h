@@ -25,8 +25,15 @@ float vpl_texel_area(const float *position, const float *normal, int size, int x
  * Returns how many. */
 size_t vpl_from_rsm(const float *position, const float *normal, const float *flux, int size,
                     vpl *out);
-/* One VPL per emissive triangle of s with a non-zero area, in triangle order, into out;
- * with out NULL only counts them. Returns how many. */
-size_t vpl_from_emitters(const scene *s, vpl *out);
+/* An emissive triangle as a point emitter: centroid, unit face normal on its vertex
+ * normals' side, emitted radiance L_e, area. */
+typedef struct vpl_emitter {
+    float position[3], normal[3], radiance[3], area;
+} vpl_emitter;
+/* The emissive triangles of s with a non-zero area, in triangle order, into out; with out
+ * NULL only counts them. Returns how many. */
+size_t vpl_emitters(const scene *s, vpl_emitter *out);
+/* An emitter as a VPL of flux pi L_e A. */
+vpl vpl_from_emitter(const vpl_emitter *e);
 
 #endif
