@@ -107,3 +107,18 @@ kill -0 $node || { cat "$tmp/fake-i-node.log"; fail "the node exited on hostile 
 grep -q "out of range, clamped" "$tmp/fake-i-node.log" || { cat "$tmp/fake-i-node.log"; fail "no clamp logged"; }
 grep -q 'security "insecure"' "$tmp/fake-i-node.log" || fail "insecure mode not named in the node's log"
 echo "insecure mode: hostile parameters clamped, the node stays up"
+
+# Insecure mode believes any name, so every HELLO is a join or a refusal: the master's
+# lines about a node are rate-limited (common/base/ratelog.h) however many arrive.
+make_config "$tmp/f.json" 3000 a
+rm -f "$tmp/ep"
+"$build/cavelight-master" --config "$tmp/f.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" \
+  --frames 0 2> "$tmp/flood-master.log" &
+master=$!; pids+=($master)
+wait_for_file "$tmp/ep" 20
+"$stranger" --config "$tmp/f.json" --endpoint "$(cat "$tmp/ep")" --attack badhello --key none --victim a \
+  --count $attempts > "$tmp/flood.log" 2>&1 || fail "stranger badhello failed"
+kill -TERM $master; wait $master || true
+refusals=$(grep -c "another cluster config" "$tmp/flood-master.log" || true)
+[ "$refusals" -ge 1 ] && [ "$refusals" -le 6 ] || { cat "$tmp/flood-master.log"; fail "$refusals refusal lines for $attempts bad HELLOs"; }
+echo "insecure mode: $attempts HELLOs with another config hash gave $refusals log lines"
