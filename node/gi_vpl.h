@@ -26,7 +26,7 @@
 #ifndef CAVELIGHT_GI_VPL_H
 #define CAVELIGHT_GI_VPL_H
 
-#include "gi.h"
+#include "gi_method.h"
 
 extern const gi_method gi_vpl_method;
 
