@@ -160,12 +160,12 @@ cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cf
     return a;
 }
 
-int cluster_auth_is(const cluster_auth *a, zmq_msg_t *msg, const char *name)
+int cluster_auth_node(const cluster_auth *a, zmq_msg_t *msg, const char *routing_name)
 {
     if (a->cfg->security == CLUSTER_SECURITY_INSECURE)
-        return 1;
-    const char *user = zmq_msg_gets(msg, "User-Id");
-    return user && strcmp(user, name) == 0;
+        return routing_name ? cluster_config_find_node(a->cfg, routing_name) : -1;
+    const char *user = zmq_msg_gets(msg, "User-Id"); /* set by answer() from the key */
+    return user ? cluster_config_find_node(a->cfg, user) : -1;
 }
 
 uint64_t cluster_auth_refused(const cluster_auth *a) { return atomic_load(&a->refused); }

@@ -4,9 +4,10 @@
  * makes the ROUTER a CURVE server and answers ZeroMQ's authentication requests (ZAP,
  * RFC 27) on a thread of its own: a peer is admitted only with a configured node's public
  * key, and every message it sends then carries that node's name as its "User-Id". The
- * master takes a message as a node's only when the routing id and the User-Id both name
- * it, so a name cannot be borrowed. Refused keys are counted and logged, rate-limited.
- * In insecure mode nothing is set up and every routing id is believed.
+ * master takes the User-Id, never the routing id, as the sender (cluster_auth_node()), so
+ * a name cannot be borrowed, not even by a peer holding another node's key. Refused keys
+ * are counted and logged, rate-limited. In insecure mode nothing is set up and every
+ * routing id is believed.
  * cluster_keygen() writes a fresh key pair for the master and each node. */
 #ifndef CAVELIGHT_CLUSTER_AUTH_H
 #define CAVELIGHT_CLUSTER_AUTH_H
@@ -22,8 +23,10 @@ typedef struct cluster_auth cluster_auth;
 /* Call before binding sock. Returns NULL with one line in err. */
 cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cfg, int quiet,
                                  char *err, size_t errlen);
-/* 1 when the message's authenticated peer is the node called name (always 1 when insecure). */
-int cluster_auth_is(const cluster_auth *a, zmq_msg_t *msg, const char *name);
+/* The node that sent msg, or -1: in curve mode the node whose key its connection
+ * authenticated with (the routing id does not matter); insecure, the node named by the
+ * routing id (routing_name; NULL when it is not a valid name). */
+int cluster_auth_node(const cluster_auth *a, zmq_msg_t *msg, const char *routing_name);
 /* Connections refused for an unknown key so far. */
 uint64_t cluster_auth_refused(const cluster_auth *a);
 /* Call after closing every socket of ctx, before zmq_ctx_term(ctx). NULL is fine. */

@@ -15,9 +15,12 @@ typedef struct peer {
     cluster_peer_stats s;
     int in_barrier;          /* got FRAME(v) of the current barrier */
     int ready;               /* sent READY(v) for it */
+    int framed;              /* sent a FRAME since it joined */
     double frame_sent;       /* ms clock */
     double last_heard;
     int fd;                  /* connection its last message came on (-1 unknown) */
+    uint8_t rid[256];        /* ROUTER routing id of that connection: where to send */
+    size_t rid_len;          /* 0: never heard */
 } peer;
 
 /* The stall timeout adapts to the READY latencies of recent frames (ring of samples). */
@@ -47,9 +50,9 @@ static int send_to(cluster_master *m, int node, const wire_msg *msg)
     size_t len = wire_encode(msg, m->buf, sizeof m->buf);
     if (len == 0)
         return -1;
-    const char *id = m->cfg->nodes[node].name;
+    const peer *p = &m->peers[node];
     /* ROUTER drops a message for a peer that is gone or whose queue is full: never blocks. */
-    if (zmq_send(m->sock, id, strlen(id), ZMQ_SNDMORE | ZMQ_DONTWAIT) < 0)
+    if (p->rid_len == 0 || zmq_send(m->sock, p->rid, p->rid_len, ZMQ_SNDMORE | ZMQ_DONTWAIT) < 0)
         return -1;
     if (zmq_send(m->sock, m->buf, len, ZMQ_DONTWAIT) < 0)
         return -1;
@@ -94,12 +97,21 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
         send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);
         return;
     }
+    /* A HELLO again before any frame (the answer crossed it, or it came on a fresh
+     * connection): the snapshot again, not a second join that resets every node's LPV
+     * history once frames run. */
+    if (p->s.state == CLUSTER_PEER_LIVE && !p->framed) {
+        p->s.version = m->params.version;
+        send_snapshot(m, node);
+        return;
+    }
     int rejoin = p->s.joins > 0;
     p->s.state = CLUSTER_PEER_LIVE;
     p->s.version = m->params.version;
     p->s.joins++;
     p->in_barrier = 0;
     p->ready = 0;
+    p->framed = 0;
     m->st.joins++;
     m->raise_epoch = 1;
     send_snapshot(m, node);
@@ -136,16 +148,16 @@ static int handle_one(cluster_master *m)
                 break;
         }
     }
-    char name[WIRE_NAME_MAX + 1] = "";
+    char rid_name[WIRE_NAME_MAX + 1] = "";
     size_t idlen = zmq_msg_size(&id);
     if (idlen <= WIRE_NAME_MAX) {
-        memcpy(name, zmq_msg_data(&id), idlen);
-        name[idlen] = 0;
+        memcpy(rid_name, zmq_msg_data(&id), idlen);
+        rid_name[idlen] = 0;
     }
-    int node = idlen <= WIRE_NAME_MAX && wire_name_valid(name) ? cluster_config_find_node(m->cfg, name) : -1;
-    /* A node's name is only believed from the peer that authenticated with its key. */
-    if (node >= 0 && !cluster_auth_is(m->auth, &body, name))
-        node = -1;
+    /* Who sent it: in curve mode the key's node, whatever the routing id; insecure, the
+     * routing id's name. */
+    int node = cluster_auth_node(m->auth, &body, wire_name_valid(rid_name) ? rid_name : NULL);
+    const char *name = node >= 0 ? m->cfg->nodes[node].name : rid_name;
     size_t len = zmq_msg_size(&body);
     m->st.messages_received++;
     m->st.bytes_received += len;
@@ -177,6 +189,10 @@ static int handle_one(cluster_master *m)
     peer *p = &m->peers[node];
     p->last_heard = clock_now_ms();
     p->fd = (int)zmq_msg_get(&body, ZMQ_SRCFD);
+    if (idlen <= sizeof p->rid) { /* the node's newest connection (a restart makes a new one) */
+        memcpy(p->rid, zmq_msg_data(&id), idlen);
+        p->rid_len = idlen;
+    }
     switch (msg.type) {
     case WIRE_HELLO:
         if (m->closing)
@@ -327,10 +343,15 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
-    /* A restarted node reuses its name: its new connection takes over the routing id. In
-     * curve mode only a peer holding that node's key gets that far (cluster_auth). */
-    int one = 1;
-    zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    /* Insecure, the routing id is the node's name: a restarted node's new connection
+     * takes it over (ZMQ_ROUTER_HANDOVER), as anybody's could. Curve: no handover, so a
+     * peer holding one node's key cannot displace another; nodes set no routing ids (ROUTER
+     * makes unique ones), the key names the node, and a restarted node's new connection is
+     * found from its first message. */
+    if (m->cfg->security == CLUSTER_SECURITY_INSECURE) {
+        int one = 1;
+        zmq_setsockopt(m->sock, ZMQ_ROUTER_HANDOVER, &one, sizeof one);
+    }
     /* No ZMTP heartbeats (ZMQ_HEARTBEAT_IVL): with them libzmq 4.3.4 aborts
      * (stream_engine_base.cpp:331 !_io_error) when a peer sends garbage. A peer that goes
      * silent without closing is caught by the stall timeout and the protocol's HEARTBEAT. */
@@ -464,7 +485,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         }
         p->frame_sent = clock_now_ms();
         if (send_to(m, i, &msg) == 0) {
-            p->in_barrier = 1;
+            p->in_barrier = p->framed = 1;
             out->live++;
             if (msg.params == common)
                 out->frame_bytes = wire_encode(&msg, m->buf, sizeof m->buf);

@@ -12,13 +12,15 @@
 #include "cluster/cluster_keys.h"
 
 typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
+/* The socket's connection to the master, from its monitor's events. */
+typedef enum link_state { LINK_OPENING, LINK_UP, LINK_DOWN } link_state;
 
 struct cluster_client {
     const cluster_config *cfg;
     char name[WIRE_NAME_MAX + 1];
     void *ctx, *sock, *monitor;
     int monitors;            /* sockets opened so far: names each one's monitor */
-    int link_down;           /* the connection closed and no handshake has succeeded since */
+    link_state link;         /* DOWN: closed, and no handshake has succeeded since */
     const char *endpoint;
     double opened;
     int quiet;
@@ -92,7 +94,10 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
     }
     int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 250;
     int64_t maxmsg = WIRE_MAX_MESSAGE;
-    zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
+    /* Insecure: the routing id names the node. Curve: the key does, and ROUTER's own
+     * unique ids mean nobody can squat on this node's name. */
+    if (c->cfg->security == CLUSTER_SECURITY_INSECURE)
+        zmq_setsockopt(c->sock, ZMQ_ROUTING_ID, c->name, strlen(c->name));
     zmq_setsockopt(c->sock, ZMQ_LINGER, &zero, sizeof zero);
     zmq_setsockopt(c->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(c->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
@@ -122,14 +127,18 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         return -1;
     }
     c->opened = clock_now_ms();
+    c->link = LINK_OPENING;
     return 0;
 }
 
 /* ZeroMQ does not reconnect after a protocol error (e.g. an oversized message): a node
- * that has heard nothing for master_ms since its socket opened starts a fresh one. */
+ * with no connection that has heard nothing for master_ms since its socket opened starts
+ * a fresh one. A connection that is up is kept: its master has our HELLO, and a fresh
+ * socket would lose the answer and make the master count a second join. */
 static void reopen_if_dead(cluster_client *c, double now)
 {
-    if (now - c->last_heard < c->cfg->master_timeout_ms || now - c->opened < c->cfg->master_timeout_ms)
+    if (c->link == LINK_UP || now - c->last_heard < c->cfg->master_timeout_ms ||
+        now - c->opened < c->cfg->master_timeout_ms)
         return;
     char err[256];
     close_socket(c);
@@ -209,18 +218,24 @@ int cluster_client_ready(cluster_client *c, uint64_t version, uint64_t checksum,
     return send_msg(c, &m);
 }
 
-/* Heartbeats while joined, HELLO every half second otherwise. */
-static void housekeeping(cluster_client *c, double now)
+/* Heartbeats while joined. */
+static void heartbeat(cluster_client *c, double now)
 {
-    int period = c->cfg->heartbeat_ms;
-    if (c->state == STATE_JOINED) {
-        if (now - c->last_sent >= period) {
-            wire_msg hb = {.type = WIRE_HEARTBEAT, .version = c->params.version};
-            send_msg(c, &hb);
-        }
-    } else if (now - c->last_hello >= (period > 500 ? period : 500)) {
-        send_hello(c);
+    if (c->state == STATE_JOINED && now - c->last_sent >= c->cfg->heartbeat_ms) {
+        wire_msg hb = {.type = WIRE_HEARTBEAT, .version = c->params.version};
+        send_msg(c, &hb);
     }
+}
+
+/* A HELLO goes out on every new connection (connection_event()) and again when one
+ * could not be sent (no connection yet). One that went out is repeated only after
+ * master_ms without an answer: a master under load answers late, and every extra HELLO
+ * it reads after the session started is a rejoin that resets every node's LPV history.
+ * Called with the receive queue empty, so an answer that already arrived counts. */
+static void hello_again(cluster_client *c, double now)
+{
+    if (c->state != STATE_JOINED && now - c->last_hello >= c->cfg->master_timeout_ms)
+        send_hello(c);
 }
 
 /* Parameters that fail params_apply() (non-finite values, bad layout) change nothing. */
@@ -257,9 +272,9 @@ static int connection_event(cluster_client *c)
         if (zmq_msg_size(&ev) >= 2)
             memcpy(&event, zmq_msg_data(&ev), 2);
         if (event == ZMQ_EVENT_DISCONNECTED) {
-            c->link_down = 1;
+            c->link = LINK_DOWN;
         } else if (event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
-            c->link_down = 0;
+            c->link = LINK_UP;
             if (c->state != STATE_JOINED && clock_now_ms() - c->last_hello >= 100)
                 send_hello(c); /* unless one just went out on this connection */
         }
@@ -276,10 +291,10 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
     int pending = 0; /* a FRAME applied and not yet overtaken */
     for (;;) {
         double now = clock_now_ms();
-        housekeeping(c, now);
+        heartbeat(c, now);
         for (int k = 0; k < 8 && connection_event(c); k++) /* a few at a time: never starves messages */
             ;
-        if (c->link_down && c->state == STATE_JOINED && !pending) {
+        if (c->link == LINK_DOWN && c->state == STATE_JOINED && !pending) {
             c->state = STATE_LOST;
             c->st.lost++;
             ev->type = CLUSTER_EVENT_LOST;
@@ -301,8 +316,10 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
                 ev->type = CLUSTER_EVENT_LOST;
                 return ev->type;
             }
-            if (c->state != STATE_JOINED)
+            if (c->state != STATE_JOINED) {
+                hello_again(c, now);
                 reopen_if_dead(c, now);
+            }
             if (now >= deadline)
                 return CLUSTER_EVENT_NONE;
             double wait = deadline - now;

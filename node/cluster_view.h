@@ -12,7 +12,8 @@
  * numbered by the frame's version, so that a replay can be reviewed frame by frame), a GLFW window in the node's stereo mode
  * (the node's screens side by side; stereo as side-by-side, top-bottom, red-cyan
  * anaglyph, quad-buffered when the driver offers it (else side-by-side), or one window
- * per eye), or nothing (headless). The renderer is rebuilt when the LPV resolution key changes. */
+ * per eye), or nothing (headless). The renderer is rebuilt when the LPV resolution key changes.
+ * cluster_view_create() renders one untracked frame, so shaders are compiled before a join. */
 #ifndef CAVELIGHT_CLUSTER_VIEW_H
 #define CAVELIGHT_CLUSTER_VIEW_H
 

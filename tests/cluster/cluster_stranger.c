@@ -1,7 +1,8 @@
 /* cluster_stranger: a hostile peer for the security tests and measurements. It knows the
  * cluster config (names, config hash) and the master's public key, but holds no node key:
  * it connects without CURVE or with a key pair of its own and tries one attack N times,
- * then prints one line: what it tried and how many messages it got back.
+ * then prints one line: what it tried and how many messages it got back. As an insider
+ * (--key insider) it holds another node's real key pair and attacks the victim with it.
  *
  *   takeover   a new connection per attempt under the victim's name, saying HELLO
  *   read       one connection under the victim's name, HELLO, then listen for --listen-ms
@@ -27,6 +28,7 @@ typedef struct stranger {
     const char *endpoint, *victim, *endpoint_file;
     int curve, count, listen_ms;
     char master_key[CLUSTER_KEY_Z85 + 1];
+    char own_public[CLUSTER_KEY_Z85 + 1], own_secret[CLUSTER_KEY_Z85 + 1]; /* insider: a node's */
     void *ctx;
     long attempts, replies, received;
 } stranger;
@@ -37,9 +39,14 @@ static void *open_dealer(stranger *s)
     int zero = 0;
     zmq_setsockopt(sock, ZMQ_LINGER, &zero, sizeof zero);
     zmq_setsockopt(sock, ZMQ_ROUTING_ID, s->victim, strlen(s->victim));
-    if (s->curve) { /* a key pair of its own, and the master's real public key */
+    if (s->curve) { /* a key pair of its own (or an insider's), and the master's real public key */
         char pub[41], secret[41];
-        zmq_curve_keypair(pub, secret);
+        if (s->own_public[0]) {
+            memcpy(pub, s->own_public, sizeof pub);
+            memcpy(secret, s->own_secret, sizeof secret);
+        } else {
+            zmq_curve_keypair(pub, secret);
+        }
         zmq_setsockopt(sock, ZMQ_CURVE_SERVERKEY, s->master_key, CLUSTER_KEY_Z85);
         zmq_setsockopt(sock, ZMQ_CURVE_PUBLICKEY, pub, CLUSTER_KEY_Z85);
         zmq_setsockopt(sock, ZMQ_CURVE_SECRETKEY, secret, CLUSTER_KEY_Z85);
@@ -154,16 +161,27 @@ int main(int argc, char **argv)
     char err[512];
     if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
         fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|master "
-                "[--victim NAME] [--key none|wrong] [--count N] [--listen-ms MS]\n");
+                "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS]\n");
         return 2;
     }
     if (!s.victim)
         s.victim = s.cfg.nodes[0].name;
-    s.curve = strcmp(key, "wrong") == 0;
+    s.curve = strcmp(key, "wrong") == 0 || strcmp(key, "insider") == 0;
     if (s.curve && strcmp(attack, "master") != 0 &&
         cluster_key_read(&s.cfg, "master", CLUSTER_KEY_PUBLIC, s.master_key, err, sizeof err) != 0) {
         fprintf(stderr, "cluster_stranger: %s\n", err);
         return 1;
+    }
+    if (strcmp(key, "insider") == 0) { /* the first other node's key pair */
+        const char *own = NULL;
+        for (int i = 0; i < s.cfg.node_count && !own; i++)
+            if (strcmp(s.cfg.nodes[i].name, s.victim) != 0)
+                own = s.cfg.nodes[i].name;
+        if (!own || cluster_key_read(&s.cfg, own, CLUSTER_KEY_PUBLIC, s.own_public, err, sizeof err) != 0 ||
+            cluster_key_read(&s.cfg, own, CLUSTER_KEY_SECRET, s.own_secret, err, sizeof err) != 0) {
+            fprintf(stderr, "cluster_stranger: an insider needs another node's keys: %s\n", own ? err : "none");
+            return 1;
+        }
     }
     s.ctx = zmq_ctx_new();
     if (strcmp(attack, "master") == 0) {

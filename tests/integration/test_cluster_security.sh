@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # A 2-node cluster in curve mode against a stranger who has the config file and the
-# master's public key but no node key (tests/cluster/cluster_stranger.c): without CURVE
-# and with a key of its own it tries a routing-id takeover, reading the stream, forged
-# READYs and a HELLO flood while frames run, then poses as the master to nodes waiting
-# for one. Nothing may change: same frames, same final parameters (the nodes' checksums
-# equal a run without the stranger), no join, drop or desync, and the stranger gets no
+# master's public key but no node key (tests/cluster/cluster_stranger.c): without CURVE,
+# with a key of its own and as an insider holding node b's real key, it tries a routing-id
+# takeover of node a, reading the stream, forged READYs and a HELLO flood while frames
+# run, then poses as the master to nodes waiting for one. Nothing may change: same frames,
+# same final parameters (the nodes' checksums equal a run without the stranger), no join,
+# drop or desync, and the stranger gets no
 # message. In insecure mode a fake master's hostile parameters are clamped, not fatal.
 # (The same attacks 10,000 times each are a measurement: docs/cluster.md.)
 here=$(cd "$(dirname "$0")" && pwd)
@@ -35,7 +36,7 @@ run() {
   done
   for _ in $(seq 200); do grep -q "running" "$tmp/$name-master.log" && break; sleep 0.1; done
   for attack in "$@"; do
-    for key in none wrong; do
+    for key in none wrong insider; do
       "$stranger" --config "$tmp/c.json" --endpoint "$ep" --attack $attack --key $key --victim a \
         --count $attempts --listen-ms 1500 >> "$tmp/$name-stranger.log" 2>&1 || fail "stranger $attack failed"
     done
@@ -55,7 +56,7 @@ want=$(json 'r["per_node"][0]["last_checksum"]' "$tmp/quiet.json")
 [ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json")" = "['$want', '$want']" ] \
   || fail "parameters changed under attack: $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json") vs $want"
 grep -q "replies=[1-9]\|received=[1-9]" "$tmp/attacked-stranger.log" && fail "the stranger got messages from the cluster"
-[ "$(grep -c "attempts=$attempts " "$tmp/attacked-stranger.log")" = 8 ] || fail "not every attack ran"
+[ "$(grep -c "attempts=$attempts " "$tmp/attacked-stranger.log")" = 12 ] || fail "not every attack ran"
 [ "$(json 'r["refused_connections"] > 0' "$tmp/attacked.json")" = True ] || fail "no wrong key was refused"
 lines=$(grep -c "refused\|unauthenticated" "$tmp/attacked-master.log" || true)
 [ "$lines" -le 20 ] || fail "$lines log lines for the stranger: not rate-limited"
@@ -82,7 +83,11 @@ for key in wrong none; do
   "$build/cavelight-master" --config "$tmp/c.json" --bind "$fep" --frames $frames --fps 15 \
     --report "$tmp/after-$key.json" 2> "$tmp/after-$key.log" || { cat "$tmp/after-$key.log"; fail "real master failed"; }
   [ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json")" = "['$want', '$want']" ] \
-    || fail "after the fake master ($key): $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json") vs $want"
+    || { cat "$tmp/after-$key.log"; fail "after the fake master ($key): $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json") vs $want"; }
+  # One join each, before the first frame: a late or repeated HELLO would reset every node's
+  # LPV history mid-session (the checksum above shows it too, less clearly).
+  [ "$(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")" = "(2, 2)" ] \
+    || { cat "$tmp/after-$key.log"; fail "after the fake master ($key): joins, live: $(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")"; }
   for p in "${node_pids[@]}"; do wait $p || fail "a node failed after the fake master ($key)"; done
 done
 echo "fake master: no node took its parameters; the real master got both"
