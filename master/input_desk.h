@@ -4,7 +4,7 @@
  *   PageUp/PageDown  raise and lower the head
  *   mouse position   points the wand: left-right = yaw (+-90 deg), up-down = pitch (+-45)
  *   mouse wheel      wand distance in front of the head (0.1..1.0 m: sets the fly speed)
- *   left mouse / 4   C (fly, flashlight, pipeline)      1 L   2 M   3 or Tab R   5 AUX
+ *   left mouse / 4   C (fly, flashlight, GI method)      1 L   2 M   3 or Tab R   5 AUX
  *   arrow keys       axes: left/right = X, down/up = Y
  * The head starts at (0, 1.7, 0) looking along -Z; poses are in CAVE space. The maths is
  * input_desk_step(), a pure function of the controls, so it is tested without a window.

@@ -24,7 +24,6 @@ void interaction_init(interaction *ia, const interaction_desc *desc)
     if (d.dead_zone <= 0) d.dead_zone = 0.15f;
     if (d.steps_min <= 0) d.steps_min = 1;
     if (d.steps_max <= 0) d.steps_max = 64;
-    if (d.pipelines <= 0) d.pipelines = 2;
     if (d.light < 0 || d.light >= FRAME_MAX_LIGHTS) d.light = 0;
     int any = 0;
     for (int i = 0; i < INTERACTION_LAMBDA_PRESETS; i++)
@@ -241,7 +240,7 @@ static void settings_update(interaction *ia, const input_state *in, double dt, f
         p->lambda_incr = next;
     }
     if (in->pressed & (1u << INPUT_BUTTON_C))
-        ia->pipeline = (ia->pipeline + 1) % d->pipelines;
+        p->gi = (frame_gi)((p->gi + 1) % FRAME_GI_COUNT);
 }
 
 uint32_t interaction_update(interaction *ia, const input_state *in, double dt, frame_params *p)
@@ -271,7 +270,8 @@ uint32_t interaction_update(interaction *ia, const input_state *in, double dt, f
     memcpy(nav, p->navigation, sizeof nav);
     int light_count = p->light_count;
     frame_light light = p->lights[ia->desc.light];
-    int steps = p->lpv_steps, pipeline = ia->pipeline;
+    int steps = p->lpv_steps;
+    frame_gi gi = p->gi;
     float absorption = p->absorption, scattering = p->scattering, lambda = p->lambda_incr;
     switch (ia->layout) {
     case INTERACTION_NAVIGATION: navigation_update(ia, in, dt, p); break;
@@ -290,7 +290,7 @@ uint32_t interaction_update(interaction *ia, const input_state *in, double dt, f
         changed |= INTERACTION_CHANGED_SCATTERING;
     if (lambda != p->lambda_incr)
         changed |= INTERACTION_CHANGED_LAMBDA;
-    if (pipeline != ia->pipeline)
-        changed |= INTERACTION_CHANGED_PIPELINE;
+    if (gi != p->gi)
+        changed |= INTERACTION_CHANGED_GI;
     return changed;
 }

@@ -9,13 +9,13 @@
  *   lighting    C: the spotlight follows the wand like a flashlight; M/L: intensity up and
  *                  down by a factor per press; Y: hue, X: saturation (HSV, value kept).
  *   settings    M/L: propagation steps up/down; X: absorption; Y: scattering;
- *               AUX: next lambda_incr preset; C: next render pipeline.
+ *               AUX: next lambda_incr preset; C: next GI method (frame_gi, round-robin:
+ *               the paper's "switch pipeline", live on every node in the same frame).
  * CAVE space is Y up; navigation is the CAVE-to-world transform.
  *
  * interaction_update() applies one input state to the frame parameters and returns the
  * INTERACTION_CHANGED_* bits of the fields whose values actually changed, so that the
- * master sends updates only when something changed. The render pipeline index has no
- * frame_params field; read it with interaction_pipeline() when the bit is set. */
+ * master sends updates only when something changed. */
 #ifndef CAVELIGHT_INTERACTION_H
 #define CAVELIGHT_INTERACTION_H
 
@@ -39,7 +39,7 @@ enum {
     INTERACTION_CHANGED_ABSORPTION = 1u << 5,
     INTERACTION_CHANGED_SCATTERING = 1u << 6,
     INTERACTION_CHANGED_LAMBDA = 1u << 7,     /* lambda_incr */
-    INTERACTION_CHANGED_PIPELINE = 1u << 8,   /* interaction_pipeline() */
+    INTERACTION_CHANGED_GI = 1u << 8,         /* gi */
     INTERACTION_CHANGED_LAYOUT = 1u << 9,     /* hud_layout */
 };
 
@@ -57,7 +57,6 @@ typedef struct interaction_desc {
     float dead_zone;          /* axis values below this are 0, 0 = 0.15 */
     int steps_min, steps_max; /* 0 = 1 and 64 */
     int light;                /* index of the flashlight spot, default 0 */
-    int pipelines;            /* render pipelines to cycle through, 0 = 2 */
     float lambda_presets[INTERACTION_LAMBDA_PRESETS]; /* all 0 = {0, 0.5, 0.8, 0.9} */
     interaction_layout first_layout;
 } interaction_desc;
@@ -66,7 +65,6 @@ typedef struct interaction_desc {
 typedef struct interaction {
     interaction_desc desc;    /* with defaults filled in */
     interaction_layout layout;
-    int pipeline;
     int dragging;
     float drag_navigation[16];
     float drag_yaw;
@@ -78,7 +76,6 @@ typedef struct interaction {
 void interaction_init(interaction *ia, const interaction_desc *desc);
 /* dt: seconds since the previous update (input_state.dt). Returns INTERACTION_CHANGED_*. */
 uint32_t interaction_update(interaction *ia, const input_state *in, double dt, frame_params *p);
-static inline int interaction_pipeline(const interaction *ia) { return ia->pipeline; }
 
 /* The maths, exposed for tests and the HUD. */
 float interaction_speed(const interaction_desc *desc, float distance);

@@ -5,6 +5,7 @@
 #define CAVELIGHT_MASTER_CLI_H
 
 #include "base/cli.h"
+#include "frame/frame_params.h"
 
 typedef struct master_options {
     const char *config;
@@ -19,6 +20,8 @@ typedef struct master_options {
     const char *report, *overview;
     int keep_frames, pattern, print_poses;
     const char *input, *record;
+    frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
+    int gi_given;               /* --gi was given: spawned nodes get it too */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

@@ -47,7 +47,7 @@ struct session {
 };
 
 /* The frame every node starts from: the defaults and the scene's lights. */
-static int seed(session *s, const char *scene_path, int pattern, char *err, size_t errlen)
+static int seed(session *s, const char *scene_path, int pattern, frame_gi gi, char *err, size_t errlen)
 {
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
@@ -60,6 +60,7 @@ static int seed(session *s, const char *scene_path, int pattern, char *err, size
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     s->frame.pattern = pattern;
+    s->frame.gi = gi;
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     return 0;
@@ -74,7 +75,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
                               .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
-    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d->pattern, err, errlen) != 0)
+    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d->pattern, d->gi, err, errlen) != 0)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
@@ -183,7 +184,6 @@ static session_step apply_input(session *s, params_store *store)
     s->frame.time = ist.time;
     s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
     params_set_from_frame(store, &s->frame);
-    params_set_i32(store, PARAMS_LPV_RESOLUTION, interaction_pipeline(&s->ia) ? 64 : 0);
     return SESSION_FRAME_DONE;
 }
 

@@ -38,6 +38,7 @@ typedef struct session_desc {
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
     int pattern;            /* 1: every screen shows the calibration pattern (pattern.h) */
     int print_poses;        /* 1: the head and wand poses on stdout, 4 lines a second */
+    frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
 } session_desc;
 
 typedef enum session_step {

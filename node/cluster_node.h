@@ -31,6 +31,8 @@ typedef struct cluster_node_desc {
     int lpv_threads;            /* CPU LPV threads, 0 = all cores */
     int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
     int lpv_mode;               /* renderer_lpv_mode; every node must use the same */
+    int gi;                     /* frame_gi built before the first frame; the frames' gi
+                                   key (the master's) decides from then on */
     double converge_threshold;  /* renderer_desc.converge_threshold; the same on every node */
     int exit_with_master;       /* 1: leave when the master ends the session */
     int keep_frames;            /* png output: also SCREEN-EYE-NNNNNN.png for every frame */

@@ -28,7 +28,7 @@ struct cluster_view {
     int node;
     cluster_output output;
     char out_dir[1024];
-    int lpv_threads, rsm_size, lattice_desc, lattice_now, lattice_refused, lpv_mode;
+    int lpv_threads, rsm_size, lattice_desc, lattice_now, lattice_refused, lpv_mode, gi;
     double converge_threshold;
     scene sc;
     int scene_loaded;
@@ -188,7 +188,7 @@ static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
 {
     renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
                         .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads,
-                        .lpv_mode = (renderer_lpv_mode)v->lpv_mode,
+                        .lpv_mode = (renderer_lpv_mode)v->lpv_mode, .gi = (frame_gi)v->gi,
                         .converge_threshold = v->converge_threshold};
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
@@ -228,6 +228,7 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->lpv_threads = desc->lpv_threads;
     v->rsm_size = desc->rsm_size;
     v->lpv_mode = desc->lpv_mode;
+    v->gi = desc->gi;
     v->converge_threshold = desc->converge_threshold;
     v->lattice_desc = desc->lattice_cells;
     v->keep_frames = desc->keep_frames;

@@ -37,6 +37,7 @@ typedef struct cluster_view_desc {
     int lattice_cells;        /* 0 = renderer default (overridden by the lpv_resolution key) */
     int rsm_size;             /* 0 = renderer default */
     int lpv_mode;             /* renderer_lpv_mode */
+    int gi;                   /* frame_gi: renderer_desc.gi */
     double converge_threshold;/* renderer_desc.converge_threshold */
     int keep_frames;          /* PNG output: also SCREEN-EYE-NNNNNN.png (frame version) */
 } cluster_view_desc;

@@ -1,7 +1,7 @@
-/* renderer_lpv: the frame pass after the RSMs. RSM texels become VPLs (host, in texel
- * order, so the injection is deterministic), are injected with the CPU core, then merged
- * and propagated either by the CPU ILPV core or by GL compute shaders. The VPLs come from
- * the source every light type feeds (renderer_rsm_vpls()).
+/* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the source every light type feeds
+ * (renderer_rsm_vpls(), in texel order, so the injection is deterministic) are injected
+ * with the CPU core, then merged and propagated either by the CPU ILPV core or by GL
+ * compute shaders.
  *
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
  * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
@@ -21,14 +21,61 @@
 #include "base/clock.h"
 #include "base/vec3.h"
 #include "lpv/lpv_geometry.h"
+#include "base/workpool.h"
+#include "base/xalloc.h"
+#include "frame/light_view.h"
+#include "gi_ilpv.h"
 #include "gltools.h"
-#include "renderer_internal.h"
+#include "lpv/ilpv.h"
+#include "lpv/lpv_classic.h"
+#include "lpv/lpv_converge.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_transfer.h"
+
+struct gi_ilpv {
+    const gl_functions *gl;
+    const scene *scene;
+    renderer_lpv_backend backend;
+    int clamp_negative;
+    int gl_tiles;            /* GL propagation through shared-memory tiles */
+    float indirect_scale;
+    double mean_free_path;   /* metres, 4V/A of the scene */
+    float energy_gain;       /* level of the indirect light this frame */
+    lattice_desc lattice;
+    lpv_transfer transfer;
+    lpv_volume geometry;
+    ilpv cpu;                /* incremental mode; its injection volume serves both modes */
+    renderer_lpv_mode mode;
+    lpv_classic classic;     /* classic mode, CPU backend */
+    lpv_converge converge;
+    uint64_t checksum;       /* of the last computed result */
+    workpool *pool;
+    lpv_vpl *vpls;           /* what the LPV injects: RSM VPLs (flux / pi) and emitters */
+    size_t vpl_capacity;
+    lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
+    size_t emitter_count;
+    double emitter_energy;
+    float *upload;           /* 4 floats per cell, one colour at a time */
+    GLuint lpv_tex[3];       /* what the shading samples (CPU backend) */
+    uint32_t reset_epoch;
+    int frames;
+    lpv_inject_stats inject_stats;
+    gi_stats timings;        /* inject_ms, propagate_ms of the last frame */
+
+    /* GL compute backend */
+    GLuint prog_merge, prog_propagate, prog_accumulate;
+    GLuint gl_injected[3], gl_volume[2][3], gl_geometry;
+    GLuint gl_accum[3];      /* classic mode: the sum of the steps */
+    int gl_current;
+    ilpv_history gl_history; /* the GL path's own merge state (ilpv_merge_factors()) */
+    lpv_volume gl_result;
+};
 
 static const double PI = 3.14159265358979323846;
 
 /* One VPL per emissive triangle (paper 3.3.5): centroid, face normal on the side of the
  * vertex normals, flux pi * L_e * area (passed as L_e * area, see the units above). */
-static int build_emitters(renderer *r)
+static int build_emitters(gi_ilpv *r)
 {
     const scene *s = r->scene;
     size_t n = 0;
@@ -78,7 +125,7 @@ static void gather_body(const lpv_transfer *t, char *out, size_t n)
 }
 
 /* Host SoA volume <-> three RGBA textures (one per colour, 4 SH coefficients each). */
-static void upload_volume(renderer *r, const lpv_volume *v, const GLuint tex[3])
+static void upload_volume(gi_ilpv *r, const lpv_volume *v, const GLuint tex[3])
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
@@ -92,7 +139,7 @@ static void upload_volume(renderer *r, const lpv_volume *v, const GLuint tex[3])
     }
 }
 
-static void download_volume(renderer *r, const GLuint tex[3], lpv_volume *v)
+static void download_volume(gi_ilpv *r, const GLuint tex[3], lpv_volume *v)
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
@@ -105,7 +152,7 @@ static void download_volume(renderer *r, const GLuint tex[3], lpv_volume *v)
     }
 }
 
-static int init_gl_backend(renderer *r, int software, const renderer_desc *desc, char *err,
+static int init_gl_backend(gi_ilpv *r, int software, const renderer_desc *desc, char *err,
                            size_t errlen)
 {
     char body[8192];
@@ -172,7 +219,7 @@ static double mean_free_path(const scene *s, double cell)
 /* Light injected in a frame lives for the mean free path before it hits a surface, i.e.
  * for mfp / (d_mean * cell) propagation steps; the steady indirect light is that many
  * times one step's worth (docs/lpv.md). */
-static float auto_indirect_scale(const renderer *r)
+static float auto_indirect_scale(const gi_ilpv *r)
 {
     int longest = r->lattice.n[0];
     for (int a = 1; a < 3; a++)
@@ -188,7 +235,7 @@ static float auto_indirect_scale(const renderer *r)
  * the room does not. The level is therefore this frame's injected energy (less what the
  * medium absorbs over a mean free path), spread as the lattice says. Classic mode keeps
  * the level of its sum, as published. */
-static float energy_gain(const renderer *r, const frame_params *p, const lpv_volume *result)
+static float energy_gain(const gi_ilpv *r, const frame_params *p, const lpv_volume *result)
 {
     if (r->mode == RENDERER_LPV_CLASSIC)
         return 1.0f;
@@ -203,8 +250,7 @@ static float energy_gain(const renderer *r, const frame_params *p, const lpv_vol
     return (float)fmin(injected / held * kept, 1e4);
 }
 
-int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char *err,
-                      size_t errlen)
+static int init(gi_ilpv *r, const renderer_desc *desc, int software, char *err, size_t errlen)
 {
     const scene *s = r->scene;
     r->backend = desc->lpv_backend != RENDERER_LPV_AUTO
@@ -262,7 +308,7 @@ int renderer_lpv_init(renderer *r, const renderer_desc *desc, int software, char
     return 0;
 }
 
-void renderer_lpv_free(renderer *r)
+static void release(gi_ilpv *r)
 {
     const gl_functions *gl = r->gl;
     for (int c = 0; c < 3; c++) {
@@ -297,7 +343,7 @@ void renderer_lpv_free(renderer *r)
     free(r->upload);
 }
 
-void renderer_lpv_textures(const renderer *r, GLuint out[3])
+static void textures(const gi_ilpv *r, GLuint out[3])
 {
     for (int c = 0; c < 3; c++)
         out[c] = r->backend != RENDERER_LPV_GL       ? r->lpv_tex[c]
@@ -307,10 +353,10 @@ void renderer_lpv_textures(const renderer *r, GLuint out[3])
 
 /* The shared VPL source (renderer_rsm_vpls()) as the lattice wants it, Phi / pi (the units
  * above), then the emitters. NULL when out of memory (the frame injects nothing). */
-static const lpv_vpl *collect_vpls(renderer *r, size_t *count)
+static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
 {
-    lpv_vpl *rsm;
-    size_t n = renderer_rsm_vpls(r, &rsm), need = n + r->emitter_count;
+    lpv_vpl *source;
+    size_t n = renderer_rsm_vpls(rsm->maps, &source), need = n + r->emitter_count;
     if (need > r->vpl_capacity) {
         lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
         if (!v) {
@@ -321,9 +367,9 @@ static const lpv_vpl *collect_vpls(renderer *r, size_t *count)
         r->vpl_capacity = need;
     }
     for (size_t i = 0; i < n; i++) {
-        r->vpls[i] = rsm[i];
+        r->vpls[i] = source[i];
         for (int k = 0; k < 3; k++)
-            r->vpls[i].flux[k] = rsm[i].flux[k] * (float)(1.0 / PI);
+            r->vpls[i].flux[k] = source[i].flux[k] * (float)(1.0 / PI);
     }
     if (r->emitter_count) /* a scene without emitters has no emitter array */
         memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
@@ -332,7 +378,7 @@ static const lpv_vpl *collect_vpls(renderer *r, size_t *count)
 }
 
 /* Emitted energy for the incremental merge, from the lights' parameters (paper 3.4). */
-static double emitted_energy(const renderer *r, const frame_params *p)
+static double emitted_energy(const gi_ilpv *r, const frame_params *p)
 {
     double e = r->emitter_energy;
     for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
@@ -340,7 +386,7 @@ static double emitted_energy(const renderer *r, const frame_params *p)
     return e;
 }
 
-static void dispatch(renderer *r)
+static void dispatch(gi_ilpv *r)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
@@ -349,14 +395,14 @@ static void dispatch(renderer *r)
                       GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-static void bind_images(renderer *r, const GLuint *tex, int count, int first, GLenum access)
+static void bind_images(gi_ilpv *r, const GLuint *tex, int count, int first, GLenum access)
 {
     for (int i = 0; i < count; i++)
         r->gl->BindImageTexture((GLuint)(first + i), tex[i], 0, GL_TRUE, 0, access, GL_RGBA32F);
 }
 
 /* Binds the propagation program and its per-frame uniforms and the geometry image. */
-static void use_propagate(renderer *r, float absorption, float scattering)
+static void use_propagate(gi_ilpv *r, float absorption, float scattering)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
@@ -373,7 +419,7 @@ static void use_propagate(renderer *r, float absorption, float scattering)
 }
 
 /* One step src -> dst with the bound propagation program. */
-static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], int use_blocking)
+static void gl_step(gi_ilpv *r, const GLuint src[3], const GLuint dst[3], int use_blocking)
 {
     r->gl->Uniform1i(r->gl->GetUniformLocation(r->prog_propagate, "u_use_blocking"), use_blocking);
     bind_images(r, src, 3, 0, GL_READ_ONLY);
@@ -382,7 +428,7 @@ static void gl_step(renderer *r, const GLuint src[3], const GLuint dst[3], int u
 }
 
 /* gl_accum = (first ? 0 : gl_accum) + weight * step. */
-static void gl_accumulate(renderer *r, const GLuint step[3], int first, float weight)
+static void gl_accumulate(gi_ilpv *r, const GLuint step[3], int first, float weight)
 {
     const gl_functions *gl = r->gl;
     const int *n = r->lattice.n;
@@ -398,7 +444,7 @@ static void gl_accumulate(renderer *r, const GLuint step[3], int first, float we
 
 /* lpv_classic_frame() on the GPU: the steps start from the injection, each one is added
  * into gl_accum (the first replaces it; 0 steps clear it). */
-static void gl_classic_frame(renderer *r, const frame_params *p)
+static void gl_classic_frame(gi_ilpv *r, const frame_params *p)
 {
     upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
     if (p->lpv_steps <= 0)
@@ -415,7 +461,7 @@ static void gl_classic_frame(renderer *r, const frame_params *p)
 }
 
 /* The same merge and steps as ilpv_frame(), on the GPU. */
-static void gl_frame(renderer *r, const frame_params *p, double energy)
+static void gl_frame(gi_ilpv *r, const frame_params *p, double energy)
 {
     const gl_functions *gl = r->gl;
     upload_volume(r, ilpv_injection(&r->cpu), r->gl_injected);
@@ -443,8 +489,9 @@ static void gl_frame(renderer *r, const frame_params *p, double energy)
     download_volume(r, r->gl_volume[r->gl_current], &r->gl_result);
 }
 
-uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
+static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
 {
+    gi_ilpv *r = state;
     if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
         ilpv_reset(&r->cpu);
         r->gl_history = (ilpv_history){0};
@@ -452,7 +499,7 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
     }
     double t0 = clock_now_ms();
     size_t count;
-    const lpv_vpl *vpls = collect_vpls(r, &count);
+    const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
     ilpv_begin_frame(&r->cpu);
     memset(&r->inject_stats, 0, sizeof r->inject_stats);
     lpv_inject_vpls(ilpv_injection(&r->cpu), &r->lattice, vpls, count, &r->inject_stats);
@@ -478,7 +525,7 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
                                                .lambda_incr = p->lambda_incr,
                                                .emitted_energy = energy,
                                                .propagate = pd});
-    const lpv_volume *result = renderer_get_lpv(r);
+    const lpv_volume *result = gi_ilpv_volume(r);
     r->checksum = lpv_volume_checksum(result);
     r->energy_gain = energy_gain(r, p, result);
     if (r->backend != RENDERER_LPV_GL)
@@ -490,24 +537,25 @@ uint64_t renderer_lpv_frame(renderer *r, const frame_params *p)
     return r->checksum;
 }
 
-int renderer_lpv_skip(renderer *r, const frame_params *p)
+static int reuse(void *state, const frame_params *p)
 {
+    gi_ilpv *r = state;
     return lpv_converge_begin(&r->converge, p);
 }
 
-const lpv_volume *renderer_get_lpv(const renderer *r)
+const lpv_volume *gi_ilpv_volume(const gi_ilpv *r)
 {
     if (r->backend == RENDERER_LPV_GL)
         return &r->gl_result;
     return r->mode == RENDERER_LPV_CLASSIC ? lpv_classic_result(&r->classic) : ilpv_result(&r->cpu);
 }
 
-renderer_lpv_mode renderer_get_lpv_mode(const renderer *r)
+renderer_lpv_mode gi_ilpv_mode(const gi_ilpv *r)
 {
     return r->mode;
 }
 
-void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
+void gi_ilpv_lpv_stats(const gi_ilpv *r, renderer_lpv_stats *out)
 {
     out->frames_skipped = r->converge.frames_skipped;
     out->last_residual = r->converge.residual;
@@ -515,7 +563,7 @@ void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
     out->energy_gain = r->energy_gain;
 }
 
-double renderer_measure_step_ms(renderer *r, int steps)
+double gi_ilpv_measure_step_ms(gi_ilpv *r, int steps)
 {
     double t0 = 0;
     if (r->backend == RENDERER_LPV_GL) {
@@ -554,7 +602,70 @@ double renderer_measure_step_ms(renderer *r, int steps)
     return ms;
 }
 
-float renderer_get_indirect_scale(const renderer *r)
+float gi_ilpv_indirect_scale(const gi_ilpv *r)
 {
     return r->indirect_scale;
 }
+
+renderer_lpv_backend gi_ilpv_backend(const gi_ilpv *r) { return r->backend; }
+const lattice_desc *gi_ilpv_lattice(const gi_ilpv *r) { return &r->lattice; }
+
+/* ---- the method --------------------------------------------------------------------- */
+
+static void *create(const gi_desc *d, char *err, size_t errlen)
+{
+    gi_ilpv *r = xcalloc(1, sizeof *r);
+    r->gl = d->gl;
+    r->scene = d->scene;
+    if (init(r, d->settings, d->software, err, errlen) != 0) {
+        release(r);
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+static void destroy(void *state)
+{
+    release(state);
+    free(state);
+}
+
+static void eye_bind(void *state, const gi_eye *e)
+{
+    const gi_ilpv *r = state;
+    const gl_functions *gl = r->gl;
+    GLuint prog = e->program, lpv[3];
+    textures(r, lpv);
+    const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
+    for (int c = 0; c < 3; c++) {
+        gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + c));
+        gl->BindTexture(GL_TEXTURE_3D, lpv[c]);
+        gl->Uniform1i(gl->GetUniformLocation(prog, lname[c]), e->first_unit + c);
+    }
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_lpv_origin"), 1, r->lattice.origin);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_lpv_cell"), r->lattice.cell);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_indirect_scale"), r->indirect_scale * r->energy_gain);
+    gl->Uniform3f(gl->GetUniformLocation(prog, "u_lpv_size"), (float)r->lattice.n[0],
+                  (float)r->lattice.n[1], (float)r->lattice.n[2]);
+}
+
+static void stats(const void *state, gi_stats *out)
+{
+    const gi_ilpv *r = state;
+    *out = r->timings;
+    out->lattice_cells = r->lattice.n[0];
+    for (int a = 1; a < 3; a++)
+        out->lattice_cells = r->lattice.n[a] > out->lattice_cells ? r->lattice.n[a] : out->lattice_cells;
+}
+
+const gi_method gi_ilpv_method = {
+    .name = "ilpv",
+    .create = create,
+    .destroy = destroy,
+    .reuse = reuse,
+    .frame = frame,
+    .eye_bind = eye_bind,
+    .stats = stats,
+};

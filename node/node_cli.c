@@ -19,7 +19,7 @@ static const char *const groups[G_COUNT] = {
     "Cluster (--cluster)",
     "Scene and view (standalone)",
     "Output",
-    "GI: indirect light (ILPV)",
+    "GI: indirect light (--gi; the rest is ILPV's)",
     "Display and HUD (standalone; the master sends them in a cluster)",
     "Path-traced reference (standalone, --renderer reference)",
     "Test hooks",
@@ -32,7 +32,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
-    O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
+    O_GI, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_CLAMP_NEGATIVE, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
@@ -76,6 +76,8 @@ static const cli_option options[] = {
     {O_KEEP_FRAMES, "keep-frames", NULL, NULL, G_OUTPUT, C,
      "png output: also keep every frame as SCREEN-EYE-NNNNNN.png"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
+    {O_GI, "gi", "ilpv|none", "ilpv", G_GI, 0,
+     "indirect-light method: incremental LPV, or none (direct\nlight only); cluster: the first, the master's frames choose"},
     {O_LPV, "lpv", "auto|cpu|gl", "auto", G_GI, S, "where the LPV runs (auto: CPU on llvmpipe, GL on a GPU)"},
     {O_RSM, "rsm", "N", NULL, G_GI, 0, "reflective shadow map size"},
     {O_LATTICE, "lattice", "N", NULL, G_GI, 0, "LPV cells along the scene's longest axis"},
@@ -170,6 +172,7 @@ static const char *set(void *user, int id, const char *v)
         break;
     case O_KEEP_FRAMES: d->keep_frames = 1; break;
     case O_PFM: o->pfm = 1; break;
+    case O_GI: CHOICE(k, frame_gi_names); fp->gi = (frame_gi)k; d->gi = k; break;
     case O_LPV: CHOICE(o->lpv, lpv_names); break;
     case O_RSM: why = cli_int(v, 8, 4096, &o->rsm); d->rsm_size = o->rsm; break;
     case O_LATTICE: why = cli_int(v, 2, 512, &o->lattice); d->lattice_cells = o->lattice; break;
@@ -270,6 +273,8 @@ static int check_standalone(const node_options *o)
     const char *why = NULL;
     if (o->budget_ms > 0 && (o->lattice > 0 || o->lattice_total > 0 || o->have_steps))
         why = "--budget-ms chooses --lattice and --steps: give either the budget or those two";
+    else if (o->budget_ms > 0 && o->frame.gi != FRAME_GI_ILPV)
+        why = "--budget-ms chooses the ILPV lattice: it needs --gi ilpv";
     else if (o->lattice > 0 && o->lattice_total > 0)
         why = "give --lattice (cells along the longest axis) or --lattice-cells (cells in all), not both";
     else if (o->have_screen != o->have_eye)

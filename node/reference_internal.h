@@ -1,6 +1,6 @@
 /* reference_internal: state shared by reference.c (Embree scene, threads, images),
- * reference_sample.c (one pixel's paths) and reference_light.c (light arriving at a path
- * vertex). Not for other modules. */
+ * reference_ray.c (ray primitives), reference_sample.c (one pixel's paths) and
+ * reference_light.c (light arriving at a path vertex). Not for other modules. */
 #ifndef CAVELIGHT_REFERENCE_INTERNAL_H
 #define CAVELIGHT_REFERENCE_INTERNAL_H
 
@@ -56,7 +56,7 @@ typedef struct reference_job {
     uint64_t *row_rays;             /* per row, summed after the run (no atomics) */
 } reference_job;
 
-/* Small helpers shared by reference_sample.c and reference_light.c. */
+/* Small helpers shared by the reference's modules. */
 static const float PI_F = 3.14159265358979f;
 
 /* PCG32 (O'Neill), seeded per pixel through splitmix64. */
@@ -98,21 +98,22 @@ static inline void basis(const float n[3], float t[3], float bt[3])
     bt[2] = -n[1];
 }
 
+/* reference_ray.c: the ray primitives */
+/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
+void reference_ray_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
+                       hit *h);
+/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
+void reference_ray_offset(const hit *h, float o[3]);
+/* Closest hit along o + t d, t < tfar; 1 when something was hit. Counts the ray. */
+int reference_ray_trace(const reference_job *job, const float o[3], const float d[3],
+                        float tfar, struct RTCRayHit *rh, uint64_t *rays);
+/* 1 when nothing lies between o and o + d * dist (d unit). Counts the ray. */
+int reference_ray_visible(const reference_job *job, const float o[3], const float d[3],
+                          float dist, uint64_t *rays);
+
 /* reference_sample.c */
 /* workpool_fn: renders row `row` of job (a reference_job *). */
 void reference_sample_row(void *job, int row);
-/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
-void reference_sample_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
-                          hit *h);
-/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
-void reference_sample_offset(const hit *h, float o[3]);
-/* Closest hit along o + t d, t < tfar; 1 when something was hit. Counts the ray. */
-int reference_sample_trace(const reference_job *job, const float o[3], const float d[3],
-                           float tfar, struct RTCRayHit *rh, uint64_t *rays);
-/* 1 when nothing lies between o and o + d * dist (d unit). Counts the ray. */
-int reference_sample_visible(const reference_job *job, const float o[3], const float d[3],
-                             float dist, uint64_t *rays);
-
 /* reference_light.c: light arriving at a vertex (docs/reference.md, "Sampling"). */
 /* Light i at h: irradiance on the shading normal and the unit direction to the light; 0
  * when it does not reach h. As shade.frag, with an exact shadow ray (shadow = 1) instead

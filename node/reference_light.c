@@ -40,7 +40,7 @@ int reference_light_one(const reference_job *job, int i, const hit *h, int shado
         return 0;
     if (shadow) {
         float o[3], od[3];
-        reference_sample_offset(h, o);
+        reference_ray_offset(h, o);
         if (isfinite(dist)) {
             for (int k = 0; k < 3; k++)
                 od[k] = s->position[k] - o[k];
@@ -51,7 +51,7 @@ int reference_light_one(const reference_job *job, int i, const hit *h, int shado
             for (int k = 0; k < 3; k++)
                 od[k] = l[k];
         }
-        if (!reference_sample_visible(job, o, od, dist, rays))
+        if (!reference_ray_visible(job, o, od, dist, rays))
             return 0;
     }
     for (int k = 0; k < 3; k++)
@@ -133,7 +133,7 @@ void reference_light_emitters(const reference_job *job, const hit *h, int mis, r
         y[k] = b0 * p[k] + b1 * p[3 + k] + b2 * p[6 + k];
     float area = vec3_triangle_area(p); /* > 0 for every listed emitter */
     float o[3], d[3];
-    reference_sample_offset(h, o);
+    reference_ray_offset(h, o);
     for (int k = 0; k < 3; k++)
         d[k] = y[k] - o[k];
     float dist2 = vec3_dot(d, d), dist = sqrtf(dist2);
@@ -144,7 +144,7 @@ void reference_light_emitters(const reference_job *job, const hit *h, int mis, r
     float cos_x = vec3_dot(h->n, d), cos_e = -vec3_dot(ref->emitter_front + 3 * lo, d);
     if (cos_x <= 0 || cos_e <= 0 || vec3_dot(h->ng, d) <= 0)
         return;
-    if (!reference_sample_visible(job, o, d, dist, rays))
+    if (!reference_ray_visible(job, o, d, dist, rays))
         return;
     const float *le = s->materials[s->triangle_material[t]].emissive;
     float area_pdf = ref->emitter_area_pdf[lo];
@@ -196,17 +196,17 @@ void reference_light_connect(const reference_job *job, int i, const hit *x0, rng
         vec3_normalize(w);
     }
     struct RTCRayHit rh;
-    if (!reference_sample_trace(job, from, w, INFINITY, &rh, rays))
+    if (!reference_ray_trace(job, from, w, INFINITY, &rh, rays))
         return;
     hit y;
     float back[3] = {-w[0], -w[1], -w[2]};
-    reference_sample_hit(job->ref, &rh.hit, back, &y);
+    reference_ray_hit(job->ref, &rh.hit, back, &y);
     float e[3], l[3];
     if (!reference_light_one(job, i, &y, 0, e, l, rays)) /* y is the light's first hit */
         return;
     float oy[3], ox[3], d[3];
-    reference_sample_offset(&y, oy);
-    reference_sample_offset(x0, ox);
+    reference_ray_offset(&y, oy);
+    reference_ray_offset(x0, ox);
     for (int k = 0; k < 3; k++)
         d[k] = ox[k] - oy[k];
     float d2 = vec3_dot(d, d), dist = sqrtf(d2);
@@ -217,7 +217,7 @@ void reference_light_connect(const reference_job *job, int i, const hit *x0, rng
     float cos_y = vec3_dot(y.n, d), cos_x = -vec3_dot(x0->n, d);
     if (cos_y <= 0 || cos_x <= 0 || vec3_dot(y.ng, d) <= 0 || -vec3_dot(x0->ng, d) <= 0)
         return;
-    if (!reference_sample_visible(job, oy, d, dist, rays))
+    if (!reference_ray_visible(job, oy, d, dist, rays))
         return;
     float pdf_light = light_area_pdf(job, i, &y, l), pdf_cos = cos_x / PI_F * vec3_dot(y.ng, d) / d2;
     if (!(pdf_light > 0))

@@ -29,100 +29,6 @@ static uint64_t splitmix64(uint64_t x)
     return x ^ (x >> 31);
 }
 
-/* Bilinear, wrap repeat, texel centres at half-integers, as GL samples level 0. */
-static void texture_sample(const reference *ref, int t, const float uv[2], float out[3])
-{
-    const scene_texture *tex = &ref->scene->textures[t];
-    const float *img = ref->texture_linear[t];
-    float x = uv[0] * tex->width - 0.5f, y = uv[1] * tex->height - 0.5f;
-    float fx = floorf(x), fy = floorf(y);
-    float ax = x - fx, ay = y - fy;
-    long x0 = (long)fx, y0 = (long)fy;
-    for (int c = 0; c < 3; c++)
-        out[c] = 0;
-    for (int j = 0; j < 2; j++)
-        for (int i = 0; i < 2; i++) {
-            long xi = (x0 + i) % tex->width, yi = (y0 + j) % tex->height;
-            xi += xi < 0 ? tex->width : 0;
-            yi += yi < 0 ? tex->height : 0;
-            float w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
-            const float *px = img + 3 * ((size_t)yi * tex->width + (size_t)xi);
-            for (int c = 0; c < 3; c++)
-                out[c] += w * px[c];
-        }
-}
-
-/* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
-void reference_sample_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],
-                          hit *h)
-{
-    const scene *s = ref->scene;
-    uint32_t t = eh->primID;
-    float b0 = 1.0f - eh->u - eh->v, b1 = eh->u, b2 = eh->v;
-    const float *p = s->positions + 9 * (size_t)t, *n = s->normals + 9 * (size_t)t;
-    const float *uv = s->uvs + 6 * (size_t)t;
-    for (int i = 0; i < 3; i++) {
-        h->p[i] = b0 * p[i] + b1 * p[3 + i] + b2 * p[6 + i];
-        h->n[i] = b0 * n[i] + b1 * n[3 + i] + b2 * n[6 + i];
-        h->ng[i] = ref->face_normal[3 * t + i];
-    }
-    vec3_normalize(h->n);
-    if (vec3_dot(h->n, toward) < 0)
-        for (int i = 0; i < 3; i++)
-            h->n[i] = -h->n[i];
-    if (vec3_dot(h->ng, toward) < 0)
-        for (int i = 0; i < 3; i++)
-            h->ng[i] = -h->ng[i];
-    const scene_material *m = &s->materials[s->triangle_material[t]];
-    for (int i = 0; i < 3; i++)
-        h->albedo[i] = m->base_color[i];
-    if (m->base_color_texture >= 0 && (size_t)m->base_color_texture < s->texture_count) {
-        float tuv[2] = {b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5]};
-        float texel[3];
-        texture_sample(ref, m->base_color_texture, tuv, texel);
-        for (int i = 0; i < 3; i++)
-            h->albedo[i] *= texel[i];
-    }
-    h->tri = t;
-}
-
-/* Ray origin off the surface along the geometric normal, scaled with the coordinates. */
-void reference_sample_offset(const hit *h, float o[3])
-{
-    float scale = 1e-4f * (1.0f + fmaxf(fabsf(h->p[0]), fmaxf(fabsf(h->p[1]), fabsf(h->p[2]))));
-    for (int i = 0; i < 3; i++)
-        o[i] = h->p[i] + h->ng[i] * scale;
-}
-
-int reference_sample_trace(const reference_job *job, const float o[3], const float d[3],
-                           float tfar, struct RTCRayHit *rh, uint64_t *rays)
-{
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    *rh = (struct RTCRayHit){
-        .ray = {.org_x = o[0], .org_y = o[1], .org_z = o[2], .tnear = 0, .dir_x = d[0],
-                .dir_y = d[1], .dir_z = d[2], .tfar = tfar, .mask = 0xffffffffu},
-        .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .primID = RTC_INVALID_GEOMETRY_ID},
-    };
-    rtcIntersect1(job->ref->rt, &ctx, rh);
-    (*rays)++;
-    return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
-}
-
-/* 1 when nothing lies between o and o + d * dist (d unit), leaving a little at the end. */
-int reference_sample_visible(const reference_job *job, const float o[3], const float d[3],
-                             float dist, uint64_t *rays)
-{
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    struct RTCRay ray = {.org_x = o[0], .org_y = o[1], .org_z = o[2], .tnear = 0,
-                         .dir_x = d[0], .dir_y = d[1], .dir_z = d[2],
-                         .tfar = dist * (1.0f - 1e-4f), .mask = 0xffffffffu};
-    rtcOccluded1(job->ref->rt, &ctx, &ray);
-    (*rays)++;
-    return ray.tfar >= 0; /* Embree sets tfar to -inf on a hit */
-}
-
 /* Cosine-weighted direction around n. */
 static void cosine_direction(const float n[3], rng *g, float d[3])
 {
@@ -196,13 +102,13 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
         cosine_direction(cur.n, g, d);
         if (vec3_dot(d, cur.ng) <= 0)
             break; /* below the true surface (smooth normals): no light that way */
-        reference_sample_offset(&cur, o);
+        reference_ray_offset(&cur, o);
         struct RTCRayHit rh;
-        if (!reference_sample_trace(job, o, d, INFINITY, &rh, rays))
+        if (!reference_ray_trace(job, o, d, INFINITY, &rh, rays))
             break;
         float back[3] = {-d[0], -d[1], -d[2]}, t = rh.ray.tfar;
         hit next;
-        reference_sample_hit(job->ref, &rh.hit, back, &next);
+        reference_ray_hit(job->ref, &rh.hit, back, &next);
         float tr = transmittance(job->absorption, t);
         float we = reference_light_emitter_hit_weight(job->ref, &cur, d, t, next.tri);
         const float *le = s->materials[s->triangle_material[next.tri]].emissive;
@@ -252,12 +158,12 @@ void reference_sample_row(void *ctx, int row)
         for (int k = 0; k < 3; k++)
             d[k] /= len;
         struct RTCRayHit rh;
-        if (!reference_sample_trace(job, o, d, len, &rh, &rays))
+        if (!reference_ray_trace(job, o, d, len, &rh, &rays))
             continue;
         job->coverage[pix] = 1;
         hit x0;
         float toward_eye[3] = {-d[0], -d[1], -d[2]};
-        reference_sample_hit(job->ref, &rh.hit, toward_eye, &x0);
+        reference_ray_hit(job->ref, &rh.hit, toward_eye, &x0);
         shade_direct(job, &x0, toward_eye, dst[0], &rays);
         rng g = {splitmix64(job->seed ^ splitmix64(pix))};
         double acc1[3] = {0, 0, 0}, acc[3] = {0, 0, 0};

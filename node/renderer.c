@@ -1,5 +1,5 @@
 /* renderer: GL passes of the render node (RSM, G-buffer, shading, final) and the frame /
- * eye pass orchestration. The LPV backends live in renderer_lpv.c. */
+ * eye pass orchestration. The indirect light is the active GI method's (gi.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,11 +9,64 @@
 #include "base/xalloc.h"
 #include "base/mat4.h"
 #include "base/ratelog.h"
-#include "frame/offaxis.h"
+#include "frame/light_view.h"
+#include "gi.h"
+#include "gi_ilpv.h"
 #include "gltools.h"
-#include "renderer_internal.h"
+#include "renderer.h"
+#include "renderer_hud.h"
+#include "renderer_rsm.h"
+#include "scene_gl.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
+
+enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
+
+/* GL timer queries read a few frames later, never waited for (paper 4.6). */
+typedef struct renderer_queries {
+    GLuint id[RENDERER_QUERY_RING][4];
+    int pending[RENDERER_QUERY_RING];
+    int next;
+    long dropped;            /* implausible readings thrown away */
+    double ms[4];            /* latest results that arrived */
+} renderer_queries;
+
+struct renderer {
+    const gl_functions *gl;
+    const scene *scene;
+    scene_gl *mesh;          /* the scene's triangles and textures */
+    GLuint empty_vao;        /* the full-screen passes' */
+    int emits;               /* some surface of the scene emits light */
+
+    GLuint prog_gbuffer, prog_shade, prog_final;
+
+    renderer_rsm *rsm;       /* the lights' shadow maps and the VPL source */
+
+    int eye_w, eye_h;
+    GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
+    GLuint shade_fbo, s_final, s_direct, s_indirect;
+    GLuint final_fbo, f_color;
+    uint8_t *rgba, *rgb;
+    float *linear[3];
+
+    gi *gi;                  /* the indirect-light method (gi.h) */
+    uint64_t checksum;       /* its last frame's */
+    gi_desc gi_desc;         /* what it is made with, for a live switch */
+    renderer_desc desc;
+    renderer_hud *hud;
+    frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
+                                passes render */
+    /* Views that show no light: a query over the final pass, whose shader leaves black
+     * pixels out; one warning when the k-th view of a frame turns black. */
+    GLuint lit_query;
+    int eye_index;           /* eye passes since the frame pass */
+    int view_dark[RENDERER_DARK_VIEWS];
+    ratelog dark_log;
+    renderer_queries frame_queries, eye_queries;
+    renderer_timings timings;
+    char error[256];         /* why the last eye pass failed */
+};
+
 
 static GLint loc(renderer *r, GLuint prog, const char *name)
 {
@@ -101,104 +154,6 @@ static int eye_targets(renderer *r, int w, int h)
     return 0;
 }
 
-/* Triangles grouped by material (stable), one draw per group. */
-static int upload_scene(renderer *r, char *err, size_t errlen)
-{
-    const gl_functions *gl = r->gl;
-    const scene *s = r->scene;
-    size_t nt = s->triangle_count;
-    float *v = malloc(nt * 3 * 8 * sizeof(float));
-    size_t *order = malloc(nt * sizeof *order);
-    size_t *start = calloc(s->material_count + 1, sizeof *start);
-    r->ranges = calloc(s->material_count, sizeof *r->ranges);
-    if (!v || !order || !start || !r->ranges) {
-        free(v); free(order); free(start);
-        snprintf(err, errlen, "renderer: out of memory for %zu triangles", nt);
-        return -1;
-    }
-    for (size_t t = 0; t < nt; t++)
-        start[s->triangle_material[t] + 1]++;
-    for (size_t m = 0; m < s->material_count; m++)
-        start[m + 1] += start[m];
-    for (size_t m = 0; m < s->material_count; m++)
-        if (start[m + 1] > start[m])
-            r->ranges[r->range_count++] = (renderer_draw_range){
-                (uint32_t)m, (GLint)(3 * start[m]), (GLsizei)(3 * (start[m + 1] - start[m]))};
-    for (size_t t = 0; t < nt; t++)
-        order[start[s->triangle_material[t]]++] = t;
-    for (size_t i = 0; i < nt; i++)
-        for (int k = 0; k < 3; k++) {
-            float *d = v + (i * 3 + k) * 8;
-            size_t t = order[i];
-            memcpy(d, s->positions + 9 * t + 3 * k, 3 * sizeof(float));
-            memcpy(d + 3, s->normals + 9 * t + 3 * k, 3 * sizeof(float));
-            memcpy(d + 6, s->uvs + 6 * t + 2 * k, 2 * sizeof(float));
-        }
-    gl->GenVertexArrays(1, &r->vao);
-    gl->GenVertexArrays(1, &r->empty_vao);
-    gl->BindVertexArray(r->vao);
-    gl->GenBuffers(1, &r->vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nt * 3 * 8 * sizeof(float)), v, GL_STATIC_DRAW);
-    for (GLuint a = 0; a < 3; a++) {
-        gl->EnableVertexAttribArray(a);
-        gl->VertexAttribPointer(a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float),
-                                (const void *)(uintptr_t)(a * 3 * sizeof(float)));
-    }
-    gl->BindVertexArray(0);
-    free(v); free(order); free(start);
-
-    r->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *r->textures);
-    if (!r->textures)
-        return snprintf(err, errlen, "renderer: out of memory"), -1;
-    for (size_t i = 0; i < s->texture_count; i++) {
-        const scene_texture *t = &s->textures[i];
-        int levels = 1;
-        while ((t->width >> levels) > 0 || (t->height >> levels) > 0)
-            levels++;
-        gl->GenTextures(1, &r->textures[i]);
-        gl->BindTexture(GL_TEXTURE_2D, r->textures[i]);
-        gl->TexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, t->width, t->height);
-        gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA,
-                          GL_UNSIGNED_BYTE, t->rgba);
-        gl->GenerateMipmap(GL_TEXTURE_2D);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    }
-    return 0;
-}
-
-/* Material uniforms shared by the G-buffer and RSM programs (same names). */
-static void bind_material(renderer *r, GLuint prog, uint32_t mi)
-{
-    const gl_functions *gl = r->gl;
-    const scene_material *m = &r->scene->materials[mi];
-    gl->Uniform4fv(loc(r, prog, "u_base_color"), 1, m->base_color);
-    int tex = m->base_color_texture >= 0 && (size_t)m->base_color_texture < r->scene->texture_count;
-    gl->Uniform1i(loc(r, prog, "u_has_texture"), tex);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, tex ? r->textures[m->base_color_texture] : 0);
-    gl->Uniform1i(loc(r, prog, "u_base_texture"), 0);
-    GLint e = loc(r, prog, "u_emissive");
-    if (e >= 0)
-        gl->Uniform3fv(e, 1, m->emissive);
-    GLint ro = loc(r, prog, "u_roughness");
-    if (ro >= 0)
-        gl->Uniform1f(ro, m->roughness);
-}
-
-void renderer_draw_scene(renderer *r, GLuint prog)
-{
-    const gl_functions *gl = r->gl;
-    gl->BindVertexArray(r->vao);
-    for (int i = 0; i < r->range_count; i++) {
-        bind_material(r, prog, r->ranges[i].material);
-        gl->DrawArrays(GL_TRIANGLES, r->ranges[i].first, r->ranges[i].count);
-    }
-    gl->BindVertexArray(0);
-}
-
 /* ---- timer queries ---------------------------------------------------------------- */
 
 static void queries_init(renderer *r, renderer_queries *q)
@@ -269,23 +224,29 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     r->gl = desc->gl;
     r->scene = desc->scene;
     frame_params_default(&r->frame);
-    r->rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
+    int rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
-    int software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
-                                   strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
+    r->desc = *desc;
+    r->gi_desc = (gi_desc){
+        .gl = r->gl, .scene = r->scene, .settings = &r->desc, .rsm_size = rsm_size,
+        .software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
+                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast")),
+    };
     if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_rsm = gltools_program(r->gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
-        upload_scene(r, err, errlen) || renderer_rsm_init(r, err, errlen) ||
-        renderer_lpv_init(r, desc, software, err, errlen) ||
+        !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
+        !(r->rsm = renderer_rsm_create(r->gl, r->scene, rsm_size, err, errlen)) ||
+        !(r->gi = gi_create(desc->gi, &r->gi_desc, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
     }
     queries_init(r, &r->frame_queries);
     queries_init(r, &r->eye_queries);
+    r->gl->GenVertexArrays(1, &r->empty_vao);
     r->gl->GenQueries(1, &r->lit_query);
+    r->emits = scene_has_emitter(r->scene);
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
         snprintf(err, errlen, "renderer: GL error 0x%x while creating resources", (unsigned)e);
@@ -300,20 +261,15 @@ void renderer_destroy(renderer *r)
     if (!r)
         return;
     const gl_functions *gl = r->gl;
-    renderer_lpv_free(r);
+    gi_destroy(r->gi);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
-    GLuint progs[] = {r->prog_gbuffer, r->prog_rsm, r->prog_shade, r->prog_final};
-    for (int i = 0; i < 4; i++)
+    GLuint progs[] = {r->prog_gbuffer, r->prog_shade, r->prog_final};
+    for (int i = 0; i < 3; i++)
         if (progs[i])
             gl->DeleteProgram(progs[i]);
-    renderer_rsm_free(r);
-    if (r->textures && r->scene->texture_count)
-        gl->DeleteTextures((GLsizei)r->scene->texture_count, r->textures);
-    if (r->vbo)
-        gl->DeleteBuffers(1, &r->vbo);
-    if (r->vao)
-        gl->DeleteVertexArrays(1, &r->vao);
+    renderer_rsm_destroy(r->rsm);
+    scene_gl_destroy(r->mesh);
     if (r->empty_vao)
         gl->DeleteVertexArrays(1, &r->empty_vao);
     if (r->lit_query)
@@ -324,12 +280,29 @@ void renderer_destroy(renderer *r)
         if (r->eye_queries.id[i][0])
             gl->DeleteQueries(4, r->eye_queries.id[i]);
     }
-    free(r->textures);
-    free(r->ranges);
     free(r);
 }
 
 /* ---- frame pass ------------------------------------------------------------------- */
+
+/* A frame that asks for another GI method gets a fresh one: every node switches in the
+ * same frame and starts it alike, without history. One that cannot be built (memory)
+ * leaves the current method in place and says why in renderer_last_error(); the checksums
+ * then show the master whether the nodes disagree. */
+static void switch_gi(renderer *r, frame_gi want)
+{
+    if (want == gi_active(r->gi))
+        return;
+    char err[200];
+    gi *g = gi_create(want, &r->gi_desc, err, sizeof err);
+    if (!g) {
+        snprintf(r->error, sizeof r->error, "renderer: GI method %s not built (%s); keeping %s",
+                 frame_gi_name(want), err, frame_gi_name(gi_active(r->gi)));
+        return;
+    }
+    gi_destroy(r->gi);
+    r->gi = g;
+}
 
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
@@ -340,19 +313,26 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     frame_params_sanitize(&r->frame);
     r->eye_index = 0;
     const frame_params *p = &r->frame;
-    if (renderer_lpv_skip(r, p)) { /* RSMs, textures and the LPV still hold this result */
+    switch_gi(r, p->gi);
+    if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
         r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
         r->timings.frame_host_ms = clock_now_ms() - t0;
         return r->checksum;
     }
     int slot = queries_begin_frame(r, &r->frame_queries, 1);
     query_begin(r, &r->frame_queries, slot, Q_RSM);
-    renderer_rsm_render(r, p);
+    renderer_rsm_render(r->rsm, r->mesh, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    uint64_t checksum = renderer_lpv_frame(r, p);
+    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
+    rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
+    r->checksum = gi_frame(r->gi, p, &rsm);
+    gi_stats gs;
+    gi_stats_get(r->gi, &gs);
+    r->timings.inject_ms = gs.inject_ms;
+    r->timings.propagate_ms = gs.propagate_ms;
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
     r->timings.frame_host_ms = clock_now_ms() - t0;
-    return checksum;
+    return r->checksum;
 }
 
 /* ---- eye pass --------------------------------------------------------------------- */
@@ -413,7 +393,7 @@ static void warn_if_dark(renderer *r, int lit)
                   (p->lights[i].color[0] > 0 || p->lights[i].color[1] > 0 || p->lights[i].color[2] > 0);
     fprintf(stderr, "cavelight-node: warning: frame %llu, view %d receives no light: %s%s\n",
             (unsigned long long)p->version, k,
-            light_dark_reason(lights || r->emitter_count),
+            light_dark_reason(lights || r->emits),
             skipped ? " (more such lines left out)" : "");
 }
 
@@ -450,7 +430,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     float eye[4];
     eye_towards(view, eye);
     gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
-    renderer_draw_scene(r, r->prog_gbuffer);
+    scene_gl_draw(r->mesh, r->prog_gbuffer);
     gl->Disable(GL_DEPTH_TEST);
     query_end(r, &r->eye_queries, slot, Q_GBUFFER);
 
@@ -466,21 +446,8 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->BindTexture(GL_TEXTURE_2D, gtex[i]);
         gl->Uniform1i(loc(r, prog, gname[i]), i);
     }
-    renderer_rsm_bind_shading(r, prog, p, 4, 8);
-    GLuint lpv[3];
-    renderer_lpv_textures(r, lpv);
-    const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
-    for (int c = 0; c < 3; c++) {
-        gl->ActiveTexture(GL_TEXTURE5 + c);
-        gl->BindTexture(GL_TEXTURE_3D, lpv[c]);
-        gl->Uniform1i(loc(r, prog, lname[c]), 5 + c);
-    }
-    gl->Uniform1i(loc(r, prog, "u_lpv_enabled"), lpv[0] != 0 && r->frames > 0);
-    gl->Uniform3fv(loc(r, prog, "u_lpv_origin"), 1, r->lattice.origin);
-    gl->Uniform1f(loc(r, prog, "u_lpv_cell"), r->lattice.cell);
-    gl->Uniform1f(loc(r, prog, "u_indirect_scale"), r->indirect_scale * r->energy_gain);
-    gl->Uniform3f(loc(r, prog, "u_lpv_size"), (float)r->lattice.n[0], (float)r->lattice.n[1],
-                  (float)r->lattice.n[2]);
+    renderer_rsm_bind_shading(r->rsm, prog, p, 4, 8);
+    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5});
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);
@@ -505,10 +472,9 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->BindVertexArray(0);
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
-    int cells = r->lattice.n[0];
-    for (int a = 1; a < 3; a++)
-        cells = r->lattice.n[a] > cells ? r->lattice.n[a] : cells;
-    renderer_hud_draw(r->hud, p, cells, vp, view->eye_position, encoding);
+    gi_stats gs;
+    gi_stats_get(r->gi, &gs);
+    renderer_hud_draw(r->hud, p, gs.lattice_cells, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -569,5 +535,49 @@ void renderer_get_timings(const renderer *r, renderer_timings *out)
     *out = r->timings;
 }
 
-renderer_lpv_backend renderer_get_lpv_backend(const renderer *r) { return r->backend; }
-const lattice_desc *renderer_get_lattice(const renderer *r) { return &r->lattice; }
+/* ---- the ILPV method's figures, while it is the active one ----------------------------- */
+
+static gi_ilpv *active_ilpv(const renderer *r)
+{
+    return gi_active(r->gi) == FRAME_GI_ILPV ? gi_state(r->gi) : NULL;
+}
+
+renderer_rsm *renderer_get_rsm(renderer *r) { return r->rsm; }
+frame_gi renderer_get_gi(const renderer *r) { return gi_active(r->gi); }
+
+renderer_lpv_backend renderer_get_lpv_backend(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_backend(active_ilpv(r)) : RENDERER_LPV_AUTO;
+}
+
+const lattice_desc *renderer_get_lattice(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_lattice(active_ilpv(r)) : NULL;
+}
+
+const lpv_volume *renderer_get_lpv(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_volume(active_ilpv(r)) : NULL;
+}
+
+float renderer_get_indirect_scale(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_indirect_scale(active_ilpv(r)) : 0.0f;
+}
+
+renderer_lpv_mode renderer_get_lpv_mode(const renderer *r)
+{
+    return active_ilpv(r) ? gi_ilpv_mode(active_ilpv(r)) : r->desc.lpv_mode;
+}
+
+void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
+{
+    *out = (renderer_lpv_stats){.last_residual = INFINITY};
+    if (active_ilpv(r))
+        gi_ilpv_lpv_stats(active_ilpv(r), out);
+}
+
+double renderer_measure_step_ms(renderer *r, int steps)
+{
+    return active_ilpv(r) ? gi_ilpv_measure_step_ms(active_ilpv(r), steps) : 0.0;
+}

@@ -12,6 +12,7 @@
 #include "lpv/lattice.h"
 #include "lpv/lpv_budget.h"
 #include "base/vec3.h"
+#include "base/xalloc.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
 #include "reference_cli.h"
@@ -187,6 +188,208 @@ static int choose_budget(const node_options *o, const renderer_desc *base,
     return 0;
 }
 
+/* Per-stage milliseconds of every frame run, for the report's medians. */
+enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
+static const char *const stage_names[M_COUNT] = {
+    "rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
+    "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms",
+};
+
+/* What the run is: context, scene, GI method and, for ILPV, its lattice. */
+static void report_setup(cJSON *report, const node_options *o, glctx *ctx, renderer *r,
+                         const scene *sc, const frame_params *fp)
+{
+    const lattice_desc *lat = renderer_get_lattice(r);
+    const char *gi = frame_gi_name(renderer_get_gi(r));
+    const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
+    if (lat)
+        printf("cavelight-node: %s, %s, scene %s (%zu triangles), lattice %dx%dx%d, LPV on %s\n",
+               glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc->triangle_count, lat->n[0],
+               lat->n[1], lat->n[2], backend);
+    else
+        printf("cavelight-node: %s, %s, scene %s (%zu triangles), GI %s\n", glctx_describe(ctx),
+               glctx_renderer(ctx), o->scene, sc->triangle_count, gi);
+    cJSON_AddStringToObject(report, "scene", o->scene);
+    cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
+    cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
+    cJSON_AddStringToObject(report, "gi", gi);
+    if (lat) {
+        cJSON_AddStringToObject(report, "lpv_backend", backend);
+        cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
+        /* The lattice follows the scene's shape: what that saves against a cube. */
+        int longest = lat->n[0] > lat->n[1] ? lat->n[0] : lat->n[1];
+        longest = longest > lat->n[2] ? longest : lat->n[2];
+        cJSON_AddNumberToObject(report, "cells", (double)lattice_cell_count(lat));
+        cJSON_AddNumberToObject(report, "cube_cells", (double)longest * longest * longest);
+        cJSON_AddStringToObject(report, "lpv_mode",
+                                renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
+                                                                                 : "incremental");
+        cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
+    }
+    cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
+    cJSON_AddNumberToObject(report, "width", o->width);
+    cJSON_AddNumberToObject(report, "height", o->height);
+    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : RENDERER_DEFAULT_RSM_SIZE);
+    cJSON_AddNumberToObject(report, "steps", fp->lpv_steps);
+}
+
+/* The eye passes of one frame: images written, stage times summed over the eyes. */
+static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes, int eye_count,
+                       int f, double eye_sum[4])
+{
+    for (int e = 0; e < eye_count; e++) {
+        renderer_image img;
+        if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {
+            fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
+                    renderer_last_error(r));
+            return -1;
+        }
+        if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
+            return -1;
+        renderer_timings te;
+        renderer_get_timings(r, &te);
+        eye_sum[0] += te.gbuffer_ms;
+        eye_sum[1] += te.shade_ms;
+        eye_sum[2] += te.final_ms;
+        eye_sum[3] += te.eye_host_ms;
+    }
+    return 0;
+}
+
+/* Frame f: the frame pass, every eye, the window; its line on stdout and its entry in the
+ * report. Returns 0, 1 when the window was closed, -1 on an error. */
+static int render_frame(const node_options *o, glctx *ctx, renderer *r, const eye_setup *eyes,
+                        int eye_count, frame_params *fp, int f, cJSON *frames,
+                        double stage_ms[M_COUNT])
+{
+    fp->version = (uint64_t)f;
+    fp->time = f / 60.0;
+    uint64_t checksum = renderer_frame_pass(r, fp);
+    renderer_timings t;
+    renderer_get_timings(r, &t);
+    renderer_lpv_stats ls;
+    renderer_get_lpv_stats(r, &ls);
+    double eye_sum[4] = {0, 0, 0, 0};
+    if (render_eyes(o, r, eyes, eye_count, f, eye_sum) != 0)
+        return -1;
+    int closed = 0;
+    if (o->gl == GLCTX_GLFW) { /* a window shows the first eye; closing it ends the run */
+        renderer_present(r, o->width, o->height);
+        closed = !glctx_swap(ctx);
+    }
+    char hex[17];
+    snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
+    cJSON *jf = cJSON_CreateObject();
+    cJSON_AddNumberToObject(jf, "frame", f);
+    cJSON_AddStringToObject(jf, "lpv_checksum", hex); /* the GI method's checksum */
+    cJSON_AddBoolToObject(jf, "skipped", ls.skipped_this_frame);
+    if (isfinite(ls.last_residual)) /* +Inf before two computed frames: JSON null */
+        cJSON_AddNumberToObject(jf, "residual", ls.last_residual);
+    else
+        cJSON_AddNullToObject(jf, "residual");
+    double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
+                            eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
+    for (int m = 0; m < M_COUNT; m++) {
+        cJSON_AddNumberToObject(jf, stage_names[m], vals[m]);
+        stage_ms[m] = vals[m];
+    }
+    cJSON_AddItemToArray(frames, jf);
+    printf("frame %d: lpv %s%s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
+           "eyes %.2f ms\n", f, hex, ls.skipped_this_frame ? " (skipped, converged)" : "",
+           t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms, eye_sum[3]);
+    return closed;
+}
+
+/* Medians over the frames run (GPU timer results arrive a few frames late: the first
+ * frames report 0 there), then report.json when --out is given. */
+static int report_finish(const node_options *o, renderer *r, cJSON *report, double *samples,
+                         int frames_run)
+{
+    cJSON *med = cJSON_AddObjectToObject(report, "median");
+    double m[M_COUNT];
+    for (int k = 0; k < M_COUNT; k++) {
+        m[k] = median(samples + (size_t)k * o->frames, frames_run);
+        cJSON_AddNumberToObject(med, stage_names[k], m[k]);
+    }
+    renderer_lpv_stats ls;
+    renderer_get_lpv_stats(r, &ls);
+    cJSON_AddNumberToObject(report, "frames_skipped", (double)ls.frames_skipped);
+    double total = m[M_FRAME] + m[M_EYE];
+    cJSON_AddNumberToObject(report, "lpv_share", total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);
+    if (!o->out)
+        return 0;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/report.json", o->out);
+    char *text = cJSON_Print(report);
+    FILE *f = fopen(path, "w");
+    int rc = 0;
+    if (!text || !f || fputs(text, f) < 0) {
+        fprintf(stderr, "cavelight-node: cannot write %s\n", path);
+        rc = 1;
+    }
+    if (f)
+        fclose(f);
+    free(text);
+    return rc;
+}
+
+/* The GL path: context, renderer (its lattice and steps from --budget-ms if given), the
+ * frames, the report. */
+static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes, int eye_count,
+                  frame_params *fp)
+{
+    char err[512];
+    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
+                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    if (!ctx) {
+        /* The context's own message names no option: the one to try is this mode's. */
+        fprintf(stderr, "cavelight-node: %s%s\n", err,
+                o->gl == GLCTX_GLFW ? "; or render without a window: --gl egl" : "");
+        return 1;
+    }
+    renderer_desc rd = {
+        .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
+        .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
+        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
+        .gi = fp->gi,
+    };
+    cJSON *report = cJSON_CreateObject();
+    renderer *r = NULL;
+    double *samples = xcalloc((size_t)o->frames * M_COUNT, sizeof *samples);
+    int rc = 1, frames_run = 0;
+    lpv_budget_choice budget;
+    if (o->budget_ms > 0) {
+        if (choose_budget(o, &rd, fp, &budget, report) != 0)
+            goto out;
+        rd.lattice_cells = budget.axis_cells;
+        fp->lpv_steps = budget.steps;
+    }
+    if (!(r = renderer_create(&rd, err, sizeof err))) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        goto out;
+    }
+    report_setup(report, o, ctx, r, sc, fp);
+    cJSON *frames = cJSON_AddArrayToObject(report, "frames");
+    int step = 0;
+    for (int f = 0; f < o->frames && step == 0; f++) {
+        double stage_ms[M_COUNT];
+        if ((step = render_frame(o, ctx, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
+            goto out;
+        for (int m = 0; m < M_COUNT; m++)
+            samples[(size_t)m * o->frames + f] = stage_ms[m];
+        frames_run++;
+    }
+    rc = report_finish(o, r, report, samples, frames_run);
+out:
+    free(samples);
+    cJSON_Delete(report);
+    renderer_destroy(r);
+    glctx_destroy(ctx);
+    return rc;
+}
+
 int standalone_run(const node_options *o)
 {
     char err[512];
@@ -227,176 +430,20 @@ int standalone_run(const node_options *o)
     if (!opt.have_height && cam.aspect > 0 && !opt.have_screen)
         opt.height = (int)fmin(fmax(lround(opt.width / cam.aspect), 1), 16384);
     eye_setup eyes[2];
-    int eye_count;
-    if (make_views(&opt, &sc, &cam, eyes, &eye_count) != 0) {
-        scene_free(&sc);
-        return 1;
-    }
-    frame_params fp;
-    standalone_frame_params(o, &sc, &eyes[0].view, &fp);
-    if (o->reference) {
-        reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
-                                 .view = &eyes[0].view, .threads = o->threads,
-                                 .samples = o->samples, .bounces = o->bounces,
-                                 .seed = o->seed, .out = o->out};
-        int rc = reference_cli_run(&rd);
-        scene_free(&sc);
-        return rc;
-    }
-    glctx_desc gd = {.backend = o->gl, .width = opt.width, .height = opt.height,
-                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
-    glctx *ctx = glctx_create(&gd, err, sizeof err);
-    if (!ctx) {
-        /* The context's own message names no option: the one to try is this mode's. */
-        fprintf(stderr, "cavelight-node: %s%s\n", err,
-                o->gl == GLCTX_GLFW ? "; or render without a window: --gl egl" : "");
-        scene_free(&sc);
-        return 1;
-    }
-    renderer_desc rd = {
-        .gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
-        .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
-        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
-        .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
-    };
-    cJSON *report = cJSON_CreateObject();
-    if (o->budget_ms > 0) {
-        lpv_budget_choice budget;
-        if (choose_budget(o, &rd, &fp, &budget, report) != 0) {
-            cJSON_Delete(report);
-            glctx_destroy(ctx);
-            scene_free(&sc);
-            return 1;
-        }
-        rd.lattice_cells = budget.axis_cells;
-        fp.lpv_steps = budget.steps;
-    }
-    renderer *r = renderer_create(&rd, err, sizeof err);
-    if (!r) {
-        fprintf(stderr, "cavelight-node: %s\n", err);
-        cJSON_Delete(report);
-        glctx_destroy(ctx);
-        scene_free(&sc);
-        return 1;
-    }
-
-    const lattice_desc *lat = renderer_get_lattice(r);
-    const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
-    printf("cavelight-node: %s, %s, scene %s (%zu triangles), lattice %dx%dx%d, LPV on %s\n",
-           glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc.triangle_count, lat->n[0],
-           lat->n[1], lat->n[2], backend);
-
-    cJSON_AddStringToObject(report, "scene", o->scene);
-    cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
-    cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
-    cJSON_AddStringToObject(report, "lpv_backend", backend);
-    cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
-    /* The lattice follows the scene's shape: what that saves against a cube. */
-    int longest = lat->n[0] > lat->n[1] ? lat->n[0] : lat->n[1];
-    longest = longest > lat->n[2] ? longest : lat->n[2];
-    cJSON_AddNumberToObject(report, "cells", (double)lattice_cell_count(lat));
-    cJSON_AddNumberToObject(report, "cube_cells", (double)longest * longest * longest);
-    cJSON_AddStringToObject(report, "lpv_mode",
-                            renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
-                                                                             : "incremental");
-    cJSON_AddNumberToObject(report, "triangles", (double)sc.triangle_count);
-    cJSON_AddNumberToObject(report, "width", opt.width);
-    cJSON_AddNumberToObject(report, "height", opt.height);
-    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : 256);
-    cJSON_AddNumberToObject(report, "steps", fp.lpv_steps);
-    cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
-    cJSON *frames = cJSON_AddArrayToObject(report, "frames");
-    enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
-    static const char *mnames[M_COUNT] = {"rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
-                                          "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms"};
-    double *samples = calloc((size_t)o->frames * M_COUNT, sizeof *samples);
-    int rc = samples ? 0 : 1, frames_done_early = 0, frames_run = 0;
-    for (int f = 0; f < o->frames && rc == 0 && !frames_done_early; f++) {
-        fp.version = (uint64_t)f;
-        fp.time = f / 60.0;
-        uint64_t checksum = renderer_frame_pass(r, &fp);
-        renderer_timings t;
-        renderer_get_timings(r, &t);
-        cJSON *jf = cJSON_CreateObject();
-        char hex[17];
-        snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
-        cJSON_AddNumberToObject(jf, "frame", f);
-        cJSON_AddStringToObject(jf, "lpv_checksum", hex);
-        renderer_lpv_stats ls;
-        renderer_get_lpv_stats(r, &ls);
-        cJSON_AddBoolToObject(jf, "skipped", ls.skipped_this_frame);
-        if (isfinite(ls.last_residual)) /* +Inf before two computed frames: JSON null */
-            cJSON_AddNumberToObject(jf, "residual", ls.last_residual);
-        else
-            cJSON_AddNullToObject(jf, "residual");
-        double eye_sum[4] = {0, 0, 0, 0};
-        for (int e = 0; e < eye_count && rc == 0; e++) {
-            renderer_image img;
-            if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {
-                fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
-                        renderer_last_error(r));
-                rc = 1;
-                break;
-            }
-            if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
-                rc = 1;
-            renderer_timings te;
-            renderer_get_timings(r, &te);
-            eye_sum[0] += te.gbuffer_ms;
-            eye_sum[1] += te.shade_ms;
-            eye_sum[2] += te.final_ms;
-            eye_sum[3] += te.eye_host_ms;
-        }
-        /* A window shows the first eye; closing it ends the run. */
-        if (rc == 0 && o->gl == GLCTX_GLFW) {
-            renderer_present(r, opt.width, opt.height);
-            if (!glctx_swap(ctx))
-                frames_done_early = 1;
-        }
-        double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
-                                eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
-        for (int m = 0; m < M_COUNT; m++) {
-            cJSON_AddNumberToObject(jf, mnames[m], vals[m]);
-            samples[(size_t)m * o->frames + f] = vals[m];
-        }
-        cJSON_AddItemToArray(frames, jf);
-        frames_run++;
-        printf("frame %d: lpv %s%s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
-               "eyes %.2f ms\n", f, hex, ls.skipped_this_frame ? " (skipped, converged)" : "",
-               t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms, eye_sum[3]);
-    }
-    if (rc == 0) {
-        /* GPU timer results arrive a few frames late: the first frames report 0 there. */
-        cJSON *med = cJSON_AddObjectToObject(report, "median");
-        double m[M_COUNT];
-        for (int k = 0; k < M_COUNT; k++) {
-            m[k] = median(samples + (size_t)k * o->frames, frames_run);
-            cJSON_AddNumberToObject(med, mnames[k], m[k]);
-        }
-        renderer_lpv_stats ls;
-        renderer_get_lpv_stats(r, &ls);
-        cJSON_AddNumberToObject(report, "frames_skipped", (double)ls.frames_skipped);
-        double total = m[M_FRAME] + m[M_EYE];
-        cJSON_AddNumberToObject(report, "lpv_share",
-                                total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);
-        if (o->out) {
-            char path[4096];
-            snprintf(path, sizeof path, "%s/report.json", o->out);
-            char *text = cJSON_Print(report);
-            FILE *f = fopen(path, "w");
-            if (!text || !f || fputs(text, f) < 0) {
-                fprintf(stderr, "cavelight-node: cannot write %s\n", path);
-                rc = 1;
-            }
-            if (f)
-                fclose(f);
-            free(text);
+    int eye_count, rc = 1;
+    if (make_views(&opt, &sc, &cam, eyes, &eye_count) == 0) {
+        frame_params fp;
+        standalone_frame_params(o, &sc, &eyes[0].view, &fp);
+        if (o->reference) {
+            reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
+                                     .view = &eyes[0].view, .threads = o->threads,
+                                     .samples = o->samples, .bounces = o->bounces,
+                                     .seed = o->seed, .out = o->out};
+            rc = reference_cli_run(&rd);
+        } else {
+            rc = run_gl(&opt, &sc, eyes, eye_count, &fp);
         }
     }
-    free(samples);
-    cJSON_Delete(report);
-    renderer_destroy(r);
-    glctx_destroy(ctx);
     scene_free(&sc);
     return rc;
 }

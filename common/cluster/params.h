@@ -43,6 +43,7 @@ enum {
     PARAMS_EXPOSURE,       /* f32 */
     PARAMS_HUD_LAYOUT,     /* i32 */
     PARAMS_PATTERN,        /* i32, 1: the screens show the calibration pattern */
+    PARAMS_GI,             /* i32, frame_gi */
     PARAMS_LIGHT_COUNT,    /* i32, 0..FRAME_MAX_LIGHTS */
     PARAMS_LIGHT_BASE      /* first per-light key, see params_light_key() */
 };

@@ -27,6 +27,24 @@ void frame_params_default(frame_params *p)
     p->display_gamma = 2.2f;
     p->exposure = 1.0f;
     p->hud_layout = -1;
+    p->gi = FRAME_GI_ILPV;
+}
+
+const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none"};
+
+const char *frame_gi_name(frame_gi gi)
+{
+    return (unsigned)gi < FRAME_GI_COUNT ? frame_gi_names[gi] : NULL;
+}
+
+int frame_gi_parse(const char *name, frame_gi *out)
+{
+    for (int i = 0; i < FRAME_GI_COUNT; i++)
+        if (strcmp(name, frame_gi_names[i]) == 0) {
+            *out = (frame_gi)i;
+            return 0;
+        }
+    return -1;
 }
 
 float frame_params_e2e_gamma(frame_environment env)
@@ -148,6 +166,10 @@ int frame_params_sanitize(frame_params *p)
     if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
         p->environment != FRAME_ENV_OFFICE) {
         p->environment = FRAME_ENV_DIM;
+        changed++;
+    }
+    if ((unsigned)p->gi >= FRAME_GI_COUNT) {
+        p->gi = FRAME_GI_ILPV;
         changed++;
     }
     if (!(p->display_gamma > 0.0f) || !isfinite(p->display_gamma)) {

@@ -19,6 +19,13 @@ typedef enum frame_environment {
     FRAME_ENV_OFFICE = 2, /* 1.125 */
 } frame_environment;
 
+/* The indirect-light (GI) method every node uses for the frame (node/gi.h). */
+typedef enum frame_gi {
+    FRAME_GI_ILPV = 0, /* incremental light propagation volumes */
+    FRAME_GI_NONE = 1, /* direct light only */
+    FRAME_GI_COUNT
+} frame_gi;
+
 /* One light as the master and every node hold it; the fields mean what scene_light's do
  * (units there). */
 typedef struct frame_light {
@@ -50,11 +57,12 @@ typedef struct frame_params {
     float exposure;         /* linear scale before tone mapping, 1 by default */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
     int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
+    frame_gi gi;            /* indirect-light method */
 } frame_params;
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
  * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
- * environment, display gamma 2.2, exposure 1, no HUD. */
+ * environment, display gamma 2.2, exposure 1, no HUD, ILPV. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's lights (at most FRAME_MAX_LIGHTS), enabled. A scene loaded without
  * lights has one already (scene_load(), scene_default_light()). */
@@ -73,11 +81,18 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s);
  * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
- * display gamma, an unknown environment and non-finite poses or time get their defaults.
+ * display gamma, an unknown environment or GI method and non-finite poses or time get
+ * their defaults.
  * Returns how many fields it changed (0 for valid parameters). This is the only place a
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in
  * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
+/* The methods' names, indexed by frame_gi (command lines, reports). */
+extern const char *const frame_gi_names[FRAME_GI_COUNT];
+/* "ilpv", "none"; NULL for a value outside the enum. */
+const char *frame_gi_name(frame_gi gi);
+/* Returns 0 and the method named name, or -1. */
+int frame_gi_parse(const char *name, frame_gi *out);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);
 

@@ -15,7 +15,8 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
-#include "renderer_internal.h"
+#include "renderer.h"
+#include "renderer_rsm.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -107,7 +108,7 @@ static void code_scene_energy(scene *s, const frame_light *l, int rsm, double e[
     renderer_frame_pass(r, &p);
     lpv_volume_energy(renderer_get_lpv(r), e);
     lpv_vpl *v;
-    size_t n = renderer_rsm_vpls(r, &v);
+    size_t n = renderer_rsm_vpls(renderer_get_rsm(r), &v);
     vpl[0] = vpl[1] = vpl[2] = 0;
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 3; c++)

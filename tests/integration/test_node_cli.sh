@@ -86,6 +86,20 @@ grep -q "budget 15 ms: lattice [0-9]*, [0-9]* steps\?, predicted" "$out/budget.l
 [ "$(json "$out/cells/report.json" "r['cells'] <= 4096 and r['cells'] > 3000 and \
     r['lattice'][0] > 3 * r['lattice'][1]")" = True ] || fail "--lattice-cells not applied"
 
+# ILPV behind the GI interface (node/gi.h) computes what it computed before the interface
+# existed: the default room's first four frames at default settings, checksums captured
+# with this command from the build before (on Mesa llvmpipe; another GL renders the RSMs
+# with other bits, so only llvmpipe is compared). --gi ilpv is the default.
+"$node" --standalone --frames 4 --gi ilpv --out "$out/pinned" > "$out/pinned.log" || fail "pinned run failed"
+if [ "$(json "$out/pinned/report.json" "'llvmpipe' in r['gl_renderer']")" = True ]; then
+  [ "$(json "$out/pinned/report.json" "' '.join(f['lpv_checksum'] for f in r['frames'])")" = \
+    "569d4145f5b7eda7 d1c7b515ef0c9851 f5d9c4f70befaae2 c81a2ae7546c1502" ] \
+    || { cat "$out/pinned.log"; fail "ILPV checksums changed"; }
+fi
+[ "$(json "$out/pinned/report.json" "r['gi']")" = ilpv ] || fail "report does not name the GI method"
+"$node" --standalone --gi none --width 96 --height 72 --pfm --out "$out/none" > /dev/null || fail "--gi none failed"
+[ "$(json "$out/none/report.json" "r['gi'] == 'none' and 'lattice' not in r")" = True ] || fail "--gi none report"
+
 # Errors: non-zero exit and exactly one line naming the culprit.
 one_line_error() { # expected-substring command...
     local want=$1; shift
@@ -121,6 +135,8 @@ one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice 32
 one_line_error "--budget-ms" "$node" --standalone --budget-ms -1
 one_line_error "--lattice-cells" "$node" --standalone --lattice 16 --lattice-cells 4096
 one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells 4096
+one_line_error "--gi" "$node" --standalone --gi vpl2
+one_line_error "needs --gi ilpv" "$node" --standalone --gi none --budget-ms 10
 # Frame values outside frame_params_sanitize()'s ranges are refused, not changed.
 one_line_error "--lambda 1.5 is outside" "$node" --standalone --lambda 1.5
 one_line_error "--exposure" "$node" --standalone --exposure 0

@@ -257,11 +257,12 @@ static void test_settings(void **state)
         assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_AUX), INTERACTION_CHANGED_LAMBDA);
         assert_float_equal(p.lambda_incr, expect[i], 0);
     }
-    /* C switches the pipeline round-robin */
-    assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_C), INTERACTION_CHANGED_PIPELINE);
-    assert_int_equal(interaction_pipeline(&ia), 1);
+    /* C switches the GI method round-robin: ILPV, none, ILPV */
+    assert_int_equal(p.gi, FRAME_GI_ILPV);
+    assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_C), INTERACTION_CHANGED_GI);
+    assert_int_equal(p.gi, FRAME_GI_NONE);
     press(&ia, &s, &p, INPUT_BUTTON_C);
-    assert_int_equal(interaction_pipeline(&ia), 0);
+    assert_int_equal(p.gi, FRAME_GI_ILPV);
     /* axes: X absorption, Y scattering, clamped to [0, 1] */
     s.axes[INPUT_AXIS_X] = 1.0f;
     s.axes[INPUT_AXIS_Y] = -1.0f;

@@ -42,7 +42,7 @@ static int script_poll(input_source *s, double now, char *err, size_t errlen)
     if (k % 60 == 10)
         held |= 1u << INPUT_BUTTON_R;         /* next layout every 60 polls */
     if (k % 60 > 20 && k % 60 < 50)
-        held |= 1u << INPUT_BUTTON_C;         /* fly / flashlight / pipeline */
+        held |= 1u << INPUT_BUTTON_C;         /* fly / flashlight / GI method */
     if (k % 60 == 30)
         held |= 1u << INPUT_BUTTON_M;
     if (k % 60 == 40)
@@ -84,7 +84,6 @@ static void params_init(frame_params *p)
 /* One entry of the parameter stream: what changed and the resulting parameters. */
 typedef struct entry {
     uint32_t changed;
-    int pipeline;
     frame_params p;
 } entry;
 
@@ -104,7 +103,6 @@ static void run(input *in, entry *stream, input_state *states, int *n)
             break;
         memcpy(&states[*n], &s, sizeof s);
         stream[*n].changed = interaction_update(ia, &s, s.dt, &p);
-        stream[*n].pipeline = interaction_pipeline(ia);
         memcpy(&stream[*n].p, &p, sizeof p); /* bytewise: padding included */
         (*n)++;
     }
@@ -128,7 +126,6 @@ static void test_record_and_replay_twice(void **state)
     for (int i = 0; i < POLLS; i++) {
         assert_int_equal(input_poll(in, &live_s[i], err, sizeof err), 0);
         live[i].changed = interaction_update(ia, &live_s[i], live_s[i].dt, &p);
-        live[i].pipeline = interaction_pipeline(ia);
         memcpy(&live[i].p, &p, sizeof p);
         all |= live[i].changed;
         nanosleep(&(struct timespec){0, 200000}, NULL);
@@ -139,7 +136,7 @@ static void test_record_and_replay_twice(void **state)
     assert_true(all & INTERACTION_CHANGED_LIGHT);
     assert_true(all & INTERACTION_CHANGED_STEPS);
     assert_true(all & INTERACTION_CHANGED_LAMBDA);
-    assert_true(all & INTERACTION_CHANGED_PIPELINE);
+    assert_true(all & INTERACTION_CHANGED_GI);
 
     for (int r = 0; r < 2; r++) {
         input *pb = input_open(&(input_desc){.path = path}, err, sizeof err);

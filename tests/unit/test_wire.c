@@ -27,8 +27,9 @@ static void test_crc32_reference(void **state)
     assert_int_equal(wire_crc32("", 0), 0);
 }
 
-/* Messages as encoded before CRC-32 came from zlib (captured from that build): the
- * encoding, header CRC included, must not change, and they must still decode. */
+/* Messages of protocol 1, captured from the build before CRC-32 came from zlib: every
+ * byte but the protocol version (2 since the store's gi key) and the CRC that covers it
+ * must be the same, and each must decode. */
 static const struct { int type; const char *hex; } golden[] = {
         {WIRE_HELLO,
          "43564c540100010014000000aed608b1036e303188776655443322112a000000"
@@ -49,8 +50,9 @@ static const struct { int type; const char *hex; } golden[] = {
         {WIRE_HEARTBEAT,
          "43564c54010007000c000000c91c79d9036e30312a00000000000000"},
 };
-/* Light 0's colour is key 0x12 since PARAMS_PATTERN (the calibration pattern) came before
- * the per-light keys; it was 0x11. */
+/* A protocol 1 FRAME carrying a delta: head pose, time, lambda_incr and light 0's colour,
+ * in key order. Light 0's colour is key 0x12 there since PARAMS_PATTERN (the calibration
+ * pattern) came before the per-light keys; protocol 2's gi key moves it to 0x13. */
 static const char *golden_frame_delta =
     "43564c5401000300740000007cee990f02000000000000000100000000000000"
     "6000000000000000803f000000000000000000000000000000000000803f0000"
@@ -75,11 +77,13 @@ static void test_encoding_unchanged(void **state)
     for (size_t i = 0; i < sizeof golden / sizeof golden[0]; i++) {
         size_t n = from_hex(golden[i].hex, want);
         assert_int_equal(sample(golden[i].type, got, sizeof got, params, sizeof params), n);
-        assert_memory_equal(got, want, n);
+        assert_memory_equal(got, want, 4);                  /* magic */
+        assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
+        assert_memory_equal(got + 6, want + 6, 6);          /* type, payload length */
+        assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - WIRE_HEADER_SIZE);
         wire_msg m;
-        assert_int_equal(wire_decode(want, n, &m), WIRE_OK);
+        assert_int_equal(wire_decode(got, n, &m), WIRE_OK);
     }
-    /* A FRAME carrying a real delta: head pose, time, lambda_incr, light 0's colour. */
     static params_store s;
     params_init(&s);
     params_commit(&s);
@@ -96,7 +100,14 @@ static void test_encoding_unchanged(void **state)
                   .params_len = dn};
     size_t n = from_hex(golden_frame_delta, want);
     assert_int_equal(wire_encode(&f, got, sizeof got), n);
-    assert_memory_equal(got, want, n);
+    assert_memory_equal(got, want, 4);
+    assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
+    assert_memory_equal(got + 6, want + 6, 6);
+    /* Every byte of the payload but light 0's key, which moved up by protocol 2's gi key. */
+    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 14 - WIRE_HEADER_SIZE);
+    assert_int_equal(got[n - 14] | got[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
+    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 1);
+    assert_memory_equal(got + n - 12, want + n - 12, 12);
 }
 
 static void test_round_trip_every_type(void **state)
@@ -182,7 +193,7 @@ static void test_oversized_and_bad_fields(void **state)
     len = sample(WIRE_SWAP, buf, sizeof buf, NULL, 0);
     assert_int_equal(wire_decode(buf, len + 1, &d), WIRE_E_LENGTH);
     /* Other protocol version and type, with a correct CRC. */
-    buf[4] = 2;
+    buf[4] = WIRE_PROTOCOL + 1;
     uint32_t crc;
     {
         uint8_t tmp[64];

@@ -1,0 +1,74 @@
+/* gi_method: what one indirect-light (GI) method implements, and what it is given (gi.h
+ * says when the renderer calls it). A method is one module (gi_ilpv.c, gi_none.c) that
+ * defines a const gi_method; gi.c's table lists them. Types and one helper for methods;
+ * the renderer goes through gi.h.
+ *
+ *   create()    state from the scene and the renderer's settings; NULL with one line in err
+ *   reuse()     frame pass, before the RSMs: 1 when last frame's result stands (nothing is
+ *               rendered, frame() is not called)
+ *   frame()     frame pass, once per frame, view independent, with this frame's RSMs;
+ *               returns the checksum READY carries (desync detection covers the method)
+ *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the method's
+ *               uniforms and textures for shaders/shade.frag (its LPV lookup: u_lpv_enabled,
+ *               the samplers u_lpv_r/g/b, ...)
+ *   stats()     the last frame's stage timings and the HUD's lattice size
+ *
+ * Every method must give every node the same result for the same frame_params. */
+#ifndef CAVELIGHT_GI_METHOD_H
+#define CAVELIGHT_GI_METHOD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "frame/frame_params.h"
+#include "frame/light_view.h"
+#include "gl_functions.h"
+#include "renderer_desc.h"
+#include "renderer_rsm.h"
+#include "scene/scene.h"
+
+typedef struct gi_desc {
+    const gl_functions *gl;
+    const scene *scene;
+    const renderer_desc *settings; /* the renderer's desc: lattice, backend, threads, ... */
+    int rsm_size;                  /* texels per side of each RSM */
+    int software;                  /* a software GL (llvmpipe): GL compute is slow there */
+} gi_desc;
+
+/* This frame's reflective shadow maps, as the renderer rendered them (renderer_rsm.h). */
+typedef struct gi_rsm {
+    int size;                      /* texels per side */
+    int layers;                    /* light views rendered, one layer each */
+    const GLuint *fbo;             /* per layer: position, normal, flux in attachments 0..2 */
+    const light_view *views;       /* per layer: the light and view it was rendered from */
+    renderer_rsm *maps;            /* renderer_rsm_vpls(maps): the VPL source every method
+                                      shares (read back from the maps, on request) */
+} gi_rsm;
+
+typedef struct gi_eye {
+    GLuint program;                /* the bound shading program */
+    int first_unit;                /* texture units from this one on are the method's */
+} gi_eye;
+
+typedef struct gi_stats {
+    double inject_ms, propagate_ms; /* the frame's two stages: making the light sources,
+                                       spreading them (0 when reused) */
+    int lattice_cells;             /* cells along the longest axis (the HUD's P bar); 0: none */
+} gi_stats;
+
+typedef struct gi_method {
+    const char *name;
+    /* Returns the method's state, or NULL with one line in err. */
+    void *(*create)(const gi_desc *desc, char *err, size_t errlen);
+    void (*destroy)(void *state);
+    int (*reuse)(void *state, const frame_params *p);
+    uint64_t (*frame)(void *state, const frame_params *p, const gi_rsm *rsm);
+    void (*eye_bind)(void *state, const gi_eye *eye);
+    void (*stats)(const void *state, gi_stats *out);
+} gi_method;
+
+/* For eye_bind() of a method without the LPV lookup: turns it off and parks its samplers
+ * on the method's texture units (a sampler3D left on unit 0 beside the G-buffer's 2D
+ * textures makes the draw a GL error). */
+void gi_shade_without_lpv(const gl_functions *gl, const gi_eye *eye);
+#endif

@@ -1,0 +1,57 @@
+/* renderer_desc: what a renderer is made with (renderer.h), and the settings and figures of
+ * its ILPV method that the GI modules share with it (gi_ilpv.h). Types only. */
+#ifndef CAVELIGHT_RENDERER_DESC_H
+#define CAVELIGHT_RENDERER_DESC_H
+
+#include "frame/frame_params.h"
+#include "gl_functions.h"
+#include "scene/scene.h"
+
+typedef enum renderer_lpv_backend {
+    RENDERER_LPV_AUTO = 0, /* CPU on llvmpipe/softpipe, GL compute on a real GPU */
+    RENDERER_LPV_CPU,
+    RENDERER_LPV_GL,
+} renderer_lpv_backend;
+
+typedef enum renderer_tiles {
+    RENDERER_TILES_AUTO = 0, /* shared-memory tiles on a GPU, plain image loads on llvmpipe */
+    RENDERER_TILES_ON,
+    RENDERER_TILES_OFF,
+} renderer_tiles;
+
+typedef enum renderer_lpv_mode {
+    RENDERER_LPV_INCREMENTAL = 0, /* ILPV (ilpv.h): history merge, light accumulates over frames */
+    RENDERER_LPV_CLASSIC,         /* classic LPV (lpv_classic.h): sum of this frame's steps */
+} renderer_lpv_mode;
+
+enum { RENDERER_DEFAULT_RSM_SIZE = 256 };
+
+typedef struct renderer_desc {
+    const gl_functions *gl; /* the current context's table (glctx_gl()) */
+    const scene *scene;
+    renderer_lpv_backend lpv_backend;
+    int rsm_size;        /* 0 = RENDERER_DEFAULT_RSM_SIZE */
+    int lattice_cells;   /* cells along the scene's longest axis, 0 = 32 */
+    long lattice_cell_budget; /* > 0: instead, as many cells in total, spent on the scene's
+                                 shape (a long corridor gets finer cells than a cube would) */
+    int threads;         /* CPU propagation threads, 0 = all cores */
+    int lpv_clamp_negative; /* clamp negative transfers in propagation (see lpv_propagate.h) */
+    renderer_tiles lpv_gl_tiles; /* GL propagation variant (shaders/propagate.comp) */
+    float indirect_scale;   /* light lifetime in propagation steps; 0 = from the scene's
+                               mean free path (docs/node.md); classic mode: 1 */
+    renderer_lpv_mode lpv_mode;
+    double converge_threshold; /* skip the frame pass below this residual with unchanged
+                                  inputs; 0 = 1e-4, negative = never skip */
+    frame_gi gi;         /* the GI method built first (0 = ILPV); the frames' gi decides */
+} renderer_desc;
+
+typedef struct renderer_lpv_stats {
+    long frames_skipped;      /* frame passes skipped since creation */
+    double last_residual;     /* relative L1 change of the last computed frame's result,
+                                 +Inf before two computed frames */
+    int skipped_this_frame;   /* the last frame pass was skipped */
+    float energy_gain;        /* injected over held lattice energy, times the indirect scale
+                                 in the shading (1 in classic mode; docs/lpv.md) */
+} renderer_lpv_stats;
+
+#endif

@@ -1,0 +1,44 @@
+/* renderer_rsm: the reflective shadow maps (RSMs) of a frame's lights, one layer per light
+ * view (light_view.h says which views a light type gets), the lights' uniforms for the
+ * shading pass, and the one VPL source every GI method takes its light from
+ * (renderer_rsm_vpls()).
+ *
+ * All views share four 2D array textures (position, normal with the texel's plane, flux,
+ * depth), grown when a frame needs more layers than any before. Owns the RSM program;
+ * draws the scene through scene_gl. Does not decide what a GI method does with the maps. */
+#ifndef CAVELIGHT_RENDERER_RSM_H
+#define CAVELIGHT_RENDERER_RSM_H
+
+#include <stddef.h>
+
+#include "frame/frame_params.h"
+#include "frame/light_view.h"
+#include "gl_functions.h"
+#include "lpv/lpv_inject.h"
+#include "scene/scene.h"
+#include "scene_gl.h"
+
+typedef struct renderer_rsm renderer_rsm;
+
+/* size: texels per side. As many layers as the scene's own lights need. NULL with one
+ * line in err. */
+renderer_rsm *renderer_rsm_create(const gl_functions *gl, const scene *s, int size, char *err,
+                                  size_t errlen);
+void renderer_rsm_destroy(renderer_rsm *m);
+/* The RSM of every view of every lit light of p (light_views()). */
+void renderer_rsm_render(renderer_rsm *m, const scene_gl *mesh, const frame_params *p);
+/* The last render's views: how many, the views, and per layer the framebuffer with
+ * position, normal, flux in colour attachments 0..2. */
+int renderer_rsm_views(const renderer_rsm *m, const light_view **views, const GLuint **fbo);
+int renderer_rsm_size(const renderer_rsm *m);
+/* The lights, their views and shadow maps as shade.frag's uniforms (texture units given);
+ * p: the parameters of the last render. */
+void renderer_rsm_bind_shading(const renderer_rsm *m, GLuint prog, const frame_params *p,
+                               GLenum depth_unit, GLenum normal_unit);
+/* The VPL source every GI method shares: every RSM texel a light reaches, of every view of
+ * the last render, as a Lambertian VPL carrying the flux it reflects, Phi in W (not
+ * Phi / pi), in view then texel order (deterministic). Reads the RSMs back. The array is
+ * the module's, valid until the next call; 0 VPLs when out of memory. */
+size_t renderer_rsm_vpls(renderer_rsm *m, lpv_vpl **out);
+
+#endif
