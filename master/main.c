@@ -130,7 +130,8 @@ static int master_run(const master_options *o)
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
-                       .print_poses = o->print_poses, .gi = o->gi};
+                       .print_poses = o->print_poses, .gi = o->gi,
+                       .vpl_count = o->vpl_count};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);

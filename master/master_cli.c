@@ -14,6 +14,7 @@ static const char *const groups[G_COUNT] = {
 enum id {
     O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN,
     O_SPAWN_LOCAL, O_SPAWN_REMOTE, O_NODE_EXE, O_NODE_ARGS, O_WAIT_MS, O_RENDER, O_SCENE, O_GI,
+    O_VPL_COUNT,
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_QUIET,
     O_INPUT, O_RECORD,
@@ -40,8 +41,10 @@ static const cli_option options[] = {
      "how long to wait for the nodes to join"},
     {O_RENDER, "render", "gl|none", "gl", G_NODES, 0, "started nodes: none renders nothing (tests)"},
     {O_SCENE, "scene", "FILE|NAME", "the config's scene", G_NODES, 0, "the scene every node loads"},
-    {O_GI, "gi", "ilpv|none", "ilpv", G_NODES, 0,
+    {O_GI, "gi", "ilpv|none|vpl", "ilpv", G_NODES, 0,
      "the indirect-light method every node starts with (the\nsettings layout switches it live)"},
+    {O_VPL_COUNT, "vpl-count", "N", "the frame default", G_NODES, 0,
+     "vpl: virtual point lights per frame (64..4096)"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -96,6 +99,7 @@ static const char *set(void *user, int id, const char *v)
         o->gi_given = 1;
         break;
     }
+    case O_VPL_COUNT: why = cli_int(v, FRAME_VPL_MIN, FRAME_VPL_MAX, &o->vpl_count); break;
     case O_FRAMES: why = cli_int(v, 0, 1 << 30, &o->frames); break;
     case O_DT: why = cli_float(v, 0.0f, 10.0f, &f); o->dt = f; break;
     case O_FPS: why = cli_float(v, 0.0f, 1000.0f, &f); o->fps = f; break;

@@ -47,7 +47,8 @@ struct session {
 };
 
 /* The frame every node starts from: the defaults and the scene's lights. */
-static int seed(session *s, const char *scene_path, int pattern, frame_gi gi, char *err, size_t errlen)
+static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
+                size_t errlen)
 {
     scene sc;
     if (scene_load(scene_path, &sc, err, errlen) != 0)
@@ -59,8 +60,10 @@ static int seed(session *s, const char *scene_path, int pattern, frame_gi gi, ch
     }
     frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
-    s->frame.pattern = pattern;
-    s->frame.gi = gi;
+    s->frame.pattern = d->pattern;
+    s->frame.gi = d->gi;
+    if (d->vpl_count > 0)
+        s->frame.vpl_count = d->vpl_count;
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     return 0;
@@ -75,7 +78,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
                               .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
-    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d->pattern, d->gi, err, errlen) != 0)
+    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;

@@ -39,6 +39,7 @@ typedef struct session_desc {
     int pattern;            /* 1: every screen shows the calibration pattern (pattern.h) */
     int print_poses;        /* 1: the head and wand poses on stdout, 4 lines a second */
     frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
+    int vpl_count;          /* its VPLs when that is vpl (0 = FRAME_VPL_DEFAULT) */
 } session_desc;
 
 typedef enum session_step {

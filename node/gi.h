@@ -8,10 +8,10 @@
  *     program bound, to set the method's uniforms and textures.
  * gi_stats_get() reports its stage timings for the frame report.
  *
- * Methods, indexed by frame_gi: ilpv (gi_ilpv.c) and none (gi_none.c: direct light only).
- * To add one (e.g. vpl: VPL set and shadow maps in frame(), per-eye gather in eye_bind()):
- * a gi_vpl.c defining a gi_method, its name in frame_gi (common/frame/frame_params.h) and
- * one line in gi.c's table. */
+ * Methods, indexed by frame_gi: ilpv (gi_ilpv.c), none (gi_none.c: direct light only) and
+ * vpl (gi_vpl.c: virtual point lights with a shadow map each). To add one: a gi_X.c
+ * defining a gi_method, its name in frame_gi (common/frame/frame_params.h) and one line in
+ * gi.c's table. */
 #ifndef CAVELIGHT_GI_H
 #define CAVELIGHT_GI_H
 

@@ -24,6 +24,7 @@
 #include "base/workpool.h"
 #include "base/xalloc.h"
 #include "frame/light_view.h"
+#include "gi/vpl_source.h"
 #include "gi_ilpv.h"
 #include "gltools.h"
 #include "lpv/ilpv.h"
@@ -73,42 +74,31 @@ struct gi_ilpv {
 
 static const double PI = 3.14159265358979323846;
 
-/* One VPL per emissive triangle (paper 3.3.5): centroid, face normal on the side of the
- * vertex normals, flux pi * L_e * area (passed as L_e * area, see the units above). */
+/* One VPL per emissive triangle (paper 3.3.5, gi/vpl_source.h), flux pi * L_e * area
+ * passed as L_e * area (see the units above). */
 static int build_emitters(gi_ilpv *r)
 {
-    const scene *s = r->scene;
-    size_t n = 0;
-    for (size_t t = 0; t < s->triangle_count; t++) {
-        const float *e = s->materials[s->triangle_material[t]].emissive;
-        n += e[0] > 0 || e[1] > 0 || e[2] > 0;
-    }
+    size_t n = vpl_emitters(r->scene, NULL);
+    vpl_emitter *e = n ? malloc(n * sizeof *e) : NULL;
     r->emitters = n ? malloc(n * sizeof *r->emitters) : NULL;
-    if (n && !r->emitters)
+    if (n && (!e || !r->emitters)) {
+        free(e);
         return -1;
-    r->emitter_count = 0;
-    r->emitter_energy = 0;
-    for (size_t t = 0; t < s->triangle_count; t++) {
-        const float *e = s->materials[s->triangle_material[t]].emissive;
-        if (!(e[0] > 0 || e[1] > 0 || e[2] > 0))
-            continue;
-        const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
-        float f[3];
-        vec3_triangle_normal(p, f);
-        float len = vec3_length(f);
-        if (!(len > 0))
-            continue;
-        float side = f[0] * (vn[0] + vn[3] + vn[6]) + f[1] * (vn[1] + vn[4] + vn[7]) +
-                     f[2] * (vn[2] + vn[5] + vn[8]);
-        float area = 0.5f * len, sign = side < 0 ? -1.0f : 1.0f;
-        lpv_vpl *v = &r->emitters[r->emitter_count++];
-        for (int k = 0; k < 3; k++) {
-            v->position[k] = (p[k] + p[3 + k] + p[6 + k]) / 3.0f;
-            v->normal[k] = sign * f[k] / len;
-            v->flux[k] = e[k] * area;
-        }
-        r->emitter_energy += PI * area * (e[0] + e[1] + e[2]) / 3.0;
     }
+    vpl_emitters(r->scene, e);
+    r->emitter_count = n;
+    r->emitter_energy = 0;
+    for (size_t i = 0; i < n; i++) {
+        lpv_vpl *v = &r->emitters[i];
+        for (int k = 0; k < 3; k++) {
+            v->position[k] = e[i].position[k];
+            v->normal[k] = e[i].normal[k];
+            v->flux[k] = e[i].radiance[k] * e[i].area;
+        }
+        r->emitter_energy +=
+            PI * e[i].area * (e[i].radiance[0] + e[i].radiance[1] + e[i].radiance[2]) / 3.0;
+    }
+    free(e);
     return 0;
 }
 

@@ -1,7 +1,7 @@
 /* gi_method: what one indirect-light (GI) method implements, and what it is given (gi.h
- * says when the renderer calls it). A method is one module (gi_ilpv.c, gi_none.c) that
- * defines a const gi_method; gi.c's table lists them. Types and one helper for methods;
- * the renderer goes through gi.h.
+ * says when the renderer calls it). A method is one module (gi_ilpv.c, gi_none.c, gi_vpl.c) that
+ * defines a const gi_method; gi.c's table lists them. Types for methods; the renderer
+ * goes through gi.h.
  *
  *   create()    state from the scene and the renderer's settings; NULL with one line in err
  *   reuse()     frame pass, before the RSMs: 1 when last frame's result stands (nothing is
@@ -9,8 +9,9 @@
  *   frame()     frame pass, once per frame, view independent, with this frame's RSMs;
  *               returns the checksum READY carries (desync detection covers the method)
  *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the method's
- *               uniforms and textures for shaders/shade.frag (its LPV lookup: u_lpv_enabled,
- *               the samplers u_lpv_r/g/b, ...)
+ *               uniforms and textures for shaders/shade.frag: its LPV lookup (u_lpv_enabled,
+ *               the samplers u_lpv_r/g/b, ...) or its VPL gather (u_vpl_count, u_vpls,
+ *               u_vpl_shadow, ...), both off unless the method turns its own on
  *   stats()     the last frame's stage timings and the HUD's lattice size
  *
  * Every method must give every node the same result for the same frame_params. */
@@ -45,6 +46,16 @@ typedef struct gi_rsm {
                                       shares (read back from the maps, on request) */
 } gi_rsm;
 
+/* Texture units of the shading program's GI samplers, from gi_eye.first_unit on
+ * (first_unit + 3 is the renderer's). gi_eye_bind() puts every method's samplers on their
+ * units and turns every lookup off before the method's eye_bind(): a sampler left on unit
+ * 0 beside the G-buffer's textures of another type makes the draw a GL error. */
+enum {
+    GI_UNIT_LPV = 0,        /* u_lpv_r, u_lpv_g, u_lpv_b: three units */
+    GI_UNIT_VPL_DATA = 4,   /* u_vpls */
+    GI_UNIT_VPL_SHADOW = 5, /* u_vpl_shadow */
+};
+
 typedef struct gi_eye {
     GLuint program;                /* the bound shading program */
     int first_unit;                /* texture units from this one on are the method's */
@@ -67,8 +78,4 @@ typedef struct gi_method {
     void (*stats)(const void *state, gi_stats *out);
 } gi_method;
 
-/* For eye_bind() of a method without the LPV lookup: turns it off and parks its samplers
- * on the method's texture units (a sampler3D left on unit 0 beside the G-buffer's 2D
- * textures makes the draw a GL error). */
-void gi_shade_without_lpv(const gl_functions *gl, const gi_eye *eye);
 #endif

@@ -26,11 +26,8 @@ static uint64_t none_frame(void *state, const frame_params *p, const gi_rsm *rsm
     return NONE_CHECKSUM;
 }
 
-static void none_eye_bind(void *state, const gi_eye *eye)
-{
-    const gi_none *n = state;
-    gi_shade_without_lpv(n->gl, eye);
-}
+/* gi_eye_bind() has turned every GI lookup off already. */
+static void none_eye_bind(void *state, const gi_eye *eye) {}
 
 static void none_stats(const void *state, gi_stats *out) { *out = (gi_stats){0}; }
 

@@ -19,7 +19,7 @@ static const char *const groups[G_COUNT] = {
     "Cluster (--cluster)",
     "Scene and view (standalone)",
     "Output",
-    "GI: indirect light (--gi; the rest is ILPV's)",
+    "GI: indirect light (--gi; --vpl-* are vpl's, the rest ILPV's)",
     "Display and HUD (standalone; the master sends them in a cluster)",
     "Path-traced reference (standalone, --renderer reference)",
     "Test hooks",
@@ -32,7 +32,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
-    O_GI, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
+    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_CLAMP_NEGATIVE, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
@@ -76,8 +76,12 @@ static const cli_option options[] = {
     {O_KEEP_FRAMES, "keep-frames", NULL, NULL, G_OUTPUT, C,
      "png output: also keep every frame as SCREEN-EYE-NNNNNN.png"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
-    {O_GI, "gi", "ilpv|none", "ilpv", G_GI, 0,
-     "indirect-light method: incremental LPV, or none (direct\nlight only); cluster: the first, the master's frames choose"},
+    {O_GI, "gi", "ilpv|none|vpl", "ilpv", G_GI, 0,
+     "indirect-light method: incremental LPV, none (direct\nlight only), or virtual point lights with a shadow map\neach; cluster: the first, the master's frames choose"},
+    {O_VPL_COUNT, "vpl-count", "N", NULL, G_GI, S, "vpl: lights chosen per frame (64..4096)"},
+    {O_VPL_SEED, "vpl-seed", "S", NULL, G_GI, S, "vpl: seed of their random choice"},
+    {O_VPL_BOUND, "vpl-bound", "disk|point", "disk", G_GI, S,
+     "vpl: each light a disk of its area near it, or a point\n(unbounded: to measure the disk's bias)"},
     {O_LPV, "lpv", "auto|cpu|gl", "auto", G_GI, S, "where the LPV runs (auto: CPU on llvmpipe, GL on a GPU)"},
     {O_RSM, "rsm", "N", NULL, G_GI, 0, "reflective shadow map size"},
     {O_LATTICE, "lattice", "N", NULL, G_GI, 0, "LPV cells along the scene's longest axis"},
@@ -119,6 +123,7 @@ static const char *const mode_names[] = {"incremental", "classic"};
 static const char *const render_names[] = {"gl", "none"};
 static const char *const renderer_names[] = {"raster", "reference"};
 static const char *const eyes_names[] = {"mono", "stereo"};
+static const char *const vpl_bound_names[] = {"disk", "point"};
 
 #define CHOICE(field, names)                                                                  \
     do {                                                                                      \
@@ -173,6 +178,14 @@ static const char *set(void *user, int id, const char *v)
     case O_KEEP_FRAMES: d->keep_frames = 1; break;
     case O_PFM: o->pfm = 1; break;
     case O_GI: CHOICE(k, frame_gi_names); fp->gi = (frame_gi)k; d->gi = k; break;
+    case O_VPL_COUNT: why = cli_int(v, FRAME_VPL_MIN, FRAME_VPL_MAX, &fp->vpl_count); break;
+    case O_VPL_SEED: {
+        int seed = 0;
+        why = cli_int(v, 0, 2147483647, &seed);
+        fp->vpl_seed = (uint32_t)seed;
+        break;
+    }
+    case O_VPL_BOUND: CHOICE(o->vpl_point, vpl_bound_names); break;
     case O_LPV: CHOICE(o->lpv, lpv_names); break;
     case O_RSM: why = cli_int(v, 8, 4096, &o->rsm); d->rsm_size = o->rsm; break;
     case O_LATTICE: why = cli_int(v, 2, 512, &o->lattice); d->lattice_cells = o->lattice; break;
@@ -228,6 +241,8 @@ static const char *show_default(void *user, int id, char *buf, size_t cap)
     case O_LATTICE: snprintf(buf, cap, "%d", LATTICE_DEFAULT_AXIS_CELLS); break;
     case O_STEPS: snprintf(buf, cap, "%d", f.lpv_steps); break;
     case O_LAMBDA: snprintf(buf, cap, "%g", f.lambda_incr); break;
+    case O_VPL_COUNT: snprintf(buf, cap, "%d", f.vpl_count); break;
+    case O_VPL_SEED: snprintf(buf, cap, "%u", f.vpl_seed); break;
     case O_ABSORPTION: snprintf(buf, cap, "%g", f.absorption); break;
     case O_SCATTERING: snprintf(buf, cap, "%g", f.scattering); break;
     case O_ENV: snprintf(buf, cap, "%s", env_names[f.environment]); break;

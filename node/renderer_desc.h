@@ -43,6 +43,8 @@ typedef struct renderer_desc {
     double converge_threshold; /* skip the frame pass below this residual with unchanged
                                   inputs; 0 = 1e-4, negative = never skip */
     frame_gi gi;         /* the GI method built first (0 = ILPV); the frames' gi decides */
+    int vpl_point;       /* vpl: gather each VPL as a point, 1/r^2 unbounded, instead of as a
+                            disk of its area: only to measure the bound's bias (docs/node.md) */
 } renderer_desc;
 
 typedef struct renderer_lpv_stats {

@@ -195,7 +195,7 @@ static const char *const stage_names[M_COUNT] = {
     "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms",
 };
 
-/* What the run is: context, scene, GI method and, for ILPV, its lattice. */
+/* What the run is: context, scene, GI method and, for ILPV, its lattice, for vpl its VPLs. */
 static void report_setup(cJSON *report, const node_options *o, glctx *ctx, renderer *r,
                          const scene *sc, const frame_params *fp)
 {
@@ -225,6 +225,12 @@ static void report_setup(cJSON *report, const node_options *o, glctx *ctx, rende
                                 renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
                                                                                  : "incremental");
         cJSON_AddNumberToObject(report, "indirect_scale", renderer_get_indirect_scale(r));
+    }
+    if (renderer_get_gi(r) == FRAME_GI_VPL) {
+        frame_params sane = *fp; /* the count the renderer uses */
+        frame_params_sanitize(&sane);
+        cJSON_AddNumberToObject(report, "vpl_count", sane.vpl_count);
+        cJSON_AddNumberToObject(report, "vpl_seed", sane.vpl_seed);
     }
     cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
@@ -351,7 +357,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
     renderer_desc rd = {
         .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
-        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative,
+        .threads = o->threads, .lpv_clamp_negative = o->clamp_negative, .vpl_point = o->vpl_point,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
         .gi = fp->gi,
     };

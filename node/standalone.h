@@ -20,7 +20,7 @@ typedef struct node_options {
     renderer_lpv_mode mode;
     float converge_threshold; /* 0 = renderer default, negative = never skip */
     float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
-    int rsm, lattice, threads, clamp_negative;
+    int rsm, lattice, threads, clamp_negative, vpl_point;
     int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
     int frames, width, height;
     const char *out;

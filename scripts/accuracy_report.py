@@ -4,6 +4,7 @@ in its output folder. Every number here comes from that run; nothing is typed in
 import csv
 import datetime
 import json
+from math import isnan
 import os
 import platform
 import subprocess
@@ -196,6 +197,25 @@ for s in SCENES:
     for l in lines:
         p(l)
     p("")
+    vpl = rows(f"vpl_{s}.csv")
+    if vpl:
+        best_ilpv = min((r for r in sweep if not isnan(err(r))), key=err, default=None)
+        p("The vpl method (virtual point lights with a shadow map each, docs/node.md) on the same "
+          "charts: GI ms is its selection, shadow maps and gather (the eye pass less one "
+          "without indirect light); relRMSE is the mean over its seeds, seed mean the "
+          "relRMSE of the seeds' mean image (what does not average away); bound bias the "
+          "level the disk bound takes off against unbounded point lights.\n")
+        p("| VPLs | seeds | GI ms | whole frame ms | indirect relRMSE | seed mean | indirect SSIM | best level scale | bound bias (level) |")
+        p("|---|---|---|---|---|---|---|---|---|")
+        for r in vpl:
+            p(f"| {r['vpl_count']} | {r['seeds']} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
+              f"{f(r['rmse_rel_indirect'], 3)} | {f(r['rmse_rel_seed_mean'], 3)} | "
+              f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} | "
+              f"{f(r.get('bound_level_bias'), 3)} |")
+        if best_ilpv:
+            p(f"\nMost accurate ILPV configuration of the sweep: {label(best_ilpv)}, "
+              f"{f(best_ilpv['propagate_ms'], 2)} ms, relRMSE {f(best_ilpv['rmse_rel_indirect'], 3)}.")
+        p("")
     p(f"![the paper's Fig. 2](accuracy/self32_{s}.png)\n")
     if "self32_mae_8_0.8" in j:
         p(f"The paper's comparison (Fig. 2), on the {j['paper_lattice']}-cell lattice: "

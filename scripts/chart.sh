@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Speed against accuracy of the LPV on the built-in chart scenes (default room, corridor,
-# doorway, courtyard) and any glTF file given with --scene: sweeps lattice size, steps per
-# frame, lambda_incr, the CPU and GL backends and the classic accumulating LPV against a
-# path-traced (Embree) reference, every scene with the same settings. Accuracy is the
+# Speed against accuracy of the LPV and the vpl method on the built-in chart scenes
+# (default room, corridor, doorway, courtyard) and any glTF file given with --scene: sweeps
+# lattice size, steps per frame, lambda_incr, the CPU and GL backends and the classic
+# accumulating LPV, and the vpl method's VPL counts, against a path-traced (Embree)
+# reference, every scene with the same settings. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
@@ -42,10 +43,12 @@ if [ $quick = 1 ]; then
   size=(--width 160 --height 120) ref=(--ref-samples 32)
   sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
+  vpl=(--counts 64,256 --seeds 1)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
+  vpl=(--counts 64,256,1024 --seeds 2)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
@@ -61,6 +64,9 @@ for scene in "${scenes[@]}"; do
   "$bench" accuracy path --scene "$scene" --out "$out" "${size[@]}" "${motion[@]}" \
     > "$out/path_$k.json"
   "$bench" accuracy savings --scene "$scene" --out "$out" "${size[@]}" > "$out/savings_$k.json"
+  echo "chart: $k: vpl" >&2
+  "$bench" accuracy vpl --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${vpl[@]}" \
+    > "$out/vpl_$k.json"
 done
 echo "chart: frame-time budgets" >&2
 for budget in 5 10 20 40; do
@@ -70,16 +76,19 @@ done
 echo "chart: measured in $((SECONDS - start)) s" >&2
 
 # Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
-# 16 rmse_rel_indirect, 24 mae_self32, 25 pareto).
+# 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
+# 8 frame_ms, 9 rmse_rel_indirect). ILPV's GI ms is its propagation, vpl's its selection,
+# shadow maps and gather.
 while read -r scene; do
   csv=$out/sweep_$scene.csv
+  vcsv=$out/vpl_$scene.csv
   gnuplot <<EOF
 set datafile separator ","
 set terminal pngcairo size 1000,700 font ",11"
 set key outside right top
 set grid
 set logscale x
-set xlabel "propagation ms per frame (median)"
+set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather"
 set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
@@ -95,6 +104,8 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      sel("gl","incremental","0") using 11:16 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
      sel("gl","incremental","0.8") using 11:16 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
      sel("gl","classic","any") using 11:16 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
+     "< tail -n +2 $vcsv" using 7:9 with linespoints pt 9 ps 1.3 lc rgb "#6a4c93" title "vpl (labels: VPLs)", \
+     "< tail -n +2 $vcsv" using 7:9:(sprintf("%d", \$2)) with labels offset 0,-0.9 font ",8" notitle, \
      front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
 set xlabel "whole frame ms (frame pass + one eye pass, median)"
@@ -103,7 +114,8 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      sel("cpu","incremental","0.8") using 14:16 with points pt 7 lc rgb "#e76f51" title "ILPV lambda 0.8", \
      sel("cpu","incremental","0.9") using 14:16 with points pt 7 lc rgb "#9b2226" title "ILPV lambda 0.9", \
      sel("cpu","classic","any") using 14:16 with points pt 5 lc rgb "#264653" title "classic LPV", \
-     sel("gl","incremental","any") using 14:16 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)"
+     sel("gl","incremental","any") using 14:16 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)", \
+     "< tail -n +2 $vcsv" using 8:9 with linespoints pt 9 ps 1.3 lc rgb "#6a4c93" title "vpl (64, 256, 1024 VPLs)"
 unset logscale x
 unset logscale y
 set logscale x 2

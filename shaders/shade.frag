@@ -1,7 +1,7 @@
 // Deferred shading (paper 3.3.3 and 3.3.4): direct light of every light with normalized
 // Blinn-Phong (spots: the D3D cone; spots and point lights: inverse-square falloff;
 // directional lights: parallel) and 3x3 PCF against the light's RSM;
-// indirect light from the LPV; emitted radiance of surface lights. HDR out, linear.
+// indirect light from the LPV or from the VPLs (node/gi_vpl.h); emitted radiance of surface lights. HDR out, linear.
 in vec2 v_uv;
 
 uniform sampler2D u_position;
@@ -37,6 +37,17 @@ uniform vec3 u_lpv_origin;
 uniform float u_lpv_cell;
 uniform vec3 u_lpv_size;             // cells per axis
 uniform float u_indirect_scale;      // light lifetime in steps (renderer.h)
+
+uniform int u_vpl_count;             // 0: no VPL gather
+uniform sampler2D u_vpls;            // VPL i: texels (0, i) position + area, (1, i) normal,
+                                     // (2, i) flux, W
+uniform sampler2DArrayShadow u_vpl_shadow; // cube faces of every VPL as tiles: distance / far
+uniform int u_vpl_face;              // texels per face side
+uniform int u_vpl_tiles;             // tiles per atlas side
+uniform float u_vpl_far;
+uniform vec3 u_vpl_face_axis[6];     // face 2 a + (negative): axis, right, up (gi_vpl.c)
+uniform vec3 u_vpl_face_right[6];
+uniform vec3 u_vpl_face_up[6];
 
 layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
@@ -98,6 +109,62 @@ float shadow(int i, vec3 p, vec3 n)
     return lit / 9.0;
 }
 
+// Is VPL i at y visible from p? Its distance map holds, per texel, the distance to the
+// nearest surface. p moves along its normal n (which faces the VPL) as in shadow() above:
+// a plane at angle beta to the ray changes distance by up to t tan(beta) per texel t =
+// 2 z / face (z: depth along the face's axis), the bilinear compare reads texels up to
+// sqrt(2) texels away, so o = sqrt(2) t sin(beta) + t / 8 keeps a plane from shadowing
+// itself.
+float vpl_visible(int i, vec3 y, vec3 p, vec3 n)
+{
+    vec3 d = p - y;
+    vec3 a = abs(d);
+    float z = max(a.x, max(a.y, a.z));
+    float r = length(d);
+    float cos_b = abs(dot(n, d)) / r;
+    float sin_b = sqrt(max(1.0 - cos_b * cos_b, 0.0));
+    float t = 2.0 * z / float(u_vpl_face);
+    d += n * (t * (1.414214 * sin_b + 0.125));
+    a = abs(d);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    int face = 2 * axis + (d[axis] < 0.0 ? 1 : 0);
+    float depth = dot(d, u_vpl_face_axis[face]);
+    vec2 st = vec2(dot(d, u_vpl_face_right[face]), dot(d, u_vpl_face_up[face])) / depth;
+    float size = float(u_vpl_face);
+    vec2 texel = clamp((st * 0.5 + 0.5) * size, vec2(0.5), vec2(size - 0.5));
+    int per_layer = u_vpl_tiles * u_vpl_tiles;
+    int tile = i * 6 + face;
+    int k = tile % per_layer;
+    vec2 uv = (vec2(k % u_vpl_tiles, k / u_vpl_tiles) * size + texel) / (size * float(u_vpl_tiles));
+    return texture(u_vpl_shadow, vec4(uv, float(tile / per_layer), length(d) / u_vpl_far));
+}
+
+// Irradiance at p (normal n) from every VPL: each a disk of its area A seen on its axis,
+// flux cos_l cos_x / (A + pi r^2) (eq. 14 of the high-res RSM paper): a point light's
+// flux / pi cos_l cos_x / r^2 away from it, bounded near it.
+vec3 vpl_irradiance(vec3 p, vec3 n)
+{
+    vec3 e = vec3(0.0);
+    for (int i = 0; i < u_vpl_count; i++) {
+        vec4 ya = texelFetch(u_vpls, ivec2(0, i), 0);
+        vec3 d = ya.xyz - p;
+        float r2 = dot(d, d);
+        if (r2 <= 0.0)
+            continue;
+        vec3 w = d * inversesqrt(r2);
+        float cos_x = dot(n, w);
+        if (cos_x <= 0.0)
+            continue;
+        float cos_l = -dot(texelFetch(u_vpls, ivec2(1, i), 0).xyz, w);
+        if (cos_l <= 0.0)
+            continue;
+        vec3 flux = texelFetch(u_vpls, ivec2(2, i), 0).rgb;
+        float g = cos_l * cos_x / (ya.w + PI * r2) * transmittance(u_absorption, sqrt(r2));
+        e += flux * (g * vpl_visible(i, ya.xyz, p, n));
+    }
+    return e;
+}
+
 void main()
 {
     vec4 pw = texture(u_position, v_uv);
@@ -155,6 +222,8 @@ void main()
         irradiance = max(irradiance, vec3(0.0)) / (u_lpv_cell * u_lpv_cell);
         indirect = albedo / PI * irradiance * u_indirect_scale;
     }
+    if (u_vpl_count > 0)
+        indirect = albedo / PI * vpl_irradiance(p, n);
     direct *= u_exposure;
     indirect *= u_exposure;
     out_direct = vec4(direct, 1.0);

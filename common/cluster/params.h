@@ -44,6 +44,8 @@ enum {
     PARAMS_HUD_LAYOUT,     /* i32 */
     PARAMS_PATTERN,        /* i32, 1: the screens show the calibration pattern */
     PARAMS_GI,             /* i32, frame_gi */
+    PARAMS_VPL_COUNT,      /* i32, VPLs of the vpl method */
+    PARAMS_VPL_SEED,       /* u32, their random numbers' seed */
     PARAMS_LIGHT_COUNT,    /* i32, 0..FRAME_MAX_LIGHTS */
     PARAMS_LIGHT_BASE      /* first per-light key, see params_light_key() */
 };

@@ -28,9 +28,11 @@ void frame_params_default(frame_params *p)
     p->exposure = 1.0f;
     p->hud_layout = -1;
     p->gi = FRAME_GI_ILPV;
+    p->vpl_count = FRAME_VPL_DEFAULT;
+    p->vpl_seed = 0;
 }
 
-const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none"};
+const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none", "vpl"};
 
 const char *frame_gi_name(frame_gi gi)
 {
@@ -170,6 +172,12 @@ int frame_params_sanitize(frame_params *p)
     }
     if ((unsigned)p->gi >= FRAME_GI_COUNT) {
         p->gi = FRAME_GI_ILPV;
+        changed++;
+    }
+    if (p->vpl_count < FRAME_VPL_MIN || p->vpl_count > FRAME_VPL_MAX) {
+        p->vpl_count = p->vpl_count <= 0               ? FRAME_VPL_DEFAULT
+                       : p->vpl_count < FRAME_VPL_MIN ? FRAME_VPL_MIN
+                                                      : FRAME_VPL_MAX;
         changed++;
     }
     if (!(p->display_gamma > 0.0f) || !isfinite(p->display_gamma)) {

@@ -23,6 +23,7 @@ typedef enum frame_environment {
 typedef enum frame_gi {
     FRAME_GI_ILPV = 0, /* incremental light propagation volumes */
     FRAME_GI_NONE = 1, /* direct light only */
+    FRAME_GI_VPL = 2,  /* virtual point lights with a shadow map each */
     FRAME_GI_COUNT
 } frame_gi;
 
@@ -58,11 +59,18 @@ typedef struct frame_params {
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
     int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
     frame_gi gi;            /* indirect-light method */
+    int vpl_count;          /* vpl: virtual point lights chosen per frame */
+    uint32_t vpl_seed;      /* vpl: which random numbers choose them (the same on every node) */
 } frame_params;
+
+/* vpl_count's range and default: a few hundred VPLs with a shadow map each is what a
+ * software GL renders in about a second at 320x240; 4096 is the paper's upper end. */
+enum { FRAME_VPL_MIN = 64, FRAME_VPL_MAX = 4096, FRAME_VPL_DEFAULT = 256 };
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
  * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
- * environment, display gamma 2.2, exposure 1, no HUD, ILPV. */
+ * environment, display gamma 2.2, exposure 1, no HUD, ILPV, FRAME_VPL_DEFAULT VPLs with
+ * seed 0. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's lights (at most FRAME_MAX_LIGHTS), enabled. A scene loaded without
  * lights has one already (scene_load(), scene_default_light()). */
@@ -82,14 +90,15 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s);
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
  * display gamma, an unknown environment or GI method and non-finite poses or time get
- * their defaults.
+ * their defaults; vpl_count is clamped to [FRAME_VPL_MIN, FRAME_VPL_MAX] (not positive:
+ * FRAME_VPL_DEFAULT).
  * Returns how many fields it changed (0 for valid parameters). This is the only place a
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in
  * renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
 /* The methods' names, indexed by frame_gi (command lines, reports). */
 extern const char *const frame_gi_names[FRAME_GI_COUNT];
-/* "ilpv", "none"; NULL for a value outside the enum. */
+/* "ilpv", "none", "vpl"; NULL for a value outside the enum. */
 const char *frame_gi_name(frame_gi gi);
 /* Returns 0 and the method named name, or -1. */
 int frame_gi_parse(const char *name, frame_gi *out);

@@ -30,7 +30,7 @@ void lpv_converge_free(lpv_converge *c)
 
 static int light_equal(const frame_light *a, const frame_light *b)
 {
-    int eq = a->enabled == b->enabled && a->intensity == b->intensity &&
+    int eq = a->enabled == b->enabled && a->type == b->type && a->intensity == b->intensity &&
              a->outer_angle == b->outer_angle && a->inner_angle == b->inner_angle;
     for (int k = 0; k < 3; k++)
         eq = eq && a->position[k] == b->position[k] && a->direction[k] == b->direction[k] &&

@@ -13,6 +13,8 @@
  *   accuracy path     frame-to-frame change for a light moving smoothly (same file)
  *   accuracy savings  what skipping converged frames and a fitted lattice save
  *                     (bench_accuracy_savings.c)
+ *   accuracy vpl      the vpl method's error and GI ms per VPL count, and the bias of its
+ *                     disk bound (bench_accuracy_vpl.c)
  *
  * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
 #include <math.h>
@@ -362,8 +364,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_path(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "savings") == 0)
         return accuracy_savings(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "vpl") == 0)
+        return accuracy_vpl(argc - 1, argv + 1);
     int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
-    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings [options]\n"
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl [options]\n"
             "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
     return help ? 0 : 2;
 }

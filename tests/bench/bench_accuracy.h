@@ -59,6 +59,8 @@ typedef struct acc_renderer_desc {
                                cells (ACC_FITTED_CELLS) spent on the scene's shape */
     int classic;            /* sum every step into an accumulation lattice (KD10) */
     int skip_converged;     /* let the renderer skip work once converged */
+    frame_gi gi;            /* the method built first (0 = ILPV) */
+    int vpl_point;          /* vpl: VPLs as points, unbounded (renderer_desc.vpl_point) */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
 
@@ -75,5 +77,6 @@ int acc_warm_frames(float lambda);
 int accuracy_move(int argc, char **argv);
 int accuracy_path(int argc, char **argv);
 int accuracy_savings(int argc, char **argv);
+int accuracy_vpl(int argc, char **argv);
 
 #endif

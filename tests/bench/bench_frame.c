@@ -1,5 +1,9 @@
 /* cavelight-bench frame: milliseconds per pass of the render node (frame pass and one
- * mono eye pass) on a scene, and the LPV's share of the frame. GPU passes use the
+ * mono eye pass) on a scene, and the GI method's share of the frame. With --gi vpl the
+ * frame pass's stages are RSM, selection (RSM readback and choice) and shadow maps, and
+ * the gather is the eye pass's host time less that of the same frames with --gi none,
+ * measured in the same run (host clocks: llvmpipe's timer queries of a long pass can
+ * exceed the host time around it). GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
  * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
@@ -39,7 +43,8 @@ int bench_frame(int argc, char **argv)
     const char *scene_arg = "default";
     int width = 320, height = 240, frames = 10, rsm = RENDERER_DEFAULT_RSM_SIZE;
     int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
-    int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO;
+    int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO, gi_index = FRAME_GI_ILPV;
+    int vpl_count = FRAME_VPL_DEFAULT;
     static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
     static const char *const lpv_names[] = {"auto", "cpu", "gl"};
     static const char *const tiles_names[] = {"auto", "on", "off"};
@@ -53,11 +58,14 @@ int bench_frame(int argc, char **argv)
         BENCH_CHOICE("gl", "egl|osmesa|glfw", "GL context", &gl_index, gl_names),
         BENCH_CHOICE("lpv", "auto|cpu|gl", "where the LPV runs", &lpv, lpv_names),
         BENCH_CHOICE("tiles", "auto|on|off", "GL propagation tiles", &tiles, tiles_names),
+        BENCH_CHOICE("gi", "ilpv|none|vpl", "indirect-light method", &gi_index, frame_gi_names),
+        BENCH_INT("vpl-count", "N", "vpl: lights per frame", &vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX),
     };
     int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
     if (pr)
         return pr > 0 ? 0 : 2;
     const char *gl_name = gl_names[gl_index];
+    frame_gi gi = (frame_gi)gi_index;
     char path[4096], err[512];
     snprintf(path, sizeof path, "%s", scene_arg);
     if (strcmp(scene_arg, "bunny") == 0) {
@@ -86,7 +94,7 @@ int bench_frame(int argc, char **argv)
     }
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
                         .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles,
-                        .converge_threshold = -1}; /* static frames: measure the work, never skip */
+                        .converge_threshold = -1, .gi = gi}; /* static frames: measure the work, never skip */
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);
@@ -97,13 +105,15 @@ int bench_frame(int argc, char **argv)
     frame_params fp;
     frame_params_default(&fp);
     frame_params_lights_from_scene(&fp, &sc);
+    fp.gi = gi;
+    fp.vpl_count = vpl_count;
     renderer_view v;
     scene_camera cam;
     scene_default_camera(&sc, &cam);
     frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
 
     int n = frames - WARMUP;
-    double *s = calloc((size_t)n * PASSES, sizeof *s);
+    double *s = calloc((size_t)n * (PASSES + 1), sizeof *s);
     if (!s) {
         fprintf(stderr, "bench frame: out of memory\n");
         return 1;
@@ -122,10 +132,26 @@ int bench_frame(int argc, char **argv)
         for (int p = 0; p < PASSES; p++)
             s[(size_t)p * n + (f - WARMUP)] = vals[p];
     }
-    static const char *names[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
-                                        "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
-    double med[PASSES];
-    for (int p = 0; p < PASSES; p++) {
+    /* vpl: the same frames without indirect light: the eye pass less the gather. */
+    double *base = s + (size_t)PASSES * n;
+    frame_params direct_only = fp;
+    direct_only.gi = FRAME_GI_NONE;
+    for (int f = 0; f < frames && rc == 0 && gi == FRAME_GI_VPL; f++) {
+        renderer_frame_pass(r, &direct_only);
+        renderer_image img;
+        rc = renderer_eye_pass(r, &v, 0, &img);
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        if (f >= WARMUP)
+            base[f - WARMUP] = t.eye_host_ms;
+    }
+    static const char *lpv_passes[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
+                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
+    static const char *vpl_passes[PASSES] = {"rsm_ms", "select_ms", "shadow_ms", "gbuffer_ms",
+                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
+    const char *const *names = gi == FRAME_GI_VPL ? vpl_passes : lpv_passes;
+    double med[PASSES + 1];
+    for (int p = 0; p <= PASSES; p++) {
         qsort(s + (size_t)p * n, (size_t)n, sizeof *s, cmp_double);
         med[p] = n % 2 ? s[(size_t)p * n + n / 2]
                        : 0.5 * (s[(size_t)p * n + n / 2 - 1] + s[(size_t)p * n + n / 2]);
@@ -133,15 +159,24 @@ int bench_frame(int argc, char **argv)
     const lattice_desc *lat = renderer_get_lattice(r);
     if (rc == 0) {
         printf("{\"bench\":\"frame\",\"scene\":\"%s\",\"triangles\":%zu,\"gl\":\"%s\","
-               "\"renderer\":\"%s\",\"lpv\":\"%s\",\"width\":%d,\"height\":%d,\"rsm\":%d,"
-               "\"lattice\":[%d,%d,%d],\"steps\":%d,\"frames\":%d",
+               "\"renderer\":\"%s\",\"gi\":\"%s\",\"width\":%d,\"height\":%d,\"rsm\":%d,"
+               "\"frames\":%d",
                scene_arg, sc.triangle_count, glctx_describe(ctx), glctx_renderer(ctx),
-               renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu", width, height,
-               rsm, lat->n[0], lat->n[1], lat->n[2], fp.lpv_steps, n);
+               frame_gi_name(gi), width, height, rsm, n);
+        if (lat)
+            printf(",\"lpv\":\"%s\",\"lattice\":[%d,%d,%d],\"steps\":%d",
+                   renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu", lat->n[0],
+                   lat->n[1], lat->n[2], fp.lpv_steps);
+        if (gi == FRAME_GI_VPL)
+            printf(",\"vpl_count\":%d", fp.vpl_count);
         for (int p = 0; p < PASSES; p++)
             printf(",\"%s\":%.3f", names[p], med[p]);
-        double total = med[6] + med[7];
-        printf(",\"lpv_share\":%.3f}\n", total > 0 ? (med[1] + med[2]) / total : 0.0);
+        double total = med[6] + med[7], gather = med[7] - med[PASSES];
+        if (gi == FRAME_GI_VPL)
+            printf(",\"eye_direct_only_ms\":%.3f,\"gather_ms\":%.3f", med[PASSES], gather);
+        /* The method's work: injection and propagation, or selection, shadows, gather. */
+        double work = med[1] + med[2] + (gi == FRAME_GI_VPL ? gather : 0.0);
+        printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
     } else {
         fprintf(stderr, "bench frame: %s\n", renderer_last_error(r));
     }

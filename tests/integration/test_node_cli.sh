@@ -99,6 +99,16 @@ fi
 [ "$(json "$out/pinned/report.json" "r['gi']")" = ilpv ] || fail "report does not name the GI method"
 "$node" --standalone --gi none --width 96 --height 72 --pfm --out "$out/none" > /dev/null || fail "--gi none failed"
 [ "$(json "$out/none/report.json" "r['gi'] == 'none' and 'lattice' not in r")" = True ] || fail "--gi none report"
+# vpl end to end: the report names it and its count, the indirect image is lit.
+"$node" --standalone --gi vpl --vpl-count 64 --width 64 --height 48 --rsm 64 --frames 2 --pfm \
+    --out "$out/vpl" > /dev/null || fail "--gi vpl failed"
+[ "$(json "$out/vpl/report.json" "r['gi'] == 'vpl' and r['vpl_count'] == 64 and 'lattice' not in r")" = True ] \
+    || fail "--gi vpl report"
+[ "$(json "$out/vpl/report.json" "r['frames'][0]['lpv_checksum'] == r['frames'][1]['lpv_checksum']")" = True ] \
+    || fail "--gi vpl: a static scene changed its VPLs"
+"$build/cavelight-compare" "$out/vpl/frame0001_mono_indirect.pfm" "$out/vpl/frame0001_mono_indirect.pfm" \
+    --mask-background > "$out/vpl.json" || fail "--gi vpl: no indirect light"
+[ "$(json "$out/vpl.json" "r['mean'] > 0")" = True ] || fail "--gi vpl: indirect image is black"
 
 # Errors: non-zero exit and exactly one line naming the culprit.
 one_line_error() { # expected-substring command...
@@ -137,6 +147,7 @@ one_line_error "--lattice-cells" "$node" --standalone --lattice 16 --lattice-cel
 one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells 4096
 one_line_error "--gi" "$node" --standalone --gi vpl2
 one_line_error "needs --gi ilpv" "$node" --standalone --gi none --budget-ms 10
+one_line_error "--vpl-count" "$node" --standalone --gi vpl --vpl-count 10
 # Frame values outside frame_params_sanitize()'s ranges are refused, not changed.
 one_line_error "--lambda 1.5 is outside" "$node" --standalone --lambda 1.5
 one_line_error "--exposure" "$node" --standalone --exposure 0

@@ -257,10 +257,12 @@ static void test_settings(void **state)
         assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_AUX), INTERACTION_CHANGED_LAMBDA);
         assert_float_equal(p.lambda_incr, expect[i], 0);
     }
-    /* C switches the GI method round-robin: ILPV, none, ILPV */
+    /* C switches the GI method round-robin: ILPV, none, vpl, ILPV */
     assert_int_equal(p.gi, FRAME_GI_ILPV);
     assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_C), INTERACTION_CHANGED_GI);
     assert_int_equal(p.gi, FRAME_GI_NONE);
+    press(&ia, &s, &p, INPUT_BUTTON_C);
+    assert_int_equal(p.gi, FRAME_GI_VPL);
     press(&ia, &s, &p, INPUT_BUTTON_C);
     assert_int_equal(p.gi, FRAME_GI_ILPV);
     /* axes: X absorption, Y scattering, clamped to [0, 1] */

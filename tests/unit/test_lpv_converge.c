@@ -40,7 +40,7 @@ static void test_every_input_counts(void **state)
     b.exposure = 2;
     b.lights[5].intensity = 100; /* beyond light_count */
     assert_true(lpv_converge_inputs_equal(&a, &b));
-    for (int field = 0; field < 16; field++) {
+    for (int field = 0; field < 17; field++) {
         b = a;
         frame_light *l = &b.lights[1];
         switch (field) {
@@ -60,9 +60,10 @@ static void test_every_input_counts(void **state)
         case 13: l->inner_angle = 0.41f; break;
         case 14: l->position[1] = NAN; break;
         case 15: b.lambda_incr = NAN; break;
+        case 16: l->type = SCENE_LIGHT_POINT; break;
         }
         assert_false(lpv_converge_inputs_equal(&a, &b));
-        if (field >= 14) /* NaN: not even equal to itself */
+        if (field == 14 || field == 15) /* NaN: not even equal to itself */
             assert_false(lpv_converge_inputs_equal(&b, &b));
     }
 }

@@ -1,0 +1,404 @@
+/* gi_vpl: the vpl method (gi_vpl.h). Host: RSM readback, candidates, selection, checksum.
+ * GL: the VPLs as a 3 x FRAME_VPL_MAX float texture, their shadow maps as tiles of a depth
+ * array texture (shaders/vpl_shadow.frag writes distance / far), bound for shade.frag. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/clock.h"
+#include "base/xalloc.h"
+#include "gi/vpl_select.h"
+#include "gi/vpl_source.h"
+#include "gi_vpl.h"
+#include "gltools.h"
+#include "lpv/lpv_converge.h"
+
+/* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
+ * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
+enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_ATLAS_SIDE = 2048, VPL_FACES = 6 };
+
+/* Cube faces +x, -x, +y, -y, +z, -z (face = 2 axis + negative): axis, right, up. The shader
+ * takes them as uniforms, so this table is the only one. */
+static const float FACE_AXIS[VPL_FACES][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
+                                              {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+static const float FACE_RIGHT[VPL_FACES][3] = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0},
+                                               {1, 0, 0}, {1, 0, 0}, {-1, 0, 0}};
+static const float FACE_UP[VPL_FACES][3] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1},
+                                            {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
+
+typedef struct gi_vpl {
+    const gl_functions *gl;
+    const scene *scene;
+    float *rsm_read[3];      /* position, normal, flux of one RSM layer */
+    int rsm_size;
+    int point;               /* renderer_desc.vpl_point */
+    int never_reuse;         /* renderer_desc.converge_threshold < 0: measure every frame */
+    frame_params last;       /* the last frame's parameters */
+    int have_last;
+    vpl *candidates;         /* this frame's: RSM texels, then the emitters */
+    double *cdf;             /* vpl_select()'s scratch */
+    size_t capacity;
+    vpl *emitters;
+    size_t emitter_count;
+    vpl chosen[FRAME_VPL_MAX];
+    int count;
+    uint64_t checksum;
+    float near, far;         /* shadow maps: clip plane, distance stored as depth 1 */
+
+    GLuint prog_shadow, vao, vbo;
+    GLsizei vertices;
+    struct { GLint view_projection, position, far; } loc;
+    GLuint vpl_tex;          /* 3 x FRAME_VPL_MAX RGBA32F: position + area, normal, flux */
+    float upload[FRAME_VPL_MAX * 12];
+    GLuint shadow_tex, shadow_fbo;
+    int face, tiles, layers; /* face side, tiles per atlas side, layers allocated */
+    gi_stats timings;
+} gi_vpl;
+
+/* The face side for n VPLs: VPL_FACE while all faces fit the budget. */
+static int face_size(int n)
+{
+    int f = (int)sqrt((double)VPL_TEXEL_BUDGET / ((double)VPL_FACES * n));
+    return f < VPL_FACE ? f : VPL_FACE;
+}
+
+static void release_shadow(gi_vpl *v)
+{
+    if (v->shadow_tex)
+        v->gl->DeleteTextures(1, &v->shadow_tex);
+    v->shadow_tex = 0;
+    v->layers = 0;
+}
+
+/* Room for n VPLs' faces; the atlas is rebuilt when the face size changes or it is short
+ * of layers. Returns -1 (no shadow maps: the frame's VPLs are then left out) when the FBO
+ * is not complete. */
+static int reserve_shadow(gi_vpl *v, int n)
+{
+    const gl_functions *gl = v->gl;
+    int face = face_size(n);
+    int tiles_needed = (int)ceil(sqrt((double)VPL_FACES * n));
+    int tiles = VPL_ATLAS_SIDE / face < tiles_needed ? VPL_ATLAS_SIDE / face : tiles_needed;
+    int layers = (VPL_FACES * n + tiles * tiles - 1) / (tiles * tiles);
+    if (face == v->face && tiles == v->tiles && layers <= v->layers)
+        return 0;
+    release_shadow(v);
+    v->shadow_tex = gltools_texture_array(gl, GL_DEPTH_COMPONENT16, face * tiles, layers);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, v->shadow_tex);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl->TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, v->shadow_fbo);
+    gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, v->shadow_tex, 0, 0);
+    const GLenum none = GL_NONE;
+    gl->DrawBuffers(1, &none);
+    gl->ReadBuffer(GL_NONE);
+    char err[160];
+    int bad = gltools_fbo_complete(gl, "VPL shadow", err, sizeof err);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (bad) {
+        fprintf(stderr, "cavelight-node: %s: indirect light left out\n", err);
+        release_shadow(v);
+        v->face = v->tiles = 0;
+        return -1;
+    }
+    v->face = face;
+    v->tiles = tiles;
+    v->layers = layers;
+    return 0;
+}
+
+static void release(gi_vpl *v)
+{
+    const gl_functions *gl = v->gl;
+    release_shadow(v);
+    if (v->shadow_fbo)
+        gl->DeleteFramebuffers(1, &v->shadow_fbo);
+    if (v->vpl_tex)
+        gl->DeleteTextures(1, &v->vpl_tex);
+    if (v->vbo)
+        gl->DeleteBuffers(1, &v->vbo);
+    if (v->vao)
+        gl->DeleteVertexArrays(1, &v->vao);
+    if (v->prog_shadow)
+        gl->DeleteProgram(v->prog_shadow);
+    for (int i = 0; i < 3; i++)
+        free(v->rsm_read[i]);
+    free(v->candidates);
+    free(v->cdf);
+    free(v->emitters);
+}
+
+static int init(gi_vpl *v, char *err, size_t errlen)
+{
+    const gl_functions *gl = v->gl;
+    const scene *s = v->scene;
+    size_t texels = (size_t)v->rsm_size * v->rsm_size;
+    for (int i = 0; i < 3; i++)
+        v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
+    v->emitter_count = vpl_emitters(s, NULL);
+    v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
+    vpl_emitter *raw = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
+    if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters || !raw) {
+        free(raw);
+        snprintf(err, errlen, "renderer: out of memory for a %dx%d RSM readback",
+                 v->rsm_size, v->rsm_size);
+        return -1;
+    }
+    vpl_emitters(s, raw);
+    for (size_t i = 0; i < v->emitter_count; i++)
+        v->emitters[i] = vpl_from_emitter(&raw[i]);
+    free(raw);
+    float diagonal = scene_diagonal(s);
+    v->near = diagonal / 1024.0f;
+    v->far = diagonal * 1.01f; /* VPLs and receivers lie within the bounds */
+
+    if (!(v->prog_shadow = gltools_program(gl, "scene.vert", "vpl_shadow.frag", NULL, NULL,
+                                           NULL, err, errlen)))
+        return -1;
+    v->loc.view_projection = gl->GetUniformLocation(v->prog_shadow, "u_view_projection");
+    v->loc.position = gl->GetUniformLocation(v->prog_shadow, "u_vpl_position");
+    v->loc.far = gl->GetUniformLocation(v->prog_shadow, "u_far");
+    /* Positions only: the shadow maps need no material. */
+    v->vertices = (GLsizei)(3 * s->triangle_count);
+    gl->GenVertexArrays(1, &v->vao);
+    gl->BindVertexArray(v->vao);
+    gl->GenBuffers(1, &v->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, v->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(s->triangle_count * 9 * sizeof(float)),
+                   s->positions, GL_STATIC_DRAW);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+    gl->BindVertexArray(0);
+    v->vpl_tex = gltools_texture2d(gl, GL_RGBA32F, 3, FRAME_VPL_MAX, GL_NEAREST);
+    gl->GenFramebuffers(1, &v->shadow_fbo);
+    return 0;
+}
+
+/* Room for `need` candidates; 0, or -1 when memory is short. */
+static int reserve_candidates(gi_vpl *v, size_t need)
+{
+    if (need <= v->capacity)
+        return 0;
+    vpl *c = realloc(v->candidates, need * sizeof *c);
+    if (c)
+        v->candidates = c;
+    double *d = c ? realloc(v->cdf, need * sizeof *d) : NULL;
+    if (d)
+        v->cdf = d;
+    if (!c || !d)
+        return -1;
+    v->capacity = need;
+    return 0;
+}
+
+/* Every RSM layer's texels with flux, in layer then texel order, then the emitters. */
+static size_t collect(gi_vpl *v, const gi_rsm *rsm)
+{
+    const gl_functions *gl = v->gl;
+    size_t texels = (size_t)rsm->size * rsm->size;
+    if (reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
+        fprintf(stderr, "cavelight-node: out of memory for %d RSM layers of VPL candidates\n",
+                rsm->layers);
+        return 0;
+    }
+    size_t n = 0;
+    for (int layer = 0; layer < rsm->layers; layer++) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, rsm->fbo[layer]);
+        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+        for (int b = 0; b < 3; b++) {
+            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
+            gl->ReadPixels(0, 0, rsm->size, rsm->size, GL_RGBA, GL_FLOAT, v->rsm_read[b]);
+        }
+        n += vpl_from_rsm(v->rsm_read[0], v->rsm_read[1], v->rsm_read[2], rsm->size,
+                          v->candidates + n);
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (v->emitter_count)
+        memcpy(v->candidates + n, v->emitters, v->emitter_count * sizeof *v->emitters);
+    return n + v->emitter_count;
+}
+
+/* Column-major view-projection of cube face f seen from p: image x, y = right, up over
+ * the depth along the axis (a 90 degree frustum), so shade.frag finds the texel from the
+ * same table. */
+static void face_view_projection(const gi_vpl *v, int f, const float p[3], float out[16])
+{
+    const float *a = FACE_AXIS[f], *r = FACE_RIGHT[f], *u = FACE_UP[f];
+    float n = v->near, fa = v->far;
+    float zz = -(fa + n) / (fa - n), zw = -2.0f * fa * n / (fa - n);
+    float dr = r[0] * p[0] + r[1] * p[1] + r[2] * p[2];
+    float du = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
+    float da = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+    /* view rows: r, u, -a (eye looks down -z); then the projection's z and w rows */
+    for (int c = 0; c < 3; c++) {
+        out[4 * c + 0] = r[c];
+        out[4 * c + 1] = u[c];
+        out[4 * c + 2] = -zz * a[c];
+        out[4 * c + 3] = a[c];
+    }
+    out[12] = -dr;
+    out[13] = -du;
+    out[14] = zz * da + zw;
+    out[15] = -da;
+}
+
+/* Face f lies wholly behind the VPL's surface: every direction of its frustum
+ * (axis + s right + t up, |s|, |t| <= 1) has a non-positive cosine with the normal. */
+static int face_behind(const float n[3], int f)
+{
+    float ca = 0, cr = 0, cu = 0;
+    for (int k = 0; k < 3; k++) {
+        ca += n[k] * FACE_AXIS[f][k];
+        cr += n[k] * FACE_RIGHT[f][k];
+        cu += n[k] * FACE_UP[f][k];
+    }
+    return ca + fabsf(cr) + fabsf(cu) <= 0.0f;
+}
+
+static void render_shadows(gi_vpl *v)
+{
+    const gl_functions *gl = v->gl;
+    if (v->count == 0 || reserve_shadow(v, v->count) != 0)
+        return;
+    int per_layer = v->tiles * v->tiles, layer = -1;
+    const float one = 1.0f;
+    gl->UseProgram(v->prog_shadow);
+    gl->BindVertexArray(v->vao);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, v->shadow_fbo);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    gl->Uniform1f(v->loc.far, v->far);
+    for (int k = 0; k < VPL_FACES * v->count; k++) {
+        const vpl *l = &v->chosen[k / VPL_FACES];
+        int f = k % VPL_FACES;
+        if (k / per_layer != layer) {
+            layer = k / per_layer;
+            gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, v->shadow_tex, 0,
+                                        layer);
+            gl->ClearBufferfv(GL_DEPTH, 0, &one);
+        }
+        if (face_behind(l->normal, f))
+            continue;
+        int tile = k % per_layer;
+        gl->Viewport(tile % v->tiles * v->face, tile / v->tiles * v->face, v->face, v->face);
+        float vp[16];
+        face_view_projection(v, f, l->position, vp);
+        gl->UniformMatrix4fv(v->loc.view_projection, 1, GL_FALSE, vp);
+        gl->Uniform3fv(v->loc.position, 1, l->position);
+        gl->DrawArrays(GL_TRIANGLES, 0, v->vertices);
+    }
+    gl->BindVertexArray(0);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+static void upload_vpls(gi_vpl *v)
+{
+    for (int i = 0; i < v->count; i++) {
+        const vpl *l = &v->chosen[i];
+        float *t = v->upload + 12 * i;
+        memcpy(t, l->position, 3 * sizeof(float));
+        t[3] = v->point ? 0.0f : l->area;
+        memcpy(t + 4, l->normal, 3 * sizeof(float));
+        t[7] = 0.0f;
+        memcpy(t + 8, l->flux, 3 * sizeof(float));
+        t[11] = 0.0f;
+    }
+    if (v->count == 0)
+        return;
+    v->gl->BindTexture(GL_TEXTURE_2D, v->vpl_tex);
+    v->gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    v->gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 3, v->count, GL_RGBA, GL_FLOAT, v->upload);
+}
+
+/* ---- the method --------------------------------------------------------------------- */
+
+static void *create(const gi_desc *d, char *err, size_t errlen)
+{
+    gi_vpl *v = xcalloc(1, sizeof *v);
+    v->gl = d->gl;
+    v->scene = d->scene;
+    v->rsm_size = d->rsm_size;
+    v->point = d->settings->vpl_point;
+    v->never_reuse = d->settings->converge_threshold < 0;
+    if (init(v, err, errlen) != 0) {
+        release(v);
+        free(v);
+        return NULL;
+    }
+    return v;
+}
+
+static void destroy(void *state)
+{
+    release(state);
+    free(state);
+}
+
+/* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
+ * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed): a frame that changes none
+ * of them, a moving head's, keeps last frame's. */
+static int reuse(void *state, const frame_params *p)
+{
+    gi_vpl *v = state;
+    int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
+               p->vpl_count == v->last.vpl_count && p->vpl_seed == v->last.vpl_seed;
+    v->last = *p;
+    v->have_last = 1;
+    if (same)
+        v->timings.inject_ms = v->timings.propagate_ms = 0;
+    return same;
+}
+
+static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
+{
+    gi_vpl *v = state;
+    double t0 = clock_now_ms();
+    size_t candidates = collect(v, rsm);
+    v->count = vpl_select(v->candidates, candidates, p->vpl_count, p->vpl_seed, v->cdf,
+                          v->chosen);
+    v->checksum = vpl_checksum(v->chosen, v->count);
+    upload_vpls(v);
+    double t1 = clock_now_ms();
+    render_shadows(v);
+    v->gl->Finish();
+    v->timings.inject_ms = t1 - t0;
+    v->timings.propagate_ms = clock_now_ms() - t1;
+    return v->checksum;
+}
+
+static void eye_bind(void *state, const gi_eye *e)
+{
+    const gi_vpl *v = state;
+    const gl_functions *gl = v->gl;
+    GLuint prog = e->program;
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_DATA));
+    gl->BindTexture(GL_TEXTURE_2D, v->vpl_tex);
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_SHADOW));
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, v->shadow_tex);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), v->shadow_tex ? v->count : 0);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_face"), v->face);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_tiles"), v->tiles);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_vpl_far"), v->far);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_axis"), VPL_FACES, FACE_AXIS[0]);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_right"), VPL_FACES, FACE_RIGHT[0]);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_up"), VPL_FACES, FACE_UP[0]);
+}
+
+static void stats(const void *state, gi_stats *out)
+{
+    const gi_vpl *v = state;
+    *out = v->timings;
+}
+
+const gi_method gi_vpl_method = {
+    .name = "vpl",
+    .create = create,
+    .destroy = destroy,
+    .reuse = reuse,
+    .frame = frame,
+    .eye_bind = eye_bind,
+    .stats = stats,
+};

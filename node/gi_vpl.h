@@ -1,0 +1,33 @@
+/* gi_vpl: the GI method "vpl", instant radiosity with exact visibility, behind gi.h.
+ *
+ * frame(): every RSM texel with flux and every emissive triangle is a candidate
+ * (common/gi/vpl_source.h); frame_params.vpl_count of them are chosen in proportion to
+ * their flux with frame_params.vpl_seed (common/gi/vpl_select.h: unbiased weights, the
+ * same choice on every node); the checksum READY carries is vpl_checksum() of that set.
+ * Each chosen VPL gets a real shadow map: a cube of six distance maps (faces wholly
+ * behind its surface skipped), all VPLs' faces tiles of one depth array texture, rendered
+ * once per frame and shared by every screen and eye. eye_bind(): the VPLs and the maps for
+ * shaders/shade.frag, which gathers every VPL per pixel (brute force).
+ *
+ * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
+ * moving head's) keeps its VPLs and shadow maps, unless renderer_desc.converge_threshold
+ * is negative (the benchmarks measure every frame).
+ *
+ * A VPL stands for a patch of surface of area A (its texel's or triangle's, times its
+ * weight 1 / (N p)); the gather treats it as a disk of that area seen on its axis, so the
+ * irradiance it gives is flux cos cos / (A + pi r^2) instead of flux cos cos / (pi r^2):
+ * bounded near the VPL (eq. 14 of the high-res RSM paper), biased only within about
+ * sqrt(A / pi) of it, and the bias shrinks as N grows (docs/node.md has its measure).
+ *
+ * Not here: imperfect shadow maps, interleaved sampling, clustered light assignment, view
+ * importance.
+ * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
+ * maps (GL work finished before the clock stops). */
+#ifndef CAVELIGHT_GI_VPL_H
+#define CAVELIGHT_GI_VPL_H
+
+#include "gi.h"
+
+extern const gi_method gi_vpl_method;
+
+#endif

@@ -1,0 +1,174 @@
+/* The vpl GI method (node/gi_vpl.h) on llvmpipe, default room, 64x48: it lights the room
+ * with the same direct light as ILPV; the same parameters give the same VPLs, checksum
+ * and images in two renderers with different thread counts and frame after frame (the
+ * frame pass then reuses them); the seed and a moved light change them; and with exact visibility the indirect image
+ * approaches the many-VPL image as N grows. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "gl/gl_testutil.h"
+
+enum { W = 64, H = 48, PIXELS = W * H * 3 };
+
+static void view(renderer_view *v)
+{
+    const float eye[3] = {1.3f, 1.6f, 1.9f}, target[3] = {-0.5f, 0.9f, -1.2f};
+    gltest_look_at(v, eye, target, 1.15f, W, H);
+}
+
+static frame_params vpl_params(const gltest *t, int n, uint32_t seed)
+{
+    frame_params p = t->params;
+    p.gi = FRAME_GI_VPL;
+    p.vpl_count = n;
+    p.vpl_seed = seed;
+    return p;
+}
+
+/* One frame of p; copies of its direct and indirect linear images and its RGB bytes. */
+static uint64_t frame(gltest *t, const frame_params *p, float *direct, float *indirect,
+                      uint8_t *rgb)
+{
+    uint64_t checksum = renderer_frame_pass(t->r, p);
+    renderer_view v;
+    view(&v);
+    renderer_image img;
+    assert_int_equal(renderer_eye_pass(t->r, &v, 1, &img), 0);
+    if (direct)
+        memcpy(direct, img.direct, sizeof(float) * PIXELS);
+    memcpy(indirect, img.indirect, sizeof(float) * PIXELS);
+    if (rgb)
+        memcpy(rgb, img.rgb, (size_t)W * H * 3);
+    return checksum;
+}
+
+static double mean(const float *x)
+{
+    double s = 0;
+    for (int i = 0; i < PIXELS; i++)
+        s += x[i];
+    return s / PIXELS;
+}
+
+/* RMS of a - b over the mean of b. */
+static double rel_rmse(const float *a, const float *b)
+{
+    double e = 0;
+    for (int i = 0; i < PIXELS; i++)
+        e += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
+    return sqrt(e / PIXELS) / mean(b);
+}
+
+static void test_lights_and_is_deterministic(void **state)
+{
+    (void)state;
+    gltest a, b;
+    assert_int_equal(gltest_open(&a, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    assert_int_equal(gltest_open(&b, GLCTX_EGL, RENDERER_LPV_CPU, 2), 0);
+    static float d_ilpv[PIXELS], i_ilpv[PIXELS], d[PIXELS], ia[PIXELS], ib[PIXELS];
+    static uint8_t rgb_a[W * H * 3], rgb_b[W * H * 3];
+    frame(&a, &a.params, d_ilpv, i_ilpv, NULL);
+    frame_params p = vpl_params(&a, 64, 0);
+    uint64_t ca = frame(&a, &p, d, ia, rgb_a);
+    assert_int_equal(renderer_get_gi(a.r), FRAME_GI_VPL);
+    assert_memory_equal(d, d_ilpv, sizeof d); /* the direct light is not the method's */
+    printf("mean indirect radiance: ILPV %.4g, vpl (64) %.4g\n", mean(i_ilpv), mean(ia));
+    assert_true(mean(ia) > 0);
+    for (int i = 0; i < PIXELS; i++)
+        assert_true(isfinite(ia[i]) && ia[i] >= 0.0f);
+
+    /* Another renderer with other threads, and the next frames: the same. */
+    uint64_t cb = frame(&b, &p, NULL, ib, rgb_b);
+    assert_true(ca == cb);
+    assert_memory_equal(ia, ib, sizeof ia);
+    assert_memory_equal(rgb_a, rgb_b, sizeof rgb_a);
+    p.time = 0.5; /* a static light keeps its VPLs: the frame pass reuses them */
+    assert_true(frame(&a, &p, NULL, ib, NULL) == ca);
+    assert_memory_equal(ia, ib, sizeof ia);
+    renderer_timings t;
+    renderer_get_timings(a.r, &t);
+    assert_true(t.inject_ms == 0 && t.propagate_ms == 0);
+
+    /* Another seed, a moved light: other VPLs. */
+    frame_params q = vpl_params(&a, 64, 1);
+    assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
+    renderer_get_timings(a.r, &t);
+    assert_true(t.propagate_ms > 0); /* computed: the shadow maps took time */
+    q = p;
+    q.lights[0].position[0] += 0.05f;
+    assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
+    gltest_close(&a);
+    gltest_close(&b);
+}
+
+/* Point and directional lights: their RSMs are cube faces and an orthographic view. The
+ * point light, emitting in every direction, lights the room more than the spot of the
+ * same intensity; the directional light reaches the closed room only through the
+ * emissive panel's VPLs, but its RSM (the roof seen from above) must not break anything. */
+static void test_light_types(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    static float img[PIXELS];
+    frame_params p = vpl_params(&t, 64, 0);
+    frame(&t, &p, NULL, img, NULL);
+    double spot = mean(img);
+    const scene_light_type types[2] = {SCENE_LIGHT_POINT, SCENE_LIGHT_DIRECTIONAL};
+    double level[2];
+    for (int k = 0; k < 2; k++) {
+        p = vpl_params(&t, 64, 0);
+        p.lights[0].type = types[k];
+        frame(&t, &p, NULL, img, NULL);
+        level[k] = mean(img);
+        for (int i = 0; i < PIXELS; i++)
+            assert_true(isfinite(img[i]) && img[i] >= 0.0f);
+    }
+    printf("mean indirect radiance: spot %.4g, point %.4g, directional %.4g\n", spot, level[0],
+           level[1]);
+    assert_true(level[0] > 2 * spot);
+    assert_true(level[1] > 0);
+    gltest_close(&t);
+}
+
+/* Against the average of 4 seeds at N = 1024 (exact visibility both): the error at 64 and
+ * 256 VPLs, each averaged over 2 seeds, falls with N. */
+static void test_error_falls_with_n(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    static float target[PIXELS], img[PIXELS];
+    for (uint32_t s = 0; s < 4; s++) {
+        frame_params p = vpl_params(&t, 1024, 100 + s);
+        frame(&t, &p, NULL, img, NULL);
+        for (int i = 0; i < PIXELS; i++)
+            target[i] += img[i] / 4.0f;
+    }
+    const int counts[2] = {64, 256};
+    double err[2];
+    for (int c = 0; c < 2; c++) {
+        err[c] = 0;
+        for (uint32_t s = 0; s < 2; s++) {
+            frame_params p = vpl_params(&t, counts[c], s);
+            frame(&t, &p, NULL, img, NULL);
+            err[c] += rel_rmse(img, target) / 2;
+        }
+    }
+    printf("relRMSE against 4 x 1024 VPLs: N = 64: %.3f, N = 256: %.3f\n", err[0], err[1]);
+    assert_true(err[1] < err[0]);
+    gltest_close(&t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lights_and_is_deterministic),
+        cmocka_unit_test(test_light_types),
+        cmocka_unit_test(test_error_falls_with_n),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

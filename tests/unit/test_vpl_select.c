@@ -1,0 +1,205 @@
+/* vpl_select: the estimate over the chosen VPLs is unbiased (mean over many seeds equals the
+ * sum over all candidates within its statistical bound), the chosen flux adds up to the
+ * total exactly, the choice is deterministic and coherent when one light changes a little,
+ * and texel areas of a flat grid and its edges. */
+#include <math.h>
+#include <stdio.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "gi/vpl_select.h"
+#include "gi/vpl_source.h"
+
+enum { COUNT = 500, N = 64 };
+
+static uint32_t lcg(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+/* Candidates with uneven fluxes (a tenth of them dark), colours and areas. */
+static void candidates(vpl *c)
+{
+    uint32_t s = 7;
+    for (int j = 0; j < COUNT; j++) {
+        for (int k = 0; k < 3; k++) {
+            c[j].position[k] = (float)(lcg(&s) % 1000) / 100.0f;
+            c[j].normal[k] = k == 1 ? 1.0f : 0.0f;
+        }
+        float level = j % 10 == 3 ? 0.0f : (float)(1 + lcg(&s) % 100) / 10.0f;
+        c[j].flux[0] = level;
+        c[j].flux[1] = level * (float)(lcg(&s) % 100) / 100.0f;
+        c[j].flux[2] = level * 0.25f;
+        c[j].area = (float)(1 + lcg(&s) % 50) / 1000.0f;
+    }
+}
+
+/* What a receiver would gather, linear in flux: red flux weighted by position, and area. */
+static double red_moment(const vpl *v, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += v[i].flux[0] * (1.0 + v[i].position[0]) / (1.0 + v[i].position[2]);
+    return s;
+}
+
+/* Area of the candidates that send light (a dark one is never chosen, nor needed). */
+static double area_sum(const vpl *v, int n)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += v[i].flux[0] + v[i].flux[1] + v[i].flux[2] > 0 ? v[i].area : 0.0;
+    return s;
+}
+
+static void test_unbiased(void **state)
+{
+    (void)state;
+    static vpl c[COUNT];
+    static double cdf[COUNT];
+    vpl out[N];
+    candidates(c);
+    const double want[2] = {red_moment(c, COUNT), area_sum(c, COUNT)};
+    enum { SEEDS = 4000 };
+    double sum[2] = {0}, sq[2] = {0};
+    for (uint32_t seed = 0; seed < SEEDS; seed++) {
+        assert_int_equal(vpl_select(c, COUNT, N, seed, cdf, out), N);
+        double e[2] = {red_moment(out, N), area_sum(out, N)};
+        for (int m = 0; m < 2; m++) {
+            sum[m] += e[m];
+            sq[m] += e[m] * e[m];
+        }
+    }
+    for (int m = 0; m < 2; m++) {
+        double mean = sum[m] / SEEDS, var = sq[m] / SEEDS - mean * mean;
+        double se = sqrt(fmax(var, 0.0) / SEEDS);
+        printf("moment %d: all candidates %.6g, mean of %d seeds %.6g, standard error %.2g\n",
+               m, want[m], SEEDS, mean, se);
+        /* 5 standard errors: a false alarm about once in 3.5 million runs. */
+        assert_true(fabs(mean - want[m]) <= 5.0 * se + 1e-9 * want[m]);
+        assert_true(se > 0); /* the estimate does vary with the seed */
+    }
+}
+
+static void test_total_flux_exact(void **state)
+{
+    (void)state;
+    static vpl c[COUNT];
+    static double cdf[COUNT];
+    vpl out[N];
+    candidates(c);
+    double total = 0;
+    for (int j = 0; j < COUNT; j++)
+        total += (double)c[j].flux[0] + c[j].flux[1] + c[j].flux[2];
+    for (uint32_t seed = 0; seed < 50; seed++) {
+        vpl_select(c, COUNT, N, seed, cdf, out);
+        double got = 0;
+        for (int i = 0; i < N; i++) {
+            got += (double)out[i].flux[0] + out[i].flux[1] + out[i].flux[2];
+            assert_true(out[i].flux[0] + out[i].flux[1] + out[i].flux[2] > 0); /* no dark one */
+        }
+        assert_true(fabs(got - total) <= 1e-5 * total);
+    }
+}
+
+static int changed_slots(const vpl *a, const vpl *b)
+{
+    int changed = 0;
+    for (int i = 0; i < N; i++)
+        changed += memcmp(a[i].position, b[i].position, sizeof a[i].position) != 0;
+    return changed;
+}
+
+static void test_deterministic_and_coherent(void **state)
+{
+    (void)state;
+    static vpl c[COUNT];
+    static double cdf[COUNT];
+    vpl a[N], b[N], other[N];
+    candidates(c);
+    vpl_select(c, COUNT, N, 11, cdf, a);
+    vpl_select(c, COUNT, N, 11, cdf, b);
+    assert_memory_equal(a, b, sizeof a);
+    assert_int_equal(vpl_checksum(a, N), vpl_checksum(b, N));
+    vpl_select(c, COUNT, N, 12, cdf, other);
+    assert_true(vpl_checksum(other, N) != vpl_checksum(a, N));
+    int fresh = changed_slots(a, other);
+    /* One candidate a percent brighter (a light moved a little): few slots move. */
+    c[200].flux[0] *= 1.01f;
+    vpl_select(c, COUNT, N, 11, cdf, b);
+    int moved = changed_slots(a, b);
+    assert_true(moved <= N / 10);
+    assert_true(fresh >= N / 2);
+}
+
+static void test_no_flux(void **state)
+{
+    (void)state;
+    vpl c[4];
+    memset(c, 0, sizeof c);
+    double cdf[4];
+    vpl out[N];
+    memset(out, 0x5a, sizeof out);
+    assert_int_equal(vpl_select(c, 4, N, 1, cdf, out), 0);
+    assert_int_equal(((unsigned char *)out)[0], 0x5a);
+    assert_int_equal(vpl_select(c, 0, N, 1, cdf, out), 0);
+}
+
+static void test_slot_random_range(void **state)
+{
+    (void)state;
+    double mean = 0;
+    for (int i = 0; i < 10000; i++) {
+        double u = vpl_slot_random(3, i);
+        assert_true(u >= 0.0 && u < 1.0);
+        mean += u / 10000;
+    }
+    assert_true(fabs(mean - 0.5) < 0.02);
+    assert_true(vpl_slot_random(3, 5) != vpl_slot_random(4, 5));
+}
+
+/* A 4x4 map: a floor (y = 0, texel step 0.1 x 0.2) in columns 0..2, a wall (x = 0.5, normal
+ * -x) in column 3, and no geometry at (3, 3). */
+static void test_texel_area(void **state)
+{
+    (void)state;
+    enum { S = 4 };
+    float pos[S * S * 4], nrm[S * S * 4];
+    for (int y = 0; y < S; y++)
+        for (int x = 0; x < S; x++) {
+            float *p = pos + 4 * (y * S + x), *n = nrm + 4 * (y * S + x);
+            if (x < 3) {
+                p[0] = 0.1f * x; p[1] = 0; p[2] = 0.2f * y; p[3] = 1;
+                n[0] = 0; n[1] = 1; n[2] = 0;
+            } else {
+                p[0] = 0.5f; p[1] = 0.3f * y; p[2] = 0; p[3] = y == 3 ? 0.0f : 1.0f;
+                n[0] = -1; n[1] = 0; n[2] = 0;
+            }
+            n[3] = 0;
+        }
+    assert_float_equal(vpl_texel_area(pos, nrm, S, 0, 0), 0.02f, 1e-6f);
+    assert_float_equal(vpl_texel_area(pos, nrm, S, 2, 3), 0.02f, 1e-6f); /* backward steps */
+    /* The wall column: no neighbour along x on its plane, 0.3 along y: a square of it. */
+    assert_float_equal(vpl_texel_area(pos, nrm, S, 3, 1), 0.09f, 1e-6f);
+    /* (3, 2): its only wall neighbour is (3, 1) since (3, 3) is empty. */
+    assert_float_equal(vpl_texel_area(pos, nrm, S, 3, 2), 0.09f, 1e-6f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_unbiased),
+        cmocka_unit_test(test_total_flux_exact),
+        cmocka_unit_test(test_deterministic_and_coherent),
+        cmocka_unit_test(test_no_flux),
+        cmocka_unit_test(test_slot_random_range),
+        cmocka_unit_test(test_texel_area),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
