@@ -284,6 +284,68 @@ static int connection_event(cluster_client *c)
     return got;
 }
 
+/* Counts and logs (rate limited) a message that failed to decode, and drains the rest of
+ * a multipart one; closes msg. */
+static void drop_malformed(cluster_client *c, zmq_msg_t *msg, wire_error e)
+{
+    c->st.malformed++;
+    uint64_t skipped = 0;
+    if (ratelog_event(&c->malformed_log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-node %s: malformed message from the master dropped (%s; %llu so far, "
+                "%llu not logged)\n", c->name, wire_error_string(e), (unsigned long long)c->st.malformed,
+                (unsigned long long)skipped);
+    while (zmq_msg_more(msg)) {
+        zmq_msg_close(msg);
+        zmq_msg_init(msg);
+        if (zmq_msg_recv(msg, c->sock, 0) < 0)
+            break;
+    }
+    zmq_msg_close(msg);
+}
+
+/* A SNAPSHOT replaces the store: 1 when it applied (the node has joined), 0 when refused. */
+static int join(cluster_client *c, const wire_msg *m)
+{
+    params_store fresh;
+    params_init(&fresh);
+    if (params_apply(&fresh, m->version, m->params, m->params_len) != 0) {
+        refuse_params(c, "snapshot", m->version);
+        return 0;
+    }
+    c->params = fresh;
+    client_state was = c->state;
+    c->state = STATE_JOINED;
+    c->st.snapshots++;
+    if (!c->quiet)
+        fprintf(stderr, "cavelight-node %s: %s master at version %llu\n", c->name,
+                was == STATE_LOST ? "reconnected to" : "joined", (unsigned long long)m->version);
+    return 1;
+}
+
+/* BYE from the master: dropped (rejoin; NONE), refused (another config) or the end of the
+ * session (acknowledged). */
+static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
+{
+    if (m->reason == WIRE_BYE_DROPPED) {
+        if (!c->quiet)
+            fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining\n",
+                    c->name);
+        c->state = STATE_HELLO;
+        ask_snapshot(c);
+        return CLUSTER_EVENT_NONE;
+    }
+    if (m->reason == WIRE_BYE_CONFIG_MISMATCH) {
+        fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
+                "and nodes the same file\n", c->name, c->cfg->path);
+        return CLUSTER_EVENT_REFUSED;
+    }
+    /* Acknowledge, so that the master knows its last messages arrived. */
+    wire_msg ack = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
+    send_msg(c, &ack);
+    c->state = STATE_LOST;
+    return CLUSTER_EVENT_SHUTDOWN;
+}
+
 cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
 {
     memset(ev, 0, sizeof *ev);
@@ -337,20 +399,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
         if (e == WIRE_OK && (m.type == WIRE_HELLO || m.type == WIRE_READY))
             e = WIRE_E_TYPE; /* node-to-master messages */
         if (e != WIRE_OK) {
-            c->st.malformed++;
-            uint64_t skipped = 0;
-            if (ratelog_event(&c->malformed_log, clock_now_ms(), &skipped))
-                fprintf(stderr, "cavelight-node %s: malformed message from the master dropped (%s; %llu so far, "
-                        "%llu not logged)\n", c->name, wire_error_string(e), (unsigned long long)c->st.malformed,
-                        (unsigned long long)skipped);
-            /* Drain the rest of a multipart message. */
-            while (zmq_msg_more(&msg)) {
-                zmq_msg_close(&msg);
-                zmq_msg_init(&msg);
-                if (zmq_msg_recv(&msg, c->sock, 0) < 0)
-                    break;
-            }
-            zmq_msg_close(&msg);
+            drop_malformed(c, &msg, e);
             if (!pending && clock_now_ms() >= deadline)
                 return CLUSTER_EVENT_NONE;
             continue;
@@ -359,26 +408,14 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
         if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE)
             ask_snapshot(c); /* the master is back: resync */
         switch (m.type) {
-        case WIRE_SNAPSHOT: {
-            params_store fresh;
-            params_init(&fresh);
-            if (params_apply(&fresh, m.version, m.params, m.params_len) == 0) {
-                c->params = fresh;
-                client_state was = c->state;
-                c->state = STATE_JOINED;
-                c->st.snapshots++;
-                pending = 0;
-                if (!c->quiet)
-                    fprintf(stderr, "cavelight-node %s: %s master at version %llu\n", c->name,
-                            was == STATE_LOST ? "reconnected to" : "joined", (unsigned long long)m.version);
+        case WIRE_SNAPSHOT:
+            if (join(c, &m)) {
                 ev->type = CLUSTER_EVENT_JOINED;
                 ev->version = m.version;
                 zmq_msg_close(&msg);
                 return ev->type;
             }
-            refuse_params(c, "snapshot", m.version);
             break;
-        }
         case WIRE_FRAME:
             if (c->state != STATE_JOINED) {
                 pending = 0; /* a snapshot is on its way */
@@ -416,24 +453,7 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             break;
         case WIRE_BYE:
             pending = 0;
-            if (m.reason == WIRE_BYE_DROPPED) {
-                if (!c->quiet)
-                    fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining\n",
-                            c->name);
-                c->state = STATE_HELLO;
-                ask_snapshot(c);
-            } else if (m.reason == WIRE_BYE_CONFIG_MISMATCH) {
-                fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
-                        "and nodes the same file\n", c->name, c->cfg->path);
-                ev->type = CLUSTER_EVENT_REFUSED;
-                zmq_msg_close(&msg);
-                return ev->type;
-            } else {
-                /* Acknowledge, so that the master knows its last messages arrived. */
-                wire_msg ack = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
-                send_msg(c, &ack);
-                c->state = STATE_LOST;
-                ev->type = CLUSTER_EVENT_SHUTDOWN;
+            if ((ev->type = on_bye(c, &m)) != CLUSTER_EVENT_NONE) {
                 zmq_msg_close(&msg);
                 return ev->type;
             }
