@@ -16,6 +16,7 @@ typedef struct peer {
     int in_barrier;          /* got FRAME(v) of the current barrier */
     int ready;               /* sent READY(v) for it */
     int framed;              /* sent a FRAME since it joined */
+    ratelog log;             /* lines about it: joins, leaves, drops, refusals */
     double frame_sent;       /* ms clock */
     double last_heard;
     int fd;                  /* connection its last message came on (-1 unknown) */
@@ -30,7 +31,7 @@ struct cluster_master {
     const cluster_config *cfg;
     void *ctx, *sock, *monitor;
     cluster_auth *auth;
-    ratelog unknown_log, malformed_log, handshake_log;
+    ratelog unknown_log, malformed_log, handshake_log, desync_log;
     int closing;             /* destroy() runs: a HELLO gets BYE(shutdown), not a snapshot */
     double ready_ring[STALL_SAMPLES];
     int ready_count;
@@ -86,14 +87,31 @@ static int live_count(const cluster_master *m)
 
 int cluster_master_live_count(const cluster_master *m) { return live_count(m); }
 
+/* Lines about a node's membership follow what peers send (a HELLO flood is a join or a
+ * refusal each): rate-limited per node. Returns 1 to print, with note saying how many
+ * lines were left out before this one. */
+static int node_log(cluster_master *m, int node, char *note, size_t cap)
+{
+    uint64_t skipped = 0;
+    note[0] = 0;
+    if (!ratelog_event(&m->peers[node].log, clock_now_ms(), &skipped))
+        return 0;
+    if (skipped)
+        snprintf(note, cap, " (%llu lines about node %s not logged)", (unsigned long long)skipped,
+                 m->cfg->nodes[node].name);
+    return 1;
+}
+
 static void join(cluster_master *m, int node, const wire_msg *msg)
 {
     peer *p = &m->peers[node];
+    char note[96];
     if (msg->config_hash != m->cfg->hash) {
-        fprintf(stderr, "cavelight-master: node %s runs another cluster config (hash %016llx, "
-                "master %s has %016llx): refused, give both the same file\n",
-                m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
-                (unsigned long long)m->cfg->hash);
+        if (node_log(m, node, note, sizeof note))
+            fprintf(stderr, "cavelight-master: node %s runs another cluster config (hash %016llx, "
+                    "master %s has %016llx): refused, give both the same file%s\n",
+                    m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
+                    (unsigned long long)m->cfg->hash, note);
         send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);
         return;
     }
@@ -115,9 +133,9 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
     m->st.joins++;
     m->raise_epoch = 1;
     send_snapshot(m, node);
-    if (!m->quiet)
-        fprintf(stderr, "cavelight-master: node %s %s at version %llu\n", m->cfg->nodes[node].name,
-                rejoin ? "rejoined" : "joined", (unsigned long long)m->params.version);
+    if (!m->quiet && node_log(m, node, note, sizeof note))
+        fprintf(stderr, "cavelight-master: node %s %s at version %llu%s\n", m->cfg->nodes[node].name,
+                rejoin ? "rejoined" : "joined", (unsigned long long)m->params.version, note);
 }
 
 /* Receives one message if any is queued. Returns 1 when a message was handled (valid or
@@ -213,12 +231,14 @@ static int handle_one(cluster_master *m)
             m->st.stale++;
         }
         break;
-    case WIRE_BYE:
-        if (p->s.state == CLUSTER_PEER_LIVE && !m->quiet)
-            fprintf(stderr, "cavelight-master: node %s left\n", name);
+    case WIRE_BYE: {
+        char note[96];
+        if (p->s.state == CLUSTER_PEER_LIVE && !m->quiet && node_log(m, node, note, sizeof note))
+            fprintf(stderr, "cavelight-master: node %s left%s\n", name, note);
         p->s.state = CLUSTER_PEER_ABSENT;
         p->in_barrier = 0;
         break;
+    }
     default: /* HEARTBEAT: last_heard is enough */
         break;
     }
@@ -243,8 +263,10 @@ static void drop_disconnected(cluster_master *m, int fd)
         p->s.drops++;
         m->st.drops++;
         m->st.disconnects++;
-        fprintf(stderr, "cavelight-master: node %s disconnected: dropped, the others go on\n",
-                m->cfg->nodes[i].name);
+        char note[96];
+        if (node_log(m, i, note, sizeof note))
+            fprintf(stderr, "cavelight-master: node %s disconnected: dropped, the others go on%s\n",
+                    m->cfg->nodes[i].name, note);
     }
 }
 
@@ -505,8 +527,11 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
             continue;
         if (!p->ready) {
             if (p->s.state == CLUSTER_PEER_LIVE) {
-                fprintf(stderr, "cavelight-master: node %s not ready for frame %llu within %d ms: dropped, "
-                        "the others go on\n", m->cfg->nodes[i].name, (unsigned long long)v, timeout);
+                char note[96];
+                if (node_log(m, i, note, sizeof note))
+                    fprintf(stderr, "cavelight-master: node %s not ready for frame %llu within %d ms: "
+                            "dropped, the others go on%s\n", m->cfg->nodes[i].name, (unsigned long long)v,
+                            timeout, note);
                 p->s.state = CLUSTER_PEER_DROPPED;
                 p->s.drops++;
                 m->st.drops++;
@@ -523,9 +548,12 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
             out->desync = 1;
         }
     }
-    if (out->desync) {
+    if (out->desync)
         m->st.desyncs++;
-        fprintf(stderr, "cavelight-master: desync in frame %llu: LPV checksums differ:", (unsigned long long)v);
+    uint64_t skipped = 0;
+    if (out->desync && ratelog_event(&m->desync_log, clock_now_ms(), &skipped)) {
+        fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): LPV checksums "
+                "differ:", (unsigned long long)v, (unsigned long long)m->st.desyncs, (unsigned long long)skipped);
         for (int i = 0; i < m->cfg->node_count; i++)
             if (m->peers[i].in_barrier && m->peers[i].ready)
                 fprintf(stderr, " %s=%016llx", m->cfg->nodes[i].name, (unsigned long long)m->peers[i].s.checksum);

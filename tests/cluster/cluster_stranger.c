@@ -8,6 +8,7 @@
  *   read       one connection under the victim's name, HELLO, then listen for --listen-ms
  *   ready      forged READY messages for versions 1..N under the victim's name
  *   hello      a HELLO flood under the victim's name
+ *   badhello   the same with another config hash (each one a refusal)
  *   master     binds --endpoint as a fake master (own CURVE key, or none) and answers any
  *              message with a SNAPSHOT of hostile parameters for --listen-ms
  * Every loop is bounded by --count and --listen-ms. Only loopback endpoints are meant. */
@@ -62,9 +63,9 @@ static void send_wire(void *sock, const wire_msg *m)
     zmq_send(sock, buf, len, ZMQ_DONTWAIT);
 }
 
-static void hello(stranger *s, void *sock)
+static void hello(stranger *s, void *sock, int bad_hash)
 {
-    wire_msg m = {.type = WIRE_HELLO, .config_hash = s->cfg.hash};
+    wire_msg m = {.type = WIRE_HELLO, .config_hash = s->cfg.hash ^ (bad_hash ? 1u : 0u)};
     snprintf(m.name, sizeof m.name, "%s", s->victim);
     send_wire(sock, &m);
 }
@@ -160,7 +161,7 @@ int main(int argc, char **argv)
     }
     char err[512];
     if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|master "
+        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|master "
                 "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS]\n");
         return 2;
     }
@@ -189,7 +190,7 @@ int main(int argc, char **argv)
     } else if (strcmp(attack, "takeover") == 0) {
         for (int i = 0; i < s.count; i++, s.attempts++) {
             void *sock = open_dealer(&s);
-            hello(&s, sock);
+            hello(&s, sock, 0);
             s.replies += drain(sock, 5);
             zmq_close(sock);
         }
@@ -202,7 +203,7 @@ int main(int argc, char **argv)
                 snprintf(m.name, sizeof m.name, "%s", s.victim);
                 send_wire(sock, &m);
             } else {
-                hello(&s, sock); /* read, hello */
+                hello(&s, sock, strcmp(attack, "badhello") == 0); /* read, hello, badhello */
             }
             if (i % 100 == 99)
                 s.replies += drain(sock, 1);

@@ -96,14 +96,31 @@ echo "fake master: no node took its parameters; the real master got both"
 make_config "$tmp/i.json" 3000 a
 rm -f "$tmp/fep"
 "$stranger" --config "$tmp/i.json" --endpoint 'tcp://127.0.0.1:*' --endpoint-file "$tmp/fep" --attack master \
-  --key none --listen-ms 2000 > "$tmp/fake-i.log" 2>&1 &
+  --key none --listen-ms 60000 > "$tmp/fake-i.log" 2>&1 &
 fake=$!; pids+=($fake)
 wait_for_file "$tmp/fep" 20
 "$build/cavelight-node" --cluster "$tmp/i.json" --name a --master "$(cat "$tmp/fep")" --render none \
   2> "$tmp/fake-i-node.log" &
 node=$!; pids+=($node)
-wait $fake
+# Until the node has rendered the fake master's frame (however loaded the machine is).
+for _ in $(seq 600); do grep -q "out of range, clamped" "$tmp/fake-i-node.log" && break; sleep 0.1; done
+kill $fake; wait $fake || true
 kill -0 $node || { cat "$tmp/fake-i-node.log"; fail "the node exited on hostile parameters"; }
 grep -q "out of range, clamped" "$tmp/fake-i-node.log" || { cat "$tmp/fake-i-node.log"; fail "no clamp logged"; }
 grep -q 'security "insecure"' "$tmp/fake-i-node.log" || fail "insecure mode not named in the node's log"
 echo "insecure mode: hostile parameters clamped, the node stays up"
+
+# Insecure mode believes any name, so every HELLO is a join or a refusal: the master's
+# lines about a node are rate-limited (common/base/ratelog.h) however many arrive.
+make_config "$tmp/f.json" 3000 a
+rm -f "$tmp/ep"
+"$build/cavelight-master" --config "$tmp/f.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" \
+  --frames 0 2> "$tmp/flood-master.log" &
+master=$!; pids+=($master)
+wait_for_file "$tmp/ep" 20
+"$stranger" --config "$tmp/f.json" --endpoint "$(cat "$tmp/ep")" --attack badhello --key none --victim a \
+  --count $attempts > "$tmp/flood.log" 2>&1 || fail "stranger badhello failed"
+kill -TERM $master; wait $master || true
+refusals=$(grep -c "another cluster config" "$tmp/flood-master.log" || true)
+[ "$refusals" -ge 1 ] && [ "$refusals" -le 6 ] || { cat "$tmp/flood-master.log"; fail "$refusals refusal lines for $attempts bad HELLOs"; }
+echo "insecure mode: $attempts HELLOs with another config hash gave $refusals log lines"
