@@ -187,6 +187,11 @@ static int parse_map(const cJSON *arr, const char *const *names, int name_count,
 }
 
 static const char *const button_names[] = {"L", "M", "R", "C", "AUX"};
+
+const char *input_button_name(int button)
+{
+    return button >= 0 && button < (int)(sizeof button_names / sizeof *button_names) ? button_names[button] : NULL;
+}
 static const char *const axis_names[] = {"X", "Y", "Z", "W"};
 
 static int get_int(const cJSON *o, const char *key, int def)
@@ -343,7 +348,7 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
                              .wand_sensor = get_int(j, "wand", 1),
                              .buttons = get_str(j, "button_device"),
                              .analog = get_str(j, "analog_device"),
-                             .reconnect_interval = cJSON_IsNumber(rc) ? rc->valuedouble : 1.0};
+                             .reconnect_interval = cJSON_IsNumber(rc) ? rc->valuedouble : 0};
         if (parse_map(cJSON_GetObjectItemCaseSensitive(j, "buttons"), button_names, 5,
                       &d.button_map, path, "buttons", "L, M, R, C, AUX", err, errlen) ||
             parse_map(cJSON_GetObjectItemCaseSensitive(j, "axes"), axis_names, 4, &d.axis_map,
@@ -357,10 +362,11 @@ static input_source *open_source(const cJSON *j, const char *path, int index, ch
         return input_desk_open(&d, err, errlen);
     }
     if (strcmp(type, "usb") == 0) {
-        input_usb_desc d = {.name = name};
+        const cJSON *rc = cJSON_GetObjectItemCaseSensitive(j, "reconnect");
+        input_usb_desc d = {.name = name, .retry_interval = cJSON_IsNumber(rc) ? rc->valuedouble : 0};
         if (parse_usb(j, path, index, &d, err, errlen))
             return NULL;
-        return input_usb_open(&d, err, errlen);
+        return input_usb_open(&d);
     }
     if (strcmp(type, "playback") == 0) {
         const char *file = get_str(j, "file");

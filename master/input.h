@@ -32,6 +32,8 @@ typedef enum input_button {
     INPUT_BUTTON_AUX = 4, /* extra button: cycles lambda_incr in the settings layout */
     INPUT_BUTTON_COUNT = 8
 } input_button;
+/* "L", "M", "R", "C", "AUX" as input configs name them; NULL for the unnamed ones. */
+const char *input_button_name(int button);
 
 typedef enum input_axis {
     INPUT_AXIS_X = 0,     /* left to right, [-1, 1] */

@@ -1,6 +1,7 @@
 /* input_desk: keyboard and mouse stand-in for head tracker and wand (GLFW window). */
 #include "input_desk.h"
 #include "base/xalloc.h"
+#include "desk_view.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -51,6 +52,11 @@ void input_desk_step(input_desk_state *ds, const input_desk_controls *c, double 
     input_source_set_axes(st, c->axes, 2, now);
 }
 
+/* The two GL 1.4 calls that put the picture in the window, looked up through GLFW so that
+ * the master links no GL library. */
+typedef void (*window_pos_fn)(GLint x, GLint y);
+typedef void (*draw_pixels_fn)(GLsizei w, GLsizei h, GLenum format, GLenum type, const void *pixels);
+
 typedef struct desk_source {
     input_source base;
     GLFWwindow *win;
@@ -58,7 +64,26 @@ typedef struct desk_source {
     input_desk_controls c;
     double last;
     int closed;
+    int width, height;
+    uint8_t *picture;          /* desk_view's image, top row first; NULL: no GL, the window stays dark */
+    uint8_t *rows;             /* the same, bottom row first, as glDrawPixels takes it */
+    window_pos_fn window_pos;
+    draw_pixels_fn draw_pixels;
+    int tell_no_picture;       /* the first poll says why the window is dark */
 } desk_source;
+
+/* Draws the key help and the live map (desk_view.h) into the window. */
+static void show(desk_source *d)
+{
+    int w = d->width, h = d->height;
+    desk_view_draw(d->picture, w, h, &d->base.st);
+    for (int y = 0; y < h; y++)
+        memcpy(d->rows + (size_t)(h - 1 - y) * w * 3, d->picture + (size_t)y * w * 3, (size_t)w * 3);
+    glfwMakeContextCurrent(d->win);
+    d->window_pos(0, 0);
+    d->draw_pixels(w, h, GL_RGB, GL_UNSIGNED_BYTE, d->rows);
+    glfwSwapBuffers(d->win);
+}
 
 static void on_scroll(GLFWwindow *w, double dx, double dy)
 {
@@ -112,6 +137,14 @@ static int desk_poll(input_source *s, double now, char *err, size_t errlen)
     d->last = now;
     input_desk_step(&d->ds, c, dt, &s->st, now);
     c->scroll = 0.0f;
+    if (d->picture)
+        show(d);
+    if (d->tell_no_picture) {
+        d->tell_no_picture = 0;
+        snprintf(err, errlen, "input %s: no OpenGL on this display for the desk window's picture: it stays "
+                 "dark (the keys: docs/input.md)", s->name);
+        return 1;
+    }
     return 0;
 }
 
@@ -122,6 +155,8 @@ static void desk_close(input_source *s)
         glfwDestroyWindow(d->win);
         glfwTerminate();
     }
+    free(d->picture);
+    free(d->rows);
     free(d);
 }
 
@@ -140,17 +175,40 @@ input_source *input_desk_open(const input_desk_desc *desc, char *err, size_t err
         free(d);
         return NULL;
     }
-    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API); /* input only: no GL context needed */
+    d->width = desc->width > 0 ? desc->width : 360;
+    d->height = desc->height > 0 ? desc->height : 240;
+    const char *title = "cavelight desk: WASD head, mouse wand, 1-5 buttons";
     glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    d->win = glfwCreateWindow(desc->width > 0 ? desc->width : 360,
-                              desc->height > 0 ? desc->height : 240,
-                              "cavelight desk: WASD head, mouse wand, 1-5 buttons", NULL, NULL);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 1); /* any context that draws pixels will do */
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 4);
+    d->win = glfwCreateWindow(d->width, d->height, title, NULL, NULL);
+    if (d->win) {
+        glfwMakeContextCurrent(d->win);
+        glfwSwapInterval(0); /* never wait for the display: the master's frame loop polls here */
+        d->window_pos = (window_pos_fn)glfwGetProcAddress("glWindowPos2i");
+        d->draw_pixels = (draw_pixels_fn)glfwGetProcAddress("glDrawPixels");
+    }
+    if (d->win && d->window_pos && d->draw_pixels) {
+        d->picture = xmalloc((size_t)d->width * d->height * 3);
+        d->rows = xmalloc((size_t)d->width * d->height * 3);
+    } else {
+        /* No usable GL on this display: input only, in a window without a picture. */
+        if (d->win)
+            glfwDestroyWindow(d->win);
+        glfwDefaultWindowHints();
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+        glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+        d->win = glfwCreateWindow(d->width, d->height, title, NULL, NULL);
+        d->tell_no_picture = 1;
+    }
     if (!d->win) {
         const char *why = NULL;
         glfwGetError(&why);
         snprintf(err, errlen, "input %s: cannot create the desk simulator window: %s",
                  d->base.name, why ? why : "unknown GLFW error");
         glfwTerminate();
+        free(d->picture);
+        free(d->rows);
         free(d);
         return NULL;
     }

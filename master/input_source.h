@@ -25,6 +25,8 @@
 #include "input.h"
 
 enum { INPUT_MAP_SIZE = 32 };
+/* Seconds between a device source's attempts to reach a missing device, by default. */
+#define INPUT_SOURCE_RETRY_INTERVAL 1.0
 
 typedef struct input_source_state {
     input_pose head;

@@ -50,7 +50,7 @@ typedef struct usb_source {
     input_source base;
     input_usb_desc desc;
     libusb_context *ctx;
-    libusb_device_handle *dev;
+    libusb_device_handle *dev; /* NULL while the device is missing */
     struct libusb_transfer *xfer;
     int kernel_detached;
     int failed;               /* the transfer failed: the device is lost */
@@ -77,32 +77,9 @@ static void LIBUSB_CALL on_report(struct libusb_transfer *t)
         u->failed = 1;
 }
 
-static int usb_poll(input_source *s, double now, char *err, size_t errlen)
+/* Lets go of the device (the libusb context stays for the next attempt). */
+static void release_device(usb_source *u)
 {
-    usb_source *u = (usb_source *)s;
-    struct timeval zero = {0, 0};
-    libusb_handle_events_timeout_completed(u->ctx, &zero, NULL);
-    if (u->fresh) {
-        uint32_t buttons;
-        float axes[INPUT_AXIS_COUNT];
-        input_usb_decode(&u->desc, u->report, (size_t)u->report_len, &buttons, axes);
-        input_source_set_buttons(&s->st, buttons, now);
-        input_source_set_axes(&s->st, axes, INPUT_AXIS_COUNT, now);
-        u->fresh = 0;
-    }
-    if (u->failed) {
-        char why[256];
-        snprintf(why, sizeof why, "USB device %04x:%04x stopped reporting (transfer status %d); "
-                 "unplugged? restart the master after reconnecting it", u->desc.vendor,
-                 u->desc.product, u->error_code);
-        return input_source_lost(s, now, why, err, errlen);
-    }
-    return 0;
-}
-
-static void usb_close(input_source *s)
-{
-    usb_source *u = (usb_source *)s;
     if (u->xfer) {
         /* Cancel and let the callback run before freeing the transfer. */
         if (!u->failed && libusb_cancel_transfer(u->xfer) == 0) {
@@ -110,16 +87,18 @@ static void usb_close(input_source *s)
             libusb_handle_events_timeout_completed(u->ctx, &tv, NULL);
         }
         libusb_free_transfer(u->xfer);
+        u->xfer = NULL;
     }
     if (u->dev) {
         libusb_release_interface(u->dev, u->desc.interface_number);
         if (u->kernel_detached)
             libusb_attach_kernel_driver(u->dev, u->desc.interface_number);
         libusb_close(u->dev);
+        u->dev = NULL;
     }
-    if (u->ctx)
-        libusb_exit(u->ctx);
-    free(u);
+    u->kernel_detached = 0;
+    u->failed = 0;
+    u->fresh = 0;
 }
 
 /* The first interrupt-in endpoint of the interface, or 0. */
@@ -150,18 +129,15 @@ static uint8_t find_endpoint(libusb_device *dev, int iface, int *max_packet)
     return ep;
 }
 
-input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errlen)
+/* One attempt to find, open and start reading the device. Returns 0, or -1 with why. */
+static int open_device(usb_source *u, char *why, size_t cap)
 {
-    usb_source *u = input_source_alloc(sizeof *u, desc->name, "usb", usb_poll, usb_close);
-    u->desc = *desc;
-    u->desc.name = NULL;
-    int rc = libusb_init(&u->ctx);
+    const input_usb_desc *desc = &u->desc;
+    int rc = u->ctx ? 0 : libusb_init(&u->ctx);
     if (rc != 0) {
         u->ctx = NULL;
-        snprintf(err, errlen, "input %s: cannot start libusb: %s (is /dev/bus/usb available?)",
-                 u->base.name, libusb_strerror(rc));
-        usb_close(&u->base);
-        return NULL;
+        snprintf(why, cap, "cannot start libusb: %s (is /dev/bus/usb available?)", libusb_strerror(rc));
+        return -1;
     }
     libusb_device **list;
     ssize_t n = libusb_get_device_list(u->ctx, &list);
@@ -173,13 +149,12 @@ input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errle
             found = list[i];
     }
     if (!found) {
-        snprintf(err, errlen, "input %s: no USB device %04x:%04x found (%zd devices seen); plug it "
-                 "in, check \"vendor\"/\"product\" in the input config against lsusb", u->base.name,
-                 desc->vendor, desc->product, n < 0 ? (ssize_t)0 : n);
+        snprintf(why, cap, "no USB device %04x:%04x found (%zd devices seen); plug it in, check "
+                 "\"vendor\"/\"product\" in the input config against lsusb", desc->vendor, desc->product,
+                 n < 0 ? (ssize_t)0 : n);
         if (n >= 0)
             libusb_free_device_list(list, 1);
-        usb_close(&u->base);
-        return NULL;
+        return -1;
     }
     int max_packet = (int)sizeof u->buf;
     uint8_t ep = desc->endpoint ? desc->endpoint : find_endpoint(found, desc->interface_number, &max_packet);
@@ -187,35 +162,83 @@ input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errle
     libusb_free_device_list(list, 1);
     if (rc != 0) {
         u->dev = NULL;
-        snprintf(err, errlen, "input %s: cannot open USB device %04x:%04x: %s%s", u->base.name,
-                 desc->vendor, desc->product, libusb_strerror(rc),
-                 rc == LIBUSB_ERROR_ACCESS ? " (add a udev rule giving your user access, e.g. "
-                 "MODE=\"0660\", GROUP=\"plugdev\", then replug)" : "");
-        usb_close(&u->base);
-        return NULL;
+        snprintf(why, cap, "cannot open USB device %04x:%04x: %s%s", desc->vendor, desc->product,
+                 libusb_strerror(rc), rc == LIBUSB_ERROR_ACCESS ? " (add a udev rule giving your user access, "
+                 "e.g. MODE=\"0660\", GROUP=\"plugdev\", then replug)" : "");
+        return -1;
     }
     if (libusb_kernel_driver_active(u->dev, desc->interface_number) == 1 &&
         libusb_detach_kernel_driver(u->dev, desc->interface_number) == 0)
         u->kernel_detached = 1;
     rc = libusb_claim_interface(u->dev, desc->interface_number);
     if (rc != 0 || !ep) {
-        snprintf(err, errlen, "input %s: USB device %04x:%04x: %s", u->base.name, desc->vendor,
-                 desc->product, rc ? libusb_strerror(rc) : "no interrupt-in endpoint on the "
-                 "interface; set \"interface\" or \"endpoint\" in the input config");
-        usb_close(&u->base);
-        return NULL;
+        snprintf(why, cap, "USB device %04x:%04x: %s", desc->vendor, desc->product,
+                 rc ? libusb_strerror(rc) : "no interrupt-in endpoint on the interface; set \"interface\" or "
+                 "\"endpoint\" in the input config");
+        release_device(u);
+        return -1;
     }
     u->xfer = libusb_alloc_transfer(0);
     int len = max_packet > 0 && max_packet < (int)sizeof u->buf ? max_packet : (int)sizeof u->buf;
     libusb_fill_interrupt_transfer(u->xfer, u->dev, ep, u->buf, len, on_report, u, 0);
     rc = libusb_submit_transfer(u->xfer);
     if (rc != 0) {
-        snprintf(err, errlen, "input %s: cannot read USB device %04x:%04x: %s", u->base.name,
-                 desc->vendor, desc->product, libusb_strerror(rc));
-        libusb_free_transfer(u->xfer);
-        u->xfer = NULL;
-        usb_close(&u->base);
-        return NULL;
+        snprintf(why, cap, "cannot read USB device %04x:%04x: %s", desc->vendor, desc->product,
+                 libusb_strerror(rc));
+        u->failed = 1; /* nothing pending to cancel */
+        release_device(u);
+        return -1;
     }
-    return &u->base;
+    return 0;
+}
+
+static int usb_poll(input_source *s, double now, char *err, size_t errlen)
+{
+    usb_source *u = (usb_source *)s;
+    char why[512];
+    if (!u->dev) {
+        if (!input_source_retry_due(s, now))
+            return 0;
+        if (open_device(u, why, sizeof why) != 0)
+            return input_source_lost(s, now, why, err, errlen);
+        snprintf(why, sizeof why, "USB device %04x:%04x opened", u->desc.vendor, u->desc.product);
+        return input_source_up(s, now, why, err, errlen);
+    }
+    struct timeval zero = {0, 0};
+    libusb_handle_events_timeout_completed(u->ctx, &zero, NULL);
+    if (u->fresh) {
+        uint32_t buttons;
+        float axes[INPUT_AXIS_COUNT];
+        input_usb_decode(&u->desc, u->report, (size_t)u->report_len, &buttons, axes);
+        input_source_set_buttons(&s->st, buttons, now);
+        input_source_set_axes(&s->st, axes, INPUT_AXIS_COUNT, now);
+        u->fresh = 0;
+    }
+    if (u->failed) {
+        snprintf(why, sizeof why, "USB device %04x:%04x stopped reporting (transfer status %d); unplugged?",
+                 u->desc.vendor, u->desc.product, u->error_code);
+        release_device(u);
+        float still[INPUT_AXIS_COUNT] = {0};
+        input_source_set_axes(&s->st, still, INPUT_AXIS_COUNT, now); /* no stick stays pushed */
+        return input_source_lost(s, now, why, err, errlen);
+    }
+    return 0;
+}
+
+static void usb_close(input_source *s)
+{
+    usb_source *u = (usb_source *)s;
+    release_device(u);
+    if (u->ctx)
+        libusb_exit(u->ctx);
+    free(u);
+}
+
+input_source *input_usb_open(const input_usb_desc *desc)
+{
+    usb_source *u = input_source_alloc(sizeof *u, desc->name, "usb", usb_poll, usb_close);
+    u->desc = *desc;
+    u->desc.name = NULL;
+    u->base.retry_interval = desc->retry_interval > 0 ? desc->retry_interval : INPUT_SOURCE_RETRY_INTERVAL;
+    return &u->base; /* the first poll looks for the device */
 }

@@ -5,8 +5,10 @@
  * transfer pending; each HID input report is decoded with a configurable byte/bit map:
  * buttons are bits, axes are u8, s8, u16 or s16 (little-endian, as HID reports are)
  * scaled from [min, max] to [-1, 1]. The device gives no pose: use it beside a tracker.
- * input_usb_open() fails with one clear line when no device matches or access is denied
- * (a udev rule is the usual fix). input_usb_decode() is pure and needs no device. */
+ * A device that is missing, refuses access (a udev rule is the usual fix) or is unplugged
+ * is a warning, not an error: the source looks for it again every retry_interval seconds
+ * (buttons released, axes centred meanwhile) and says when it answers; the session goes on
+ * with the other sources. input_usb_decode() is pure and needs no device. */
 #ifndef CAVELIGHT_INPUT_USB_H
 #define CAVELIGHT_INPUT_USB_H
 
@@ -42,12 +44,14 @@ typedef struct input_usb_desc {
     input_usb_button buttons[INPUT_USB_MAX_BUTTONS];
     int axis_count;
     input_usb_axis axes[INPUT_USB_MAX_AXES];
+    double retry_interval;     /* seconds between looks for a missing device, 0 = the default */
 } input_usb_desc;
 
 /* Decodes one report. Fields beyond len are left out (buttons up, axes 0). */
 void input_usb_decode(const input_usb_desc *desc, const uint8_t *report, size_t len,
                       uint32_t *buttons, float axes[INPUT_AXIS_COUNT]);
 
-input_source *input_usb_open(const input_usb_desc *desc, char *err, size_t errlen);
+/* Never fails: the first poll looks for the device. */
+input_source *input_usb_open(const input_usb_desc *desc);
 
 #endif

@@ -413,7 +413,7 @@ input_source *input_vrpn_open(const input_vrpn_desc *desc, char *err, size_t err
     if (v->desc.port <= 0)
         v->desc.port = INPUT_VRPN_DEFAULT_PORT;
     if (v->desc.reconnect_interval <= 0)
-        v->desc.reconnect_interval = 1.0;
+        v->desc.reconnect_interval = INPUT_SOURCE_RETRY_INTERVAL;
     v->base.retry_interval = v->desc.reconnect_interval;
     v->fd = -1;
     return &v->base;

@@ -47,7 +47,7 @@ typedef struct input_vrpn_desc {
     const char *analog;           /* sender name of the analogs, NULL = buttons name */
     input_map button_map;         /* VRPN button -> logical button */
     input_map axis_map;           /* analog channel -> logical axis */
-    double reconnect_interval;    /* seconds, 0 = 1 */
+    double reconnect_interval;    /* seconds, 0 = INPUT_SOURCE_RETRY_INTERVAL */
 } input_vrpn_desc;
 
 /* One connection's decoding state: the peer's id tables and the raw button mask. */

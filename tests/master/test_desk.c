@@ -1,5 +1,6 @@
-/* Desk simulator: the control-to-pose maths without a window, then the real GLFW window
- * under a private Xvfb (skipped with a message where Xvfb is not installed). */
+/* Desk simulator: the control-to-pose maths and the window's picture without a window,
+ * then the real GLFW window under a private Xvfb (skipped with a message where Xvfb is not
+ * installed), whose pixels must show the picture rather than black. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -17,8 +19,45 @@
 #include <GLFW/glfw3.h>
 
 #include "input.h"
+#include "desk_view.h"
 #include "input_desk.h"
 #include "interaction.h"
+
+static int same(const uint8_t *rgb, int w, int x, int y, const uint8_t c[3])
+{
+    return memcmp(rgb + ((size_t)y * w + x) * 3, c, 3) == 0;
+}
+
+/* The picture: key help on the left, the head and the wand where they are on the map. */
+static void test_view(void **state)
+{
+    enum { W = 360, H = 240 };
+    static uint8_t rgb[W * H * 3];
+    input_source_state st = {0};
+    st.head = (input_pose){.valid = 1, .position = {1.0f, 1.7f, -0.5f}, .rotation = {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    st.wand = (input_pose){.valid = 1, .position = {-1.0f, 1.45f, 0.5f}, .rotation = {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    desk_view_draw(rgb, W, H, &st);
+    int hx, hy, wx, wy, rx, ry;
+    desk_view_map_pixel(W, H, 1.0f, -0.5f, &hx, &hy);
+    desk_view_map_pixel(W, H, -1.0f, 0.5f, &wx, &wy);
+    desk_view_map_pixel(W, H, -1.0f, 0.25f, &rx, &ry); /* half way along the ray, toward -Z */
+    assert_true(hx > W / 2 && hx < W && hy > 0 && hy < H);
+    assert_true(same(rgb, W, hx, hy, desk_view_head_color));
+    assert_true(same(rgb, W, wx, wy, desk_view_wand_color));
+    assert_true(same(rgb, W, rx, ry, desk_view_wand_color));
+    assert_true(hx > wx && hy < wy); /* right of and in front of the wand, as placed */
+    int text = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W / 2; x++)
+            text += same(rgb, W, x, y, desk_view_text_color);
+    assert_true(text > 500); /* eleven lines of key help */
+    /* The head moves: the dot moves with it. */
+    st.head.position[0] = -0.5f;
+    desk_view_draw(rgb, W, H, &st);
+    assert_false(same(rgb, W, hx, hy, desk_view_head_color));
+    desk_view_map_pixel(W, H, -0.5f, -0.5f, &hx, &hy);
+    assert_true(same(rgb, W, hx, hy, desk_view_head_color));
+}
 
 static void test_step(void **state)
 {
@@ -89,6 +128,7 @@ static void test_window(void **state)
     snprintf(sock, sizeof sock, "/tmp/.X11-unix/X%d", dpy);
     pid_t x = fork();
     if (x == 0) {
+        prctl(PR_SET_PDEATHSIG, SIGTERM); /* a failed assertion must not leave it running */
         freopen("/dev/null", "w", stderr);
         execl("/usr/bin/Xvfb", "Xvfb", name, "-screen", "0", "640x480x24", "-nolisten", "tcp",
               (char *)NULL);
@@ -119,6 +159,28 @@ static void test_window(void **state)
         nanosleep(&(struct timespec){0, 10000000}, NULL);
     }
     assert_float_equal(st.wand.rotation[6], 1.0f, 1e-3); /* -Z column -> (-1, 0, 0) */
+    /* The window shows the picture: its pixels are the view's, not black. */
+    typedef void (*read_pixels_fn)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *);
+    typedef void (*read_buffer_fn)(GLenum);
+    glfwMakeContextCurrent(w);
+    read_pixels_fn read_pixels = (read_pixels_fn)glfwGetProcAddress("glReadPixels");
+    read_buffer_fn read_buffer = (read_buffer_fn)glfwGetProcAddress("glReadBuffer");
+    if (!read_pixels || !read_buffer) {
+        printf("SKIP picture part: no OpenGL on this Xvfb\n");
+    } else {
+        static uint8_t shown[200 * 100 * 3];
+        /* The picture drawn before the last swap: Mesa's X11 software path keeps it in the
+         * back buffer, and reads its front buffer as black. */
+        read_buffer(GL_BACK);
+        read_pixels(0, 0, 200, 100, GL_RGB, GL_UNSIGNED_BYTE, shown);
+        int lit = 0, help = 0;
+        for (int i = 0; i < 200 * 100; i++) {
+            lit += shown[3 * i] + shown[3 * i + 1] + shown[3 * i + 2] > 0;
+            help += memcmp(shown + 3 * i, desk_view_text_color, 3) == 0;
+        }
+        assert_int_equal(lit, 200 * 100);
+        assert_true(help > 50);
+    }
     /* Closing the window stops the source with one message, once. */
     glfwSetWindowShouldClose(w, GLFW_TRUE);
     assert_int_equal(input_poll(in, &st, err, sizeof err), -1);
@@ -133,6 +195,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_step),
+        cmocka_unit_test(test_view),
         cmocka_unit_test(test_window),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -62,30 +62,46 @@ static void test_decode(void **state)
     assert_float_equal(ax[1], 1.0f, 0);
 }
 
+/* A missing device is a warning with a retry: the source exists, says once what is wrong
+ * and that it retries, stays quiet while the device stays away, and keeps nothing held. */
 static void test_no_device(void **state)
 {
     char err[512] = "";
     input_usb_desc d = pad();
     d.vendor = 0xfffe;        /* no such vendor is assigned */
     d.product = 0x1234;
-    assert_null(input_usb_open(&d, err, sizeof err));
+    d.retry_interval = 0.5;
+    input_source *s = input_usb_open(&d);
+    assert_non_null(s);
+    assert_int_equal(s->poll(s, 0.0, err, sizeof err), -1);
     assert_null(strchr(err, '\n'));
-    if (!strstr(err, "input pad: no USB device fffe:1234 found") &&
-        !strstr(err, "input pad: cannot start libusb"))
+    if (!strstr(err, "input pad: no USB device fffe:1234 found") && !strstr(err, "input pad: cannot start libusb"))
         fail_msg("unexpected message: %s", err);
+    assert_non_null(strstr(err, "; retrying every 0.5 s"));
     printf("message: %s\n", err);
+    err[0] = 0;
+    assert_int_equal(s->poll(s, 0.1, err, sizeof err), 0);   /* not due yet */
+    assert_int_equal(s->poll(s, 0.6, err, sizeof err), 0);   /* tried again, still away: quiet */
+    assert_string_equal(err, "");
+    assert_int_equal(s->st.buttons, 0);
+    s->close(s);
 
-    /* the same through an input config */
+    /* the same through an input config: the input opens, the first poll warns */
     char path[1024];
     snprintf(path, sizeof path, "%s/test_usb_config.json", CAVELIGHT_BINARY_DIR);
     FILE *f = fopen(path, "wb");
     fputs("{\"sources\": [{\"type\": \"usb\", \"name\": \"wand\", \"vendor\": \"0xfffe\", "
-          "\"product\": \"0x1234\", \"buttons\": [{\"byte\": 1, \"bit\": 0, \"to\": \"C\"}], "
+          "\"product\": \"0x1234\", \"reconnect\": 2, \"buttons\": [{\"byte\": 1, \"bit\": 0, \"to\": \"C\"}], "
           "\"axes\": [{\"byte\": 2, \"format\": \"u8\", \"to\": \"X\"}]}]}", f);
     fclose(f);
-    assert_null(input_open(&(input_desc){.path = path}, err, sizeof err));
+    input *in = input_open(&(input_desc){.path = path}, err, sizeof err);
+    assert_non_null(in);
+    input_state st;
+    assert_int_equal(input_poll(in, &st, err, sizeof err), -1);
     assert_non_null(strstr(err, "input wand: "));
     assert_true(strstr(err, "fffe:1234") || strstr(err, "libusb"));
+    assert_non_null(strstr(err, "retrying every 2 s"));
+    input_close(in);
     /* a mistake in the map is reported before any device is looked for */
     f = fopen(path, "wb");
     fputs("{\"sources\": [{\"type\": \"usb\", \"vendor\": 1, \"product\": 2, "
