@@ -220,28 +220,41 @@ static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
         fail(c, "security.keys", "the key folder's path is longer than %d characters", CLUSTER_TEXT_MAX - 1);
 }
 
+/* Entry index of a list of named objects ("screens", "nodes"): an object whose name is
+ * valid and differs from the earlier entries' (their names stride bytes apart from
+ * earlier). Leaves "list[index].name" in field. 0, or -1 after fail(). */
+static int parse_entry_name(parse_ctx *c, const cJSON *obj, const char *list, int index,
+                            const char *earlier, size_t stride, char *name, size_t size,
+                            char field[96])
+{
+    snprintf(field, 96, "%s[%d]", list, index);
+    if (!cJSON_IsObject(obj)) {
+        fail(c, field, "must be an object");
+        return -1;
+    }
+    snprintf(field, 96, "%s[%d].name", list, index);
+    get_string(c, obj, "name", field, name, size, NULL);
+    if (c->failed)
+        return -1;
+    if (!wire_name_valid(name)) {
+        fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", name, WIRE_NAME_MAX);
+        return -1;
+    }
+    for (int i = 0; i < index; i++)
+        if (strcmp(earlier + (size_t)i * stride, name) == 0) {
+            fail(c, field, "'%s' is used twice", name);
+            return -1;
+        }
+    return 0;
+}
+
 static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config *cfg)
 {
     char field[96];
     cluster_screen *scr = &cfg->screens[index];
-    snprintf(field, sizeof field, "screens[%d]", index);
-    if (!cJSON_IsObject(s)) {
-        fail(c, field, "must be an object");
+    if (parse_entry_name(c, s, "screens", index, cfg->screens[0].name, sizeof cfg->screens[0],
+                         scr->name, sizeof scr->name, field) != 0)
         return;
-    }
-    snprintf(field, sizeof field, "screens[%d].name", index);
-    get_string(c, s, "name", field, scr->name, sizeof scr->name, NULL);
-    if (c->failed)
-        return;
-    if (!wire_name_valid(scr->name)) {
-        fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", scr->name, WIRE_NAME_MAX);
-        return;
-    }
-    for (int i = 0; i < index; i++)
-        if (strcmp(cfg->screens[i].name, scr->name) == 0) {
-            fail(c, field, "'%s' is used twice", scr->name);
-            return;
-        }
     static const char *const corner[3] = {"bottom_left", "bottom_right", "top_left"};
     float *dst[3] = {scr->bottom_left, scr->bottom_right, scr->top_left};
     for (int k = 0; k < 3; k++) {
@@ -309,28 +322,13 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
 {
     char field[96];
     cluster_node *node = &cfg->nodes[index];
-    snprintf(field, sizeof field, "nodes[%d]", index);
-    if (!cJSON_IsObject(n)) {
-        fail(c, field, "must be an object");
+    if (parse_entry_name(c, n, "nodes", index, cfg->nodes[0].name, sizeof cfg->nodes[0],
+                         node->name, sizeof node->name, field) != 0)
         return;
-    }
-    snprintf(field, sizeof field, "nodes[%d].name", index);
-    get_string(c, n, "name", field, node->name, sizeof node->name, NULL);
-    if (c->failed)
-        return;
-    if (!wire_name_valid(node->name)) {
-        fail(c, field, "'%s' must be 1..%d characters of A-Z a-z 0-9 _ . -", node->name, WIRE_NAME_MAX);
-        return;
-    }
     if (strcmp(node->name, "master") == 0) {
         fail(c, field, "'master' is the master's own name (its key file is master.key): pick another");
         return;
     }
-    for (int i = 0; i < index; i++)
-        if (strcmp(cfg->nodes[i].name, node->name) == 0) {
-            fail(c, field, "'%s' is used twice", node->name);
-            return;
-        }
     snprintf(field, sizeof field, "nodes[%d].host", index);
     get_string(c, n, "host", field, node->host, sizeof node->host, "localhost");
 
