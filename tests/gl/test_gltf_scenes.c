@@ -241,6 +241,7 @@ static void render(const scene *s, const frame_params *p, rendered *out)
     out->ref_direct = ri.direct;
     free(ri.indirect1);
     free(ri.indirect);
+    free(ri.coverage);
     reference_destroy(ref);
 }
 

@@ -103,6 +103,7 @@ static void leak_render(leak_view *lv)
     lv->ref_direct = out.direct;
     lv->ref_indirect1 = out.indirect1;
     free(out.indirect);
+    free(out.coverage);
     reference_destroy(ref);
 }
 
