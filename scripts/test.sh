@@ -29,6 +29,8 @@ ASAN_OPTIONS=$ASAN_OPTIONS:detect_leaks=0 ctest --output-on-failure -j "$(nproc)
 for fuzz in fuzz_*; do
   [ -x "$fuzz" ] && [ -f "$fuzz" ] || continue
   name=${fuzz#fuzz_}
+  # A fuzz target has its seeds in the tree (fuzz_probe, CMake's libFuzzer check, has none).
+  [ -d "$root/tests/fuzz/$name" ] || continue
   corpora=("$root/tests/fuzz/$name")
   [ -d "$root/build/fuzz_${name}_corpus" ] && corpora+=("$root/build/fuzz_${name}_corpus")
   echo "sanitize: $fuzz over ${corpora[*]}"
