@@ -83,8 +83,10 @@ for n in a b; do
   "$build/cavelight-node" --cluster "$tmp/c2.json" --name $n --master "$ep" --render none 2> "$tmp/n2-$n.log" &
   pids+=($!)
 done
-for _ in $(seq 100); do grep -q "joined the master" "$tmp/n2-a.log" 2>/dev/null && break; sleep 0.1; done
-grep -q "joined the master" "$tmp/n2-a.log" || { cat "$tmp/m2.log" "$tmp/n2-a.log"; fail "node a did not join the second master"; }
+for n in a b; do
+  for _ in $(seq 600); do grep -q "joined the master" "$tmp/n2-$n.log" 2>/dev/null && break; sleep 0.1; done
+  grep -q "joined the master" "$tmp/n2-$n.log" || { cat "$tmp/m2.log" "$tmp/n2-$n.log"; fail "node $n did not join the second master"; }
+done
 kill -TERM $m2; wait $m2 || true
 # A node says HELLO at once after the BYE, while the master still waits for the others'
 # answers: a master that is shutting down answers with BYE again, never a snapshot. So the
