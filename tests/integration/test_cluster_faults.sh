@@ -88,9 +88,9 @@ for n in a b; do
   grep -q "joined the master" "$tmp/n2-$n.log" || { cat "$tmp/m2.log" "$tmp/n2-$n.log"; fail "node $n did not join the second master"; }
 done
 kill -TERM $m2; wait $m2 || true
-# A node says HELLO at once after the BYE, while the master still waits for the others'
-# answers: a master that is shutting down answers with BYE again, never a snapshot. So the
-# nodes say the session ended, once, and neither "reconnected" nor "lost" to that master.
+# The nodes say the session ended, once, and neither "reconnected" nor "lost" to that
+# master (each says HELLO at once after the BYE; a master still shutting down answers it
+# with BYE again, never a snapshot: test_cluster_master checks that side).
 sleep 3   # longer than RETRY_MS (2 s): any HELLO repeat has been answered
 for n in a b; do
   [ "$(grep -c "master ended the session; waiting" "$tmp/n2-$n.log")" = 1 ] \

@@ -3,7 +3,7 @@
  * format) join, render and report; the barrier, epoch raise on join, desync report, drop
  * after the barrier timeout, rejoin, config-hash refusal, and garbage, truncated,
  * oversized, multipart and unknown-peer input that must be dropped and counted while
- * the frames go on. */
+ * the frames go on; a master shutting down answers HELLO with BYE. */
 #include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -46,16 +46,18 @@ typedef struct fake_node {
 
 static void *fake_ctx;
 
-static void *open_dealer(const char *id)
+static void *open_dealer_to(const char *ep, const char *id)
 {
     void *s = zmq_socket(fake_ctx, ZMQ_DEALER);
     int zero = 0;
     zmq_setsockopt(s, ZMQ_LINGER, &zero, sizeof zero);
     if (id)
         zmq_setsockopt(s, ZMQ_ROUTING_ID, id, strlen(id));
-    assert_int_equal(zmq_connect(s, endpoint), 0);
+    assert_int_equal(zmq_connect(s, ep), 0);
     return s;
 }
+
+static void *open_dealer(const char *id) { return open_dealer_to(endpoint, id); }
 
 static void send_wire(void *s, wire_msg *m, const char *name)
 {
@@ -334,6 +336,42 @@ static void test_garbage_is_dropped_and_counted(void **state)
     stop_node(&b);
 }
 
+/* A master that is shutting down answers a HELLO with BYE(shutdown) again, never with a
+ * snapshot, so no node says "reconnected" to it. Node a's HELLO waits in the queue until
+ * destroy() reads it; node b never answers the BYE, so the master reads for its 1 s. */
+static void test_shutdown_answers_hello_with_bye(void **state)
+{
+    char err[512], ep[256];
+    cluster_master_desc d = {.config = &cfg, .quiet = 1};
+    cluster_master *m = cluster_master_create(&d, err, sizeof err);
+    assert_non_null(m);
+    assert_int_equal(cluster_master_endpoint(m, ep, sizeof ep), 0);
+    void *a = open_dealer_to(ep, "a"), *b = open_dealer_to(ep, "b");
+    wire_msg hello = {.type = WIRE_HELLO, .config_hash = cfg.hash};
+    send_wire(a, &hello, "a");
+    send_wire(b, &hello, "b");
+    assert_int_equal(cluster_master_wait_nodes(m, 2, 3000), 2);
+    send_wire(a, &hello, "a");
+    cluster_master_destroy(m);
+    int byes = 0, snapshots_after_bye = 0;
+    for (;;) {
+        zmq_pollitem_t it = {.socket = a, .events = ZMQ_POLLIN};
+        if (zmq_poll(&it, 1, 200) <= 0)
+            break;
+        uint8_t buf[WIRE_MAX_MESSAGE];
+        int len = zmq_recv(a, buf, sizeof buf, 0);
+        wire_msg msg;
+        if (len < 0 || wire_decode(buf, (size_t)len, &msg) != WIRE_OK)
+            continue;
+        byes += msg.type == WIRE_BYE && msg.reason == WIRE_BYE_SHUTDOWN;
+        snapshots_after_bye += msg.type == WIRE_SNAPSHOT && byes > 0;
+    }
+    zmq_close(a); /* before any assertion: an open socket would hang the teardown */
+    zmq_close(b);
+    assert_int_equal(snapshots_after_bye, 0);
+    assert_int_equal(byes, 2); /* the session's end, and the answer to the late HELLO */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_drop_after_timeout_and_rejoin),
         cmocka_unit_test(test_config_mismatch_refused),
         cmocka_unit_test(test_garbage_is_dropped_and_counted),
+        cmocka_unit_test(test_shutdown_answers_hello_with_bye),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
