@@ -23,6 +23,8 @@ typedef struct master_options {
     frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
     int gi_given;               /* --gi was given: spawned nodes get it too */
     int vpl_count;              /* vpl's lights per frame; 0 = FRAME_VPL_DEFAULT */
+    float exposure;             /* 0 = the frame default */
+    int exposure_auto;          /* --exposure auto */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */
