@@ -18,7 +18,7 @@ typedef struct master_options {
     const char *node_exe, *render, *output, *node_args, *scene;
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
-    int keep_frames, pattern, print_poses;
+    int keep_frames, pattern, print_poses, preview;
     const char *input, *record;
     frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
     int gi_given;               /* --gi was given: spawned nodes get it too */
