@@ -40,16 +40,36 @@ kill -STOP "$pid_b"
 wait_log "node b \(disconnected: dropped\|not ready\)" 1
 kill -CONT "$pid_b"
 wait_log "node b rejoined" 1
-sleep 1 # a few frames with all three
+# A loaded machine may also drop a slow node for a frame past the barrier (what the
+# product should do); such a node rejoins like the faulted ones. So wait until every drop
+# has its rejoin for a second (a few frames with all three), instead of for a fixed time.
+drops() { grep -c "node $1 \(disconnected: dropped\|not ready\)" "$tmp/master.log"; }
+every_node_back() {
+  for n in a b c; do
+    [ "$(drops $n)" -eq "$(grep -c "node $n rejoined" "$tmp/master.log")" ] || return 1
+  done
+}
+for _ in $(seq 120); do
+  every_node_back && sleep 1 && every_node_back && break
+  sleep 1
+done
+every_node_back || { cat "$tmp/master.log"; fail "a dropped node did not rejoin within 2 minutes"; }
+drops_before_stop=$(( $(drops a) + $(drops b) + $(drops c) ))
 kill -TERM "$master"
 wait "$master" || { cat "$tmp/master.log"; fail "master failed"; }
 cat "$tmp/master.log" | grep -v "^$" | head -20
 
 [ "$(json 'r["desyncs"]' "$tmp/r.json")" = 0 ] || fail "desync after rejoin"
 [ "$(json 'r["drops"] >= 2' "$tmp/r.json")" = True ] || fail "expected the killed and the stalled node dropped"
-[ "$(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")" = "[1, 2, 2]" ] || fail "joins per node: $(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")"
-[ "$(json 'all(n["state"] == "live" for n in r["per_node"])' "$tmp/r.json")" = True ] || fail "not every node live at the end"
-[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$tmp/r.json")" = 1 ] || fail "checksums differ at the end"
+joins=$(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")
+[ "$(json 'r["per_node"][0]["joins"] >= 1 and all(n["joins"] >= 2 for n in r["per_node"][1:])' "$tmp/r.json")" = True ] \
+  || fail "joins per node: $joins (the restarted c and the stalled b rejoin)"
+if [ $(( $(drops a) + $(drops b) + $(drops c) )) -eq "$drops_before_stop" ]; then
+  [ "$(json 'all(n["state"] == "live" for n in r["per_node"])' "$tmp/r.json")" = True ] || fail "not every node live at the end"
+else
+  echo "a slow node was dropped while the master stopped (machine under load); live nodes checked"
+fi
+[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"] if n["state"] == "live"))' "$tmp/r.json")" = 1 ] || fail "checksums differ at the end"
 [ "$(json 'r["nodes_live_min"]' "$tmp/r.json")" -le 2 ] || fail "no frame ran without the dropped node"
 echo "kill, restart, stall: drops $(json 'r["drops"]' "$tmp/r.json"), final checksums equal"
 
