@@ -6,8 +6,10 @@
  * same choice on every node); the checksum READY carries is vpl_checksum() of that set.
  * Each chosen VPL gets a real shadow map: a cube of six distance maps (faces wholly
  * behind its surface skipped), all VPLs' faces tiles of one depth array texture, rendered
- * once per frame and shared by every screen and eye. eye_bind(): the VPLs and the maps for
- * shaders/shade.frag, which gathers every VPL per pixel (brute force).
+ * once per frame and shared by every screen and eye; or, with renderer_desc.vpl_visibility
+ * ism or ism-splat, an imperfect shadow map from a subset of a point set (vpl_ism.h).
+ * eye_bind(): the VPLs and the maps for shaders/shade.frag, which gathers every VPL per
+ * pixel (brute force), testing visibility in whichever maps were rendered.
  *
  * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
  * moving head's) keeps its VPLs and shadow maps, unless renderer_desc.converge_threshold
@@ -19,8 +21,7 @@
  * bounded near the VPL (eq. 14 of the high-res RSM paper), biased only within about
  * sqrt(A / pi) of it, and the bias shrinks as N grows (docs/node.md has its measure).
  *
- * Not here: imperfect shadow maps, interleaved sampling, clustered light assignment, view
- * importance.
+ * Not here: interleaved sampling, clustered light assignment, view importance.
  * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
  * maps (GL work finished before the clock stops). */
 #ifndef CAVELIGHT_GI_VPL_H

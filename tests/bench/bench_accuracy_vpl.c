@@ -12,7 +12,11 @@
  * (the point estimate's variance is infinite near its VPLs, so this RMS keeps noise that
  * few seeds do not remove; the level converges much faster). GI ms: selection + shadow
  * maps + gather, the gather being the eye pass's host ms less that of the same view with
- * --gi none; medians over the timed frames. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
+ * --gi none; medians over the timed frames.
+ * The visibility is swept too: --visibility exact,ism,ism-splat (default exact), the
+ * imperfect maps for each of --ism-sizes and --ism-points (default the renderer's); the
+ * bound's bias is measured with exact visibility only (its columns are empty otherwise).
+ * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,8 +25,24 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
+#include "vpl_ism.h"
 
-enum { MAX_COUNTS = 8, TIMED = 3 };
+enum { MAX_COUNTS = 8, MAX_LIST = 4, TIMED = 3 };
+
+/* A comma-separated list of at most MAX_LIST whole numbers in [lo, hi] into out; its
+ * length, or 0 when bad. */
+static int int_list(const char *v, int lo, int hi, int *out)
+{
+    int n = 0;
+    for (const char *c = v; *c; c += strcspn(c, ","), c += *c == ',') {
+        char *end;
+        long x = strtol(c, &end, 10);
+        if (n == MAX_LIST || end == c || (*end && *end != ',') || x < lo || x > hi)
+            return 0;
+        out[n++] = (int)x;
+    }
+    return n;
+}
 
 typedef struct vpl_timing {
     double select_ms, shadow_ms, eye_ms, frame_ms;
@@ -77,11 +97,85 @@ static double compare(const acc_setup *s, const acc_reference *ref, const float 
     return m.rmse_rel;
 }
 
+/* x with 4 decimals, or null when not measured (NaN). */
+static const char *json_number(double x, char buf[32])
+{
+    snprintf(buf, 32, isnan(x) ? "null" : "%.4f", x);
+    return buf;
+}
+
+/* One count of VPLs with r[0] (the disk bound) and, when given, r[1] (points): one CSV row
+ * and one JSON line. disk and point are scratch images. */
+static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[2], int count,
+                   int seeds, const vpl_timing *none, float *disk, float *point, FILE *f,
+                   const acc_renderer_desc *rd)
+{
+    size_t n = (size_t)s->opt.width * s->opt.height * 3;
+    memset(disk, 0, n * sizeof *disk);
+    memset(point, 0, n * sizeof *point);
+    double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
+    int k = seeds < 64 ? seeds : 64;
+    for (int seed = 0; seed < k; seed++) {
+        frame_params fp = s->base;
+        fp.gi = FRAME_GI_VPL;
+        fp.vpl_count = count;
+        fp.vpl_seed = (uint32_t)seed;
+        image_metrics m, unused;
+        vpl_timing t, tp;
+        if (run(s, r[0], &fp, ref, disk, &m, &t) ||
+            (r[1] && run(s, r[1], &fp, ref, point, &unused, &tp)))
+            return -1;
+        err += m.rmse_rel / k;
+        ssim += m.ssim / k;
+        scale += m.best_scale / k;
+        sel[seed] = t.select_ms;
+        sh[seed] = t.shadow_ms;
+        gather[seed] = t.eye_ms - none->eye_ms;
+        frame[seed] = t.frame_ms;
+    }
+    for (size_t i = 0; i < n; i++) {
+        disk[i] /= (float)k;
+        point[i] /= (float)k;
+    }
+    double ms[4] = {acc_median(sel, k), acc_median(sh, k), acc_median(gather, k),
+                    acc_median(frame, k)};
+    double level = NAN, mean_err_point = NAN, bias = NAN;
+    double mean_err = compare(s, ref, disk, ref->indirect1, NULL);
+    if (r[1]) {
+        mean_err_point = compare(s, ref, point, ref->indirect1, NULL);
+        bias = compare(s, ref, disk, point, &level);
+    }
+    const char *vis = vpl_visibility_names[rd->vpl_visibility];
+    char j[3][32];
+    int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
+    int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
+    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d\n",
+            s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
+            scale, mean_err, mean_err_point, level, bias, vis, size, points);
+    printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
+           "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
+           "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
+           "\"ism_points\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
+           "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
+           "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
+           "\"rmse_rel_seed_mean_point\":%s,\"bound_level_bias\":%s,"
+           "\"bound_bias_rms\":%s}\n",
+           s->opt.scene, s->opt.width, s->opt.height, 2 * s->opt.ref_samples,
+           ref->noise_indirect1, count, k, vis, size, points, ms[0], ms[1], ms[2],
+           ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
+           json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]));
+    fflush(stdout);
+    return 0;
+}
+
 int accuracy_vpl(int argc, char **argv)
 {
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 64};
     int counts[MAX_COUNTS] = {64, 256, 1024}, nc = 3, seeds = 2;
+    int vis[3] = {RENDERER_VPL_EXACT}, nv = 1;
+    int sizes[MAX_LIST] = {RENDERER_DEFAULT_ISM_SIZE}, ns = 1;
+    int points[MAX_LIST] = {RENDERER_DEFAULT_ISM_POINTS}, np = 1;
     for (int i = 1; i < argc; i++) {
         int bad = 0;
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -93,12 +187,32 @@ int accuracy_vpl(int argc, char **argv)
             bad |= nc == 0, i++;
         } else if (v && strcmp(a, "--seeds") == 0) {
             bad = (seeds = atoi(v)) < 1, i++;
+        } else if (v && strcmp(a, "--visibility") == 0) {
+            nv = 0;
+            for (const char *c = v; *c && nv < 3; c += strcspn(c, ","), c += *c == ',') {
+                int k = 0;
+                while (k < 3 && (strncmp(c, vpl_visibility_names[k], strcspn(c, ",")) != 0 ||
+                                 strlen(vpl_visibility_names[k]) != strcspn(c, ",")))
+                    k++;
+                bad |= k == 3;
+                vis[nv++] = k;
+            }
+            i++;
+        } else if (v && strcmp(a, "--ism-sizes") == 0) {
+            bad = !(ns = int_list(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, sizes)), i++;
+            for (int k = 0; k < ns; k++)
+                bad |= (sizes[k] & (sizes[k] - 1)) != 0;
+        } else if (v && strcmp(a, "--ism-points") == 0) {
+            bad = !(np = int_list(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, points)), i++;
         } else {
             bad = 1;
         }
         if (bad) {
-            fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d)\n", a,
-                    FRAME_VPL_MIN, FRAME_VPL_MAX);
+            fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
+                    "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
+                    "--ism-points %d..%d)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
+                    RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, RENDERER_ISM_POINTS_MIN,
+                    RENDERER_ISM_POINTS_MAX);
             return 2;
         }
     }
@@ -112,73 +226,40 @@ int accuracy_vpl(int argc, char **argv)
     }
     size_t n = (size_t)o.width * o.height * 3;
     float *disk = calloc(n, sizeof *disk), *point = calloc(n, sizeof *point);
-    renderer *r[2] = {acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL}),
-                      acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL,
-                                                                   .vpl_point = 1})};
+    renderer *none_r = acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_NONE});
     FILE *f = acc_open_csv(&s, "vpl",
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
-        "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms");
-    int rc = disk && point && r[0] && r[1] && f ? 0 : 1;
+        "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
+        "ism_points");
+    int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     frame_params fp = s.base;
     fp.gi = FRAME_GI_NONE;
     vpl_timing none;
     if (rc == 0)
-        rc = run(&s, r[0], &fp, &ref, NULL, NULL, &none);
-    for (int c = 0; c < nc && rc == 0; c++) {
-        memset(disk, 0, n * sizeof *disk);
-        memset(point, 0, n * sizeof *point);
-        double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
-        int k = seeds < 64 ? seeds : 64;
-        for (int seed = 0; seed < k && rc == 0; seed++) {
-            fp = s.base;
-            fp.gi = FRAME_GI_VPL;
-            fp.vpl_count = counts[c];
-            fp.vpl_seed = (uint32_t)seed;
-            image_metrics m, unused;
-            vpl_timing t, tp;
-            rc = run(&s, r[0], &fp, &ref, disk, &m, &t) || run(&s, r[1], &fp, &ref, point, &unused, &tp);
-            err += m.rmse_rel / k;
-            ssim += m.ssim / k;
-            scale += m.best_scale / k;
-            sel[seed] = t.select_ms;
-            sh[seed] = t.shadow_ms;
-            gather[seed] = t.eye_ms - none.eye_ms;
-            frame[seed] = t.frame_ms;
-        }
-        if (rc)
-            break;
-        for (size_t i = 0; i < n; i++) {
-            disk[i] /= (float)k;
-            point[i] /= (float)k;
-        }
-        double ms[4] = {acc_median(sel, k), acc_median(sh, k), acc_median(gather, k),
-                        acc_median(frame, k)};
-        double level = NAN;
-        double mean_err = compare(&s, &ref, disk, ref.indirect1, NULL);
-        double mean_err_point = compare(&s, &ref, point, ref.indirect1, NULL);
-        double bias = compare(&s, &ref, disk, point, &level);
-        fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g\n",
-                o.scene, counts[c], k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err,
-                ssim, scale, mean_err, mean_err_point, level, bias);
-        printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
-               "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
-               "\"vpl_count\":%d,\"seeds\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
-               "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
-               "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
-               "\"rmse_rel_seed_mean_point\":%.4f,\"bound_level_bias\":%.4f,"
-               "\"bound_bias_rms\":%.4f}\n",
-               o.scene, o.width, o.height, 2 * o.ref_samples, ref.noise_indirect1, counts[c], k,
-               ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
-               mean_err_point, level, bias);
-        fflush(stdout);
+        rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
+    for (int c = 0; c < nv * ns * np && rc == 0; c++) {
+        acc_renderer_desc rd = {.gi = FRAME_GI_VPL, .vpl_visibility = vis[c / (ns * np)],
+                                .ism_size = sizes[c / np % ns], .ism_points = points[c % np]};
+        int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
+        if (exact && c % (ns * np) != 0)
+            continue; /* the ISM settings do not change exact maps */
+        renderer *r[2] = {acc_renderer_create(&s, &rd), NULL};
+        rd.vpl_point = 1;
+        if (exact)
+            r[1] = acc_renderer_create(&s, &rd);
+        rc = r[0] && (r[1] || !exact) ? 0 : 1;
+        for (int k = 0; k < nc && rc == 0; k++)
+            rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd);
+        for (int i = 0; i < 2; i++)
+            if (r[i])
+                renderer_destroy(r[i]);
     }
     if (f)
         fclose(f);
-    for (int i = 0; i < 2; i++)
-        if (r[i])
-            renderer_destroy(r[i]);
+    if (none_r)
+        renderer_destroy(none_r);
     free(disk);
     free(point);
     acc_reference_free(&ref);
