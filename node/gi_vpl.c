@@ -13,6 +13,7 @@
 #include "gi_vpl.h"
 #include "gltools.h"
 #include "lpv/lpv_converge.h"
+#include "vpl_interleave.h"
 #include "vpl_ism.h"
 
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
@@ -56,6 +57,7 @@ typedef struct gi_vpl {
     int face, tiles, layers; /* face side, tiles per atlas side, layers allocated */
     vpl_ism *ism;            /* imperfect maps instead (renderer_desc.vpl_visibility) */
     int have_maps;           /* this frame's VPLs have their maps */
+    vpl_interleave *interleave; /* renderer_desc.vpl_interleave > 0 */
     gi_stats timings;
 } gi_vpl;
 
@@ -118,6 +120,7 @@ static void release(gi_vpl *v)
     const gl_functions *gl = v->gl;
     release_shadow(v);
     vpl_ism_destroy(v->ism);
+    vpl_interleave_destroy(v->interleave);
     if (v->shadow_fbo)
         gl->DeleteFramebuffers(1, &v->shadow_fbo);
     if (v->vpl_tex)
@@ -336,6 +339,14 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
         bad = vpl_ism_resolve(d->settings, &id.size, &id.points, err, errlen) != 0 ||
               !(v->ism = vpl_ism_create(&id, err, errlen));
     }
+    int k = d->settings->vpl_interleave;
+    if (!bad && (k < 0 || k > RENDERER_VPL_INTERLEAVE_MAX)) {
+        snprintf(err, errlen, "renderer: vpl_interleave %d is outside 0..%d", k,
+                 RENDERER_VPL_INTERLEAVE_MAX);
+        bad = 1;
+    }
+    if (!bad && k > 0)
+        bad = !(v->interleave = vpl_interleave_create(d->gl, k, d->shade_defines, err, errlen));
     if (bad) {
         release(v);
         free(v);
@@ -385,25 +396,41 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     return v->checksum;
 }
 
-static void eye_bind(void *state, const gi_eye *e)
+/* The gather's uniforms and textures on prog, the current program (shade.frag, or its
+ * de-interleaved build). */
+static void bind_gather(const gi_vpl *v, GLuint prog, int first_unit)
 {
-    const gi_vpl *v = state;
     const gl_functions *gl = v->gl;
-    GLuint prog = e->program;
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_DATA));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_DATA));
     gl->BindTexture(GL_TEXTURE_2D, v->vpl_tex);
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_SHADOW));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_SHADOW));
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, v->shadow_tex);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), v->have_maps ? v->count : 0);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_visibility"), v->ism != NULL);
     if (v->ism)
-        vpl_ism_bind(v->ism, prog, e->first_unit + GI_UNIT_ISM);
+        vpl_ism_bind(v->ism, prog, first_unit + GI_UNIT_ISM);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_face"), v->face);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_tiles"), v->tiles);
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_vpl_far"), v->far);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_axis"), VPL_FACES, FACE_AXIS[0]);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_right"), VPL_FACES, FACE_RIGHT[0]);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_up"), VPL_FACES, FACE_UP[0]);
+}
+
+/* Interleaved: the gather and blur run here (vpl_interleave.h) and shade.frag reads them. */
+static void eye_bind(void *state, const gi_eye *e)
+{
+    const gi_vpl *v = state;
+    const gl_functions *gl = v->gl;
+    int interleaved = v->interleave && v->have_maps && v->count > 0;
+    if (interleaved) {
+        GLuint g = vpl_interleave_program(v->interleave);
+        gl->UseProgram(g);
+        bind_gather(v, g, e->first_unit);
+        vpl_interleave_run(v->interleave, e, v->last.absorption);
+    }
+    bind_gather(v, e->program, e->first_unit);
+    gl->Uniform1i(gl->GetUniformLocation(e->program, "u_vpl_interleaved"), interleaved);
 }
 
 static void stats(const void *state, gi_stats *out)

@@ -63,6 +63,7 @@ typedef struct acc_renderer_desc {
     int vpl_point;          /* vpl: VPLs as points, unbounded (renderer_desc.vpl_point) */
     renderer_vpl_visibility vpl_visibility; /* vpl: renderer_desc's, with its ISM settings */
     int ism_size, ism_points;
+    int vpl_interleave;     /* vpl: renderer_desc's */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
 
