@@ -39,9 +39,11 @@ typedef struct gi_vpl {
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
     size_t capacity;
-    vpl *emitters;
+    vpl *emitters;           /* as candidates: at their centroids */
+    vpl_emitter *emitter_shape; /* their triangles */
     size_t emitter_count;
     vpl chosen[FRAME_VPL_MAX];
+    size_t chosen_index[FRAME_VPL_MAX]; /* each slot's candidate */
     int count;
     uint64_t checksum;
     float near, far;         /* shadow maps: clip plane, distance stored as depth 1 */
@@ -129,6 +131,7 @@ static void release(gi_vpl *v)
     free(v->candidates);
     free(v->cdf);
     free(v->emitters);
+    free(v->emitter_shape);
 }
 
 static int init(gi_vpl *v, char *err, size_t errlen)
@@ -140,9 +143,9 @@ static int init(gi_vpl *v, char *err, size_t errlen)
         v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
     v->emitter_count = vpl_emitters(s, NULL);
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
-    vpl_emitter *raw = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
+    vpl_emitter *raw = v->emitter_shape =
+        malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
     if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters || !raw) {
-        free(raw);
         snprintf(err, errlen, "renderer: out of memory for a %dx%d RSM readback",
                  v->rsm_size, v->rsm_size);
         return -1;
@@ -150,7 +153,6 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     vpl_emitters(s, raw);
     for (size_t i = 0; i < v->emitter_count; i++)
         v->emitters[i] = vpl_from_emitter(&raw[i]);
-    free(raw);
     float diagonal = scene_diagonal(s);
     v->near = diagonal / 1024.0f;
     v->far = diagonal * 1.01f; /* VPLs and receivers lie within the bounds */
@@ -194,15 +196,16 @@ static int reserve_candidates(gi_vpl *v, size_t need)
     return 0;
 }
 
-/* Every RSM layer's texels with flux, in layer then texel order, then the emitters. */
-static size_t collect(gi_vpl *v, const gi_rsm *rsm)
+/* Every RSM layer's texels with flux, in layer then texel order, then the emitters;
+ * *texels: how many of them are RSM texels. */
+static size_t collect(gi_vpl *v, const gi_rsm *rsm, size_t *texels_out)
 {
     const gl_functions *gl = v->gl;
     size_t texels = (size_t)rsm->size * rsm->size;
     if (reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
         fprintf(stderr, "cavelight-node: out of memory for %d RSM layers of VPL candidates\n",
                 rsm->layers);
-        return 0;
+        return *texels_out = 0;
     }
     size_t n = 0;
     for (int layer = 0; layer < rsm->layers; layer++) {
@@ -216,6 +219,7 @@ static size_t collect(gi_vpl *v, const gi_rsm *rsm)
                           v->candidates + n);
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    *texels_out = n;
     if (v->emitter_count)
         memcpy(v->candidates + n, v->emitters, v->emitter_count * sizeof *v->emitters);
     return n + v->emitter_count;
@@ -356,9 +360,14 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
 {
     gi_vpl *v = state;
     double t0 = clock_now_ms();
-    size_t candidates = collect(v, rsm);
+    size_t texels, candidates = collect(v, rsm, &texels);
     v->count = vpl_select(v->candidates, candidates, p->vpl_count, p->vpl_seed, v->cdf,
-                          v->chosen);
+                          v->chosen, v->chosen_index);
+    for (int i = 0; i < v->count; i++) /* an emitter's slot: a point of its triangle */
+        if (v->chosen_index[i] >= texels)
+            vpl_emitter_point(&v->emitter_shape[v->chosen_index[i] - texels],
+                              vpl_slot_random(p->vpl_seed, i, 1),
+                              vpl_slot_random(p->vpl_seed, i, 2), v->chosen[i].position);
     v->checksum = vpl_checksum(v->chosen, v->count);
     upload_vpls(v);
     double t1 = clock_now_ms();

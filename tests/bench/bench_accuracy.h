@@ -37,6 +37,7 @@ typedef struct acc_reference {
     uint8_t *coverage;                  /* 1 where a pixel meets geometry: the metrics' mask */
     uint8_t *display;                   /* final1 tone-mapped like shaders/final.frag */
     double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
+    double noise_rms_indirect1;         /* its RMS over the covered pixels */
     double mean_indirect1;
     double seconds;                     /* render time (when it was rendered) */
     int cached;                         /* read from the cache, not rendered now */
