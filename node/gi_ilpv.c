@@ -421,37 +421,17 @@ static void gl_frame(gi_ilpv *r, const frame_params *p, uint64_t key, double ene
 {
     ilpv_rule rule = ilpv_history_rule(&r->gl_history, p->lambda_incr, key, energy);
     double faded_energy = r->gl_history.faded_energy;
-    lpv_volume *faded = &r->cpu.faded, *sum = &r->cpu.sum, *result = &r->gl_readback;
+    lpv_volume *sum = &r->cpu.sum, *result = &r->gl_readback;
     if (rule.restart) {
-        fpmode mode = fpmode_enter();
-        lpv_volume_copy(faded, result);
-        lpv_volume_add_scaled(faded, &r->cpu.early, -1.0f);
-        lpv_volume_scale(faded, rule.keep);
-        double e[3];
-        lpv_volume_energy(faded, e);
-        faded_energy = rule.keep > 0.0f ? e[0] + e[1] + e[2] : 0.0;
-        fpmode_leave(mode);
+        faded_energy = ilpv_fade(rule, result, &r->cpu.early, &r->cpu.faded);
         gl_start_chain(r, absorption);
     }
     gl_steps(r, p->lpv_steps, rule.restart ? 0u : r->gl_history.chain_steps, absorption,
              scattering);
     ilpv_history_advance(&r->gl_history, rule, p->lpv_steps, key, energy, faded_energy);
     download_volume(r, r->gl_sum, sum);
-    fpmode mode = fpmode_enter();
-    double e[3];
-    if (rule.restart) {
-        lpv_volume_copy(&r->cpu.early, sum);
-        lpv_volume_energy(sum, e);
-        r->gl_history.early_energy = e[0] + e[1] + e[2];
-    }
-    lpv_volume_energy(sum, e);
-    float w = ilpv_faded_weight(&r->gl_history, p->lambda_incr,
-                                e[0] + e[1] + e[2] - r->gl_history.early_energy);
-    ilpv_history_settle(&r->gl_history, rule, p->lambda_incr, e[0] + e[1] + e[2], w);
-    lpv_volume_copy(result, sum);
-    if (w > 0.0f)
-        lpv_volume_add_scaled(result, faded, w);
-    fpmode_leave(mode);
+    ilpv_compose(&r->gl_history, rule, p->lambda_incr, sum, &r->cpu.early, &r->cpu.faded,
+                 result);
     upload_volume(r, result, r->gl_result);
 }
 

@@ -85,19 +85,6 @@ static inline float transmittance(float sigma, float r)
     return sigma > 0 ? powf(1.0f - fminf(sigma, 0.999999f), r) : 1.0f;
 }
 
-/* Orthonormal basis around unit n (Frisvad). */
-static inline void basis(const float n[3], float t[3], float bt[3])
-{
-    float sign = n[2] >= 0 ? 1.0f : -1.0f;
-    float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
-    t[0] = 1 + sign * n[0] * n[0] * a;
-    t[1] = sign * b;
-    t[2] = -sign * n[0];
-    bt[0] = b;
-    bt[1] = sign + n[1] * n[1] * a;
-    bt[2] = -n[1];
-}
-
 /* reference_ray.c: the ray primitives */
 /* Fills h from Embree's hit; normals turned to face `toward` (a direction, not a point). */
 void reference_ray_hit(const reference *ref, const struct RTCHit *eh, const float toward[3],

@@ -186,7 +186,7 @@ void reference_light_connect(const reference_job *job, int i, const hit *x0, rng
     } else {
         const float *axis = s->axis;
         float t[3], bt[3];
-        basis(axis, t, bt);
+        vec3_basis(axis, t, bt);
         float c = 1 - rng_next(g) * (1 - s->sample_cos), phi = 2 * PI_F * rng_next(g);
         float sn = sqrtf(fmaxf(0, 1 - c * c));
         for (int k = 0; k < 3; k++) {

@@ -36,7 +36,7 @@ static void cosine_direction(const float n[3], rng *g, float d[3])
     float r = sqrtf(r1), phi = 2 * PI_F * r2;
     float x = r * cosf(phi), y = r * sinf(phi), z = sqrtf(fmaxf(0, 1 - r1));
     float t[3], bt[3];
-    basis(n, t, bt);
+    vec3_basis(n, t, bt);
     for (int k = 0; k < 3; k++)
         d[k] = x * t[k] + y * bt[k] + z * n[k];
     vec3_normalize(d);

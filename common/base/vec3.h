@@ -46,6 +46,21 @@ static inline float vec3_normalize(float v[3])
     return len;
 }
 
+/* Orthonormal basis t1, t2 around the unit vector d (Duff et al. 2017, branch on
+ * d_z >= 0, so -0 counts as +0 as in GLSL). */
+static inline void vec3_basis(const float d[3], float t1[3], float t2[3])
+{
+    float sign = d[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + d[2]);
+    float b = d[0] * d[1] * a;
+    t1[0] = 1.0f + sign * d[0] * d[0] * a;
+    t1[1] = sign * b;
+    t1[2] = -sign * d[0];
+    t2[0] = b;
+    t2[1] = sign + d[1] * d[1] * a;
+    t2[2] = -d[1];
+}
+
 /* (p1 - p0) x (p2 - p0) of a triangle p = {p0, p1, p2}: its face normal, as long as twice
  * its area, on the side its vertices turn counter-clockwise around. */
 static inline void vec3_triangle_normal(const float p[9], float out[3])

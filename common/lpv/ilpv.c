@@ -122,6 +122,39 @@ static double total_energy(const lpv_volume *v)
     return e[0] + e[1] + e[2];
 }
 
+double ilpv_fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
+                 lpv_volume *faded)
+{
+    if (!(r.keep > 0.0f)) {
+        lpv_volume_clear(faded);
+        return 0.0;
+    }
+    fpmode mode = fpmode_enter();
+    lpv_volume_copy(faded, shown);
+    lpv_volume_add_scaled(faded, early, -1.0f);
+    lpv_volume_scale(faded, r.keep);
+    double energy = total_energy(faded);
+    fpmode_leave(mode);
+    return energy;
+}
+
+void ilpv_compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_volume *sum,
+                  lpv_volume *early, const lpv_volume *faded, lpv_volume *result)
+{
+    fpmode mode = fpmode_enter();
+    if (r.restart) {
+        lpv_volume_copy(early, sum);
+        h->early_energy = total_energy(early);
+    }
+    double sum_energy = total_energy(sum);
+    float w = ilpv_faded_weight(h, lambda_incr, sum_energy - h->early_energy);
+    ilpv_history_settle(h, r, lambda_incr, sum_energy, w);
+    lpv_volume_copy(result, sum);
+    if (w > 0.0f)
+        lpv_volume_add_scaled(result, faded, w);
+    fpmode_leave(mode);
+}
+
 int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
 {
     const lpv_propagate_desc *p = &desc->propagate;
@@ -130,19 +163,10 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     double faded_energy = s->history.faded_energy;
     int rc = 0;
     if (rule.restart) {
-        fpmode mode = fpmode_enter();
-        if (rule.keep > 0.0f) { /* the far part of the picture shown last, in this frame's power */
-            lpv_volume_copy(&s->faded, &s->result);
-            lpv_volume_add_scaled(&s->faded, &s->early, -1.0f);
-            lpv_volume_scale(&s->faded, rule.keep);
-        } else {
-            lpv_volume_clear(&s->faded); /* never read a stale history: it may hold anything */
-        }
-        faded_energy = rule.keep > 0.0f ? total_energy(&s->faded) : 0.0;
-        fpmode_leave(mode);
+        faded_energy = ilpv_fade(rule, &s->result, &s->early, &s->faded);
         lpv_splat_desc sd = {&s->injected, &s->origin, p->blockers, p->absorption, p->pool};
         rc = lpv_splat_run(&s->splat, &sd, &s->near, &s->shell);
-        mode = fpmode_enter();
+        fpmode mode = fpmode_enter();
         lpv_volume_copy(&s->front[0], &s->shell);
         lpv_volume_copy(&s->sum, &s->near);
         lpv_volume_add(&s->sum, &s->shell);
@@ -159,18 +183,8 @@ int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
     }
     ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy,
                          faded_energy);
-    fpmode mode = fpmode_enter();
-    if (rule.restart) {
-        lpv_volume_copy(&s->early, &s->sum);
-        s->history.early_energy = total_energy(&s->early);
-    }
-    double sum_energy = total_energy(&s->sum);
-    float w = ilpv_faded_weight(&s->history, desc->lambda_incr, sum_energy - s->history.early_energy);
-    ilpv_history_settle(&s->history, rule, desc->lambda_incr, sum_energy, w);
-    lpv_volume_copy(&s->result, &s->sum);
-    if (w > 0.0f)
-        lpv_volume_add_scaled(&s->result, &s->faded, w);
-    fpmode_leave(mode);
+    ilpv_compose(&s->history, rule, desc->lambda_incr, &s->sum, &s->early, &s->faded,
+                 &s->result);
     return rc;
 }
 

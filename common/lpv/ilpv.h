@@ -112,6 +112,15 @@ float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_ene
  * lambda_incr 0 only the faded light: the next frame computes the same chain again). */
 void ilpv_history_settle(ilpv_history *h, ilpv_rule r, float lambda_incr, double sum_energy,
                          float w);
+/* At a restart under rule r: faded = r.keep (shown - early), the far part of the picture
+ * shown last in this frame's power, or cleared when nothing is kept (a stale history may
+ * hold anything). Returns <faded|1>, all colours. For this core and the GL path alike. */
+double ilpv_fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
+                 lpv_volume *faded);
+/* After the frame's steps and ilpv_history_advance(): at a restart early = sum; then the
+ * history settles and result = sum + w faded (ilpv_faded_weight()). */
+void ilpv_compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_volume *sum,
+                  lpv_volume *early, const lpv_volume *faded, lpv_volume *result);
 /* The pending share of the last frame (lpv_converge_end()). */
 double ilpv_pending(const ilpv *s);
 

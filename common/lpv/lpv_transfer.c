@@ -2,6 +2,7 @@
 
 #include <math.h>
 
+#include "base/vec3.h"
 #include "lpv/sh.h"
 
 /* z outermost, x fastest. Neighbour k and 25 - k are antipodal. */
@@ -12,19 +13,6 @@ const int lpv_transfer_offsets[LPV_NEIGHBOURS][3] = {
     {0, -1, 1},   {1, -1, 1},  {-1, 0, 1},  {0, 0, 1},   {1, 0, 1},  {-1, 1, 1},
     {0, 1, 1},    {1, 1, 1},
 };
-
-void lpv_transfer_basis(const float d[3], float t1[3], float t2[3])
-{
-    float sign = d[2] >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (sign + d[2]);
-    float b = d[0] * d[1] * a;
-    t1[0] = 1.0f + sign * d[0] * d[0] * a;
-    t1[1] = sign * b;
-    t1[2] = -sign * d[0];
-    t2[0] = b;
-    t2[1] = sign + d[1] * d[1] * a;
-    t2[2] = -d[1];
-}
 
 void lpv_transfer_axis_weights(float v, float w[3])
 {
@@ -60,7 +48,7 @@ int lpv_transfer_split(const float L[4], float absorption, float scattering, uns
         q = 0.0f;
     }
     float t1[3], t2[3];
-    lpv_transfer_basis(d, t1, t2);
+    vec3_basis(d, t1, t2);
     const float *t = (step & 1) ? t2 : t1;
     float r = sqrtf(fmaxf(0.0f, 1.0f - q * q));
     for (int a = 0; a < 3; a++) {

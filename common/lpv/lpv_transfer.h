@@ -8,7 +8,7 @@
  * mean direction u = F / E has length q <= 1 (1 for a beam). A step
  *   1. splits the light into two unit directions s+- = q d +- sqrt(1 - q^2) t, half of E
  *      each (their mean is u, so energy and flux are kept), with d = u / q and t one of
- *      the two axes of the orthonormal basis around d (lpv_transfer_basis), the first on
+ *      the two axes of the orthonormal basis around d (vec3_basis, base/vec3.h), the first on
  *      even steps and the second on odd ones;
  *   2. moves each half like a particle at speed 1 along s: to the cell at offset
  *      o in {-1,0,1}^3 (o = 0: it stays) with weight w(s_x, o_x) w(s_y, o_y) w(s_z, o_z),
@@ -36,10 +36,6 @@ extern const int lpv_transfer_offsets[LPV_NEIGHBOURS][3];
 
 /* Direction used when a cell's light has no flux (isotropic): lattice axis (step mod 3). */
 #define LPV_TRANSFER_MIN_Q 1e-6f
-
-/* Orthonormal basis t1, t2 around the unit vector d (Duff et al. 2017, branch on
- * d_z >= 0, so -0 counts as +0 as in GLSL). */
-void lpv_transfer_basis(const float d[3], float t1[3], float t2[3]);
 
 /* The three weights of one axis for velocity component v in [-1, 1]:
  * w[0] for offset -1, w[1] for 0, w[2] for +1. */

@@ -73,14 +73,7 @@ void lpv_volume_copy(lpv_volume *dst, const lpv_volume *src)
 
 void lpv_volume_add(lpv_volume *dst, const lpv_volume *src)
 {
-    if (dst == src || dst->cells != src->cells || dst->channels != src->channels)
-        return;
-    for (int c = 0; c < src->channels; c++) {
-        float *d = dst->ch[c];
-        const float *s = src->ch[c];
-        for (size_t i = 0; i < src->cells; i++)
-            d[i] += s[i];
-    }
+    lpv_volume_add_scaled(dst, src, 1.0f); /* 1 x s is s exactly: the same sums */
 }
 
 void lpv_volume_add_scaled(lpv_volume *dst, const lpv_volume *src, float a)

@@ -8,6 +8,7 @@
 
 #include <math.h>
 
+#include "base/vec3.h"
 #include "lpv/lpv_transfer.h"
 #include "lpv/sh.h"
 #include "lpv_testutil.h"
@@ -63,7 +64,7 @@ static void test_basis_is_orthonormal(void **state)
         for (int a = 0; a < 3; a++)
             d[a] /= len;
         float t1[3], t2[3];
-        lpv_transfer_basis(d, t1, t2);
+        vec3_basis(d, t1, t2);
         const float *v[3] = {d, t1, t2};
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) {
