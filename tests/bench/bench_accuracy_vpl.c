@@ -12,7 +12,8 @@
  * (the point estimate's variance is infinite near its VPLs, so this RMS keeps noise that
  * few seeds do not remove; the level converges much faster). GI ms: selection + shadow
  * maps + gather, the gather being the eye pass's host ms less that of the same view with
- * --gi none; medians over the timed frames. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
+ * --gi none; medians over the timed frames. The influence cut's bias (vpl_cluster.h): the
+ * first seed's image against the same VPLs with no cut, relRMSE and level. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,15 +158,19 @@ int accuracy_vpl(int argc, char **argv)
     float *one[2] = {calloc(n, sizeof(float)), calloc(n, sizeof(float))};
     double *acc = calloc(6 * n, sizeof *acc);
     seed_sums sums[3] = {{acc, acc + n}, {acc + 2 * n, acc + 3 * n}, {acc + 4 * n, acc + 5 * n}};
-    renderer *r[2] = {acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL}),
+    renderer *r[3] = {acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL}),
                       acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL,
-                                                                   .vpl_point = 1})};
+                                                                   .vpl_point = 1}),
+                      acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL,
+                                                                   .vpl_cut = -1})};
     FILE *f = acc_open_csv(&s, "vpl",
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
         "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,reference_noise_rel,"
-        "vpl_spread_rel,disk_bias_rel,clamp_bias_rel,rmse_rel_truth,beyond_clamp");
-    int rc = disk && point && one[0] && one[1] && acc && r[0] && r[1] && f ? 0 : 1;
+        "vpl_spread_rel,disk_bias_rel,clamp_bias_rel,rmse_rel_truth,beyond_clamp,cut_bias_rel,"
+        "cut_level_bias");
+    float *uncut = calloc(n, sizeof *uncut);
+    int rc = disk && point && one[0] && one[1] && uncut && acc && r[0] && r[1] && r[2] && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     frame_params fp = s.base;
     fp.gi = FRAME_GI_NONE;
@@ -176,6 +181,7 @@ int accuracy_vpl(int argc, char **argv)
         memset(disk, 0, n * sizeof *disk);
         memset(point, 0, n * sizeof *point);
         memset(acc, 0, 6 * n * sizeof *acc);
+        double cut_rel = NAN, cut_level = NAN;
         double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
         int k = seeds < 64 ? seeds : 64;
         for (int seed = 0; seed < k && rc == 0; seed++) {
@@ -192,6 +198,12 @@ int accuracy_vpl(int argc, char **argv)
             seed_add(&sums[0], one[0], NULL, n);            /* the disk estimate */
             seed_add(&sums[1], one[1], NULL, n);            /* the point estimate */
             seed_add(&sums[2], one[1], one[0], n);          /* point - disk: the clamp */
+            if (seed == 0) {
+                vpl_timing tu;
+                image_metrics mu;
+                rc = run(&s, r[2], &fp, &ref, uncut, &mu, &tu);
+                cut_rel = compare(&s, &ref, one[0], uncut, &cut_level);
+            }
             err += m.rmse_rel / k;
             ssim += m.ssim / k;
             scale += m.best_scale / k;
@@ -227,10 +239,10 @@ int accuracy_vpl(int argc, char **argv)
                                      ref_noise * ref_noise, 0.0));
         double truth = sqrt(fmax(err * err - ref_noise * ref_noise, 0.0));
         fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,"
-                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                 o.scene, counts[c], k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err,
                 ssim, scale, mean_err, mean_err_point, level, bias, ref_noise, spread,
-                disk_bias, clamp, truth, truth - clamp);
+                disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
                "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
                "\"vpl_count\":%d,\"seeds\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
@@ -239,16 +251,17 @@ int accuracy_vpl(int argc, char **argv)
                "\"rmse_rel_seed_mean_point\":%.4f,\"bound_level_bias\":%.4f,"
                "\"bound_bias_rms\":%.4f,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
                "\"point_spread_rel\":%.4f,\"disk_bias_rel\":%.4f,\"clamp_bias_rel\":%.4f,"
-               "\"rmse_rel_truth\":%.4f,\"beyond_clamp\":%.4f}\n",
+               "\"rmse_rel_truth\":%.4f,\"beyond_clamp\":%.4f,\"cut_bias_rel\":%.5f,"
+               "\"cut_level_bias\":%.5f}\n",
                o.scene, o.width, o.height, 2 * o.ref_samples, ref.noise_indirect1, counts[c], k,
                ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
                mean_err_point, level, bias, ref_noise, spread, spread_point, disk_bias, clamp,
-               truth, truth - clamp);
+               truth, truth - clamp, cut_rel, cut_level);
         fflush(stdout);
     }
     if (f)
         fclose(f);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < 3; i++)
         if (r[i])
             renderer_destroy(r[i]);
     free(disk);
@@ -256,6 +269,7 @@ int accuracy_vpl(int argc, char **argv)
     free(one[0]);
     free(one[1]);
     free(acc);
+    free(uncut);
     acc_reference_free(&ref);
     acc_setup_close(&s);
     return rc;
