@@ -41,7 +41,7 @@ struct cluster_master {
     int raise_epoch;         /* a node joined: the next commit resets LPV history */
     peer peers[CLUSTER_MAX_NODES];
     cluster_master_stats st;
-    double last_heartbeat;
+    double last_heartbeat;   /* last time every live node was sent something */
     uint8_t buf[WIRE_MAX_MESSAGE];
     uint8_t params_buf[PARAMS_ENCODED_MAX];
 };
@@ -302,19 +302,42 @@ static int handle_event(cluster_master *m)
     return got;
 }
 
-/* Handles messages and socket events until the deadline or until done(m) holds. */
+/* Every live node hears from the master at least every heartbeat_ms (a FRAME counts as
+ * one), through barrier waits, paced frames and waits for nodes, so that nodes can tell a
+ * stopped master within master_ms. A closing master stays silent: its BYE was the end. */
+static void heartbeat(cluster_master *m, double now)
+{
+    if (m->closing || now - m->last_heartbeat < m->cfg->heartbeat_ms)
+        return;
+    m->last_heartbeat = now;
+    wire_msg hb = {.type = WIRE_HEARTBEAT, .version = m->params.version};
+    snprintf(hb.name, sizeof hb.name, "master");
+    for (int i = 0; i < m->cfg->node_count; i++)
+        if (m->peers[i].s.state == CLUSTER_PEER_LIVE)
+            send_to(m, i, &hb);
+}
+
+/* Handles messages and socket events, and sends heartbeats, until the deadline or until
+ * done(m) holds. */
 static void pump(cluster_master *m, double deadline, int (*done)(cluster_master *, void *), void *arg)
 {
     for (;;) {
-        /* The deadline holds even under a flood of messages. */
-        while (handle_event(m) || handle_one(m))
+        /* The deadline and the heartbeats hold even under a flood of messages. */
+        while (handle_event(m) || handle_one(m)) {
+            heartbeat(m, clock_now_ms());
             if ((done && done(m, arg)) || clock_now_ms() >= deadline)
                 return;
+        }
         if (done && done(m, arg))
             return;
-        double left = deadline - clock_now_ms();
+        double now = clock_now_ms();
+        heartbeat(m, now);
+        double left = deadline - now;
         if (left <= 0)
             return;
+        double beat = m->last_heartbeat + m->cfg->heartbeat_ms - now;
+        if (!m->closing && beat < left)
+            left = beat > 0 ? beat : 0;
         zmq_pollitem_t items[2] = {{.socket = m->sock, .events = ZMQ_POLLIN},
                                    {.socket = m->monitor, .events = ZMQ_POLLIN}};
         if (zmq_poll(items, 2, (long)(left + 0.999)) < 0 && errno != EINTR)
@@ -452,19 +475,11 @@ int cluster_master_wait_nodes(cluster_master *m, int count, int timeout_ms)
 {
     double deadline = clock_now_ms() + timeout_ms;
     wait_arg a = {count};
-    while (!enough_live(m, &a) && clock_now_ms() < deadline) {
-        double step = clock_now_ms() + m->cfg->heartbeat_ms;
-        pump(m, step < deadline ? step : deadline, enough_live, &a);
-        /* Tell waiting nodes the master is alive. */
-        for (int i = 0; i < m->cfg->node_count; i++)
-            if (m->peers[i].s.state == CLUSTER_PEER_LIVE) {
-                wire_msg hb = {.type = WIRE_HEARTBEAT, .version = m->params.version};
-                snprintf(hb.name, sizeof hb.name, "master");
-                send_to(m, i, &hb);
-            }
-    }
+    pump(m, deadline, enough_live, &a);
     return live_count(m);
 }
+
+void cluster_master_idle(cluster_master *m, double until_ms) { pump(m, until_ms, NULL, NULL); }
 
 static int all_ready(cluster_master *m, void *arg)
 {
@@ -514,6 +529,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         }
     }
     double tb = clock_now_ms();
+    m->last_heartbeat = tb; /* the FRAME was every live node's heartbeat */
     int timeout = stall_timeout_ms(m);
     out->timeout_ms = timeout;
     pump(m, tb + timeout, all_ready, NULL);

@@ -9,6 +9,8 @@
  * The stall timeout adapts: 4 x the p99 READY latency of the last 64 frames, at least
  * timeouts.stall_min_ms and at most barrier_ms. A node whose connection closes (killed,
  * crashed, heartbeats unanswered) is dropped at once from the socket's disconnect event.
+ * Every live node hears from the master at least every heartbeat_ms (FRAME, or HEARTBEAT
+ * while it waits), so nodes notice a hung master within master_ms.
  * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
  * Queues are bounded by high-water marks and a maximum message size; every wait times out. */
 #ifndef CAVELIGHT_CLUSTER_MASTER_H
@@ -78,6 +80,9 @@ params_store *cluster_master_params(cluster_master *m);
 /* Handles HELLO/HEARTBEAT/BYE for up to timeout_ms or until `count` nodes are live.
  * Returns the number of live nodes. */
 int cluster_master_wait_nodes(cluster_master *m, int count, int timeout_ms);
+/* Between paced frames: handles messages and keeps the heartbeats going until the
+ * clock_now_ms() time until_ms (a sleep would let nodes think the master is gone). */
+void cluster_master_idle(cluster_master *m, double until_ms);
 /* One frame: commit, FRAME, barrier, SWAP. Returns 0, or -1 when no node is live. */
 int cluster_master_frame(cluster_master *m, cluster_frame_result *out);
 void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out);

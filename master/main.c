@@ -1,9 +1,7 @@
 /* cavelight-master: runs a cluster session (see docs/cluster.md). */
-#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/clock.h"
 #include "base/folder.h"
@@ -20,15 +18,6 @@ static void on_signal(int sig)
 {
     (void)sig;
     stop_requested = 1;
-}
-
-static void sleep_until(double t)
-{
-    double left = t - clock_now_ms();
-    if (left <= 0)
-        return;
-    struct timespec ts = {(time_t)(left / 1000), (long)(fmod(left, 1000.0) * 1e6)};
-    nanosleep(&ts, NULL);
 }
 
 static int write_endpoint_file(cluster_master *m, const char *path)
@@ -74,7 +63,7 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, in
             continue;
         }
         if (o->fps > 0)
-            sleep_until(start + session_frames(s) * 1000.0 / o->fps);
+            cluster_master_idle(session_master(s), start + session_frames(s) * 1000.0 / o->fps);
     }
     *wall_s = (clock_now_ms() - start) / 1000.0;
     return rc;

@@ -12,6 +12,10 @@
 #include "cluster/cluster_keys.h"
 
 typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state;
+/* HELLO repeats and socket reopens while not joined. A fallback only (every new handshake
+ * says HELLO at once), and slow on purpose: each HELLO a master reads after the session
+ * started is a rejoin that resets every node's LPV history. */
+enum { RETRY_MS = 2000 };
 /* The socket's connection to the master, from its monitor's events. */
 typedef enum link_state { LINK_OPENING, LINK_UP, LINK_DOWN } link_state;
 
@@ -25,6 +29,8 @@ struct cluster_client {
     double opened;
     int quiet;
     client_state state;
+    int ended;               /* the master ended the session (BYE) and no new one joined */
+    double lost_at;          /* when the master was lost or ended the session (ms clock) */
     params_store params;
     /* curve: this node's key pair and the one master key it accepts */
     char public_key[CLUSTER_KEY_Z85 + 1], secret_key[CLUSTER_KEY_Z85 + 1], master_key[CLUSTER_KEY_Z85 + 1];
@@ -132,13 +138,12 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
 }
 
 /* ZeroMQ does not reconnect after a protocol error (e.g. an oversized message): a node
- * with no connection that has heard nothing for master_ms since its socket opened starts
+ * with no connection that has heard nothing for RETRY_MS since its socket opened starts
  * a fresh one. A connection that is up is kept: its master has our HELLO, and a fresh
  * socket would lose the answer and make the master count a second join. */
 static void reopen_if_dead(cluster_client *c, double now)
 {
-    if (c->link == LINK_UP || now - c->last_heard < c->cfg->master_timeout_ms ||
-        now - c->opened < c->cfg->master_timeout_ms)
+    if (c->link == LINK_UP || now - c->last_heard < RETRY_MS || now - c->opened < RETRY_MS)
         return;
     char err[256];
     close_socket(c);
@@ -229,12 +234,11 @@ static void heartbeat(cluster_client *c, double now)
 
 /* A HELLO goes out on every new connection (connection_event()) and again when one
  * could not be sent (no connection yet). One that went out is repeated only after
- * master_ms without an answer: a master under load answers late, and every extra HELLO
- * it reads after the session started is a rejoin that resets every node's LPV history.
+ * RETRY_MS without an answer: a master under load (or stopped) answers late.
  * Called with the receive queue empty, so an answer that already arrived counts. */
 static void hello_again(cluster_client *c, double now)
 {
-    if (c->state != STATE_JOINED && now - c->last_hello >= c->cfg->master_timeout_ms)
+    if (c->state != STATE_JOINED && now - c->last_hello >= RETRY_MS)
         send_hello(c);
 }
 
@@ -312,14 +316,43 @@ static int join(cluster_client *c, const wire_msg *m)
         refuse_params(c, "snapshot", m->version);
         return 0;
     }
+    /* The line names what happened: a first join, the next session after the master
+     * ended one, a reconnect after a loss (to the same session, or to a new master whose
+     * versions restarted), or a resync (dropped, or a gap in the deltas). */
+    if (!c->quiet) {
+        unsigned long long v = (unsigned long long)m->version;
+        double gap = clock_now_ms() - c->lost_at;
+        if (c->st.snapshots == 0)
+            fprintf(stderr, "cavelight-node %s: joined the master at version %llu\n", c->name, v);
+        else if (c->ended)
+            fprintf(stderr, "cavelight-node %s: joined the master's new session at version %llu, %.0f ms after "
+                    "the last one ended\n", c->name, v, gap);
+        else if (c->state == STATE_LOST && m->version < c->params.version)
+            fprintf(stderr, "cavelight-node %s: reconnected to a new master at version %llu, %.0f ms after "
+                    "losing the old one\n", c->name, v, gap);
+        else if (c->state == STATE_LOST)
+            fprintf(stderr, "cavelight-node %s: reconnected to the master at version %llu, %.0f ms after "
+                    "losing it\n", c->name, v, gap);
+        else
+            fprintf(stderr, "cavelight-node %s: resynchronized with the master at version %llu (snapshot)\n",
+                    c->name, v);
+    }
     c->params = fresh;
-    client_state was = c->state;
     c->state = STATE_JOINED;
+    c->ended = 0;
     c->st.snapshots++;
-    if (!c->quiet)
-        fprintf(stderr, "cavelight-node %s: %s master at version %llu\n", c->name,
-                was == STATE_LOST ? "reconnected to" : "joined", (unsigned long long)m->version);
     return 1;
+}
+
+/* Joined, and the master is gone: its connection closed, or it went silent. */
+static cluster_event_type lose_master(cluster_client *c, cluster_lost_reason why, cluster_event *ev)
+{
+    c->state = STATE_LOST;
+    c->lost_at = clock_now_ms();
+    c->st.lost++;
+    ev->type = CLUSTER_EVENT_LOST;
+    ev->lost = why;
+    return ev->type;
 }
 
 /* BYE from the master: dropped (rejoin; NONE), refused (another config) or the end of the
@@ -339,10 +372,15 @@ static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
                 "and nodes the same file\n", c->name, c->cfg->path);
         return CLUSTER_EVENT_REFUSED;
     }
-    /* Acknowledge, so that the master knows its last messages arrived. */
+    /* Acknowledge, so that the master knows its last messages arrived. A master that is
+     * shutting down answers our HELLO with BYE again: the same end, said once. */
     wire_msg ack = {.type = WIRE_BYE, .reason = WIRE_BYE_LEAVING};
     send_msg(c, &ack);
+    if (c->ended)
+        return CLUSTER_EVENT_NONE;
     c->state = STATE_LOST;
+    c->ended = 1;
+    c->lost_at = clock_now_ms();
     return CLUSTER_EVENT_SHUTDOWN;
 }
 
@@ -356,12 +394,8 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
         heartbeat(c, now);
         for (int k = 0; k < 8 && connection_event(c); k++) /* a few at a time: never starves messages */
             ;
-        if (c->link == LINK_DOWN && c->state == STATE_JOINED && !pending) {
-            c->state = STATE_LOST;
-            c->st.lost++;
-            ev->type = CLUSTER_EVENT_LOST;
-            return ev->type;
-        }
+        if (c->link == LINK_DOWN && c->state == STATE_JOINED && !pending)
+            return lose_master(c, CLUSTER_LOST_CLOSED, ev);
         zmq_msg_t msg;
         zmq_msg_init(&msg);
         if (zmq_msg_recv(&msg, c->sock, ZMQ_DONTWAIT) < 0) {
@@ -372,12 +406,8 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             }
             /* Silence counts only once the queue is empty: a node that was stalled reads
              * what the master sent before it decides the master is gone. */
-            if (c->state == STATE_JOINED && now - c->last_heard > c->cfg->master_timeout_ms) {
-                c->state = STATE_LOST;
-                c->st.lost++;
-                ev->type = CLUSTER_EVENT_LOST;
-                return ev->type;
-            }
+            if (c->state == STATE_JOINED && now - c->last_heard > c->cfg->master_timeout_ms)
+                return lose_master(c, CLUSTER_LOST_SILENT, ev);
             if (c->state != STATE_JOINED) {
                 hello_again(c, now);
                 reopen_if_dead(c, now);
@@ -405,8 +435,10 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
             continue;
         }
         c->last_heard = clock_now_ms();
-        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE)
-            ask_snapshot(c); /* the master is back: resync */
+        /* The master is back: resync, unless a HELLO already went out since the loss (it
+         * waits in the master's queue; a second one would be a second rejoin). */
+        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE && c->last_hello < c->lost_at)
+            ask_snapshot(c);
         switch (m.type) {
         case WIRE_SNAPSHOT:
             if (join(c, &m)) {

@@ -4,12 +4,13 @@
  * Says HELLO (name, config hash) and mirrors the master's parameter store: a SNAPSHOT
  * replaces it, FRAME(v, delta) applies on top when the base version matches (otherwise
  * the client asks for a new snapshot). cluster_client_poll() returns one event at a time:
- * FRAME v (render it, then cluster_client_ready()), SWAP v (present), LOST (nothing heard
- * from the master for master_ms: keep the window, the client keeps saying HELLO until it
- * answers), SHUTDOWN, REFUSED. A FRAME already overtaken by a newer one in the queue is
+ * FRAME v (render it, then cluster_client_ready()), SWAP v (present), LOST (the master's
+ * connection closed, or nothing heard from it for master_ms: keep the window, the client
+ * says HELLO as soon as a master answers), SHUTDOWN, REFUSED. It prints one line per join
+ * naming what happened (first join, reconnect, new session, resync). A FRAME already overtaken by a newer one in the queue is
  * applied but not returned, so a node that stalled catches up instead of replaying.
  * Heartbeats go out while idle. Malformed input is dropped and counted. A socket that
- * stays silent for master_ms while not joined is replaced (ZeroMQ gives up on a
+ * stays unconnected and silent for 2 s while not joined is replaced (ZeroMQ gives up on a
  * connection after a protocol error such as an oversized message). */
 #ifndef CAVELIGHT_CLUSTER_CLIENT_H
 #define CAVELIGHT_CLUSTER_CLIENT_H
@@ -33,14 +34,20 @@ typedef enum cluster_event_type {
     CLUSTER_EVENT_NONE = 0, /* timeout */
     CLUSTER_EVENT_FRAME,    /* params now hold version `version`: render it */
     CLUSTER_EVENT_SWAP,     /* present the frame `version` */
-    CLUSTER_EVENT_LOST,     /* the master went silent */
+    CLUSTER_EVENT_LOST,     /* the master's connection closed, or it went silent (lost) */
     CLUSTER_EVENT_JOINED,   /* a snapshot arrived (first join or after LOST/drop) */
     CLUSTER_EVENT_SHUTDOWN, /* the master ended the session */
     CLUSTER_EVENT_REFUSED,  /* the master runs another config */
 } cluster_event_type;
 
+typedef enum cluster_lost_reason {
+    CLUSTER_LOST_CLOSED = 1, /* the connection closed: killed, crashed, network down */
+    CLUSTER_LOST_SILENT,     /* nothing heard for master_ms: hung or stopped */
+} cluster_lost_reason;
+
 typedef struct cluster_event {
     cluster_event_type type;
+    cluster_lost_reason lost; /* LOST: why */
     uint64_t version;
     double apply_ms;        /* FRAME: time spent applying deltas */
 } cluster_event;

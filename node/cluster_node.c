@@ -100,9 +100,13 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             }
             break;
         case CLUSTER_EVENT_LOST:
-            if (!lost_reported && !d->quiet)
-                fprintf(stderr, "cavelight-node %s: master lost (its connection closed, or nothing heard for %d ms): "
-                        "keeping the output up and reconnecting\n", d->name, d->config->master_timeout_ms);
+            if (!lost_reported && !d->quiet && ev.lost == CLUSTER_LOST_CLOSED)
+                fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
+                        "unreachable); keeping the output up, reconnecting when one answers\n", d->name);
+            else if (!lost_reported && !d->quiet)
+                fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
+                        "or stopped); keeping the output up, waiting for it\n", d->name,
+                        d->config->master_timeout_ms);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:

@@ -449,8 +449,16 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     if (t && !cJSON_IsObject(t))
         fail(&c, "timeouts", "must be an object");
     cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
-    cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 250, 0, 10, 60000);
-    cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms", 2000, 0, 10, 600000);
+    cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 100, 0, 10, 60000);
+    /* The master sends something every heartbeat_ms: a node that misses a few in a row
+     * (MASTER_SILENT_BEATS) reports it lost, well under a second at the default. */
+    enum { MASTER_SILENT_BEATS = 4 };
+    cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms",
+                                             MASTER_SILENT_BEATS * cfg->heartbeat_ms, 0, 10, 600000);
+    if (!c.failed && cfg->master_timeout_ms < 2 * cfg->heartbeat_ms)
+        fail(&c, "timeouts.master_ms", "%d is less than twice timeouts.heartbeat_ms (%d): nodes would lose "
+             "a master that is only between heartbeats; leave master_ms out for %d x heartbeat_ms",
+             cfg->master_timeout_ms, cfg->heartbeat_ms, (int)MASTER_SILENT_BEATS);
     cfg->stall_min_ms = (int)get_number(&c, t, "stall_min_ms", "timeouts.stall_min_ms", 250, 0, 10, 600000);
     cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 

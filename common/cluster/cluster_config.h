@@ -117,8 +117,9 @@ typedef struct cluster_config {
     cluster_security security;
     char keys_dir[CLUSTER_TEXT_MAX];       /* curve: key folder, relative to the cwd */
     int barrier_timeout_ms;  /* a node not READY by then is dropped (default 2000) */
-    int heartbeat_ms;        /* idle heartbeat period (default 250) */
-    int master_timeout_ms;   /* a node hearing nothing this long reports the master lost (2000) */
+    int heartbeat_ms;        /* the longest either side stays silent (default 100) */
+    int master_timeout_ms;   /* a node hearing nothing this long reports the master lost
+                                (default 4 x heartbeat_ms) */
     int stall_min_ms;        /* floor of the adaptive stall timeout (default 250) */
     int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
     double corner_tolerance_mm; /* measured corners further from a rectangle are refused (20) */

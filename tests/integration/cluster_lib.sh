@@ -13,9 +13,11 @@ trap cleanup EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # make_config FILE BARRIER_MS NODE...: one CAVE half-wall per node, 32x64 pixels, stereo.
+# MASTER_MS (default 3000) sets timeouts.master_ms; MASTER_MS= leaves it to its default.
 make_config() {
   local file=$1 barrier=$2; shift 2
-  local screens=(front-l front-r left-f right-f floor-f) i=0 nodes=""
+  local screens=(front-l front-r left-f right-f floor-f) i=0 nodes="" master_ms=""
+  [ -z "${MASTER_MS-3000}" ] || master_ms=" \"master_ms\": ${MASTER_MS-3000},"
   for n in "$@"; do
     nodes+="${nodes:+,}{\"name\": \"$n\", \"screens\": [\"${screens[$i]}\"], \"resolution\": [32, 64], \"eyes\": \"stereo\", \"output\": \"headless\"}"
     i=$((i + 1))
@@ -23,7 +25,7 @@ make_config() {
   cat > "$file" <<JSON
 {"name": "test", "master": {"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"},
  "security": {"mode": "${CLUSTER_SECURITY:-insecure}"},
- "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100, "master_ms": 3000, "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
+ "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100,${master_ms} "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
  "observer": {"eye_separation": 0.064, "home": [0, 1.7, 0]},
  "screens": [
   {"name": "front-l", "bottom_left": [-1.5,0,-1.5], "bottom_right": [0,0,-1.5], "top_left": [-1.5,3,-1.5], "overview": [32, 0]},

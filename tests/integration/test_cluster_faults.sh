@@ -40,16 +40,36 @@ kill -STOP "$pid_b"
 wait_log "node b \(disconnected: dropped\|not ready\)" 1
 kill -CONT "$pid_b"
 wait_log "node b rejoined" 1
-sleep 1 # a few frames with all three
+# A loaded machine may also drop a slow node for a frame past the barrier (what the
+# product should do); such a node rejoins like the faulted ones. So wait until every drop
+# has its rejoin for a second (a few frames with all three), instead of for a fixed time.
+drops() { grep -c "node $1 \(disconnected: dropped\|not ready\)" "$tmp/master.log"; }
+every_node_back() {
+  for n in a b c; do
+    [ "$(drops $n)" -eq "$(grep -c "node $n rejoined" "$tmp/master.log")" ] || return 1
+  done
+}
+for _ in $(seq 120); do
+  every_node_back && sleep 1 && every_node_back && break
+  sleep 1
+done
+every_node_back || { cat "$tmp/master.log"; fail "a dropped node did not rejoin within 2 minutes"; }
+drops_before_stop=$(( $(drops a) + $(drops b) + $(drops c) ))
 kill -TERM "$master"
 wait "$master" || { cat "$tmp/master.log"; fail "master failed"; }
 cat "$tmp/master.log" | grep -v "^$" | head -20
 
 [ "$(json 'r["desyncs"]' "$tmp/r.json")" = 0 ] || fail "desync after rejoin"
 [ "$(json 'r["drops"] >= 2' "$tmp/r.json")" = True ] || fail "expected the killed and the stalled node dropped"
-[ "$(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")" = "[1, 2, 2]" ] || fail "joins per node: $(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")"
-[ "$(json 'all(n["state"] == "live" for n in r["per_node"])' "$tmp/r.json")" = True ] || fail "not every node live at the end"
-[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$tmp/r.json")" = 1 ] || fail "checksums differ at the end"
+joins=$(json '[n["joins"] for n in r["per_node"]]' "$tmp/r.json")
+[ "$(json 'r["per_node"][0]["joins"] >= 1 and all(n["joins"] >= 2 for n in r["per_node"][1:])' "$tmp/r.json")" = True ] \
+  || fail "joins per node: $joins (the restarted c and the stalled b rejoin)"
+if [ $(( $(drops a) + $(drops b) + $(drops c) )) -eq "$drops_before_stop" ]; then
+  [ "$(json 'all(n["state"] == "live" for n in r["per_node"])' "$tmp/r.json")" = True ] || fail "not every node live at the end"
+else
+  echo "a slow node was dropped while the master stopped (machine under load); live nodes checked"
+fi
+[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"] if n["state"] == "live"))' "$tmp/r.json")" = 1 ] || fail "checksums differ at the end"
 [ "$(json 'r["nodes_live_min"]' "$tmp/r.json")" -le 2 ] || fail "no frame ran without the dropped node"
 echo "kill, restart, stall: drops $(json 'r["drops"]' "$tmp/r.json"), final checksums equal"
 
@@ -63,14 +83,26 @@ for n in a b; do
   "$build/cavelight-node" --cluster "$tmp/c2.json" --name $n --master "$ep" --render none 2> "$tmp/n2-$n.log" &
   pids+=($!)
 done
-for _ in $(seq 100); do grep -q "joined master" "$tmp/n2-a.log" 2>/dev/null && break; sleep 0.1; done
-grep -q "joined master" "$tmp/n2-a.log" || { cat "$tmp/m2.log" "$tmp/n2-a.log"; fail "node a did not join the second master"; }
+for n in a b; do
+  for _ in $(seq 600); do grep -q "joined the master" "$tmp/n2-$n.log" 2>/dev/null && break; sleep 0.1; done
+  grep -q "joined the master" "$tmp/n2-$n.log" || { cat "$tmp/m2.log" "$tmp/n2-$n.log"; fail "node $n did not join the second master"; }
+done
 kill -TERM $m2; wait $m2 || true
-sleep 4   # master_ms is 3 s in the test config
-# Either the BYE arrived ("ended the session") or, if it was lost, silence did ("master lost").
-grep -Eq "master ended the session; waiting|master lost" "$tmp/n2-a.log" || { cat "$tmp/m2.log" "$tmp/n2-a.log"; fail "node a did not report the master gone"; }
+# A node says HELLO at once after the BYE, while the master still waits for the others'
+# answers: a master that is shutting down answers with BYE again, never a snapshot. So the
+# nodes say the session ended, once, and neither "reconnected" nor "lost" to that master.
+sleep 3   # longer than RETRY_MS (2 s): any HELLO repeat has been answered
+for n in a b; do
+  [ "$(grep -c "master ended the session; waiting" "$tmp/n2-$n.log")" = 1 ] \
+    || { cat "$tmp/m2.log" "$tmp/n2-$n.log"; fail "node $n did not say once that the master ended the session"; }
+  grep -Eq "reconnected|master lost|new session" "$tmp/n2-$n.log" \
+    && { cat "$tmp/n2-$n.log"; fail "node $n named a shutdown master lost or reconnected"; }
+done
 "$build/cavelight-master" --config "$tmp/c2.json" --bind "$ep" --frames 20 --wait-ms 20000 --report "$tmp/r3.json" 2> "$tmp/m3.log" \
   || { cat "$tmp/m3.log" "$tmp/n2-a.log"; fail "second master failed"; }
 [ "$(json 'r["nodes_live_min"]' "$tmp/r3.json")" = 2 ] || fail "nodes did not reconnect to the new master"
-grep -q "reconnected to master" "$tmp/n2-a.log" || fail "node a did not say it reconnected"
-echo "master restart: both nodes reconnected"
+for n in a b; do
+  grep -q "joined the master's new session at version [0-9]*, [0-9]* ms after the last one ended" "$tmp/n2-$n.log" \
+    || { cat "$tmp/n2-$n.log"; fail "node $n did not name the new session"; }
+done
+echo "master restart: both nodes said the session ended once, then joined the new one"
