@@ -14,7 +14,7 @@
  *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the method's
  *               uniforms and textures for shaders/shade.frag: its LPV lookup (u_lpv_enabled,
  *               the samplers u_lpv_r/g/b, ...) or its VPL gather (u_vpl_count, u_vpls,
- *               u_vpl_shadow, ...), both off unless the method turns its own on
+ *               u_vpl_shadow or u_ism, ...), both off unless the method turns its own on
  *   stats()     the last frame's stage timings and the HUD's lattice size
  *
  * Every method must give every node the same result for the same frame_params. */
@@ -58,8 +58,9 @@ enum {
     GI_UNIT_LPV = 0,        /* u_lpv_r, u_lpv_g, u_lpv_b: three units */
     GI_UNIT_VPL_DATA = 4,   /* u_vpls */
     GI_UNIT_VPL_SHADOW = 5, /* u_vpl_shadow */
-    GI_UNIT_VPL_CLUSTERS = 6, /* u_vpl_cluster_first */
-    GI_UNIT_VPL_LISTS = 7,  /* u_vpl_cluster_index */
+    GI_UNIT_ISM = 6,        /* u_ism */
+    GI_UNIT_VPL_CLUSTERS = 7, /* u_vpl_cluster_first */
+    GI_UNIT_VPL_LISTS = 8,  /* u_vpl_cluster_index */
 };
 
 typedef struct gi_eye {

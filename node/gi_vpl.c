@@ -16,6 +16,7 @@
 #include "gi_vpl.h"
 #include "gltools.h"
 #include "lpv/lpv_converge.h"
+#include "vpl_ism.h"
 
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
  * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
@@ -58,6 +59,8 @@ typedef struct gi_vpl {
     float upload[FRAME_VPL_MAX * 12];
     GLuint shadow_tex, shadow_fbo;
     int face, tiles, layers; /* face side, tiles per atlas side, layers allocated */
+    vpl_ism *ism;            /* imperfect maps instead (renderer_desc.vpl_visibility) */
+    int have_maps;           /* this frame's VPLs have their maps */
 
     /* Light assignment (vpl_cluster.h) */
     renderer_vpl_lights lights;
@@ -134,6 +137,7 @@ static void release(gi_vpl *v)
 {
     const gl_functions *gl = v->gl;
     release_shadow(v);
+    vpl_ism_destroy(v->ism);
     if (v->shadow_fbo)
         gl->DeleteFramebuffers(1, &v->shadow_fbo);
     if (v->vpl_tex)
@@ -287,11 +291,12 @@ static int face_behind(const float n[3], int f)
     return ca + fabsf(cr) + fabsf(cu) <= 0.0f;
 }
 
-static void render_shadows(gi_vpl *v)
+/* 0, or -1 when there is nothing to render or no room. */
+static int render_shadows(gi_vpl *v)
 {
     const gl_functions *gl = v->gl;
     if (v->count == 0 || reserve_shadow(v, v->count) != 0)
-        return;
+        return -1;
     int per_layer = v->tiles * v->tiles, layer = -1;
     const float one = 1.0f;
     gl->UseProgram(v->prog_shadow);
@@ -321,6 +326,7 @@ static void render_shadows(gi_vpl *v)
     }
     gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return 0;
 }
 
 /* Each VPL's influence radius (vpl_cluster.h) for the kernel's area, and its square for
@@ -358,7 +364,14 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->lights = d->settings->vpl_lights;
     v->cut = d->settings->vpl_cut == 0 ? VPL_CUT_DEFAULT : d->settings->vpl_cut;
     v->never_reuse = d->settings->converge_threshold < 0;
-    if (init(v, err, errlen) != 0) {
+    int bad = init(v, err, errlen);
+    if (!bad && d->settings->vpl_visibility != RENDERER_VPL_EXACT) {
+        vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,
+                           .splat = d->settings->vpl_visibility == RENDERER_VPL_ISM_SPLAT};
+        bad = vpl_ism_resolve(d->settings, &id.size, &id.points, err, errlen) != 0 ||
+              !(v->ism = vpl_ism_create(&id, err, errlen));
+    }
+    if (bad) {
         release(v);
         free(v);
         return NULL;
@@ -403,7 +416,10 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     upload_vpls(v);
     v->frame_number++; /* lists of the last VPLs are stale */
     double t1 = clock_now_ms();
-    render_shadows(v);
+    if (v->ism)
+        v->have_maps = vpl_ism_render(v->ism, v->vpl_tex, v->count) == 0;
+    else
+        v->have_maps = render_shadows(v) == 0;
     v->gl->Finish();
     v->timings.inject_ms = t1 - t0;
     v->timings.propagate_ms = clock_now_ms() - t1;
@@ -502,7 +518,10 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->BindTexture(GL_TEXTURE_2D, v->vpl_tex);
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_SHADOW));
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, v->shadow_tex);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), v->shadow_tex ? v->count : 0);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), v->have_maps ? v->count : 0);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_visibility"), v->ism != NULL);
+    if (v->ism)
+        vpl_ism_bind(v->ism, prog, e->first_unit + GI_UNIT_ISM);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_face"), v->face);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_tiles"), v->tiles);
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_vpl_far"), v->far);

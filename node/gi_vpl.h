@@ -6,11 +6,13 @@
  * same choice on every node); the checksum READY carries is vpl_checksum() of that set.
  * Each chosen VPL gets a real shadow map: a cube of six distance maps (faces wholly
  * behind its surface skipped), all VPLs' faces tiles of one depth array texture, rendered
- * once per frame and shared by every screen and eye. eye_bind(): the VPLs, the maps and
- * the light lists for shaders/shade.frag, which gathers per pixel the VPLs its cluster
- * lists (common/gi/vpl_cluster.h; renderer_desc.vpl_lights: clustered by default, tiled,
- * or every VPL). The lists are assigned per eye in eye_bind(), or once for all eyes of a
- * screen in screen() (enclosed clustering: one grid enclosing both frusta). A VPL reaches
+ * once per frame and shared by every screen and eye; or, with renderer_desc.vpl_visibility
+ * ism or ism-splat, an imperfect shadow map from a subset of a point set (vpl_ism.h).
+ * eye_bind(): the VPLs, the maps and the light lists for shaders/shade.frag, which gathers
+ * per pixel the VPLs its cluster lists (common/gi/vpl_cluster.h; renderer_desc.vpl_lights:
+ * clustered by default, tiled, or every VPL), testing visibility in whichever maps were
+ * rendered. The lists are assigned per eye in eye_bind(), or once for all eyes of a screen
+ * in screen() (enclosed clustering: one grid enclosing both frusta). A VPL reaches
  * receivers within its influence radius (renderer_desc.vpl_cut), whichever assignment.
  *
  * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
@@ -23,7 +25,7 @@
  * bounded near the VPL (eq. 14 of the high-res RSM paper), biased only within about
  * sqrt(A / pi) of it, and the bias shrinks as N grows (docs/node.md has its measure).
  *
- * Not here: imperfect shadow maps, interleaved sampling, view importance.
+ * Not here: interleaved sampling, view importance.
  * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
  * maps (GL work finished before the clock stops), assign_ms and assignments the last light
  * assignment. */

@@ -9,6 +9,7 @@
 #include "lpv/lattice.h"
 #include "lpv/lpv_converge.h"
 #include "reference.h"
+#include "vpl_ism.h"
 
 enum { MODE_STANDALONE = 1u << NODE_MODE_STANDALONE, MODE_CLUSTER = 1u << NODE_MODE_CLUSTER };
 
@@ -32,7 +33,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
-    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
+    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_ISM_SIZE, O_ISM_POINTS, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
@@ -82,6 +83,10 @@ static const cli_option options[] = {
     {O_VPL_SEED, "vpl-seed", "S", NULL, G_GI, S, "vpl: seed of their random choice"},
     {O_VPL_BOUND, "vpl-bound", "disk|point", "disk", G_GI, S,
      "vpl: each light a disk of its area near it, or a point\n(unbounded: to measure the disk's bias)"},
+    {O_VPL_VISIBILITY, "vpl-visibility", "exact|ism|ism-splat", "exact", G_GI, S,
+     "vpl: a cube shadow map per light from the triangles, or\nimperfect maps from points (pull-push or splats)"},
+    {O_ISM_SIZE, "ism-size", "N", NULL, G_GI, S, "vpl: texels per side of each imperfect map\n(a power of two, 8..256)"},
+    {O_ISM_POINTS, "ism-points", "N", NULL, G_GI, S, "vpl: points per imperfect map (64..16384)"},
     {O_LPV, "lpv", "auto|cpu|gl", "auto", G_GI, S, "where the LPV runs (auto: CPU on llvmpipe, GL on a GPU)"},
     {O_RSM, "rsm", "N", NULL, G_GI, 0, "reflective shadow map size"},
     {O_LATTICE, "lattice", "N", NULL, G_GI, 0, "LPV cells along the scene's longest axis"},
@@ -185,6 +190,15 @@ static const char *set(void *user, int id, const char *v)
         break;
     }
     case O_VPL_BOUND: CHOICE(o->vpl_point, vpl_bound_names); break;
+    case O_VPL_VISIBILITY: CHOICE(o->vpl_visibility, vpl_visibility_names); break;
+    case O_ISM_SIZE:
+        why = cli_int(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, &o->ism_size);
+        if (!why && (o->ism_size & (o->ism_size - 1)))
+            why = "a power of two";
+        break;
+    case O_ISM_POINTS:
+        why = cli_int(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, &o->ism_points);
+        break;
     case O_LPV: CHOICE(o->lpv, lpv_names); break;
     case O_RSM: why = cli_int(v, 8, 4096, &o->rsm); d->rsm_size = o->rsm; break;
     case O_LATTICE: why = cli_int(v, 2, 512, &o->lattice); d->lattice_cells = o->lattice; break;
@@ -241,6 +255,8 @@ static const char *show_default(void *user, int id, char *buf, size_t cap)
     case O_LAMBDA: snprintf(buf, cap, "%g", f.lambda_incr); break;
     case O_VPL_COUNT: snprintf(buf, cap, "%d", f.vpl_count); break;
     case O_VPL_SEED: snprintf(buf, cap, "%u", f.vpl_seed); break;
+    case O_ISM_SIZE: snprintf(buf, cap, "%d", RENDERER_DEFAULT_ISM_SIZE); break;
+    case O_ISM_POINTS: snprintf(buf, cap, "%d", RENDERER_DEFAULT_ISM_POINTS); break;
     case O_ABSORPTION: snprintf(buf, cap, "%g", f.absorption); break;
     case O_SCATTERING: snprintf(buf, cap, "%g", f.scattering); break;
     case O_ENV: snprintf(buf, cap, "%s", env_names[f.environment]); break;

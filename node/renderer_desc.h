@@ -30,7 +30,22 @@ typedef enum renderer_lpv_mode {
     RENDERER_LPV_CLASSIC,         /* classic LPV (lpv_classic.h): sum of this frame's steps */
 } renderer_lpv_mode;
 
-enum { RENDERER_DEFAULT_RSM_SIZE = 256 };
+/* How the vpl method tests whether a VPL sees a point (node/vpl_ism.h, gi_vpl.h). */
+typedef enum renderer_vpl_visibility {
+    RENDERER_VPL_EXACT = 0, /* a cube of six distance maps per VPL from the triangles */
+    RENDERER_VPL_ISM,       /* imperfect shadow maps: single-pixel points, pull-push */
+    RENDERER_VPL_ISM_SPLAT, /* imperfect shadow maps: points splatted as disks */
+} renderer_vpl_visibility;
+
+enum {
+    RENDERER_DEFAULT_RSM_SIZE = 256,
+    RENDERER_DEFAULT_ISM_SIZE = 32,    /* texels per side of one VPL's imperfect map */
+    RENDERER_ISM_SIZE_MIN = 8,         /* a power of two between these */
+    RENDERER_ISM_SIZE_MAX = 256,
+    RENDERER_DEFAULT_ISM_POINTS = 1024, /* points per VPL's map */
+    RENDERER_ISM_POINTS_MIN = 64,
+    RENDERER_ISM_POINTS_MAX = 16384,
+};
 
 typedef struct renderer_desc {
     const gl_functions *gl; /* the current context's table (glctx_gl()) */
@@ -48,6 +63,9 @@ typedef struct renderer_desc {
     frame_gi gi;         /* the GI method built first (0 = ILPV); the frames' gi decides */
     int vpl_point;       /* vpl: gather each VPL as a point, 1/r^2 unbounded, instead of as a
                             disk of its area: only to measure the bound's bias (docs/node.md) */
+    renderer_vpl_visibility vpl_visibility;
+    int ism_size;        /* 0 = RENDERER_DEFAULT_ISM_SIZE */
+    int ism_points;      /* 0 = RENDERER_DEFAULT_ISM_POINTS */
     renderer_vpl_lights vpl_lights; /* vpl: light assignment of the gather */
     float vpl_cut;       /* vpl: influence cut (vpl_cluster.h); 0 = VPL_CUT_DEFAULT,
                             negative = none (every VPL reaches every receiver) */

@@ -21,6 +21,8 @@ typedef struct node_options {
     float converge_threshold; /* 0 = renderer default, negative = never skip */
     float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
     int rsm, lattice, threads, vpl_point;
+    renderer_vpl_visibility vpl_visibility;
+    int ism_size, ism_points; /* 0 = the renderer's defaults */
     int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
     int frames, width, height;
     const char *out;

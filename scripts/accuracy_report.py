@@ -51,6 +51,11 @@ def label(r):
     return f"{r['backend']} ILPV, {cells}, {r['steps']} steps, lambda {r['lambda']}"
 
 
+def visibility(r):
+    v = r.get("visibility", "exact")
+    return v if v == "exact" else f"{v} {r['ism_size']}px {r['ism_points']} pts"
+
+
 def config_name(c):
     return "classic LPV" if c["mode"] == "classic" else f"ILPV lambda {c['lambda']}"
 
@@ -205,10 +210,10 @@ for s in SCENES:
           "without indirect light); relRMSE is the mean over its seeds, seed mean the "
           "relRMSE of the seeds' mean image (what does not average away); bound bias the "
           "level the disk bound takes off against unbounded point lights.\n")
-        p("| VPLs | seeds | GI ms | whole frame ms | indirect relRMSE | seed mean | indirect SSIM | best level scale | bound bias (level) |")
-        p("|---|---|---|---|---|---|---|---|---|")
+        p("| VPLs | visibility | seeds | GI ms | whole frame ms | indirect relRMSE | seed mean | indirect SSIM | best level scale | bound bias (level) |")
+        p("|---|---|---|---|---|---|---|---|---|---|")
         for r in vpl:
-            p(f"| {r['vpl_count']} | {r['seeds']} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
+            p(f"| {r['vpl_count']} | {visibility(r)} | {r['seeds']} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
               f"{f(r['rmse_rel_indirect'], 3)} | {f(r['rmse_rel_seed_mean'], 3)} | "
               f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} | "
               f"{f(r.get('bound_level_bias'), 3)} |")

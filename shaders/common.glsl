@@ -32,3 +32,18 @@ float transmittance(float sigma, float r)
 const float SH_Y0 = 0.282094791773878;
 const float SH_Y1 = 0.488602511902920;
 const float SH_ENERGY = 3.544907701811032;
+
+// Paraboloid projection of the hemisphere around unit n (a VPL's imperfect shadow map,
+// node/vpl_ism.h) of direction d: xy in the unit disk, z the cosine to n (<= 0: behind).
+// The frame around n is Duff et al.'s branchless orthonormal basis. The map is conformal:
+// a small disk of radius r at distance l covers r / (l (1 + z)) of the unit disk's radius.
+vec3 ism_project(vec3 n, vec3 d)
+{
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z), b = n.x * n.y * a;
+    vec3 t1 = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+    vec3 t2 = vec3(b, s + n.y * n.y * a, -n.y);
+    vec3 w = normalize(d);
+    float z = dot(w, n);
+    return vec3(vec2(dot(w, t1), dot(w, t2)) / (1.0 + z), z);
+}

@@ -58,6 +58,12 @@ uniform vec3 u_vpl_grid_forward;
 uniform vec4 u_vpl_grid_window;      // window tangents: right min, up min, right max, up max
 uniform vec2 u_vpl_grid_depth;       // near, log(far / near)
 uniform ivec3 u_vpl_grid_size;       // tiles x, y, slices
+uniform int u_vpl_visibility;        // 0: the exact maps above, else imperfect ones (u_ism)
+uniform sampler2D u_ism;             // records (distance / far, x, y, radius; radius 0:
+                                     // empty), one tile per VPL (node/vpl_ism.h)
+uniform int u_ism_size;              // texels per tile side
+uniform int u_ism_tiles;             // tiles per atlas side
+uniform float u_ism_radius;          // world radius of the disk each point stands for
 
 layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
@@ -208,6 +214,36 @@ float vpl_visible(int i, vec3 y, vec3 p, vec3 n)
     return texture(u_vpl_shadow, vec4(uv, float(tile / per_layer), length(d) / u_vpl_far));
 }
 
+// Is VPL i at y (normal m) visible from p through its imperfect shadow map? p moves along
+// n as in vpl_visible(), for a texel of the paraboloid map (t = 2 r (1 + z) / size at
+// distance r, cosine z to m) and for the disk of radius u_ism_radius each record spreads
+// a point's depth over: o = (sqrt(2) t + radius) sin(beta) + t / 8. Bilinear weights over
+// the four texels around the lookup, within the VPL's tile; an empty texel sees nothing.
+float ism_visible(int i, vec3 y, vec3 m, vec3 p, vec3 n)
+{
+    vec3 d = p - y;
+    float r = length(d);
+    float size = float(u_ism_size);
+    float t = 2.0 * r * (1.0 + ism_project(m, d).z) / size;
+    float cos_b = abs(dot(n, d)) / r;
+    float sin_b = sqrt(max(1.0 - cos_b * cos_b, 0.0));
+    d += n * ((1.414214 * t + u_ism_radius) * sin_b + 0.125 * t);
+    vec3 q = ism_project(m, d);
+    float depth = length(d) / u_vpl_far;
+    ivec2 origin = ivec2(i % u_ism_tiles, i / u_ism_tiles) * u_ism_size;
+    vec2 f = clamp((q.xy * 0.5 + 0.5) * size, vec2(0.5), vec2(size - 0.5)) - 0.5;
+    ivec2 t0 = ivec2(floor(f));
+    vec2 w = fract(f);
+    float lit = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        vec4 record = texelFetch(u_ism, origin + min(t0 + o, ivec2(u_ism_size - 1)), 0);
+        vec2 wk = mix(1.0 - w, w, vec2(o));
+        lit += record.w <= 0.0 || depth <= record.x ? wk.x * wk.y : 0.0;
+    }
+    return lit;
+}
+
 // Irradiance at p (normal n) from VPL i: a disk of its area A seen on its axis,
 // flux cos_l cos_x / (A + pi r^2) (eq. 14 of the high-res RSM paper): a point light's
 // flux / pi cos_l cos_x / r^2 away from it, bounded near it; nothing beyond its influence
@@ -227,7 +263,9 @@ vec3 vpl_light(int i, vec3 p, vec3 n)
         return vec3(0.0);
     vec3 flux = texelFetch(u_vpls, ivec2(2, i), 0).rgb;
     float g = cos_l * cos_x / (ya.w + PI * r2) * transmittance(u_absorption, sqrt(r2));
-    return flux * (g * vpl_visible(i, ya.xyz, p, n));
+    float visible = u_vpl_visibility == 0 ? vpl_visible(i, ya.xyz, p, n)
+                                          : ism_visible(i, ya.xyz, nl.xyz, p, n);
+    return flux * (g * visible);
 }
 
 // The cluster holding p: vpl_grid_cluster() of common/gi/vpl_cluster.c, the same rule.

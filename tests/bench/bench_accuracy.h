@@ -62,6 +62,8 @@ typedef struct acc_renderer_desc {
     int skip_converged;     /* let the renderer skip work once converged */
     frame_gi gi;            /* the method built first (0 = ILPV) */
     int vpl_point;          /* vpl: VPLs as points, unbounded (renderer_desc.vpl_point) */
+    renderer_vpl_visibility vpl_visibility; /* vpl: renderer_desc's, with its ISM settings */
+    int ism_size, ism_points;
     float vpl_cut;          /* vpl: influence cut (renderer_desc.vpl_cut) */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);

@@ -12,8 +12,18 @@
  * (the point estimate's variance is infinite near its VPLs, so this RMS keeps noise that
  * few seeds do not remove; the level converges much faster). GI ms: selection + shadow
  * maps + gather, the gather being the eye pass's host ms less that of the same view with
- * --gi none; medians over the timed frames. The influence cut's bias (vpl_cluster.h): the
- * first seed's image against the same VPLs with no cut, relRMSE and level. Writes <out>/vpl_<scene>.csv and prints one JSON line per count. */
+ * --gi none; medians over the timed frames.
+ * The visibility is swept too: --visibility exact,ism,ism-splat (default exact), the
+ * imperfect maps for each of --ism-sizes and --ism-points (default the renderer's); the
+ * bound's bias is measured with exact visibility only (its columns are empty otherwise).
+ * With exact visibility the error is also taken apart, each part a relRMSE over the
+ * reference's mean: the reference's noise (RMS of its halves' difference / 2), the seeds'
+ * spread (VPL variance), the disk estimate's bias (its seed mean against the reference,
+ * less both noises), the clamp's bias (point - disk on the same VPLs, its seed mean less
+ * its own noise), one image's error against the truth (the reference's noise taken out)
+ * and that less the clamp's bias (the accuracy goal's figure); and the influence cut's
+ * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
+ * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,15 +32,31 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
+#include "vpl_ism.h"
 
-enum { MAX_COUNTS = 8, TIMED = 3 };
+enum { MAX_COUNTS = 8, MAX_LIST = 4, TIMED = 3 };
+
+/* A comma-separated list of at most MAX_LIST whole numbers in [lo, hi] into out; its
+ * length, or 0 when bad. */
+static int int_list(const char *v, int lo, int hi, int *out)
+{
+    int n = 0;
+    for (const char *c = v; *c; c += strcspn(c, ","), c += *c == ',') {
+        char *end;
+        long x = strtol(c, &end, 10);
+        if (n == MAX_LIST || end == c || (*end && *end != ',') || x < lo || x > hi)
+            return 0;
+        out[n++] = (int)x;
+    }
+    return n;
+}
 
 typedef struct vpl_timing {
     double select_ms, shadow_ms, eye_ms, frame_ms;
 } vpl_timing;
 
 /* TIMED frames of fp from r (timer queries arrive a frame late); the last frame's indirect
- * image copied into last (when given) and its metrics in m; the medians in t. */
+ * image added into sum (when given) and its metrics in m; the medians in t. */
 static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_reference *ref,
                float *last, image_metrics *m, vpl_timing *t)
 {
@@ -107,10 +133,134 @@ static double seed_bias(const seed_sums *a, const uint8_t *coverage, size_t n, i
         sq += m * m;
         covered++;
     }
-    var /= (double)covered;
-    sq /= (double)covered;
+    var /= (double)(covered ? covered : 1);
+    sq /= (double)(covered ? covered : 1);
     *spread = sqrt(var) / mean;
     return sqrt(fmax(sq - var / k, 0.0)) / mean;
+}
+
+/* x with 4 decimals, or null when not measured (NaN). */
+static const char *json_number(double x, char buf[32])
+{
+    snprintf(buf, 32, isnan(x) ? "null" : "%.4f", x);
+    return buf;
+}
+
+/* One count of VPLs with r[0] (the disk bound) and, when given, r[1] (points) and r[2] (no
+ * cut): one CSV row and one JSON line. disk and point are scratch images. */
+static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3], int count,
+                   int seeds, const vpl_timing *none, float *disk, float *point, FILE *f,
+                   const acc_renderer_desc *rd)
+{
+    size_t n = (size_t)s->opt.width * s->opt.height * 3;
+    memset(disk, 0, n * sizeof *disk);
+    memset(point, 0, n * sizeof *point);
+    double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
+    int k = seeds < 64 ? seeds : 64;
+    double *acc = calloc(6 * n, sizeof *acc), mean_ref = 0, cut_rel = NAN, cut_level = NAN;
+    float *one[3] = {calloc(n, sizeof(float)), calloc(n, sizeof(float)), calloc(n, sizeof(float))};
+    seed_sums sums[3] = {{acc, acc + n}, {acc + 2 * n, acc + 3 * n}, {acc + 4 * n, acc + 5 * n}};
+    size_t covered = 0;
+    for (size_t i = 0; i < n; i++) /* the relRMSE's divisor: the covered pixels' mean */
+        if (ref->coverage[i / 3]) {
+            mean_ref += ref->indirect1[i];
+            covered++;
+        }
+    mean_ref /= (double)(covered ? covered : 1);
+    int rc = acc && one[0] && one[1] && one[2] ? 0 : -1;
+    for (int seed = 0; seed < k && rc == 0; seed++) {
+        frame_params fp = s->base;
+        fp.gi = FRAME_GI_VPL;
+        fp.vpl_count = count;
+        fp.vpl_seed = (uint32_t)seed;
+        image_metrics m, unused;
+        vpl_timing t, tp;
+        if (run(s, r[0], &fp, ref, one[0], &m, &t) ||
+            (r[1] && run(s, r[1], &fp, ref, one[1], &unused, &tp))) {
+            rc = -1;
+            break;
+        }
+        seed_add(&sums[0], one[0], NULL, n);      /* the disk estimate */
+        if (r[1]) {
+            seed_add(&sums[1], one[1], NULL, n);  /* the point estimate */
+            seed_add(&sums[2], one[1], one[0], n); /* point - disk: the clamp */
+        }
+        if (seed == 0 && r[2]) {
+            image_metrics mu;
+            vpl_timing tu;
+            if (run(s, r[2], &fp, ref, one[2], &mu, &tu) != 0) {
+                rc = -1;
+                break;
+            }
+            cut_rel = compare(s, ref, one[0], one[2], &cut_level);
+        }
+        err += m.rmse_rel / k;
+        ssim += m.ssim / k;
+        scale += m.best_scale / k;
+        sel[seed] = t.select_ms;
+        sh[seed] = t.shadow_ms;
+        gather[seed] = t.eye_ms - none->eye_ms;
+        frame[seed] = t.frame_ms;
+    }
+    if (rc != 0) {
+        free(acc);
+        for (int i = 0; i < 3; i++)
+            free(one[i]);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        disk[i] = (float)(sums[0].sum[i] / k);
+        point[i] = (float)(sums[1].sum[i] / k);
+    }
+    double ms[4] = {acc_median(sel, k), acc_median(sh, k), acc_median(gather, k),
+                    acc_median(frame, k)};
+    double level = NAN, mean_err_point = NAN, bias = NAN;
+    double mean_err = compare(s, ref, disk, ref->indirect1, NULL);
+    double ref_noise = ref->noise_rms_indirect1 / mean_ref, spread, spread_point = NAN;
+    double disk_bias = NAN, clamp = NAN, truth = NAN;
+    (void)seed_bias(&sums[0], ref->coverage, n, k, mean_ref, &spread);
+    if (r[1]) {
+        mean_err_point = compare(s, ref, point, ref->indirect1, NULL);
+        bias = compare(s, ref, disk, point, &level);
+        double spread_clamp;
+        (void)seed_bias(&sums[1], ref->coverage, n, k, mean_ref, &spread_point);
+        clamp = seed_bias(&sums[2], ref->coverage, n, k, mean_ref, &spread_clamp);
+        disk_bias = sqrt(fmax(mean_err * mean_err - spread * spread / k - ref_noise * ref_noise,
+                              0.0));
+        truth = sqrt(fmax(err * err - ref_noise * ref_noise, 0.0));
+    }
+    free(acc);
+    for (int i = 0; i < 3; i++)
+        free(one[i]);
+    const char *vis = vpl_visibility_names[rd->vpl_visibility];
+    char j[11][32];
+    int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
+    int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
+    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,"
+            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+            s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
+            scale, mean_err, mean_err_point, level, bias, vis, size, points, ref_noise, spread,
+            disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
+    printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
+           "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
+           "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
+           "\"ism_points\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
+           "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
+           "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
+           "\"rmse_rel_seed_mean_point\":%s,\"bound_level_bias\":%s,"
+           "\"bound_bias_rms\":%s,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
+           "\"point_spread_rel\":%s,\"disk_bias_rel\":%s,\"clamp_bias_rel\":%s,"
+           "\"rmse_rel_truth\":%s,\"beyond_clamp\":%s,\"cut_bias_rel\":%s,"
+           "\"cut_level_bias\":%s}\n",
+           s->opt.scene, s->opt.width, s->opt.height, 2 * s->opt.ref_samples,
+           ref->noise_indirect1, count, k, vis, size, points, ms[0], ms[1], ms[2],
+           ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
+           json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
+           ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
+           json_number(clamp, j[5]), json_number(truth, j[6]), json_number(truth - clamp, j[7]),
+           json_number(cut_rel, j[8]), json_number(cut_level, j[9]));
+    fflush(stdout);
+    return 0;
 }
 
 int accuracy_vpl(int argc, char **argv)
@@ -118,6 +268,9 @@ int accuracy_vpl(int argc, char **argv)
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 64};
     int counts[MAX_COUNTS] = {64, 256, 1024}, nc = 3, seeds = 2;
+    int vis[3] = {RENDERER_VPL_EXACT}, nv = 1;
+    int sizes[MAX_LIST] = {RENDERER_DEFAULT_ISM_SIZE}, ns = 1;
+    int points[MAX_LIST] = {RENDERER_DEFAULT_ISM_POINTS}, np = 1;
     for (int i = 1; i < argc; i++) {
         int bad = 0;
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -129,12 +282,32 @@ int accuracy_vpl(int argc, char **argv)
             bad |= nc == 0, i++;
         } else if (v && strcmp(a, "--seeds") == 0) {
             bad = (seeds = atoi(v)) < 1, i++;
+        } else if (v && strcmp(a, "--visibility") == 0) {
+            nv = 0;
+            for (const char *c = v; *c && nv < 3; c += strcspn(c, ","), c += *c == ',') {
+                int k = 0;
+                while (k < 3 && (strncmp(c, vpl_visibility_names[k], strcspn(c, ",")) != 0 ||
+                                 strlen(vpl_visibility_names[k]) != strcspn(c, ",")))
+                    k++;
+                bad |= k == 3;
+                vis[nv++] = k;
+            }
+            i++;
+        } else if (v && strcmp(a, "--ism-sizes") == 0) {
+            bad = !(ns = int_list(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, sizes)), i++;
+            for (int k = 0; k < ns; k++)
+                bad |= (sizes[k] & (sizes[k] - 1)) != 0;
+        } else if (v && strcmp(a, "--ism-points") == 0) {
+            bad = !(np = int_list(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, points)), i++;
         } else {
             bad = 1;
         }
         if (bad) {
-            fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d)\n", a,
-                    FRAME_VPL_MIN, FRAME_VPL_MAX);
+            fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
+                    "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
+                    "--ism-points %d..%d)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
+                    RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, RENDERER_ISM_POINTS_MIN,
+                    RENDERER_ISM_POINTS_MAX);
             return 2;
         }
     }
@@ -146,130 +319,49 @@ int accuracy_vpl(int argc, char **argv)
         acc_setup_close(&s);
         return 1;
     }
-    size_t n = (size_t)o.width * o.height * 3, covered = 0;
-    double mean_ref = 0; /* the reference's mean over the covered pixels: relRMSE's divisor */
-    for (size_t i = 0; i < n; i++)
-        if (ref.coverage[i / 3]) {
-            mean_ref += ref.indirect1[i];
-            covered++;
-        }
-    mean_ref /= covered ? (double)covered : 1.0;
+    size_t n = (size_t)o.width * o.height * 3;
     float *disk = calloc(n, sizeof *disk), *point = calloc(n, sizeof *point);
-    float *one[2] = {calloc(n, sizeof(float)), calloc(n, sizeof(float))};
-    double *acc = calloc(6 * n, sizeof *acc);
-    seed_sums sums[3] = {{acc, acc + n}, {acc + 2 * n, acc + 3 * n}, {acc + 4 * n, acc + 5 * n}};
-    renderer *r[3] = {acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL}),
-                      acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL,
-                                                                   .vpl_point = 1}),
-                      acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_VPL,
-                                                                   .vpl_cut = -1})};
+    renderer *none_r = acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_NONE});
     FILE *f = acc_open_csv(&s, "vpl",
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
-        "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,reference_noise_rel,"
-        "vpl_spread_rel,disk_bias_rel,clamp_bias_rel,rmse_rel_truth,beyond_clamp,cut_bias_rel,"
-        "cut_level_bias");
-    float *uncut = calloc(n, sizeof *uncut);
-    int rc = disk && point && one[0] && one[1] && uncut && acc && r[0] && r[1] && r[2] && f ? 0 : 1;
+        "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
+        "ism_points,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
+        "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias");
+    int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     frame_params fp = s.base;
     fp.gi = FRAME_GI_NONE;
     vpl_timing none;
     if (rc == 0)
-        rc = run(&s, r[0], &fp, &ref, NULL, NULL, &none);
-    for (int c = 0; c < nc && rc == 0; c++) {
-        memset(disk, 0, n * sizeof *disk);
-        memset(point, 0, n * sizeof *point);
-        memset(acc, 0, 6 * n * sizeof *acc);
-        double cut_rel = NAN, cut_level = NAN;
-        double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
-        int k = seeds < 64 ? seeds : 64;
-        for (int seed = 0; seed < k && rc == 0; seed++) {
-            fp = s.base;
-            fp.gi = FRAME_GI_VPL;
-            fp.vpl_count = counts[c];
-            fp.vpl_seed = (uint32_t)seed;
-            image_metrics m, unused;
-            vpl_timing t, tp;
-            rc = run(&s, r[0], &fp, &ref, one[0], &m, &t) ||
-                 run(&s, r[1], &fp, &ref, one[1], &unused, &tp);
-            if (rc)
-                break;
-            seed_add(&sums[0], one[0], NULL, n);            /* the disk estimate */
-            seed_add(&sums[1], one[1], NULL, n);            /* the point estimate */
-            seed_add(&sums[2], one[1], one[0], n);          /* point - disk: the clamp */
-            if (seed == 0) {
-                vpl_timing tu;
-                image_metrics mu;
-                rc = run(&s, r[2], &fp, &ref, uncut, &mu, &tu);
-                cut_rel = compare(&s, &ref, one[0], uncut, &cut_level);
-            }
-            err += m.rmse_rel / k;
-            ssim += m.ssim / k;
-            scale += m.best_scale / k;
-            sel[seed] = t.select_ms;
-            sh[seed] = t.shadow_ms;
-            gather[seed] = t.eye_ms - none.eye_ms;
-            frame[seed] = t.frame_ms;
+        rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
+    for (int c = 0; c < nv * ns * np && rc == 0; c++) {
+        acc_renderer_desc rd = {.gi = FRAME_GI_VPL, .vpl_visibility = vis[c / (ns * np)],
+                                .ism_size = sizes[c / np % ns], .ism_points = points[c % np]};
+        int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
+        if (exact && c % (ns * np) != 0)
+            continue; /* the ISM settings do not change exact maps */
+        renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
+        if (exact) {
+            acc_renderer_desc as_points = rd, uncut = rd;
+            as_points.vpl_point = 1;
+            uncut.vpl_cut = -1;
+            r[1] = acc_renderer_create(&s, &as_points);
+            r[2] = acc_renderer_create(&s, &uncut);
         }
-        if (rc)
-            break;
-        for (size_t i = 0; i < n; i++) {
-            disk[i] = (float)(sums[0].sum[i] / k);
-            point[i] = (float)(sums[1].sum[i] / k);
-        }
-        double ms[4] = {acc_median(sel, k), acc_median(sh, k), acc_median(gather, k),
-                        acc_median(frame, k)};
-        double level = NAN;
-        double mean_err = compare(&s, &ref, disk, ref.indirect1, NULL);
-        double mean_err_point = compare(&s, &ref, point, ref.indirect1, NULL);
-        double bias = compare(&s, &ref, disk, point, &level);
-        /* The error's parts, each a relRMSE over the reference's mean: the reference's
-         * noise, the seeds' spread (VPL variance), the disk estimate's bias (its seed
-         * mean against the reference, less the mean's and the reference's noise), and the
-         * clamp's bias (point - disk on the same VPLs, less its seed noise). The goal
-         * compares one image's error against the truth (the reference's noise taken out)
-         * with the clamp's bias. */
-        double spread, spread_point, spread_clamp;
-        double ref_noise = ref.noise_rms_indirect1 / mean_ref;
-        (void)seed_bias(&sums[0], ref.coverage, n, k, mean_ref, &spread);
-        (void)seed_bias(&sums[1], ref.coverage, n, k, mean_ref, &spread_point);
-        double clamp = seed_bias(&sums[2], ref.coverage, n, k, mean_ref, &spread_clamp);
-        double disk_bias = sqrt(fmax(mean_err * mean_err - spread * spread / k -
-                                     ref_noise * ref_noise, 0.0));
-        double truth = sqrt(fmax(err * err - ref_noise * ref_noise, 0.0));
-        fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,"
-                "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                o.scene, counts[c], k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err,
-                ssim, scale, mean_err, mean_err_point, level, bias, ref_noise, spread,
-                disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
-        printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
-               "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
-               "\"vpl_count\":%d,\"seeds\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
-               "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
-               "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
-               "\"rmse_rel_seed_mean_point\":%.4f,\"bound_level_bias\":%.4f,"
-               "\"bound_bias_rms\":%.4f,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
-               "\"point_spread_rel\":%.4f,\"disk_bias_rel\":%.4f,\"clamp_bias_rel\":%.4f,"
-               "\"rmse_rel_truth\":%.4f,\"beyond_clamp\":%.4f,\"cut_bias_rel\":%.5f,"
-               "\"cut_level_bias\":%.5f}\n",
-               o.scene, o.width, o.height, 2 * o.ref_samples, ref.noise_indirect1, counts[c], k,
-               ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
-               mean_err_point, level, bias, ref_noise, spread, spread_point, disk_bias, clamp,
-               truth, truth - clamp, cut_rel, cut_level);
-        fflush(stdout);
+        rc = r[0] && ((r[1] && r[2]) || !exact) ? 0 : 1;
+        for (int k = 0; k < nc && rc == 0; k++)
+            rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd);
+        for (int i = 0; i < 3; i++)
+            if (r[i])
+                renderer_destroy(r[i]);
     }
     if (f)
         fclose(f);
-    for (int i = 0; i < 3; i++)
-        if (r[i])
-            renderer_destroy(r[i]);
+    if (none_r)
+        renderer_destroy(none_r);
     free(disk);
     free(point);
-    free(one[0]);
-    free(one[1]);
-    free(acc);
-    free(uncut);
     acc_reference_free(&ref);
     acc_setup_close(&s);
     return rc;

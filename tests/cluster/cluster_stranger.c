@@ -9,6 +9,7 @@
  *   ready      forged READY messages for versions 1..N under the victim's name
  *   hello      a HELLO flood under the victim's name
  *   badhello   the same with another config hash (each one a refusal)
+ *   churn      connects and disconnects N times, sending nothing (the master's memory)
  *   master     binds --endpoint as a fake master (own CURVE key, or none) and answers any
  *              message with a SNAPSHOT of hostile parameters for --listen-ms
  * Every loop is bounded by --count and --listen-ms. Only loopback endpoints are meant. */
@@ -161,7 +162,7 @@ int main(int argc, char **argv)
     }
     char err[512];
     if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|master "
+        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|churn|master "
                 "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS]\n");
         return 2;
     }
@@ -187,11 +188,13 @@ int main(int argc, char **argv)
     s.ctx = zmq_ctx_new();
     if (strcmp(attack, "master") == 0) {
         fake_master(&s);
-    } else if (strcmp(attack, "takeover") == 0) {
+    } else if (strcmp(attack, "takeover") == 0 || strcmp(attack, "churn") == 0) {
+        int say_hello = strcmp(attack, "takeover") == 0;
         for (int i = 0; i < s.count; i++, s.attempts++) {
             void *sock = open_dealer(&s);
-            hello(&s, sock, 0);
-            s.replies += drain(sock, 5);
+            if (say_hello)
+                hello(&s, sock, 0);
+            s.replies += drain(sock, 5); /* the connection and its handshake run meanwhile */
             zmq_close(sock);
         }
     } else {

@@ -40,6 +40,8 @@ static void test_shipped_configs(void **state)
         assert_int_equal(cfg.nodes[0].eyes, i < 2 ? CLUSTER_EYES_MONO : CLUSTER_EYES_STEREO);
         if (strstr(names[i], "-local"))
             assert_non_null(strstr(cfg.master_connect, "127.0.0.1"));
+        else /* the defaults: nodes call a hung master lost well under a second */
+            assert_true(cfg.master_timeout_ms > cfg.heartbeat_ms && cfg.master_timeout_ms < 1000);
     }
     /* The CAVE: 10 half walls of 1.5 x 3 m (walls) or 3 x 1.5 m (floor and ceiling). */
     load_shipped("cave5-local");
@@ -96,6 +98,8 @@ static void test_bad_configs(void **state)
     expect_error(buf, "observer.eye_separation");
     snprintf(buf, sizeof buf, "%s \"timeouts\": {\"barrier_ms\": \"x\"}, \"nodes\": []}", good_head);
     expect_error(buf, "timeouts.barrier_ms");
+    snprintf(buf, sizeof buf, "%s \"timeouts\": {\"heartbeat_ms\": 100, \"master_ms\": 150}, \"nodes\": []}", good_head);
+    expect_error(buf, "timeouts.master_ms"); /* lost between two heartbeats */
     expect_error("{\"master\": {\"bind\": \"tcp://*:1\", \"connect\": \"tcp://h:1\"}, \"screens\": "
                  "[{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0], \"top_left\": [1,1,0]}]}",
                  "screens[0]");

@@ -1,0 +1,214 @@
+/* Imperfect shadow maps (node/vpl_ism.h) on llvmpipe, default room.
+ *
+ * The module alone: one VPL in the middle of the room, facing up, with 64 points in a
+ * 16 x 16 map: the points leave most texels of the hemisphere's disk empty, and pull-push
+ * closes all but a few; every texel's distance then lies near the distance to the nearest triangle
+ * along its direction (ray cast here on the host). Through the renderer (64 x 48, 256 VPLs):
+ * the indirect image with imperfect maps, pull-push and splats, lies within a measured
+ * bound of the one with exact maps, and is the same in two renderers and two frames. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "gl/gl_testutil.h"
+#include "gltools.h"
+#include "vpl_ism.h"
+
+enum { W = 64, H = 48, PIXELS = W * H * 3, SIZE = 16, POINTS = 64 };
+
+/* shaders/common.glsl ism_project()'s frame around n (Duff et al.), inverted: the unit
+ * direction of paraboloid coordinates (x, y), |(x, y)| < 1. */
+static void unproject(const float n[3], float x, float y, float out[3])
+{
+    float s = n[2] >= 0 ? 1.0f : -1.0f, a = -1.0f / (s + n[2]), b = n[0] * n[1] * a;
+    float t1[3] = {1 + s * n[0] * n[0] * a, s * b, -s * n[0]};
+    float t2[3] = {b, s + n[1] * n[1] * a, -n[1]};
+    float r2 = x * x + y * y, z = (1 - r2) / (1 + r2);
+    for (int c = 0; c < 3; c++)
+        out[c] = (x * t1[c] + y * t2[c]) * (1 + z) + z * n[c];
+}
+
+/* Distance from o along unit d to the nearest triangle of s (Moeller-Trumbore); INFINITY
+ * when none. */
+static float cast(const scene *s, const float o[3], const float d[3])
+{
+    float best = INFINITY;
+    for (size_t j = 0; j < s->triangle_count; j++) {
+        const float *p = s->positions + 9 * j;
+        float e1[3], e2[3], q[3], t[3], h[3];
+        for (int c = 0; c < 3; c++) {
+            e1[c] = p[3 + c] - p[c];
+            e2[c] = p[6 + c] - p[c];
+            t[c] = o[c] - p[c];
+        }
+        h[0] = d[1] * e2[2] - d[2] * e2[1];
+        h[1] = d[2] * e2[0] - d[0] * e2[2];
+        h[2] = d[0] * e2[1] - d[1] * e2[0];
+        float det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+        if (fabsf(det) < 1e-12f)
+            continue;
+        float u = (t[0] * h[0] + t[1] * h[1] + t[2] * h[2]) / det;
+        q[0] = t[1] * e1[2] - t[2] * e1[1];
+        q[1] = t[2] * e1[0] - t[0] * e1[2];
+        q[2] = t[0] * e1[1] - t[1] * e1[0];
+        float v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+        float dist = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+        if (u >= 0 && v >= 0 && u + v <= 1 && dist > 0 && dist < best)
+            best = dist;
+    }
+    return best;
+}
+
+/* Of one VPL's single-pixel map before and after pull-push: texels inside the disk that
+ * hold a record, and the median relative error of their distances. */
+static void test_pull_push_closes_holes(void **state)
+{
+    (void)state;
+    char err[512];
+    glctx_desc gd = {.backend = GLCTX_EGL};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    scene s;
+    assert_non_null(ctx);
+    assert_int_equal(scene_load("default", &s, err, sizeof err), 0);
+    const gl_functions *gl = glctx_gl(ctx);
+    float centre[3], far = 2 * scene_diagonal(&s);
+    for (int c = 0; c < 3; c++)
+        centre[c] = 0.5f * (s.bounds_min[c] + s.bounds_max[c]);
+    const float normal[3] = {0, 1, 0};
+    float texels[3 * 4] = {centre[0], centre[1], centre[2], 0, 0, 1, 0, 0, 1, 1, 1, 0};
+    GLuint vpl_tex = gltools_texture2d(gl, GL_RGBA32F, 3, 1, GL_NEAREST);
+    gl->BindTexture(GL_TEXTURE_2D, vpl_tex);
+    gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 3, 1, GL_RGBA, GL_FLOAT, texels);
+    static float map[SIZE * SIZE * 4];
+    int covered[2] = {0, 0}, inside = 0;
+    double median_err = 1;
+    for (int splat = 0; splat < 2; splat++) {
+        vpl_ism_desc d = {.gl = gl, .scene = &s, .size = SIZE, .points = POINTS, .far = far,
+                          .splat = splat};
+        vpl_ism *m = vpl_ism_create(&d, err, sizeof err);
+        assert_non_null(m);
+        assert_int_equal(vpl_ism_render(m, vpl_tex, 1), 0);
+        assert_int_equal(vpl_ism_atlas_side(m), SIZE);
+        vpl_ism_read(m, map);
+        float errs[SIZE * SIZE];
+        int n = 0;
+        inside = 0;
+        for (int y = 0; y < SIZE; y++)
+            for (int x = 0; x < SIZE; x++) {
+                float u = (x + 0.5f) / SIZE * 2 - 1, v = (y + 0.5f) / SIZE * 2 - 1;
+                if (u * u + v * v > 0.8f) /* away from the horizon's partly covered texels */
+                    continue;
+                inside++;
+                const float *rec = map + 4 * (y * SIZE + x);
+                if (rec[3] <= 0)
+                    continue;
+                covered[splat]++;
+                float dir[3];
+                unproject(normal, u, v, dir);
+                float truth = cast(&s, centre, dir);
+                errs[n++] = fabsf(rec[0] * far - truth) / truth;
+            }
+        /* the median relative error of the pull-push map's distances */
+        for (int i = 1; i < n; i++)
+            for (int j = i; j > 0 && errs[j - 1] > errs[j]; j--) {
+                float t = errs[j];
+                errs[j] = errs[j - 1];
+                errs[j - 1] = t;
+            }
+        if (!splat)
+            median_err = n ? errs[n / 2] : 1;
+        vpl_ism_destroy(m);
+    }
+    /* The 64 points fall on the whole room; the ceiling half above the VPL gets fewer
+     * than the disk has texels, so a single-pixel map without filling has holes. */
+    printf("texels inside the disk %d, with a record: pull-push %d, splats %d; median "
+           "relative distance error %.3f\n", inside, covered[0], covered[1], median_err);
+    assert_true(POINTS < inside);
+    /* Measured: 160 of 164; a hole stays where the front surface of every coarser texel
+     * around it does not reach it and the surface behind was set aside as occluded. */
+    assert_true(covered[0] >= inside * 95 / 100);
+    assert_true(median_err < 0.1);
+    gl->DeleteTextures(1, &vpl_tex);
+    scene_free(&s);
+    glctx_destroy(ctx);
+}
+
+static double rel_rmse(const float *a, const float *b)
+{
+    double e = 0, m = 0;
+    for (int i = 0; i < PIXELS; i++) {
+        e += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
+        m += b[i];
+    }
+    return sqrt(e / PIXELS) / (m / PIXELS);
+}
+
+static uint64_t render(gltest *t, renderer *r, float *indirect)
+{
+    frame_params p = t->params;
+    p.gi = FRAME_GI_VPL;
+    p.vpl_count = 256;
+    uint64_t checksum = renderer_frame_pass(r, &p);
+    renderer_view v;
+    const float eye[3] = {1.3f, 1.6f, 1.9f}, target[3] = {-0.5f, 0.9f, -1.2f};
+    gltest_look_at(&v, eye, target, 1.15f, W, H);
+    renderer_image img;
+    assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
+    memcpy(indirect, img.indirect, sizeof(float) * PIXELS);
+    return checksum;
+}
+
+static renderer *make(gltest *t, renderer_vpl_visibility vis)
+{
+    char err[512];
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
+                        .lpv_backend = RENDERER_LPV_CPU, .gi = FRAME_GI_VPL,
+                        .vpl_visibility = vis, .converge_threshold = -1};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    if (!r)
+        fprintf(stderr, "%s\n", err);
+    assert_non_null(r);
+    return r;
+}
+
+static void test_against_exact_and_deterministic(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    static float exact[PIXELS], ism[PIXELS], again[PIXELS];
+    renderer *r = make(&t, RENDERER_VPL_EXACT);
+    uint64_t c_exact = render(&t, r, exact);
+    renderer_destroy(r);
+    const renderer_vpl_visibility kinds[2] = {RENDERER_VPL_ISM, RENDERER_VPL_ISM_SPLAT};
+    /* Measured at 64 x 48, 256 VPLs, 32 x 32 maps of 1024 points: 0.14 (pull-push) and
+     * 0.19 (splats); the bound leaves room for another driver's rounding. */
+    const double bound = 0.3;
+    for (int k = 0; k < 2; k++) {
+        r = make(&t, kinds[k]);
+        uint64_t c = render(&t, r, ism);
+        double e = rel_rmse(ism, exact);
+        printf("%s: indirect relRMSE against exact maps %.3f\n", vpl_visibility_names[kinds[k]], e);
+        assert_true(c == c_exact); /* the VPLs are the same; only their maps differ */
+        assert_true(e < bound);
+        assert_true(render(&t, r, again) == c);
+        assert_memory_equal(ism, again, sizeof ism);
+        renderer_destroy(r);
+        r = make(&t, kinds[k]);
+        render(&t, r, again);
+        assert_memory_equal(ism, again, sizeof ism);
+        renderer_destroy(r);
+    }
+    gltest_close(&t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pull_push_closes_holes),
+        cmocka_unit_test(test_against_exact_and_deterministic),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
