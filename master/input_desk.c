@@ -2,6 +2,7 @@
 #include "input_desk.h"
 #include "base/xalloc.h"
 #include "desk_view.h"
+#include "pixel_window.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -52,13 +53,9 @@ void input_desk_step(input_desk_state *ds, const input_desk_controls *c, double 
     input_source_set_axes(st, c->axes, 2, now);
 }
 
-/* The two GL 1.4 calls that put the picture in the window, looked up through GLFW so that
- * the master links no GL library. */
-typedef void (*window_pos_fn)(GLint x, GLint y);
-typedef void (*draw_pixels_fn)(GLsizei w, GLsizei h, GLenum format, GLenum type, const void *pixels);
-
 typedef struct desk_source {
     input_source base;
+    pixel_window *pw;
     GLFWwindow *win;
     input_desk_state ds;
     input_desk_controls c;
@@ -66,23 +63,14 @@ typedef struct desk_source {
     int closed;
     int width, height;
     uint8_t *picture;          /* desk_view's image, top row first; NULL: no GL, the window stays dark */
-    uint8_t *rows;             /* the same, bottom row first, as glDrawPixels takes it */
-    window_pos_fn window_pos;
-    draw_pixels_fn draw_pixels;
     int tell_no_picture;       /* the first poll says why the window is dark */
 } desk_source;
 
 /* Draws the key help and the live map (desk_view.h) into the window. */
 static void show(desk_source *d)
 {
-    int w = d->width, h = d->height;
-    desk_view_draw(d->picture, w, h, &d->base.st);
-    for (int y = 0; y < h; y++)
-        memcpy(d->rows + (size_t)(h - 1 - y) * w * 3, d->picture + (size_t)y * w * 3, (size_t)w * 3);
-    glfwMakeContextCurrent(d->win);
-    d->window_pos(0, 0);
-    d->draw_pixels(w, h, GL_RGB, GL_UNSIGNED_BYTE, d->rows);
-    glfwSwapBuffers(d->win);
+    desk_view_draw(d->picture, d->width, d->height, &d->base.st);
+    pixel_window_show(d->pw, d->picture, d->width, d->height);
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy)
@@ -151,12 +139,8 @@ static int desk_poll(input_source *s, double now, char *err, size_t errlen)
 static void desk_close(input_source *s)
 {
     desk_source *d = (desk_source *)s;
-    if (d->win) {
-        glfwDestroyWindow(d->win);
-        glfwTerminate();
-    }
+    pixel_window_close(d->pw);
     free(d->picture);
-    free(d->rows);
     free(d);
 }
 
@@ -167,51 +151,22 @@ input_source *input_desk_open(const input_desk_desc *desc, char *err, size_t err
     d->base.cave_space = 1;
     d->base.poll = desk_poll;
     d->base.close = desk_close;
-    if (!glfwInit()) {
-        const char *why = NULL;
-        glfwGetError(&why);
-        snprintf(err, errlen, "input %s: cannot open the desk simulator window: %s (needs a "
-                 "display; run under X or Xvfb)", d->base.name, why ? why : "GLFW init failed");
-        free(d);
-        return NULL;
-    }
     d->width = desc->width > 0 ? desc->width : 360;
     d->height = desc->height > 0 ? desc->height : 240;
-    const char *title = "cavelight desk: WASD head, mouse wand, 1-5 buttons";
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 1); /* any context that draws pixels will do */
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 4);
-    d->win = glfwCreateWindow(d->width, d->height, title, NULL, NULL);
-    if (d->win) {
-        glfwMakeContextCurrent(d->win);
-        glfwSwapInterval(0); /* never wait for the display: the master's frame loop polls here */
-        d->window_pos = (window_pos_fn)glfwGetProcAddress("glWindowPos2i");
-        d->draw_pixels = (draw_pixels_fn)glfwGetProcAddress("glDrawPixels");
-    }
-    if (d->win && d->window_pos && d->draw_pixels) {
-        d->picture = xmalloc((size_t)d->width * d->height * 3);
-        d->rows = xmalloc((size_t)d->width * d->height * 3);
-    } else {
-        /* No usable GL on this display: input only, in a window without a picture. */
-        if (d->win)
-            glfwDestroyWindow(d->win);
-        glfwDefaultWindowHints();
-        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-        glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-        d->win = glfwCreateWindow(d->width, d->height, title, NULL, NULL);
-        d->tell_no_picture = 1;
-    }
-    if (!d->win) {
-        const char *why = NULL;
-        glfwGetError(&why);
-        snprintf(err, errlen, "input %s: cannot create the desk simulator window: %s",
-                 d->base.name, why ? why : "unknown GLFW error");
-        glfwTerminate();
-        free(d->picture);
-        free(d->rows);
+    char why[400];
+    d->pw = pixel_window_open(&(pixel_window_desc){.title = "cavelight desk: WASD head, mouse wand, 1-5 buttons",
+                                                   .width = d->width, .height = d->height},
+                              why, sizeof why);
+    if (!d->pw) {
+        snprintf(err, errlen, "input %s: cannot open the desk simulator window: %s", d->base.name, why);
         free(d);
         return NULL;
     }
+    d->win = pixel_window_glfw(d->pw);
+    if (pixel_window_has_picture(d->pw))
+        d->picture = xmalloc((size_t)d->width * d->height * 3);
+    else
+        d->tell_no_picture = 1;
     glfwSetWindowUserPointer(d->win, d);
     glfwSetScrollCallback(d->win, on_scroll);
     d->c.cursor[0] = d->c.cursor[1] = 0.5f;

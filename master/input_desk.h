@@ -9,8 +9,8 @@
  * The head starts at (0, 1.7, 0) looking along -Z; poses are in CAVE space. The maths is
  * input_desk_step(), a pure function of the controls, so it is tested without a window.
  * The window shows these keys and a live map of the head and the wand (desk_view.h), drawn
- * with glDrawPixels on each poll; where the display offers no OpenGL it stays dark and the
- * first poll says so. */
+ * into a pixel_window (pixel_window.h) on each poll; where the display offers no OpenGL it
+ * stays dark and the first poll says so. */
 #ifndef CAVELIGHT_INPUT_DESK_H
 #define CAVELIGHT_INPUT_DESK_H
 

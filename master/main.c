@@ -8,8 +8,9 @@
 #include "cluster_auth.h"
 #include "cluster_master.h"
 #include "master_cli.h"
-#include "overview.h"
 #include "launch.h"
+#include "overview.h"
+#include "preview.h"
 #include "session.h"
 
 static volatile sig_atomic_t stop_requested;
@@ -34,7 +35,8 @@ static int write_endpoint_file(cluster_master *m, const char *path)
 
 /* --frames frames (0: until stopped), paced at --fps. Returns 0, or 1 when every node is
  * gone for --wait-ms. */
-static int run_frames(session *s, const master_options *o, launch_set *nodes, int wait_ms, double *wall_s)
+static int run_frames(session *s, const master_options *o, launch_set *nodes, preview *pv, int wait_ms,
+                      double *wall_s)
 {
     double start = clock_now_ms();
     int rc = 0;
@@ -42,6 +44,8 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, in
         cluster_frame_result r;
         session_step step = session_frame(s, &r);
         launch_poll(nodes);
+        if (pv && preview_update(pv, 0))
+            fprintf(stderr, "cavelight-master: preview window closed; the session goes on\n");
         if (step == SESSION_INPUT_ENDED)
             break;
         if (step == SESSION_INPUT_FAILED) {
@@ -87,6 +91,26 @@ static void handle_signals(void)
     signal(SIGPIPE, SIG_IGN);
 }
 
+/* The live preview, or NULL after one line saying why not (the session goes on). */
+static preview *open_preview(const master_options *o, const cluster_config *cfg)
+{
+    char err[1024];
+    preview *pv = preview_open(cfg, o->out_dir, err, sizeof err);
+    if (!pv) {
+        fprintf(stderr, "cavelight-master: warning: %s\n", err);
+        return NULL;
+    }
+    int png = 0;
+    for (int n = 0; n < cfg->node_count; n++)
+        png |= cfg->nodes[n].output == CLUSTER_OUTPUT_PNG;
+    if (o->output ? strcmp(o->output, "png") != 0 : !png)
+        fprintf(stderr, "cavelight-master: warning: preview: the nodes write no images into %s (their output "
+                "is not png): the walls stay black; add --output png\n", o->out_dir);
+    else if (!o->quiet)
+        fprintf(stderr, "cavelight-master: preview window open: the walls unfolded from %s\n", o->out_dir);
+    return pv;
+}
+
 static int keygen(const cluster_config *cfg)
 {
     char err[1024];
@@ -120,7 +144,8 @@ static int master_run(const master_options *o)
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .gi = o->gi,
-                       .vpl_count = o->vpl_count};
+                       .vpl_count = o->vpl_count, .exposure = o->exposure,
+                       .exposure_auto = o->exposure_auto};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);
@@ -133,13 +158,14 @@ static int master_run(const master_options *o)
         session_destroy(s);
         return 1;
     }
+    preview *pv = o->preview ? open_preview(o, &cfg) : NULL;
     int wait_ms = o->wait_ms ? o->wait_ms : cfg.join_timeout_ms;
     int live = launch_wait(s, &cfg, &nodes, wait_ms, o->quiet, &stop_requested);
     if (!o->quiet)
         fprintf(stderr, "cavelight-master: %d nodes live, running %s%d frames\n", live,
                 o->frames ? "" : "until stopped, ", o->frames);
     double wall_s;
-    int exit_code = run_frames(s, o, &nodes, wait_ms, &wall_s);
+    int exit_code = run_frames(s, o, &nodes, pv, wait_ms, &wall_s);
     if (o->report && folder_create_for(o->report, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: report: %s\n", err);
         exit_code = 1;
@@ -160,6 +186,9 @@ static int master_run(const master_options *o)
             fprintf(stderr, "cavelight-master: wrote %s\n", o->overview);
         }
     }
+    if (pv) /* the last frame, now that every image on disk is from it */
+        preview_update(pv, 1);
+    preview_close(pv);
     print_summary(&st, wall_s);
     return exit_code;
 }

@@ -16,7 +16,7 @@ enum id {
     O_SPAWN_LOCAL, O_SPAWN_REMOTE, O_NODE_EXE, O_NODE_ARGS, O_WAIT_MS, O_RENDER, O_SCENE, O_GI,
     O_VPL_COUNT,
     O_FRAMES, O_DT, O_FPS,
-    O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_QUIET,
+    O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET, O_EXPOSURE,
     O_INPUT, O_RECORD,
     O_PATTERN, O_PRINT_POSES,
 };
@@ -58,7 +58,11 @@ static const cli_option options[] = {
     {O_OVERVIEW, "overview", "FILE.png", NULL, G_OUTPUT, 0,
      "at the end, the walls unfolded in one picture"},
     {O_REPORT, "report", "FILE", NULL, G_OUTPUT, 0, "at the end, the JSON report (docs/cluster.md)"},
+    {O_PREVIEW, "preview", NULL, NULL, G_OUTPUT, 0,
+     "a window here with the walls unfolded as the nodes write\nthem into --out (png output; docs/cluster.md); without a\ndisplay: one line, and the session goes on"},
     {O_QUIET, "quiet", NULL, NULL, G_OUTPUT, 0, "log only errors"},
+    {O_EXPOSURE, "exposure", "E|auto", "1", G_OUTPUT, 0,
+     "linear scale before tone mapping; auto: the scene's average\nlit surface at middle grey (docs/node.md)"},
     {O_INPUT, "input", "CONFIG|RECORDING", "the scripted head and light path", G_INPUT, 0,
      "trackers and wand (configs/input/), or a recording\nto replay (docs/input.md)"},
     {O_RECORD, "record", "FILE", "the input config's \"record\", in --out", G_INPUT, 0,
@@ -112,7 +116,16 @@ static const char *set(void *user, int id, const char *v)
     case O_KEEP_FRAMES: o->keep_frames = 1; break;
     case O_OVERVIEW: o->overview = v; break;
     case O_REPORT: o->report = v; break;
+    case O_PREVIEW: o->preview = 1; break;
     case O_QUIET: o->quiet = 1; break;
+    case O_EXPOSURE:
+        if (strcmp(v, "auto") == 0) {
+            o->exposure_auto = 1;
+            break;
+        }
+        why = cli_float(v, 1e-6f, FRAME_MAX_EXPOSURE, &o->exposure);
+        o->exposure_auto = 0;
+        break;
     case O_INPUT: o->input = v; break;
     case O_RECORD: o->record = v; break;
     case O_PATTERN: o->pattern = 1; break;

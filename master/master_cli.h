@@ -18,11 +18,13 @@ typedef struct master_options {
     const char *node_exe, *render, *output, *node_args, *scene;
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
-    int keep_frames, pattern, print_poses;
+    int keep_frames, pattern, print_poses, preview;
     const char *input, *record;
     frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
     int gi_given;               /* --gi was given: spawned nodes get it too */
     int vpl_count;              /* vpl's lights per frame; 0 = FRAME_VPL_DEFAULT */
+    float exposure;             /* 0 = the frame default */
+    int exposure_auto;          /* --exposure auto */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

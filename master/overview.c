@@ -1,38 +1,18 @@
 #include "overview.h"
 
-#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "image/font.h"
 #include "image/image.h"
 
-static uint8_t *read_png(const char *path, int *w, int *h, char *err, size_t errlen)
-{
-    png_image img;
-    memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&img, path)) {
-        snprintf(err, errlen, "overview: cannot read %s (%s): did every node write its images?", path, img.message);
-        return NULL;
-    }
-    img.format = PNG_FORMAT_RGB;
-    uint8_t *rgb = malloc(PNG_IMAGE_SIZE(img));
-    if (!rgb || !png_image_finish_read(&img, NULL, rgb, 0, NULL)) {
-        snprintf(err, errlen, "overview: cannot decode %s", path);
-        png_image_free(&img);
-        free(rgb);
-        return NULL;
-    }
-    *w = (int)img.width;
-    *h = (int)img.height;
-    return rgb;
-}
+const uint8_t overview_label_text[3] = {255, 255, 255}, overview_label_back[3] = {0, 0, 0};
+static const uint8_t canvas_grey = 24;
 
-int overview_compose(const cluster_config *cfg, const char *dir, const char *out_path, char *err, size_t errlen)
+int overview_size(const cluster_config *cfg, int *width, int *height, char *err, size_t errlen)
 {
-    /* Canvas size from the configured resolutions. */
     int cw = 0, ch = 0;
     for (int n = 0; n < cfg->node_count; n++)
         for (int s = 0; s < cfg->nodes[n].screen_count; s++) {
@@ -49,41 +29,72 @@ int overview_compose(const cluster_config *cfg, const char *dir, const char *out
         snprintf(err, errlen, "overview: no screen in %s has an \"overview\" offset", cfg->path);
         return -1;
     }
-    uint8_t *canvas = malloc((size_t)cw * ch * 3);
-    if (!canvas) {
-        snprintf(err, errlen, "overview: out of memory");
-        return -1;
-    }
-    memset(canvas, 24, (size_t)cw * ch * 3);
-    int rc = 0;
-    for (int n = 0; n < cfg->node_count && rc == 0; n++)
-        for (int s = 0; s < cfg->nodes[n].screen_count && rc == 0; s++) {
+    *width = cw;
+    *height = ch;
+    return 0;
+}
+
+void overview_label_place(int x0, int y0, int w, int h, int *x, int *y, int *scale)
+{
+    *scale = w >= 128 && h >= 128 ? 2 : 1;
+    *x = x0 + 3 * *scale;
+    *y = y0 + 3 * *scale;
+}
+
+int overview_draw(const cluster_config *cfg, const char *dir, int missing_ok, uint8_t *canvas, int cw, int ch,
+                  char *err, size_t errlen)
+{
+    memset(canvas, canvas_grey, (size_t)cw * ch * 3);
+    int drawn = 0;
+    for (int n = 0; n < cfg->node_count; n++)
+        for (int s = 0; s < cfg->nodes[n].screen_count; s++) {
             const cluster_node_screen *ns = &cfg->nodes[n].screens[s];
             const cluster_screen *sc = &cfg->screens[ns->screen];
-            if (sc->overview[0] < 0)
+            int x0 = sc->overview[0], y0 = sc->overview[1];
+            if (x0 < 0)
                 continue;
             cluster_eyes e = cfg->nodes[n].eyes;
             const char *eye = e == CLUSTER_EYES_STEREO || e == CLUSTER_EYES_LEFT ? "left" :
                               e == CLUSTER_EYES_RIGHT ? "right" : "mono";
             char path[2048];
             snprintf(path, sizeof path, "%s/%s-%s.png", dir, sc->name, eye);
-            int w, h;
-            uint8_t *img = read_png(path, &w, &h, err, errlen);
-            if (!img) {
-                rc = -1;
-                break;
+            int w = ns->width, h = ns->height;
+            uint8_t *img = NULL;
+            if (missing_ok && access(path, R_OK) != 0) {
+                for (int y = y0; y < y0 + h && y < ch; y++) /* its place stays black */
+                    memset(canvas + ((size_t)y * cw + x0) * 3, 0, (size_t)(x0 + w <= cw ? w : cw - x0) * 3);
+            } else if (image_read_png(path, &w, &h, &img, err, errlen) != 0) {
+                char why[512];
+                snprintf(why, sizeof why, "%s", err);
+                snprintf(err, errlen, "overview: %s (did every node write its images?)", why);
+                return -1;
+            } else {
+                for (int y = 0; y < h && y0 + y < ch; y++) {
+                    int cols = w < cw - x0 ? w : cw - x0;
+                    memcpy(canvas + ((size_t)(y0 + y) * cw + x0) * 3, img + (size_t)y * w * 3, (size_t)cols * 3);
+                }
+                free(img);
+                drawn++;
             }
-            for (int y = 0; y < h && sc->overview[1] + y < ch; y++) {
-                int x0 = sc->overview[0], cols = w < cw - x0 ? w : cw - x0;
-                memcpy(canvas + ((size_t)(sc->overview[1] + y) * cw + x0) * 3, img + (size_t)y * w * 3, (size_t)cols * 3);
-            }
-            free(img);
             /* The wall's name in its corner, readable on any picture. */
-            static const uint8_t text[3] = {255, 255, 255}, back[3] = {0, 0, 0};
-            int scale = h >= 256 && w >= 128 ? 2 : 1;
-            font_draw(canvas, cw, ch, sc->overview[0] + 3 * scale, sc->overview[1] + 3 * scale, scale, sc->name,
-                      text, back);
+            int lx, ly, scale;
+            overview_label_place(x0, y0, w, h, &lx, &ly, &scale);
+            font_draw(canvas, cw, ch, lx, ly, scale, sc->name, overview_label_text, overview_label_back);
         }
+    return drawn;
+}
+
+int overview_compose(const cluster_config *cfg, const char *dir, const char *out_path, char *err, size_t errlen)
+{
+    int cw, ch;
+    if (overview_size(cfg, &cw, &ch, err, errlen) != 0)
+        return -1;
+    uint8_t *canvas = malloc((size_t)cw * ch * 3);
+    if (!canvas) {
+        snprintf(err, errlen, "overview: out of memory for %d x %d pixels", cw, ch);
+        return -1;
+    }
+    int rc = overview_draw(cfg, dir, 0, canvas, cw, ch, err, errlen) < 0 ? -1 : 0;
     if (rc == 0)
         rc = image_write_png(out_path, cw, ch, canvas, err, errlen);
     free(canvas);

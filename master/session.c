@@ -12,6 +12,7 @@
 #include "input.h"
 #include "interaction.h"
 #include "pose_guard.h"
+#include "frame/exposure.h"
 #include "scene/scene.h"
 #include "script.h"
 
@@ -64,6 +65,13 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     s->frame.gi = d->gi;
     if (d->vpl_count > 0)
         s->frame.vpl_count = d->vpl_count;
+    if (d->exposure > 0)
+        s->frame.exposure = d->exposure;
+    if (d->exposure_auto) {
+        s->frame.exposure = exposure_from_light(&s->frame, &sc);
+        if (!d->quiet)
+            fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
+    }
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     return 0;

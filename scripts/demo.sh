@@ -13,13 +13,15 @@ out=${1:-$root/out/demo}
 mkdir -p "$out"
 rm -f "$out"/*.png "$out"/report.json
 
-# 48 frames of simulated time at 12 frames per second: 4 seconds of the path. One LPV
-# thread per node (10 nodes share the cores), a 24-cell lattice and 128x128 RSMs.
+# 48 frames of simulated time at 12 frames per second: 4 seconds of the path, on walls of
+# 256 x 256 pixels (128 x 256 per half wall). One LPV thread per node (10 nodes share the
+# cores), a 24-cell lattice and 128x128 RSMs; the exposure from the scene's light. With a
+# display, a window on the master shows the walls live (--preview).
 "$root/build/cavelight-master" \
   --config "$root/configs/clusters/cave5-local.json" --spawn-local \
   --frames 48 --dt 0.0833333 \
-  --output png --out "$out" --overview "$out/overview.png" --report "$out/report.json" \
-  --node-args "--threads 1 --lattice 24 --rsm 128" --quiet
+  --output png --out "$out" --overview "$out/overview.png" --report "$out/report.json" --exposure auto \
+  --node-args "--threads 1 --lattice 24 --rsm 128" ${DISPLAY:+--preview} --quiet
 
 python3 - "$out/report.json" <<'PY' 2>/dev/null || true
 import json, sys
