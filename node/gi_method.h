@@ -38,6 +38,7 @@ typedef struct gi_desc {
     const renderer_desc *settings; /* the renderer's desc: lattice, backend, threads, ... */
     int rsm_size;                  /* texels per side of each RSM */
     int software;                  /* a software GL (llvmpipe): GL compute is slow there */
+    const char *shade_defines;     /* what shaders/shade.frag is compiled with */
 } gi_desc;
 
 /* This frame's reflective shadow maps, as the renderer rendered them (renderer_rsm.h). */
@@ -58,15 +59,23 @@ enum {
     GI_UNIT_LPV = 0,        /* u_lpv_r, u_lpv_g, u_lpv_b: three units */
     GI_UNIT_VPL_DATA = 4,   /* u_vpls */
     GI_UNIT_VPL_SHADOW = 5, /* u_vpl_shadow */
-    GI_UNIT_ISM = 6,        /* u_ism */
-    GI_UNIT_VPL_CLUSTERS = 7, /* u_vpl_cluster_first */
-    GI_UNIT_VPL_LISTS = 8,  /* u_vpl_cluster_index */
+    GI_UNIT_VPL_CLUSTERS = 6, /* u_vpl_cluster_first */
+    GI_UNIT_VPL_LISTS = 7,  /* u_vpl_cluster_index */
+    GI_UNIT_ISM = 8,        /* u_ism */
+    GI_UNIT_VPL_IRRADIANCE = 9, /* u_vpl_irradiance */
 };
 
 typedef struct gi_eye {
-    GLuint program;                /* the bound shading program */
+    GLuint program;                /* the bound shading program, its framebuffer bound */
     int first_unit;                /* texture units from this one on are the method's */
     const frame_view *view;        /* the eye's view */
+    int width, height;             /* the eye's G-buffer, on units 0 (u_position) and 1
+                                      (u_normal): a method may run passes of its own over
+                                      it, and puts the program, framebuffer and viewport
+                                      back */
+    const float *eye;              /* u_eye: the eye (w 1) or the direction to it (w 0) */
+    float pixel_angle;             /* a pixel's width over its distance from the eye
+                                      (w 0: the pixel's width) */
 } gi_eye;
 
 typedef struct gi_stats {

@@ -16,6 +16,7 @@
 #include "gi_vpl.h"
 #include "gltools.h"
 #include "lpv/lpv_converge.h"
+#include "vpl_interleave.h"
 #include "vpl_ism.h"
 
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
@@ -61,6 +62,7 @@ typedef struct gi_vpl {
     int face, tiles, layers; /* face side, tiles per atlas side, layers allocated */
     vpl_ism *ism;            /* imperfect maps instead (renderer_desc.vpl_visibility) */
     int have_maps;           /* this frame's VPLs have their maps */
+    vpl_interleave *interleave; /* renderer_desc.vpl_interleave > 0 */
 
     /* Light assignment (vpl_cluster.h) */
     renderer_vpl_lights lights;
@@ -138,6 +140,7 @@ static void release(gi_vpl *v)
     const gl_functions *gl = v->gl;
     release_shadow(v);
     vpl_ism_destroy(v->ism);
+    vpl_interleave_destroy(v->interleave);
     if (v->shadow_fbo)
         gl->DeleteFramebuffers(1, &v->shadow_fbo);
     if (v->vpl_tex)
@@ -371,6 +374,14 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
         bad = vpl_ism_resolve(d->settings, &id.size, &id.points, err, errlen) != 0 ||
               !(v->ism = vpl_ism_create(&id, err, errlen));
     }
+    int k = d->settings->vpl_interleave;
+    if (!bad && (k < 0 || k > RENDERER_VPL_INTERLEAVE_MAX)) {
+        snprintf(err, errlen, "renderer: vpl_interleave %d is outside 0..%d", k,
+                 RENDERER_VPL_INTERLEAVE_MAX);
+        bad = 1;
+    }
+    if (!bad && k > 0)
+        bad = !(v->interleave = vpl_interleave_create(d->gl, k, d->shade_defines, err, errlen));
     if (bad) {
         release(v);
         free(v);
@@ -507,21 +518,20 @@ static void eye_lists(gi_vpl *v, const frame_view *view)
         assign(v, &g);
 }
 
-static void eye_bind(void *state, const gi_eye *e)
+/* The gather's uniforms and textures on prog, the current program (shade.frag, or its
+ * de-interleaved build); lists: it reads the light lists (shade.frag's samplers of them
+ * are on their units, gi_eye_bind()), else it loops over every VPL. */
+static void bind_gather(const gi_vpl *v, GLuint prog, int first_unit, int lists)
 {
-    gi_vpl *v = state;
-    if (e->view)
-        eye_lists(v, e->view);
     const gl_functions *gl = v->gl;
-    GLuint prog = e->program;
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_DATA));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_DATA));
     gl->BindTexture(GL_TEXTURE_2D, v->vpl_tex);
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_SHADOW));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_SHADOW));
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, v->shadow_tex);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), v->have_maps ? v->count : 0);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_visibility"), v->ism != NULL);
     if (v->ism)
-        vpl_ism_bind(v->ism, prog, e->first_unit + GI_UNIT_ISM);
+        vpl_ism_bind(v->ism, prog, first_unit + GI_UNIT_ISM);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_face"), v->face);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_tiles"), v->tiles);
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_vpl_far"), v->far);
@@ -529,11 +539,11 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_right"), VPL_FACES, FACE_RIGHT[0]);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_up"), VPL_FACES, FACE_UP[0]);
     const vpl_grid *g = &v->grid;
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_clustered"), v->grid_valid);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_clustered"), lists && v->grid_valid);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_list_row"), LIST_ROW);
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_CLUSTERS));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_CLUSTERS));
     gl->BindTexture(GL_TEXTURE_2D, v->cluster_tex);
-    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + GI_UNIT_VPL_LISTS));
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_LISTS));
     gl->BindTexture(GL_TEXTURE_2D, v->list_tex);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_apex"), 1, g->apex);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_right"), 1, g->right);
@@ -544,6 +554,24 @@ static void eye_bind(void *state, const gi_eye *e)
                   v->grid_valid ? logf(g->far / g->near) : 1.0f);
     gl->Uniform3i(gl->GetUniformLocation(prog, "u_vpl_grid_size"), g->tiles[0], g->tiles[1],
                   g->slices);
+}
+
+/* Interleaved: the gather and blur run here (vpl_interleave.h) and shade.frag reads them. */
+static void eye_bind(void *state, const gi_eye *e)
+{
+    gi_vpl *v = state;
+    if (e->view)
+        eye_lists(v, e->view);
+    const gl_functions *gl = v->gl;
+    int interleaved = v->interleave && v->have_maps && v->count > 0;
+    if (interleaved) {
+        GLuint g = vpl_interleave_program(v->interleave);
+        gl->UseProgram(g);
+        bind_gather(v, g, e->first_unit, 0);
+        vpl_interleave_run(v->interleave, e, v->last.absorption);
+    }
+    bind_gather(v, e->program, e->first_unit, 1);
+    gl->Uniform1i(gl->GetUniformLocation(e->program, "u_vpl_interleaved"), interleaved);
 }
 
 static void stats(const void *state, gi_stats *out)

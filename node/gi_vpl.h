@@ -25,7 +25,9 @@
  * bounded near the VPL (eq. 14 of the high-res RSM paper), biased only within about
  * sqrt(A / pi) of it, and the bias shrinks as N grows (docs/node.md has its measure).
  *
- * Not here: interleaved sampling, view importance.
+ * With renderer_desc.vpl_interleave, eye_bind() runs the interleaved gather and its blur
+ * first (vpl_interleave.h) and shade.frag reads their result.
+ * Not here: view importance.
  * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
  * maps (GL work finished before the clock stops), assign_ms and assignments the last light
  * assignment. */

@@ -33,7 +33,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
-    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_ISM_SIZE, O_ISM_POINTS, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
+    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_ISM_SIZE, O_ISM_POINTS, O_VPL_INTERLEAVE, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
@@ -87,6 +87,8 @@ static const cli_option options[] = {
      "vpl: a cube shadow map per light from the triangles, or\nimperfect maps from points (pull-push or splats)"},
     {O_ISM_SIZE, "ism-size", "N", NULL, G_GI, S, "vpl: texels per side of each imperfect map\n(a power of two, 8..256)"},
     {O_ISM_POINTS, "ism-points", "N", NULL, G_GI, S, "vpl: points per imperfect map (64..16384)"},
+    {O_VPL_INTERLEAVE, "vpl-interleave", "K", "0 (every pixel every light)", G_GI, S,
+     "vpl: interleaved sampling in K x K blocks (1..8):\neach pixel gathers 1/K^2 of the lights, then a blur\nthat keeps edges"},
     {O_LPV, "lpv", "auto|cpu|gl", "auto", G_GI, S, "where the LPV runs (auto: CPU on llvmpipe, GL on a GPU)"},
     {O_RSM, "rsm", "N", NULL, G_GI, 0, "reflective shadow map size"},
     {O_LATTICE, "lattice", "N", NULL, G_GI, 0, "LPV cells along the scene's longest axis"},
@@ -195,6 +197,9 @@ static const char *set(void *user, int id, const char *v)
         why = cli_int(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, &o->ism_size);
         if (!why && (o->ism_size & (o->ism_size - 1)))
             why = "a power of two";
+        break;
+    case O_VPL_INTERLEAVE:
+        why = cli_int(v, 1, RENDERER_VPL_INTERLEAVE_MAX, &o->vpl_interleave);
         break;
     case O_ISM_POINTS:
         why = cli_int(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, &o->ism_points);

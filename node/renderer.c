@@ -53,6 +53,7 @@ struct renderer {
     gi *gi;                  /* the indirect-light method (gi.h) */
     uint64_t checksum;       /* its last frame's */
     gi_desc gi_desc;         /* what it is made with, for a live switch */
+    char shade_defines[64];  /* shade.frag's, which gi_desc points to */
     renderer_desc desc;
     renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
@@ -233,11 +234,11 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         .software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                     strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast")),
     };
-    char shade_defines[64];
-    snprintf(shade_defines, sizeof shade_defines, "#define LPV_BEHIND %.9g\n",
+    snprintf(r->shade_defines, sizeof r->shade_defines, "#define LPV_BEHIND %.9g\n",
              (double)LPV_RECEIVE_BEHIND);
+    r->gi_desc.shade_defines = r->shade_defines;
     if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, shade_defines, NULL, err, errlen)) ||
+        !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, r->shade_defines, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
         !(r->rsm = renderer_rsm_create(r->gl, r->scene, rsm_size, err, errlen)) ||
@@ -456,7 +457,9 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->Uniform1i(loc(r, prog, gname[i]), i);
     }
     renderer_rsm_bind_shading(r->rsm, prog, p, 4, 8);
-    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5, .view = view});
+    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5, .view = view,
+                                 .width = view->width, .height = view->height, .eye = eye,
+                                 .pixel_angle = 2.0f / (view->projection[5] * view->height)});
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);

@@ -45,6 +45,7 @@ enum {
     RENDERER_DEFAULT_ISM_POINTS = 1024, /* points per VPL's map */
     RENDERER_ISM_POINTS_MIN = 64,
     RENDERER_ISM_POINTS_MAX = 16384,
+    RENDERER_VPL_INTERLEAVE_MAX = 8,
 };
 
 typedef struct renderer_desc {
@@ -64,6 +65,9 @@ typedef struct renderer_desc {
     int vpl_point;       /* vpl: gather each VPL as a point, 1/r^2 unbounded, instead of as a
                             disk of its area: only to measure the bound's bias (docs/node.md) */
     renderer_vpl_visibility vpl_visibility;
+    int vpl_interleave;  /* vpl: 0 = every pixel gathers every VPL; k = 1..
+                            RENDERER_VPL_INTERLEAVE_MAX: interleaved sampling in k x k
+                            blocks (gi_vpl.h) */
     int ism_size;        /* 0 = RENDERER_DEFAULT_ISM_SIZE */
     int ism_points;      /* 0 = RENDERER_DEFAULT_ISM_POINTS */
     renderer_vpl_lights vpl_lights; /* vpl: light assignment of the gather */

@@ -361,7 +361,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
         .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
         .threads = o->threads, .vpl_point = o->vpl_point, .vpl_visibility = o->vpl_visibility,
-        .ism_size = o->ism_size, .ism_points = o->ism_points,
+        .ism_size = o->ism_size, .ism_points = o->ism_points, .vpl_interleave = o->vpl_interleave,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
         .gi = fp->gi,
     };

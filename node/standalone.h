@@ -23,6 +23,7 @@ typedef struct node_options {
     int rsm, lattice, threads, vpl_point;
     renderer_vpl_visibility vpl_visibility;
     int ism_size, ism_points; /* 0 = the renderer's defaults */
+    int vpl_interleave;       /* renderer_desc.vpl_interleave */
     int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
     int frames, width, height;
     const char *out;

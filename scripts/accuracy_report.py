@@ -53,7 +53,9 @@ def label(r):
 
 def visibility(r):
     v = r.get("visibility", "exact")
-    return v if v == "exact" else f"{v} {r['ism_size']}px {r['ism_points']} pts"
+    v = v if v == "exact" else f"{v} {r['ism_size']}px {r['ism_points']} pts"
+    k = int(r.get("interleave") or 0)
+    return f"{v}, interleaved {k}x{k}" if k else v
 
 
 def config_name(c):
@@ -139,6 +141,50 @@ if g0:
           f"{f(ss, 3)} | {met(ss >= GOAL_SSIM)} | {f(bs, 2)} | "
           f"{met(GOAL_SCALE[0] <= bs <= GOAL_SCALE[1])} | {by} | "
           f"{met(g['finer_never_worse'])} | {f(g['propagate_ms'], 2)} |")
+    p("")
+
+def method_wins(sc):
+    """One line per scene: ILPV's most accurate configuration against the vpl method's rows
+    (per visibility), at equal GI time and at the vpl method's best."""
+    ilpv = [r for r in rows(f"sweep_{sc}.csv") if not isnan(err(r))]
+    vpl = [r for r in rows(f"vpl_{sc}.csv") if not isnan(err(r))]
+    if not ilpv or not vpl:
+        return None
+    best = min(ilpv, key=err)
+    ms = float(best["propagate_ms"])
+    fastest = {}
+    for r in vpl:
+        v = visibility(r)
+        if v not in fastest or float(r["gi_ms"]) < float(fastest[v]["gi_ms"]):
+            fastest[v] = r
+    equal_time = [r for r in vpl if float(r["gi_ms"]) <= ms and err(r) < err(best)]
+    top = min(vpl, key=err)
+    better = [r for r in vpl if err(r) < err(best)]
+    cheapest_better = min(better, key=lambda r: float(r["gi_ms"])) if better else None
+    parts = [f"| {sc} | {f(err(best), 3)} ({f(ms, 2)} ms) | "
+             + ("yes: " + ", ".join(f"{r['vpl_count']} VPLs {visibility(r)}" for r in equal_time)
+                if equal_time else "**no**") + " | "
+             + "; ".join(f"{v}: {f(float(r['gi_ms']), 0)} ms, {f(err(r), 3)}"
+                         for v, r in fastest.items()) + " | "
+             + (f"{cheapest_better['vpl_count']} VPLs {visibility(cheapest_better)}, "
+                f"{f(float(cheapest_better['gi_ms']), 0)} ms, {f(err(cheapest_better), 3)}"
+                if cheapest_better else "none") + " | "
+             + f"{top['vpl_count']} VPLs {visibility(top)}: {f(err(top), 3)} |"]
+    return parts[0]
+
+
+wins = [w for w in (method_wins(sc) for sc in SCENES) if w]
+if wins:
+    p("## Which method wins where\n")
+    p("ILPV (the sweep's most accurate configuration, its propagation ms) against the vpl "
+      "method (its GI ms: selection, shadow maps, gather), indirect relRMSE. Equal GI time: "
+      "a vpl row no slower than that ILPV configuration and more accurate. Below the vpl "
+      "method's cheapest time ILPV is the only choice; above the time of the cheapest vpl "
+      "row more accurate than ILPV's best, vpl wins.\n")
+    p("| scene | best ILPV | vpl more accurate at equal GI time | cheapest vpl row per visibility | cheapest vpl row more accurate than ILPV's best | most accurate vpl row |")
+    p("|---|---|---|---|---|---|")
+    for w in wins:
+        p(w)
     p("")
 
 p("## The reference and its noise\n")

@@ -64,6 +64,9 @@ uniform sampler2D u_ism;             // records (distance / far, x, y, radius; r
 uniform int u_ism_size;              // texels per tile side
 uniform int u_ism_tiles;             // tiles per atlas side
 uniform float u_ism_radius;          // world radius of the disk each point stands for
+uniform int u_vpl_interleaved;       // 1: the irradiance is u_vpl_irradiance's, gathered
+uniform sampler2D u_vpl_irradiance;  // interleaved and blurred (node/vpl_interleave.h)
+uniform int u_vpl_block;             // VPL_DEINTERLEAVE: k of the k x k blocks
 
 layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
@@ -286,23 +289,48 @@ uint vpl_list_entry(usampler2D list, int k)
     return texelFetch(list, ivec2(k % u_vpl_list_row, k / u_vpl_list_row), 0).r;
 }
 
-// Irradiance at p from its cluster's VPLs, or from every VPL: the same terms in the same
-// order (a cluster lists every VPL that can reach it, ascending).
-vec3 vpl_irradiance(vec3 p, vec3 n)
+// Irradiance at p from VPLs first, first + step, ... (an interleaved subset; 0, 1: all)
+// among its cluster's, or among every VPL: the same terms in the same order (a cluster
+// lists every VPL that can reach it, ascending).
+vec3 vpl_irradiance(vec3 p, vec3 n, int first, int step)
 {
     vec3 e = vec3(0.0);
     if (u_vpl_clustered == 0) {
-        for (int i = 0; i < u_vpl_count; i++)
+        for (int i = first; i < u_vpl_count; i += step)
             e += vpl_light(i, p, n);
         return e;
     }
     int c = vpl_cluster(p);
     int last = int(vpl_list_entry(u_vpl_cluster_first, c + 1));
-    for (int k = int(vpl_list_entry(u_vpl_cluster_first, c)); k < last; k++)
-        e += vpl_light(int(vpl_list_entry(u_vpl_cluster_index, k)), p, n);
+    for (int k = int(vpl_list_entry(u_vpl_cluster_first, c)); k < last; k++) {
+        int i = int(vpl_list_entry(u_vpl_cluster_index, k));
+        if (i % step == first)
+            e += vpl_light(i, p, n);
+    }
     return e;
 }
 
+#ifdef VPL_DEINTERLEAVE
+// The interleaved gather's first pass (node/vpl_interleave.h): fragment x of the
+// de-interleaved image is pixel (x mod sub) k + s of the G-buffer, s = x / sub its block
+// position, which gathers subset s.x + k s.y of the VPLs, scaled by N / its size.
+void main()
+{
+    int k = u_vpl_block, step = k * k;
+    ivec2 size = textureSize(u_position, 0), sub = (size + k - 1) / k;
+    ivec2 x = ivec2(gl_FragCoord.xy), s = x / sub, q = (x % sub) * k + s;
+    int first = s.x + k * s.y, in_subset = (u_vpl_count - first + step - 1) / step;
+    out_final = vec4(0.0, 0.0, 0.0, 1.0);
+    if (any(greaterThanEqual(q, size)) || in_subset <= 0)
+        return;
+    vec4 pw = texelFetch(u_position, q, 0);
+    if (pw.w == 0.0)
+        return;
+    vec3 n = normalize(texelFetch(u_normal, q, 0).xyz);
+    out_final.rgb = vpl_irradiance(pw.xyz, n, first, step) *
+                    (float(u_vpl_count) / float(in_subset));
+}
+#else
 void main()
 {
     vec4 pw = texture(u_position, v_uv);
@@ -351,10 +379,13 @@ void main()
     if (u_lpv_enabled != 0)
         indirect = albedo / PI * lpv_irradiance(p, n);
     if (u_vpl_count > 0)
-        indirect = albedo / PI * vpl_irradiance(p, n);
+        indirect = albedo / PI * (u_vpl_interleaved != 0
+                                      ? texelFetch(u_vpl_irradiance, ivec2(gl_FragCoord.xy), 0).rgb
+                                      : vpl_irradiance(p, n, 0, 1));
     direct *= u_exposure;
     indirect *= u_exposure;
     out_direct = vec4(direct, 1.0);
     out_indirect = vec4(indirect, 1.0);
     out_final = vec4(direct + indirect, 1.0);
 }
+#endif

@@ -65,6 +65,7 @@ typedef struct acc_renderer_desc {
     renderer_vpl_visibility vpl_visibility; /* vpl: renderer_desc's, with its ISM settings */
     int ism_size, ism_points;
     float vpl_cut;          /* vpl: influence cut (renderer_desc.vpl_cut) */
+    int vpl_interleave;     /* vpl: renderer_desc's */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
 

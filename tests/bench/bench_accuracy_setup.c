@@ -225,7 +225,7 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
         .converge_threshold = d->skip_converged ? 0.0f : -1.0f,
         .gi = d->gi, .vpl_point = d->vpl_point, .vpl_cut = d->vpl_cut,
         .vpl_visibility = d->vpl_visibility, .ism_size = d->ism_size,
-        .ism_points = d->ism_points,
+        .ism_points = d->ism_points, .vpl_interleave = d->vpl_interleave,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)

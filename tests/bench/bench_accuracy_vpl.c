@@ -23,6 +23,7 @@
  * its own noise), one image's error against the truth (the reference's noise taken out)
  * and that less the clamp's bias (the accuracy goal's figure); and the influence cut's
  * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
+ * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0).
  * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
 #include <stdlib.h>
@@ -236,15 +237,15 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     char j[11][32];
     int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
-    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,"
+    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d,"
             "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
             s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
-            scale, mean_err, mean_err_point, level, bias, vis, size, points, ref_noise, spread,
-            disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
+            scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave,
+            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
            "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
-           "\"ism_points\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
+           "\"ism_points\":%d,\"interleave\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
            "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
            "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
            "\"rmse_rel_seed_mean_point\":%s,\"bound_level_bias\":%s,"
@@ -253,7 +254,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
            "\"rmse_rel_truth\":%s,\"beyond_clamp\":%s,\"cut_bias_rel\":%s,"
            "\"cut_level_bias\":%s}\n",
            s->opt.scene, s->opt.width, s->opt.height, 2 * s->opt.ref_samples,
-           ref->noise_indirect1, count, k, vis, size, points, ms[0], ms[1], ms[2],
+           ref->noise_indirect1, count, k, vis, size, points, rd->vpl_interleave, ms[0], ms[1], ms[2],
            ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
            json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
            ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
@@ -271,6 +272,7 @@ int accuracy_vpl(int argc, char **argv)
     int vis[3] = {RENDERER_VPL_EXACT}, nv = 1;
     int sizes[MAX_LIST] = {RENDERER_DEFAULT_ISM_SIZE}, ns = 1;
     int points[MAX_LIST] = {RENDERER_DEFAULT_ISM_POINTS}, np = 1;
+    int blocks[MAX_LIST] = {0}, ni = 1;
     for (int i = 1; i < argc; i++) {
         int bad = 0;
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -297,6 +299,8 @@ int accuracy_vpl(int argc, char **argv)
             bad = !(ns = int_list(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, sizes)), i++;
             for (int k = 0; k < ns; k++)
                 bad |= (sizes[k] & (sizes[k] - 1)) != 0;
+        } else if (v && strcmp(a, "--interleave") == 0) {
+            bad = !(ni = int_list(v, 0, RENDERER_VPL_INTERLEAVE_MAX, blocks)), i++;
         } else if (v && strcmp(a, "--ism-points") == 0) {
             bad = !(np = int_list(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, points)), i++;
         } else {
@@ -305,9 +309,9 @@ int accuracy_vpl(int argc, char **argv)
         if (bad) {
             fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
                     "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
-                    "--ism-points %d..%d)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
+                    "--ism-points %d..%d, --interleave 0..%d)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
                     RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, RENDERER_ISM_POINTS_MIN,
-                    RENDERER_ISM_POINTS_MAX);
+                    RENDERER_ISM_POINTS_MAX, RENDERER_VPL_INTERLEAVE_MAX);
             return 2;
         }
     }
@@ -326,7 +330,7 @@ int accuracy_vpl(int argc, char **argv)
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
         "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
-        "ism_points,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
+        "ism_points,interleave,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
         "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias");
     int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
@@ -335,21 +339,24 @@ int accuracy_vpl(int argc, char **argv)
     vpl_timing none;
     if (rc == 0)
         rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
-    for (int c = 0; c < nv * ns * np && rc == 0; c++) {
-        acc_renderer_desc rd = {.gi = FRAME_GI_VPL, .vpl_visibility = vis[c / (ns * np)],
-                                .ism_size = sizes[c / np % ns], .ism_points = points[c % np]};
+    for (int c = 0; c < nv * ns * np * ni && rc == 0; c++) {
+        acc_renderer_desc rd = {.gi = FRAME_GI_VPL, .vpl_visibility = vis[c / (ns * np * ni)],
+                                .ism_size = sizes[c / (np * ni) % ns],
+                                .ism_points = points[c / ni % np],
+                                .vpl_interleave = blocks[c % ni]};
         int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
-        if (exact && c % (ns * np) != 0)
+        if (exact && c / ni % (ns * np) != 0)
             continue; /* the ISM settings do not change exact maps */
+        int bias = exact && rd.vpl_interleave == 0;
         renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
-        if (exact) {
+        if (bias) {
             acc_renderer_desc as_points = rd, uncut = rd;
             as_points.vpl_point = 1;
             uncut.vpl_cut = -1;
             r[1] = acc_renderer_create(&s, &as_points);
             r[2] = acc_renderer_create(&s, &uncut);
         }
-        rc = r[0] && ((r[1] && r[2]) || !exact) ? 0 : 1;
+        rc = r[0] && ((r[1] && r[2]) || !bias) ? 0 : 1;
         for (int k = 0; k < nc && rc == 0; k++)
             rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd);
         for (int i = 0; i < 3; i++)

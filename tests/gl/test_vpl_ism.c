@@ -1,22 +1,29 @@
-/* Imperfect shadow maps (node/vpl_ism.h) on llvmpipe, default room.
+/* The vpl method's cost reductions on llvmpipe, default room: imperfect shadow maps
+ * (node/vpl_ism.h) and interleaved sampling (node/vpl_interleave.h).
  *
  * The module alone: one VPL in the middle of the room, facing up, with 64 points in a
  * 16 x 16 map: the points leave most texels of the hemisphere's disk empty, and pull-push
  * closes all but a few; every texel's distance then lies near the distance to the nearest triangle
  * along its direction (ray cast here on the host). Through the renderer (64 x 48, 256 VPLs):
  * the indirect image with imperfect maps, pull-push and splats, lies within a measured
- * bound of the one with exact maps, and is the same in two renderers and two frames. */
+ * bound of the one with exact maps, and is the same in two renderers and two frames.
+ *
+ * Interleaved sampling, same view and VPLs: with 1 x 1 blocks the image is the plain
+ * gather's; with 4 x 4 blocks two frames of a static scene are the same, and at depth
+ * edges (found by casting the primary rays on the host) the blurred image keeps the step:
+ * its error there against the plain image is well below that of a 4 x 4 box blur of it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "base/vec3.h"
 #include "gl/gl_testutil.h"
 #include "gltools.h"
 #include "vpl_ism.h"
 
-enum { W = 64, H = 48, PIXELS = W * H * 3, SIZE = 16, POINTS = 64 };
+enum { W = 64, H = 48, PIXELS = W * H * 3, SIZE = 16, POINTS = 64, K = 4 };
 
 /* shaders/common.glsl ism_project()'s frame around n (Duff et al.), inverted: the unit
  * direction of paraboloid coordinates (x, y), |(x, y)| < 1. */
@@ -28,37 +35,6 @@ static void unproject(const float n[3], float x, float y, float out[3])
     float r2 = x * x + y * y, z = (1 - r2) / (1 + r2);
     for (int c = 0; c < 3; c++)
         out[c] = (x * t1[c] + y * t2[c]) * (1 + z) + z * n[c];
-}
-
-/* Distance from o along unit d to the nearest triangle of s (Moeller-Trumbore); INFINITY
- * when none. */
-static float cast(const scene *s, const float o[3], const float d[3])
-{
-    float best = INFINITY;
-    for (size_t j = 0; j < s->triangle_count; j++) {
-        const float *p = s->positions + 9 * j;
-        float e1[3], e2[3], q[3], t[3], h[3];
-        for (int c = 0; c < 3; c++) {
-            e1[c] = p[3 + c] - p[c];
-            e2[c] = p[6 + c] - p[c];
-            t[c] = o[c] - p[c];
-        }
-        h[0] = d[1] * e2[2] - d[2] * e2[1];
-        h[1] = d[2] * e2[0] - d[0] * e2[2];
-        h[2] = d[0] * e2[1] - d[1] * e2[0];
-        float det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
-        if (fabsf(det) < 1e-12f)
-            continue;
-        float u = (t[0] * h[0] + t[1] * h[1] + t[2] * h[2]) / det;
-        q[0] = t[1] * e1[2] - t[2] * e1[1];
-        q[1] = t[2] * e1[0] - t[0] * e1[2];
-        q[2] = t[0] * e1[1] - t[1] * e1[0];
-        float v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
-        float dist = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
-        if (u >= 0 && v >= 0 && u + v <= 1 && dist > 0 && dist < best)
-            best = dist;
-    }
-    return best;
 }
 
 /* Of one VPL's single-pixel map before and after pull-push: texels inside the disk that
@@ -107,7 +83,7 @@ static void test_pull_push_closes_holes(void **state)
                 covered[splat]++;
                 float dir[3];
                 unproject(normal, u, v, dir);
-                float truth = cast(&s, centre, dir);
+                float truth = gltest_cast(&s, centre, dir);
                 errs[n++] = fabsf(rec[0] * far - truth) / truth;
             }
         /* the median relative error of the pull-push map's distances */
@@ -160,12 +136,13 @@ static uint64_t render(gltest *t, renderer *r, float *indirect)
     return checksum;
 }
 
-static renderer *make(gltest *t, renderer_vpl_visibility vis)
+static renderer *make(gltest *t, renderer_vpl_visibility vis, int block)
 {
     char err[512];
     renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
                         .lpv_backend = RENDERER_LPV_CPU, .gi = FRAME_GI_VPL,
-                        .vpl_visibility = vis, .converge_threshold = -1};
+                        .vpl_visibility = vis, .vpl_interleave = block,
+                        .converge_threshold = -1};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)
         fprintf(stderr, "%s\n", err);
@@ -179,7 +156,7 @@ static void test_against_exact_and_deterministic(void **state)
     gltest t;
     assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
     static float exact[PIXELS], ism[PIXELS], again[PIXELS];
-    renderer *r = make(&t, RENDERER_VPL_EXACT);
+    renderer *r = make(&t, RENDERER_VPL_EXACT, 0);
     uint64_t c_exact = render(&t, r, exact);
     renderer_destroy(r);
     const renderer_vpl_visibility kinds[2] = {RENDERER_VPL_ISM, RENDERER_VPL_ISM_SPLAT};
@@ -187,7 +164,7 @@ static void test_against_exact_and_deterministic(void **state)
      * 0.19 (splats); the bound leaves room for another driver's rounding. */
     const double bound = 0.3;
     for (int k = 0; k < 2; k++) {
-        r = make(&t, kinds[k]);
+        r = make(&t, kinds[k], 0);
         uint64_t c = render(&t, r, ism);
         double e = rel_rmse(ism, exact);
         printf("%s: indirect relRMSE against exact maps %.3f\n", vpl_visibility_names[kinds[k]], e);
@@ -196,11 +173,90 @@ static void test_against_exact_and_deterministic(void **state)
         assert_true(render(&t, r, again) == c);
         assert_memory_equal(ism, again, sizeof ism);
         renderer_destroy(r);
-        r = make(&t, kinds[k]);
+        r = make(&t, kinds[k], 0);
         render(&t, r, again);
         assert_memory_equal(ism, again, sizeof ism);
         renderer_destroy(r);
     }
+    gltest_close(&t);
+}
+
+static float lum(const float *img, int x, int y)
+{
+    const float *c = img + 3 * (y * W + x);
+    return c[0] + c[1] + c[2];
+}
+
+static void test_interleaved(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    static float plain[PIXELS], one[PIXELS], a[PIXELS], b[PIXELS];
+    renderer *r = make(&t, RENDERER_VPL_EXACT, 0);
+    render(&t, r, plain);
+    renderer_destroy(r);
+
+    r = make(&t, RENDERER_VPL_EXACT, 1); /* 1 x 1 blocks: the same sums, through the two passes */
+    render(&t, r, one);
+    renderer_destroy(r);
+    double worst = 0, mean = 0;
+    for (int i = 0; i < PIXELS; i++) {
+        worst = fmax(worst, fabs((double)one[i] - plain[i]));
+        mean += plain[i] / PIXELS;
+    }
+    printf("1 x 1 blocks: largest difference %.3g of a mean %.3g\n", worst, mean);
+    assert_true(worst <= 1e-5 * mean);
+
+    r = make(&t, RENDERER_VPL_EXACT, K);
+    render(&t, r, a);
+    render(&t, r, b);
+    assert_memory_equal(a, b, sizeof a); /* a static scene: the same frame */
+    renderer_destroy(r);
+
+    /* Depth edges: horizontal neighbours whose primary rays (cast here) meet surfaces more
+     * than 20% apart in distance. At those pixels, the blurred image's error against the
+     * plain one, and a K x K box blur's. */
+    const float eye[3] = {1.3f, 1.6f, 1.9f}, target[3] = {-0.5f, 0.9f, -1.2f};
+    float fw[3], rt[3], up[3], world_up[3] = {0, 1, 0};
+    for (int c = 0; c < 3; c++)
+        fw[c] = target[c] - eye[c];
+    vec3_normalize(fw);
+    vec3_cross(fw, world_up, rt);
+    vec3_normalize(rt);
+    vec3_cross(rt, fw, up);
+    float th = tanf(1.15f / 2), aspect = (float)W / H;
+    static float dist[W * H];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float sx = (2 * (x + 0.5f) / W - 1) * th * aspect, sy = (1 - 2 * (y + 0.5f) / H) * th;
+            float d[3];
+            for (int c = 0; c < 3; c++)
+                d[c] = fw[c] + sx * rt[c] + sy * up[c];
+            vec3_normalize(d);
+            dist[y * W + x] = gltest_cast(&t.scene, eye, d);
+        }
+    double edge_err = 0, box_err = 0, all_err = 0;
+    int edges = 0;
+    for (int y = K; y < H - K; y++)
+        for (int x = K; x < W - K; x++) {
+            float p = lum(plain, x, y), dp = dist[y * W + x], dq = dist[y * W + x + 1];
+            float box = 0;
+            for (int j = 0; j < K; j++)
+                for (int i = 0; i < K; i++)
+                    box += lum(plain, x + i - K / 2, y + j - K / 2) / (K * K);
+            all_err += fabs(lum(a, x, y) - p);
+            if (!(fabsf(dp - dq) > 0.2f * fminf(dp, dq)))
+                continue;
+            edges++;
+            edge_err += fabs(lum(a, x, y) - p);
+            box_err += fabs(box - p);
+        }
+    all_err /= (double)(W - 2 * K) * (H - 2 * K);
+    printf("%d x %d blocks: mean |error| %.3g (all), %.3g at %d edge pixels, where a box blur's "
+           "is %.3g\n", K, K, all_err, edge_err / edges, edges, box_err / edges);
+    assert_true(edges > 10);
+    assert_true(edge_err < 0.5 * box_err);
     gltest_close(&t);
 }
 
@@ -209,6 +265,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pull_push_closes_holes),
         cmocka_unit_test(test_against_exact_and_deterministic),
+        cmocka_unit_test(test_interleaved),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
