@@ -57,14 +57,21 @@ void gi_eye_bind(gi *g, const gi_eye *eye)
     const gl_functions *gl = g->gl;
     GLuint prog = eye->program;
     const char *samplers[] = {"u_lpv_r", "u_lpv_g", "u_lpv_b", "u_vpls", "u_vpl_shadow", "u_ism",
-                              "u_vpl_irradiance"};
+                              "u_vpl_irradiance", "u_vpl_cluster_first", "u_vpl_cluster_index"};
     const int units[] = {GI_UNIT_LPV, GI_UNIT_LPV + 1, GI_UNIT_LPV + 2, GI_UNIT_VPL_DATA,
-                         GI_UNIT_VPL_SHADOW, GI_UNIT_ISM, GI_UNIT_VPL_IRRADIANCE};
-    for (int i = 0; i < 7; i++)
+                         GI_UNIT_VPL_SHADOW, GI_UNIT_ISM, GI_UNIT_VPL_IRRADIANCE,
+                         GI_UNIT_VPL_CLUSTERS, GI_UNIT_VPL_LISTS};
+    for (int i = 0; i < 9; i++)
         gl->Uniform1i(gl->GetUniformLocation(prog, samplers[i]), eye->first_unit + units[i]);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_lpv_enabled"), 0);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_count"), 0);
     g->m->eye_bind(g->state, eye);
+}
+
+void gi_screen(gi *g, const frame_view *views, int n)
+{
+    if (g->m->screen)
+        g->m->screen(g->state, views, n);
 }
 
 void gi_stats_get(const gi *g, gi_stats *out) { g->m->stats(g->state, out); }

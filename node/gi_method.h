@@ -8,6 +8,9 @@
  *               rendered, frame() is not called)
  *   frame()     frame pass, once per frame, view independent, with this frame's RSMs;
  *               returns the checksum READY carries (desync detection covers the method)
+ *   screen()    optional (NULL: none), before the eye passes of one screen: all its views
+ *               (both eyes), so a method can prepare once what they share (vpl: one light
+ *               assignment for both eyes, enclosed clustering)
  *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the method's
  *               uniforms and textures for shaders/shade.frag: its LPV lookup (u_lpv_enabled,
  *               the samplers u_lpv_r/g/b, ...) or its VPL gather (u_vpl_count, u_vpls,
@@ -22,6 +25,7 @@
 #include <stdint.h>
 
 #include "frame/frame_params.h"
+#include "frame/frame_view.h"
 #include "frame/light_view.h"
 #include "gl_functions.h"
 #include "renderer_desc.h"
@@ -55,13 +59,16 @@ enum {
     GI_UNIT_LPV = 0,        /* u_lpv_r, u_lpv_g, u_lpv_b: three units */
     GI_UNIT_VPL_DATA = 4,   /* u_vpls */
     GI_UNIT_VPL_SHADOW = 5, /* u_vpl_shadow */
-    GI_UNIT_ISM = 8,        /* u_ism (6 and 7 stay free for the gather's own) */
+    GI_UNIT_VPL_CLUSTERS = 6, /* u_vpl_cluster_first */
+    GI_UNIT_VPL_LISTS = 7,  /* u_vpl_cluster_index */
+    GI_UNIT_ISM = 8,        /* u_ism */
     GI_UNIT_VPL_IRRADIANCE = 9, /* u_vpl_irradiance */
 };
 
 typedef struct gi_eye {
     GLuint program;                /* the bound shading program, its framebuffer bound */
     int first_unit;                /* texture units from this one on are the method's */
+    const frame_view *view;        /* the eye's view */
     int width, height;             /* the eye's G-buffer, on units 0 (u_position) and 1
                                       (u_normal): a method may run passes of its own over
                                       it, and puts the program, framebuffer and viewport
@@ -75,6 +82,9 @@ typedef struct gi_stats {
     double inject_ms, propagate_ms; /* the frame's two stages: making the light sources,
                                        spreading them (0 when reused) */
     int lattice_cells;             /* cells along the longest axis (the HUD's P bar); 0: none */
+    double assign_ms;              /* vpl: the last light assignment (a view's, or a
+                                      screen's for all its eyes), host ms with its upload */
+    size_t assignments;            /* vpl: the (VPL, cluster) pairs it listed */
 } gi_stats;
 
 typedef struct gi_method {
@@ -84,6 +94,7 @@ typedef struct gi_method {
     void (*destroy)(void *state);
     int (*reuse)(void *state, const frame_params *p);
     uint64_t (*frame)(void *state, const frame_params *p, const gi_rsm *rsm);
+    void (*screen)(void *state, const frame_view *views, int n);
     void (*eye_bind)(void *state, const gi_eye *eye);
     void (*stats)(const void *state, gi_stats *out);
 } gi_method;

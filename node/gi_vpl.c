@@ -1,13 +1,16 @@
 /* gi_vpl: the vpl method (gi_vpl.h). Host: RSM readback, candidates, selection, checksum.
  * GL: the VPLs as a 3 x FRAME_VPL_MAX float texture, their shadow maps as tiles of a depth
  * array texture (shaders/vpl_shadow.frag writes distance / far), bound for shade.frag. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/vec3.h"
 #include "base/xalloc.h"
+#include "gi/vpl_cluster.h"
 #include "gi/vpl_select.h"
 #include "gi/vpl_source.h"
 #include "gi_vpl.h"
@@ -41,9 +44,11 @@ typedef struct gi_vpl {
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
     size_t capacity;
-    vpl *emitters;
+    vpl *emitters;           /* as candidates: at their centroids */
+    vpl_emitter *emitter_shape; /* their triangles */
     size_t emitter_count;
     vpl chosen[FRAME_VPL_MAX];
+    size_t chosen_index[FRAME_VPL_MAX]; /* each slot's candidate */
     int count;
     uint64_t checksum;
     float near, far;         /* shadow maps: clip plane, distance stored as depth 1 */
@@ -58,6 +63,21 @@ typedef struct gi_vpl {
     vpl_ism *ism;            /* imperfect maps instead (renderer_desc.vpl_visibility) */
     int have_maps;           /* this frame's VPLs have their maps */
     vpl_interleave *interleave; /* renderer_desc.vpl_interleave > 0 */
+
+    /* Light assignment (vpl_cluster.h) */
+    renderer_vpl_lights lights;
+    float cut;               /* the influence cut's fraction; <= 0: none */
+    float scene_area;        /* m^2 of all triangles: the cut's even share */
+    float radius[FRAME_VPL_MAX];
+    vpl_grid grid;           /* the lists' grid: a view's own, or its screen's */
+    int grid_valid;          /* 0: no grid (orthographic view): every VPL */
+    vpl_clusters lists;
+    frame_view screen_views[2]; /* the screen announced with its enclosing grid */
+    int screen_count;
+    int lists_frame;         /* frame the lists were assigned for (the VPLs change) */
+    int frame_number;
+    GLuint cluster_tex, list_tex; /* the lists (eye_bind) */
+    int cluster_rows, list_rows;  /* rows of LIST_ROW texels they hold */
     gi_stats timings;
 } gi_vpl;
 
@@ -125,6 +145,11 @@ static void release(gi_vpl *v)
         gl->DeleteFramebuffers(1, &v->shadow_fbo);
     if (v->vpl_tex)
         gl->DeleteTextures(1, &v->vpl_tex);
+    if (v->cluster_tex)
+        gl->DeleteTextures(1, &v->cluster_tex);
+    if (v->list_tex)
+        gl->DeleteTextures(1, &v->list_tex);
+    vpl_clusters_free(&v->lists);
     if (v->vbo)
         gl->DeleteBuffers(1, &v->vbo);
     if (v->vao)
@@ -136,6 +161,7 @@ static void release(gi_vpl *v)
     free(v->candidates);
     free(v->cdf);
     free(v->emitters);
+    free(v->emitter_shape);
 }
 
 static int init(gi_vpl *v, char *err, size_t errlen)
@@ -147,9 +173,9 @@ static int init(gi_vpl *v, char *err, size_t errlen)
         v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
     v->emitter_count = vpl_emitters(s, NULL);
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
-    vpl_emitter *raw = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
+    vpl_emitter *raw = v->emitter_shape =
+        malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
     if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters || !raw) {
-        free(raw);
         snprintf(err, errlen, "renderer: out of memory for a %dx%d RSM readback",
                  v->rsm_size, v->rsm_size);
         return -1;
@@ -157,7 +183,8 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     vpl_emitters(s, raw);
     for (size_t i = 0; i < v->emitter_count; i++)
         v->emitters[i] = vpl_from_emitter(&raw[i]);
-    free(raw);
+    for (size_t t = 0; t < s->triangle_count; t++)
+        v->scene_area += vec3_triangle_area(s->positions + 9 * t);
     float diagonal = scene_diagonal(s);
     v->near = diagonal / 1024.0f;
     v->far = diagonal * 1.01f; /* VPLs and receivers lie within the bounds */
@@ -201,15 +228,16 @@ static int reserve_candidates(gi_vpl *v, size_t need)
     return 0;
 }
 
-/* Every RSM layer's texels with flux, in layer then texel order, then the emitters. */
-static size_t collect(gi_vpl *v, const gi_rsm *rsm)
+/* Every RSM layer's texels with flux, in layer then texel order, then the emitters;
+ * *texels: how many of them are RSM texels. */
+static size_t collect(gi_vpl *v, const gi_rsm *rsm, size_t *texels_out)
 {
     const gl_functions *gl = v->gl;
     size_t texels = (size_t)rsm->size * rsm->size;
     if (reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
         fprintf(stderr, "cavelight-node: out of memory for %d RSM layers of VPL candidates\n",
                 rsm->layers);
-        return 0;
+        return *texels_out = 0;
     }
     size_t n = 0;
     for (int layer = 0; layer < rsm->layers; layer++) {
@@ -223,6 +251,7 @@ static size_t collect(gi_vpl *v, const gi_rsm *rsm)
                           v->candidates + n);
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    *texels_out = n;
     if (v->emitter_count)
         memcpy(v->candidates + n, v->emitters, v->emitter_count * sizeof *v->emitters);
     return n + v->emitter_count;
@@ -303,15 +332,19 @@ static int render_shadows(gi_vpl *v)
     return 0;
 }
 
+/* Each VPL's influence radius (vpl_cluster.h) for the kernel's area, and its square for
+ * the shader (the largest float where there is no cut). */
 static void upload_vpls(gi_vpl *v)
 {
     for (int i = 0; i < v->count; i++) {
         const vpl *l = &v->chosen[i];
         float *t = v->upload + 12 * i;
+        float area = v->point ? 0.0f : l->area;
+        v->radius[i] = vpl_influence_radius(area, v->scene_area, v->cut);
         memcpy(t, l->position, 3 * sizeof(float));
-        t[3] = v->point ? 0.0f : l->area;
+        t[3] = area;
         memcpy(t + 4, l->normal, 3 * sizeof(float));
-        t[7] = 0.0f;
+        t[7] = v->cut > 0 ? v->radius[i] * v->radius[i] : FLT_MAX;
         memcpy(t + 8, l->flux, 3 * sizeof(float));
         t[11] = 0.0f;
     }
@@ -331,6 +364,8 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->scene = d->scene;
     v->rsm_size = d->rsm_size;
     v->point = d->settings->vpl_point;
+    v->lights = d->settings->vpl_lights;
+    v->cut = d->settings->vpl_cut == 0 ? VPL_CUT_DEFAULT : d->settings->vpl_cut;
     v->never_reuse = d->settings->converge_threshold < 0;
     int bad = init(v, err, errlen);
     if (!bad && d->settings->vpl_visibility != RENDERER_VPL_EXACT) {
@@ -380,11 +415,17 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
 {
     gi_vpl *v = state;
     double t0 = clock_now_ms();
-    size_t candidates = collect(v, rsm);
+    size_t texels, candidates = collect(v, rsm, &texels);
     v->count = vpl_select(v->candidates, candidates, p->vpl_count, p->vpl_seed, v->cdf,
-                          v->chosen);
+                          v->chosen, v->chosen_index);
+    for (int i = 0; i < v->count; i++) /* an emitter's slot: a point of its triangle */
+        if (v->chosen_index[i] >= texels)
+            vpl_emitter_point(&v->emitter_shape[v->chosen_index[i] - texels],
+                              vpl_slot_random(p->vpl_seed, i, 1),
+                              vpl_slot_random(p->vpl_seed, i, 2), v->chosen[i].position);
     v->checksum = vpl_checksum(v->chosen, v->count);
     upload_vpls(v);
+    v->frame_number++; /* lists of the last VPLs are stale */
     double t1 = clock_now_ms();
     if (v->ism)
         v->have_maps = vpl_ism_render(v->ism, v->vpl_tex, v->count) == 0;
@@ -396,9 +437,91 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     return v->checksum;
 }
 
+/* Uploads the lists: cluster c's range first[c], first[c + 1] as R32UI texels (rows of
+ * LIST_ROW), the VPL indices as R16UI texels. */
+enum { LIST_ROW = 4096 };
+
+static void upload_texture(const gl_functions *gl, GLuint *tex, int *rows_made, GLenum internal,
+                           GLenum type, const void *data, size_t count, size_t size)
+{
+    size_t rows = (count + LIST_ROW - 1) / LIST_ROW, full = count / LIST_ROW;
+    if (*tex == 0 || (size_t)*rows_made < rows) { /* grown by half again, at least 1 row */
+        if (*tex)
+            gl->DeleteTextures(1, tex);
+        *rows_made = (int)(rows + rows / 2 + 1);
+        *tex = gltools_texture2d(gl, internal, LIST_ROW, *rows_made, GL_NEAREST);
+    }
+    gl->BindTexture(GL_TEXTURE_2D, *tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (full)
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, LIST_ROW, (GLsizei)full, GL_RED_INTEGER, type,
+                          data);
+    if (count > full * LIST_ROW)
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)full, (GLsizei)(count - full * LIST_ROW), 1,
+                          GL_RED_INTEGER, type, (const char *)data + full * LIST_ROW * size);
+}
+
+/* Lists for grid g, timed (stats). */
+static void assign(gi_vpl *v, const vpl_grid *g)
+{
+    double t0 = clock_now_ms();
+    v->grid = *g;
+    v->grid_valid = 1;
+    vpl_clusters_assign(&v->lists, g, v->chosen, v->radius, v->count);
+    size_t clusters = (size_t)vpl_grid_clusters(g);
+    upload_texture(v->gl, &v->cluster_tex, &v->cluster_rows, GL_R32UI, GL_UNSIGNED_INT,
+                   v->lists.first, clusters + 1, sizeof *v->lists.first);
+    upload_texture(v->gl, &v->list_tex, &v->list_rows, GL_R16UI, GL_UNSIGNED_SHORT,
+                   v->lists.index, v->lists.assigned, sizeof *v->lists.index);
+    v->lists_frame = v->frame_number;
+    v->timings.assign_ms = clock_now_ms() - t0;
+    v->timings.assignments = v->lists.assigned;
+}
+
+static int slices(const gi_vpl *v)
+{
+    return v->lights == RENDERER_VPL_TILED ? 1 : VPL_CLUSTER_SLICES;
+}
+
+/* A screen's views: one grid enclosing them all, assigned once (enclosed clustering). */
+static void screen(void *state, const frame_view *views, int n)
+{
+    gi_vpl *v = state;
+    vpl_grid g;
+    v->screen_count = 0;
+    if (v->lights == RENDERER_VPL_ALL || v->count == 0 || n < 1 || n > 2 ||
+        vpl_grid_enclosing(views, n, slices(v), &g) != 0)
+        return;
+    memcpy(v->screen_views, views, (size_t)n * sizeof *views);
+    v->screen_count = n;
+    assign(v, &g);
+}
+
+static int same_view(const frame_view *a, const frame_view *b)
+{
+    return memcmp(a->view, b->view, sizeof a->view) == 0 &&
+           memcmp(a->projection, b->projection, sizeof a->projection) == 0 &&
+           a->width == b->width && a->height == b->height;
+}
+
+/* The lists for this eye: its screen's when announced this frame, else its own grid's. */
+static void eye_lists(gi_vpl *v, const frame_view *view)
+{
+    for (int i = 0; i < v->screen_count; i++)
+        if (v->lists_frame == v->frame_number && same_view(view, &v->screen_views[i]))
+            return;
+    v->screen_count = 0;
+    vpl_grid g;
+    v->grid_valid = 0;
+    if (v->lights != RENDERER_VPL_ALL && v->count > 0 &&
+        vpl_grid_from_view(view, slices(v), &g) == 0)
+        assign(v, &g);
+}
+
 /* The gather's uniforms and textures on prog, the current program (shade.frag, or its
- * de-interleaved build). */
-static void bind_gather(const gi_vpl *v, GLuint prog, int first_unit)
+ * de-interleaved build); lists: it reads the light lists (shade.frag's samplers of them
+ * are on their units, gi_eye_bind()), else it loops over every VPL. */
+static void bind_gather(const gi_vpl *v, GLuint prog, int first_unit, int lists)
 {
     const gl_functions *gl = v->gl;
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_DATA));
@@ -415,21 +538,39 @@ static void bind_gather(const gi_vpl *v, GLuint prog, int first_unit)
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_axis"), VPL_FACES, FACE_AXIS[0]);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_right"), VPL_FACES, FACE_RIGHT[0]);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_face_up"), VPL_FACES, FACE_UP[0]);
+    const vpl_grid *g = &v->grid;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_clustered"), lists && v->grid_valid);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_vpl_list_row"), LIST_ROW);
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_CLUSTERS));
+    gl->BindTexture(GL_TEXTURE_2D, v->cluster_tex);
+    gl->ActiveTexture((GLenum)(GL_TEXTURE0 + first_unit + GI_UNIT_VPL_LISTS));
+    gl->BindTexture(GL_TEXTURE_2D, v->list_tex);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_apex"), 1, g->apex);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_right"), 1, g->right);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_up"), 1, g->up);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_vpl_grid_forward"), 1, g->forward);
+    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_vpl_grid_window"), 1, g->window);
+    gl->Uniform2f(gl->GetUniformLocation(prog, "u_vpl_grid_depth"), g->near,
+                  v->grid_valid ? logf(g->far / g->near) : 1.0f);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_vpl_grid_size"), g->tiles[0], g->tiles[1],
+                  g->slices);
 }
 
 /* Interleaved: the gather and blur run here (vpl_interleave.h) and shade.frag reads them. */
 static void eye_bind(void *state, const gi_eye *e)
 {
-    const gi_vpl *v = state;
+    gi_vpl *v = state;
+    if (e->view)
+        eye_lists(v, e->view);
     const gl_functions *gl = v->gl;
     int interleaved = v->interleave && v->have_maps && v->count > 0;
     if (interleaved) {
         GLuint g = vpl_interleave_program(v->interleave);
         gl->UseProgram(g);
-        bind_gather(v, g, e->first_unit);
+        bind_gather(v, g, e->first_unit, 0);
         vpl_interleave_run(v->interleave, e, v->last.absorption);
     }
-    bind_gather(v, e->program, e->first_unit);
+    bind_gather(v, e->program, e->first_unit, 1);
     gl->Uniform1i(gl->GetUniformLocation(e->program, "u_vpl_interleaved"), interleaved);
 }
 
@@ -445,6 +586,7 @@ const gi_method gi_vpl_method = {
     .destroy = destroy,
     .reuse = reuse,
     .frame = frame,
+    .screen = screen,
     .eye_bind = eye_bind,
     .stats = stats,
 };

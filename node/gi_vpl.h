@@ -8,8 +8,12 @@
  * behind its surface skipped), all VPLs' faces tiles of one depth array texture, rendered
  * once per frame and shared by every screen and eye; or, with renderer_desc.vpl_visibility
  * ism or ism-splat, an imperfect shadow map from a subset of a point set (vpl_ism.h).
- * eye_bind(): the VPLs and the maps for shaders/shade.frag, which gathers every VPL per
- * pixel (brute force), testing visibility in whichever maps were rendered.
+ * eye_bind(): the VPLs, the maps and the light lists for shaders/shade.frag, which gathers
+ * per pixel the VPLs its cluster lists (common/gi/vpl_cluster.h; renderer_desc.vpl_lights:
+ * clustered by default, tiled, or every VPL), testing visibility in whichever maps were
+ * rendered. The lists are assigned per eye in eye_bind(), or once for all eyes of a screen
+ * in screen() (enclosed clustering: one grid enclosing both frusta). A VPL reaches
+ * receivers within its influence radius (renderer_desc.vpl_cut), whichever assignment.
  *
  * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
  * moving head's) keeps its VPLs and shadow maps, unless renderer_desc.converge_threshold
@@ -23,9 +27,10 @@
  *
  * With renderer_desc.vpl_interleave, eye_bind() runs the interleaved gather and its blur
  * first (vpl_interleave.h) and shade.frag reads their result.
- * Not here: clustered light assignment, view importance.
+ * Not here: view importance.
  * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
- * maps (GL work finished before the clock stops). */
+ * maps (GL work finished before the clock stops), assign_ms and assignments the last light
+ * assignment. */
 #ifndef CAVELIGHT_GI_VPL_H
 #define CAVELIGHT_GI_VPL_H
 

@@ -365,6 +365,14 @@ int reference_render_averaged(reference *ref, const reference_render_desc *d,
     size_t n = (size_t)out->width * out->height * 3;
     noise->direct = half_difference(out->direct, half.direct, n);
     noise->indirect1 = half_difference(out->indirect1, half.indirect1, n);
+    double sq = 0;
+    size_t covered = 0;
+    for (size_t i = 0; i < n; i++) {
+        double e = (double)out->indirect1[i] - half.indirect1[i];
+        sq += out->coverage[i / 3] ? e * e : 0.0;
+        covered += out->coverage[i / 3];
+    }
+    noise->indirect1_rms = covered ? sqrt(sq / (double)covered) / 2.0 : 0.0;
     noise->indirect = half_difference(out->indirect, half.indirect, n);
     for (size_t i = 0; i < n; i++) {
         out->direct[i] = 0.5f * (out->direct[i] + half.direct[i]);

@@ -62,9 +62,11 @@ int reference_render(reference *ref, const reference_render_desc *d, reference_i
 void reference_images_free(reference_images *img);
 
 /* Expected error of an averaged image: mean |a - b| / 2 over all channels of two
- * independent estimates a and b. */
+ * independent estimates a and b; indirect1_rms: its RMS, sqrt(mean (a - b)^2) / 2 over
+ * the covered pixels (the averaged image's standard deviation, what adds to a relRMSE). */
 typedef struct reference_noise {
     double direct, indirect1, indirect;
+    double indirect1_rms;
 } reference_noise;
 
 /* Two independent renders (seeds d->seed and d->seed + 1) averaged into out (times and

@@ -402,6 +402,11 @@ static void warn_if_dark(renderer *r, int lit)
             skipped ? " (more such lines left out)" : "");
 }
 
+void renderer_screen(renderer *r, const renderer_view *views, int n)
+{
+    gi_screen(r->gi, views, n);
+}
+
 int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
                       renderer_image *out)
 {
@@ -452,8 +457,8 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         gl->Uniform1i(loc(r, prog, gname[i]), i);
     }
     renderer_rsm_bind_shading(r->rsm, prog, p, 4, 8);
-    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5, .width = view->width,
-                                 .height = view->height, .eye = eye,
+    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5, .view = view,
+                                 .width = view->width, .height = view->height, .eye = eye,
                                  .pixel_angle = 2.0f / (view->projection[5] * view->height)});
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
@@ -481,6 +486,8 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     /* The HUD after tone mapping, in world space with this eye's view and projection. */
     gi_stats gs;
     gi_stats_get(r->gi, &gs);
+    r->timings.assign_ms = gs.assign_ms;
+    r->timings.assignments = gs.assignments;
     renderer_hud_draw(r->hud, p, gs.lattice_cells, vp, view->eye_position, encoding);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
 

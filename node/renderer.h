@@ -45,6 +45,8 @@ typedef struct renderer_timings {
     double rsm_ms, inject_ms, propagate_ms;        /* frame pass (GPU or host clock) */
     double gbuffer_ms, shade_ms, final_ms;          /* last eye pass */
     double frame_host_ms, eye_host_ms;
+    double assign_ms;      /* vpl: the last light assignment (gi_stats.assign_ms) */
+    size_t assignments;    /* vpl: its (VPL, cluster) pairs */
 } renderer_timings;
 
 /* Returns NULL with a one-line reason in err. */
@@ -52,6 +54,10 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
 /* Takes the frame's parameters as sent (frame_params_sanitize() runs here, once). */
 uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
+/* The views of one screen (both eyes of a stereo screen), before their eye passes: the GI
+ * method may prepare what they share once (vpl: one light assignment over a grid that
+ * encloses all of them). Views not announced get their own. */
+void renderer_screen(renderer *r, const renderer_view *views, int n);
 /* Renders the last frame pass's frame from one view. want_linear: also read back
  * final/direct/indirect linear images for measurement. */
 int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,

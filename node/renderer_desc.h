@@ -19,6 +19,12 @@ typedef enum renderer_tiles {
     RENDERER_TILES_OFF,
 } renderer_tiles;
 
+typedef enum renderer_vpl_lights {
+    RENDERER_VPL_CLUSTERED = 0, /* vpl: lists per cluster of the view (x, y, depth slices) */
+    RENDERER_VPL_TILED,         /* lists per screen tile (one depth slice): the comparison */
+    RENDERER_VPL_ALL,           /* every VPL at every pixel (brute force) */
+} renderer_vpl_lights;
+
 typedef enum renderer_lpv_mode {
     RENDERER_LPV_INCREMENTAL = 0, /* ILPV (ilpv.h): history merge, light accumulates over frames */
     RENDERER_LPV_CLASSIC,         /* classic LPV (lpv_classic.h): sum of this frame's steps */
@@ -64,6 +70,9 @@ typedef struct renderer_desc {
                             blocks (gi_vpl.h) */
     int ism_size;        /* 0 = RENDERER_DEFAULT_ISM_SIZE */
     int ism_points;      /* 0 = RENDERER_DEFAULT_ISM_POINTS */
+    renderer_vpl_lights vpl_lights; /* vpl: light assignment of the gather */
+    float vpl_cut;       /* vpl: influence cut (vpl_cluster.h); 0 = VPL_CUT_DEFAULT,
+                            negative = none (every VPL reaches every receiver) */
 } renderer_desc;
 
 typedef struct renderer_lpv_stats {

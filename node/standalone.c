@@ -242,6 +242,10 @@ static void report_setup(cJSON *report, const node_options *o, glctx *ctx, rende
 static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes, int eye_count,
                        int f, double eye_sum[4])
 {
+    renderer_view views[2];
+    for (int e = 0; e < eye_count; e++)
+        views[e] = eyes[e].view;
+    renderer_screen(r, views, eye_count); /* one light assignment for both eyes */
     for (int e = 0; e < eye_count; e++) {
         renderer_image img;
         if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {

@@ -38,8 +38,8 @@ uniform float u_lpv_cell;
 uniform ivec3 u_lpv_size;            // cells per axis
 
 uniform int u_vpl_count;             // 0: no VPL gather
-uniform sampler2D u_vpls;            // VPL i: texels (0, i) position + area, (1, i) normal,
-                                     // (2, i) flux, W
+uniform sampler2D u_vpls;            // VPL i: texels (0, i) position + area, (1, i) normal
+                                     // + squared influence radius, (2, i) flux, W
 uniform sampler2DArrayShadow u_vpl_shadow; // cube faces of every VPL as tiles: distance / far
 uniform int u_vpl_face;              // texels per face side
 uniform int u_vpl_tiles;             // tiles per atlas side
@@ -47,6 +47,17 @@ uniform float u_vpl_far;
 uniform vec3 u_vpl_face_axis[6];     // face 2 a + (negative): axis, right, up (gi_vpl.c)
 uniform vec3 u_vpl_face_right[6];
 uniform vec3 u_vpl_face_up[6];
+uniform int u_vpl_clustered;         // 0: every VPL; else the lists of p's cluster
+uniform usampler2D u_vpl_cluster_first; // cluster c's list: [entry c, entry c + 1)
+uniform usampler2D u_vpl_cluster_index; // VPL indices, ascending per cluster
+uniform int u_vpl_list_row;          // entries per texel row of both
+uniform vec3 u_vpl_grid_apex;        // the grid (common/gi/vpl_cluster.h): apex and axes,
+uniform vec3 u_vpl_grid_right;
+uniform vec3 u_vpl_grid_up;
+uniform vec3 u_vpl_grid_forward;
+uniform vec4 u_vpl_grid_window;      // window tangents: right min, up min, right max, up max
+uniform vec2 u_vpl_grid_depth;       // near, log(far / near)
+uniform ivec3 u_vpl_grid_size;       // tiles x, y, slices
 uniform int u_vpl_visibility;        // 0: the exact maps above, else imperfect ones (u_ism)
 uniform sampler2D u_ism;             // records (distance / far, x, y, radius; radius 0:
                                      // empty), one tile per VPL (node/vpl_ism.h)
@@ -236,31 +247,65 @@ float ism_visible(int i, vec3 y, vec3 m, vec3 p, vec3 n)
     return lit;
 }
 
-// Irradiance at p (normal n) from VPLs first, first + step, ...: each a disk of its area A
-// seen on its axis, flux cos_l cos_x / (A + pi r^2) (eq. 14 of the high-res RSM paper): a
-// point light's flux / pi cos_l cos_x / r^2 away from it, bounded near it.
+// Irradiance at p (normal n) from VPL i: a disk of its area A seen on its axis,
+// flux cos_l cos_x / (A + pi r^2) (eq. 14 of the high-res RSM paper): a point light's
+// flux / pi cos_l cos_x / r^2 away from it, bounded near it; nothing beyond its influence
+// radius (vpl_cluster.h).
+vec3 vpl_light(int i, vec3 p, vec3 n)
+{
+    vec4 ya = texelFetch(u_vpls, ivec2(0, i), 0);
+    vec3 d = ya.xyz - p;
+    float r2 = dot(d, d);
+    vec4 nl = texelFetch(u_vpls, ivec2(1, i), 0);
+    if (r2 <= 0.0 || r2 > nl.w)
+        return vec3(0.0);
+    vec3 w = d * inversesqrt(r2);
+    float cos_x = dot(n, w);
+    float cos_l = -dot(nl.xyz, w);
+    if (cos_x <= 0.0 || cos_l <= 0.0)
+        return vec3(0.0);
+    vec3 flux = texelFetch(u_vpls, ivec2(2, i), 0).rgb;
+    float g = cos_l * cos_x / (ya.w + PI * r2) * transmittance(u_absorption, sqrt(r2));
+    float visible = u_vpl_visibility == 0 ? vpl_visible(i, ya.xyz, p, n)
+                                          : ism_visible(i, ya.xyz, nl.xyz, p, n);
+    return flux * (g * visible);
+}
+
+// The cluster holding p: vpl_grid_cluster() of common/gi/vpl_cluster.c, the same rule.
+int vpl_cluster(vec3 p)
+{
+    vec3 rel = p - u_vpl_grid_apex;
+    float depth = dot(rel, u_vpl_grid_forward);
+    vec2 t = vec2(dot(rel, u_vpl_grid_right), dot(rel, u_vpl_grid_up)) / depth;
+    vec2 f = (t - u_vpl_grid_window.xy) / (u_vpl_grid_window.zw - u_vpl_grid_window.xy);
+    float s = log(depth / u_vpl_grid_depth.x) / u_vpl_grid_depth.y;
+    ivec3 c = clamp(ivec3(floor(vec3(f, s) * vec3(u_vpl_grid_size))), ivec3(0),
+                    u_vpl_grid_size - 1);
+    return (c.z * u_vpl_grid_size.y + c.y) * u_vpl_grid_size.x + c.x;
+}
+
+uint vpl_list_entry(usampler2D list, int k)
+{
+    return texelFetch(list, ivec2(k % u_vpl_list_row, k / u_vpl_list_row), 0).r;
+}
+
+// Irradiance at p from VPLs first, first + step, ... (an interleaved subset; 0, 1: all)
+// among its cluster's, or among every VPL: the same terms in the same order (a cluster
+// lists every VPL that can reach it, ascending).
 vec3 vpl_irradiance(vec3 p, vec3 n, int first, int step)
 {
     vec3 e = vec3(0.0);
-    for (int i = first; i < u_vpl_count; i += step) {
-        vec4 ya = texelFetch(u_vpls, ivec2(0, i), 0);
-        vec3 d = ya.xyz - p;
-        float r2 = dot(d, d);
-        if (r2 <= 0.0)
-            continue;
-        vec3 w = d * inversesqrt(r2);
-        float cos_x = dot(n, w);
-        if (cos_x <= 0.0)
-            continue;
-        vec3 m = texelFetch(u_vpls, ivec2(1, i), 0).xyz;
-        float cos_l = -dot(m, w);
-        if (cos_l <= 0.0)
-            continue;
-        vec3 flux = texelFetch(u_vpls, ivec2(2, i), 0).rgb;
-        float g = cos_l * cos_x / (ya.w + PI * r2) * transmittance(u_absorption, sqrt(r2));
-        float visible = u_vpl_visibility == 0 ? vpl_visible(i, ya.xyz, p, n)
-                                              : ism_visible(i, ya.xyz, m, p, n);
-        e += flux * (g * visible);
+    if (u_vpl_clustered == 0) {
+        for (int i = first; i < u_vpl_count; i += step)
+            e += vpl_light(i, p, n);
+        return e;
+    }
+    int c = vpl_cluster(p);
+    int last = int(vpl_list_entry(u_vpl_cluster_first, c + 1));
+    for (int k = int(vpl_list_entry(u_vpl_cluster_first, c)); k < last; k++) {
+        int i = int(vpl_list_entry(u_vpl_cluster_index, k));
+        if (i % step == first)
+            e += vpl_light(i, p, n);
     }
     return e;
 }

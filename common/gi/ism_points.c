@@ -36,7 +36,7 @@ int ism_points(const scene *s, size_t first, size_t n, float *position)
     }
     for (size_t i = 0; i < n; i++) {
         int k = (int)(first + i);
-        double u = vpl_slot_random(ISM_POINTS_SEED, 3 * k) * total;
+        double u = vpl_slot_random(ISM_POINTS_SEED, 3 * k, 0) * total;
         size_t lo = 0, hi = count - 1; /* the first triangle whose CDF exceeds u */
         while (lo < hi) {
             size_t mid = (lo + hi) / 2;
@@ -46,8 +46,8 @@ int ism_points(const scene *s, size_t first, size_t n, float *position)
                 lo = mid + 1;
         }
         /* Uniform in the triangle: weights 1 - sqrt(r1), sqrt(r1) (1 - r2), sqrt(r1) r2. */
-        double r1 = sqrt(vpl_slot_random(ISM_POINTS_SEED, 3 * k + 1));
-        double r2 = vpl_slot_random(ISM_POINTS_SEED, 3 * k + 2);
+        double r1 = sqrt(vpl_slot_random(ISM_POINTS_SEED, 3 * k + 1, 0));
+        double r2 = vpl_slot_random(ISM_POINTS_SEED, 3 * k + 2, 0);
         float w[3] = {(float)(1 - r1), (float)(r1 * (1 - r2)), (float)(r1 * r2)};
         const float *t = s->positions + 9 * lo;
         for (int c = 0; c < 3; c++)

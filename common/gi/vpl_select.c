@@ -15,9 +15,11 @@ static uint32_t mix32(uint32_t x)
     return x;
 }
 
-double vpl_slot_random(uint32_t seed, int i)
+double vpl_slot_random(uint32_t seed, int i, int dim)
 {
     uint32_t h = mix32(mix32(seed ^ 0x9e3779b9U) + (uint32_t)i);
+    if (dim)
+        h = mix32(h + (uint32_t)dim);
     return (double)(h >> 8) * (1.0 / 16777216.0);
 }
 
@@ -28,7 +30,7 @@ static double importance(const vpl *v)
 }
 
 int vpl_select(const vpl *candidates, size_t count, int n, uint32_t seed, double *cdf,
-               vpl *out)
+               vpl *out, size_t *chosen)
 {
     double total = 0;
     for (size_t j = 0; j < count; j++)
@@ -39,7 +41,7 @@ int vpl_select(const vpl *candidates, size_t count, int n, uint32_t seed, double
     for (int i = 0; i < n; i++) {
         /* The first candidate whose CDF exceeds the target owns it (its interval is not
          * empty). Targets increase with i, so one forward walk finds them all. */
-        double target = ((double)i + vpl_slot_random(seed, i)) / n * total;
+        double target = ((double)i + vpl_slot_random(seed, i, 0)) / n * total;
         while (j + 1 < count && cdf[j] <= target)
             j++;
         while (importance(&candidates[j]) == 0) /* a target rounded up to the total */
@@ -50,6 +52,8 @@ int vpl_select(const vpl *candidates, size_t count, int n, uint32_t seed, double
         for (int k = 0; k < 3; k++)
             out[i].flux[k] = (float)(c->flux[k] * scale);
         out[i].area = (float)(c->area * scale);
+        if (chosen)
+            chosen[i] = j;
     }
     return n;
 }

@@ -27,11 +27,13 @@ typedef struct vpl {
 } vpl;
 
 /* Chooses n VPLs from count candidates into out (n of them), using cdf (count doubles) as
- * scratch. Returns n, or 0 when no candidate has positive flux (out untouched). */
+ * scratch; chosen (room for n, or NULL) gets each slot's candidate index. Returns n, or 0
+ * when no candidate has positive flux (out untouched). */
 int vpl_select(const vpl *candidates, size_t count, int n, uint32_t seed, double *cdf,
-               vpl *out);
-/* The fixed random number in [0, 1) of slot i under seed. */
-double vpl_slot_random(uint32_t seed, int i);
+               vpl *out, size_t *chosen);
+/* The fixed random number in [0, 1) of slot i under seed, dimension dim: 0 is the
+ * selection's, 1 and 2 place a chosen emitter's VPL on its triangle (vpl_source.h). */
+double vpl_slot_random(uint32_t seed, int i, int dim);
 /* FNV-1a over the VPLs' float bit patterns (byte-order independent): what READY carries. */
 uint64_t vpl_checksum(const vpl *v, int n);
 #endif

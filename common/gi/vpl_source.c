@@ -95,6 +95,8 @@ size_t vpl_emitters(const scene *s, vpl_emitter *out)
                 v->position[k] = (p[k] + p[3 + k] + p[6 + k]) / 3.0f;
                 v->normal[k] = sign * f[k] / len;
                 v->radiance[k] = e[k];
+                for (int c = 0; c < 3; c++)
+                    v->corner[c][k] = p[3 * c + k];
             }
             v->area = 0.5f * len;
         }
@@ -113,4 +115,12 @@ vpl vpl_from_emitter(const vpl_emitter *e)
         v.flux[k] = (float)(PI * e->radiance[k] * e->area);
     v.area = e->area;
     return v;
+}
+
+void vpl_emitter_point(const vpl_emitter *e, double u1, double u2, float out[3])
+{
+    double r = sqrt(u1); /* barycentrics (1 - r, r (1 - u2), r u2): uniform in area */
+    for (int k = 0; k < 3; k++)
+        out[k] = (float)((1 - r) * e->corner[0][k] + r * (1 - u2) * e->corner[1][k] +
+                         r * u2 * e->corner[2][k]);
 }

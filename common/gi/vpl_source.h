@@ -25,15 +25,21 @@ float vpl_texel_area(const float *position, const float *normal, int size, int x
  * Returns how many. */
 size_t vpl_from_rsm(const float *position, const float *normal, const float *flux, int size,
                     vpl *out);
-/* An emissive triangle as a point emitter: centroid, unit face normal on its vertex
- * normals' side, emitted radiance L_e, area. */
+/* An emissive triangle: centroid, unit face normal on its vertex normals' side, emitted
+ * radiance L_e, area, corners. */
 typedef struct vpl_emitter {
     float position[3], normal[3], radiance[3], area;
+    float corner[3][3];
 } vpl_emitter;
 /* The emissive triangles of s with a non-zero area, in triangle order, into out; with out
  * NULL only counts them. Returns how many. */
 size_t vpl_emitters(const scene *s, vpl_emitter *out);
-/* An emitter as a VPL of flux pi L_e A. */
+/* An emitter as a VPL of flux pi L_e A at its centroid. */
 vpl vpl_from_emitter(const vpl_emitter *e);
+/* The point of e's triangle at (u1, u2) in [0, 1)^2, uniform in area for uniform (u1, u2).
+ * A VPL chosen for an emitter moves there (gi_vpl.c): its light is then an unbiased
+ * estimate of the whole triangle's, where the centroid alone misses the light's shape
+ * near the emitter by a bias no VPL count removes. */
+void vpl_emitter_point(const vpl_emitter *e, double u1, double u2, float out[3]);
 
 #endif

@@ -37,6 +37,7 @@ typedef struct acc_reference {
     uint8_t *coverage;                  /* 1 where a pixel meets geometry: the metrics' mask */
     uint8_t *display;                   /* final1 tone-mapped like shaders/final.frag */
     double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
+    double noise_rms_indirect1;         /* its RMS over the covered pixels */
     double mean_indirect1;
     double seconds;                     /* render time (when it was rendered) */
     int cached;                         /* read from the cache, not rendered now */
@@ -63,6 +64,7 @@ typedef struct acc_renderer_desc {
     int vpl_point;          /* vpl: VPLs as points, unbounded (renderer_desc.vpl_point) */
     renderer_vpl_visibility vpl_visibility; /* vpl: renderer_desc's, with its ISM settings */
     int ism_size, ism_points;
+    float vpl_cut;          /* vpl: influence cut (renderer_desc.vpl_cut) */
     int vpl_interleave;     /* vpl: renderer_desc's */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);

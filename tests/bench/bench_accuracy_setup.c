@@ -124,7 +124,8 @@ static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
         return -1;
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "r");
-    int ok = f && fscanf(f, "%lf %lf", &out->noise_indirect1, &out->seconds) == 2;
+    int ok = f && fscanf(f, "%lf %lf %lf", &out->noise_indirect1, &out->seconds,
+                         &out->noise_rms_indirect1) == 3;
     out->cached = 1;
     if (f)
         fclose(f);
@@ -153,6 +154,7 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     }
     out->seconds = img.render_ms / 1000.0;
     out->noise_indirect1 = noise.indirect1;
+    out->noise_rms_indirect1 = noise.indirect1_rms;
     out->direct = img.direct;       /* the images pass to out; img.indirect is not needed */
     out->indirect1 = img.indirect1;
     out->coverage = img.coverage;
@@ -167,7 +169,8 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "w");
     if (f) {
-        fprintf(f, "%.9g %.3f\n", out->noise_indirect1, out->seconds);
+        fprintf(f, "%.9g %.3f %.9g\n", out->noise_indirect1, out->seconds,
+                out->noise_rms_indirect1);
         fclose(f);
     }
     return rc || !f ? -1 : 0;
@@ -220,9 +223,9 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
         .threads = s->opt.threads,
         .lpv_mode = d->classic ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL,
         .converge_threshold = d->skip_converged ? 0.0f : -1.0f,
-        .gi = d->gi, .vpl_point = d->vpl_point, .vpl_visibility = d->vpl_visibility,
-        .ism_size = d->ism_size, .ism_points = d->ism_points,
-        .vpl_interleave = d->vpl_interleave,
+        .gi = d->gi, .vpl_point = d->vpl_point, .vpl_cut = d->vpl_cut,
+        .vpl_visibility = d->vpl_visibility, .ism_size = d->ism_size,
+        .ism_points = d->ism_points, .vpl_interleave = d->vpl_interleave,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)

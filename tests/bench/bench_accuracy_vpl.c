@@ -16,6 +16,13 @@
  * The visibility is swept too: --visibility exact,ism,ism-splat (default exact), the
  * imperfect maps for each of --ism-sizes and --ism-points (default the renderer's); the
  * bound's bias is measured with exact visibility only (its columns are empty otherwise).
+ * With exact visibility the error is also taken apart, each part a relRMSE over the
+ * reference's mean: the reference's noise (RMS of its halves' difference / 2), the seeds'
+ * spread (VPL variance), the disk estimate's bias (its seed mean against the reference,
+ * less both noises), the clamp's bias (point - disk on the same VPLs, its seed mean less
+ * its own noise), one image's error against the truth (the reference's noise taken out)
+ * and that less the clamp's bias (the accuracy goal's figure); and the influence cut's
+ * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
  * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0).
  * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
@@ -52,7 +59,7 @@ typedef struct vpl_timing {
 /* TIMED frames of fp from r (timer queries arrive a frame late); the last frame's indirect
  * image added into sum (when given) and its metrics in m; the medians in t. */
 static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_reference *ref,
-               float *sum, image_metrics *m, vpl_timing *t)
+               float *last, image_metrics *m, vpl_timing *t)
 {
     double sel[TIMED], sh[TIMED], eye[TIMED], frame[TIMED];
     renderer_image img = {0};
@@ -72,9 +79,8 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_refe
     *t = (vpl_timing){acc_median(sel, TIMED), acc_median(sh, TIMED), acc_median(eye, TIMED),
                       acc_median(frame, TIMED)};
     size_t n = (size_t)s->opt.width * s->opt.height * 3;
-    if (sum)
-        for (size_t i = 0; i < n; i++)
-            sum[i] += img.indirect[i];
+    if (last)
+        memcpy(last, img.indirect, n * sizeof *last);
     image_metrics_desc geometry = {.mask = ref->coverage};
     if (m && image_metrics_compare(img.indirect, ref->indirect1, s->opt.width, s->opt.height,
                                    &geometry, m) != 0) {
@@ -98,6 +104,42 @@ static double compare(const acc_setup *s, const acc_reference *ref, const float 
     return m.rmse_rel;
 }
 
+/* Per-pixel sums over the seeds of one estimate: its mean and its spread. */
+typedef struct seed_sums {
+    double *sum, *sq;
+} seed_sums;
+
+static void seed_add(seed_sums *a, const float *x, const float *minus, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        double v = (double)x[i] - (minus ? minus[i] : 0.0f);
+        a->sum[i] += v;
+        a->sq[i] += v * v;
+    }
+}
+
+/* Over the covered pixels, relative to mean: *spread, one seed's standard deviation
+ * (RMS over the pixels, from the seeds' sample variance), and the RMS of the seeds' mean
+ * less its own noise (var / k): the part of the mean that more seeds do not remove. */
+static double seed_bias(const seed_sums *a, const uint8_t *coverage, size_t n, int k,
+                        double mean, double *spread)
+{
+    double var = 0, sq = 0;
+    size_t covered = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!coverage[i / 3])
+            continue;
+        double m = a->sum[i] / k;
+        var += k > 1 ? (a->sq[i] - k * m * m) / (k - 1) : 0.0;
+        sq += m * m;
+        covered++;
+    }
+    var /= (double)(covered ? covered : 1);
+    sq /= (double)(covered ? covered : 1);
+    *spread = sqrt(var) / mean;
+    return sqrt(fmax(sq - var / k, 0.0)) / mean;
+}
+
 /* x with 4 decimals, or null when not measured (NaN). */
 static const char *json_number(double x, char buf[32])
 {
@@ -105,9 +147,9 @@ static const char *json_number(double x, char buf[32])
     return buf;
 }
 
-/* One count of VPLs with r[0] (the disk bound) and, when given, r[1] (points): one CSV row
- * and one JSON line. disk and point are scratch images. */
-static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[2], int count,
+/* One count of VPLs with r[0] (the disk bound) and, when given, r[1] (points) and r[2] (no
+ * cut): one CSV row and one JSON line. disk and point are scratch images. */
+static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3], int count,
                    int seeds, const vpl_timing *none, float *disk, float *point, FILE *f,
                    const acc_renderer_desc *rd)
 {
@@ -116,16 +158,43 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[2],
     memset(point, 0, n * sizeof *point);
     double err = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
     int k = seeds < 64 ? seeds : 64;
-    for (int seed = 0; seed < k; seed++) {
+    double *acc = calloc(6 * n, sizeof *acc), mean_ref = 0, cut_rel = NAN, cut_level = NAN;
+    float *one[3] = {calloc(n, sizeof(float)), calloc(n, sizeof(float)), calloc(n, sizeof(float))};
+    seed_sums sums[3] = {{acc, acc + n}, {acc + 2 * n, acc + 3 * n}, {acc + 4 * n, acc + 5 * n}};
+    size_t covered = 0;
+    for (size_t i = 0; i < n; i++) /* the relRMSE's divisor: the covered pixels' mean */
+        if (ref->coverage[i / 3]) {
+            mean_ref += ref->indirect1[i];
+            covered++;
+        }
+    mean_ref /= (double)(covered ? covered : 1);
+    int rc = acc && one[0] && one[1] && one[2] ? 0 : -1;
+    for (int seed = 0; seed < k && rc == 0; seed++) {
         frame_params fp = s->base;
         fp.gi = FRAME_GI_VPL;
         fp.vpl_count = count;
         fp.vpl_seed = (uint32_t)seed;
         image_metrics m, unused;
         vpl_timing t, tp;
-        if (run(s, r[0], &fp, ref, disk, &m, &t) ||
-            (r[1] && run(s, r[1], &fp, ref, point, &unused, &tp)))
-            return -1;
+        if (run(s, r[0], &fp, ref, one[0], &m, &t) ||
+            (r[1] && run(s, r[1], &fp, ref, one[1], &unused, &tp))) {
+            rc = -1;
+            break;
+        }
+        seed_add(&sums[0], one[0], NULL, n);      /* the disk estimate */
+        if (r[1]) {
+            seed_add(&sums[1], one[1], NULL, n);  /* the point estimate */
+            seed_add(&sums[2], one[1], one[0], n); /* point - disk: the clamp */
+        }
+        if (seed == 0 && r[2]) {
+            image_metrics mu;
+            vpl_timing tu;
+            if (run(s, r[2], &fp, ref, one[2], &mu, &tu) != 0) {
+                rc = -1;
+                break;
+            }
+            cut_rel = compare(s, ref, one[0], one[2], &cut_level);
+        }
         err += m.rmse_rel / k;
         ssim += m.ssim / k;
         scale += m.best_scale / k;
@@ -134,25 +203,45 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[2],
         gather[seed] = t.eye_ms - none->eye_ms;
         frame[seed] = t.frame_ms;
     }
+    if (rc != 0) {
+        free(acc);
+        for (int i = 0; i < 3; i++)
+            free(one[i]);
+        return -1;
+    }
     for (size_t i = 0; i < n; i++) {
-        disk[i] /= (float)k;
-        point[i] /= (float)k;
+        disk[i] = (float)(sums[0].sum[i] / k);
+        point[i] = (float)(sums[1].sum[i] / k);
     }
     double ms[4] = {acc_median(sel, k), acc_median(sh, k), acc_median(gather, k),
                     acc_median(frame, k)};
     double level = NAN, mean_err_point = NAN, bias = NAN;
     double mean_err = compare(s, ref, disk, ref->indirect1, NULL);
+    double ref_noise = ref->noise_rms_indirect1 / mean_ref, spread, spread_point = NAN;
+    double disk_bias = NAN, clamp = NAN, truth = NAN;
+    (void)seed_bias(&sums[0], ref->coverage, n, k, mean_ref, &spread);
     if (r[1]) {
         mean_err_point = compare(s, ref, point, ref->indirect1, NULL);
         bias = compare(s, ref, disk, point, &level);
+        double spread_clamp;
+        (void)seed_bias(&sums[1], ref->coverage, n, k, mean_ref, &spread_point);
+        clamp = seed_bias(&sums[2], ref->coverage, n, k, mean_ref, &spread_clamp);
+        disk_bias = sqrt(fmax(mean_err * mean_err - spread * spread / k - ref_noise * ref_noise,
+                              0.0));
+        truth = sqrt(fmax(err * err - ref_noise * ref_noise, 0.0));
     }
+    free(acc);
+    for (int i = 0; i < 3; i++)
+        free(one[i]);
     const char *vis = vpl_visibility_names[rd->vpl_visibility];
-    char j[3][32];
+    char j[11][32];
     int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
-    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d\n",
+    fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d,"
+            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
             s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
-            scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave);
+            scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave,
+            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
            "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
@@ -160,11 +249,17 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[2],
            "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
            "\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
            "\"rmse_rel_seed_mean_point\":%s,\"bound_level_bias\":%s,"
-           "\"bound_bias_rms\":%s}\n",
+           "\"bound_bias_rms\":%s,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
+           "\"point_spread_rel\":%s,\"disk_bias_rel\":%s,\"clamp_bias_rel\":%s,"
+           "\"rmse_rel_truth\":%s,\"beyond_clamp\":%s,\"cut_bias_rel\":%s,"
+           "\"cut_level_bias\":%s}\n",
            s->opt.scene, s->opt.width, s->opt.height, 2 * s->opt.ref_samples,
            ref->noise_indirect1, count, k, vis, size, points, rd->vpl_interleave, ms[0], ms[1], ms[2],
            ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
-           json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]));
+           json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
+           ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
+           json_number(clamp, j[5]), json_number(truth, j[6]), json_number(truth - clamp, j[7]),
+           json_number(cut_rel, j[8]), json_number(cut_level, j[9]));
     fflush(stdout);
     return 0;
 }
@@ -235,7 +330,8 @@ int accuracy_vpl(int argc, char **argv)
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
         "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
-        "ism_points,interleave");
+        "ism_points,interleave,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
+        "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias");
     int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     frame_params fp = s.base;
@@ -252,14 +348,18 @@ int accuracy_vpl(int argc, char **argv)
         if (exact && c / ni % (ns * np) != 0)
             continue; /* the ISM settings do not change exact maps */
         int bias = exact && rd.vpl_interleave == 0;
-        renderer *r[2] = {acc_renderer_create(&s, &rd), NULL};
-        rd.vpl_point = 1;
-        if (bias)
-            r[1] = acc_renderer_create(&s, &rd);
-        rc = r[0] && (r[1] || !bias) ? 0 : 1;
+        renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
+        if (bias) {
+            acc_renderer_desc as_points = rd, uncut = rd;
+            as_points.vpl_point = 1;
+            uncut.vpl_cut = -1;
+            r[1] = acc_renderer_create(&s, &as_points);
+            r[2] = acc_renderer_create(&s, &uncut);
+        }
+        rc = r[0] && ((r[1] && r[2]) || !bias) ? 0 : 1;
         for (int k = 0; k < nc && rc == 0; k++)
             rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd);
-        for (int i = 0; i < 2; i++)
+        for (int i = 0; i < 3; i++)
             if (r[i])
                 renderer_destroy(r[i]);
     }

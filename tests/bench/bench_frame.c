@@ -3,7 +3,10 @@
  * frame pass's stages are RSM, selection (RSM readback and choice) and shadow maps, and
  * the gather is the eye pass's host time less that of the same frames with --gi none,
  * measured in the same run (host clocks: llvmpipe's timer queries of a long pass can
- * exceed the host time around it). GPU passes use the
+ * exceed the host time around it); with clustered or tiled lists (--vpl-lights) the light
+ * assignment is its own stage, out of the gather, and a stereo pair of eyes from the
+ * camera (parallel axes, FRAME_VIEW_EYE_SEPARATION apart) is assigned per eye and
+ * enclosed (one grid for both eyes): milliseconds and (VPL, cluster) pairs of each. GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
  * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
@@ -19,6 +22,7 @@
 #include "lpv/lattice.h"
 #include "glctx.h"
 #include "frame/frame_view.h"
+#include "frame/offaxis.h"
 #include "renderer.h"
 #include "scene/scene.h"
 
@@ -44,10 +48,11 @@ int bench_frame(int argc, char **argv)
     int width = 320, height = 240, frames = 10, rsm = RENDERER_DEFAULT_RSM_SIZE;
     int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
     int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO, gi_index = FRAME_GI_ILPV;
-    int vpl_count = FRAME_VPL_DEFAULT;
+    int vpl_count = FRAME_VPL_DEFAULT, vpl_lights = RENDERER_VPL_CLUSTERED;
     static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
     static const char *const lpv_names[] = {"auto", "cpu", "gl"};
     static const char *const tiles_names[] = {"auto", "on", "off"};
+    static const char *const lights_names[] = {"clustered", "tiled", "all"};
     const bench_option opts[] = {
         BENCH_TEXT("scene", "default|bunny|FILE", "scene (bunny: ../shared/scenes/bunny)", &scene_arg),
         BENCH_INT("width", "W", "image width", &width, 1, 16384),
@@ -60,6 +65,8 @@ int bench_frame(int argc, char **argv)
         BENCH_CHOICE("tiles", "auto|on|off", "GL propagation tiles", &tiles, tiles_names),
         BENCH_CHOICE("gi", "ilpv|none|vpl", "indirect-light method", &gi_index, frame_gi_names),
         BENCH_INT("vpl-count", "N", "vpl: lights per frame", &vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX),
+        BENCH_CHOICE("vpl-lights", "clustered|tiled|all", "vpl: light assignment of the gather",
+                     &vpl_lights, lights_names),
     };
     int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
     if (pr)
@@ -94,7 +101,8 @@ int bench_frame(int argc, char **argv)
     }
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
                         .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles,
-                        .converge_threshold = -1, .gi = gi}; /* static frames: measure the work, never skip */
+                        .converge_threshold = -1, .gi = gi, /* static frames: measure the work, never skip */
+                        .vpl_lights = (renderer_vpl_lights)vpl_lights};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);
@@ -119,6 +127,8 @@ int bench_frame(int argc, char **argv)
         return 1;
     }
     int rc = 0;
+    double *assign = calloc((size_t)n * 3, sizeof *assign); /* mono, per eye, enclosed */
+    size_t pairs[3] = {0, 0, 0};
     for (int f = 0; f < frames && rc == 0; f++) {
         renderer_frame_pass(r, &fp);
         renderer_image img;
@@ -127,10 +137,46 @@ int bench_frame(int argc, char **argv)
         renderer_get_timings(r, &t);
         if (f < WARMUP)
             continue;
+        assign[f - WARMUP] = t.assign_ms;
+        pairs[0] = t.assignments;
         double vals[PASSES] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.gbuffer_ms,
                                t.shade_ms, t.final_ms, t.frame_host_ms, t.eye_host_ms};
         for (int p = 0; p < PASSES; p++)
             s[(size_t)p * n + (f - WARMUP)] = vals[p];
+    }
+    /* vpl: a stereo pair from the camera, assigned per eye and then enclosed. */
+    renderer_view pair[2];
+    float right[3] = {1, 0, 0}, view_m[16];
+    if (offaxis_view(cam.position, cam.target, cam.up, view_m) == 0)
+        for (int i = 0; i < 3; i++)
+            right[i] = view_m[4 * i];
+    for (int e = 0; e < 2; e++) {
+        float eye[3];
+        frame_view_eye(cam.position, right, FRAME_VIEW_EYE_SEPARATION, 2 * e - 1, eye);
+        frame_view_scene_camera(&cam, eye, scene_far_plane(&sc), width, height, &pair[e]);
+    }
+    for (int f = 0; f < frames && rc == 0 && gi == FRAME_GI_VPL; f++) {
+        renderer_frame_pass(r, &fp);
+        for (int enclosed = 0; enclosed < 2 && rc == 0; enclosed++) {
+            if (enclosed)
+                renderer_screen(r, pair, 2);
+            double ms = 0;
+            size_t count = 0;
+            for (int e = 0; e < 2 && rc == 0; e++) {
+                renderer_image img;
+                rc = renderer_eye_pass(r, &pair[e], 0, &img);
+                renderer_timings t;
+                renderer_get_timings(r, &t);
+                if (e == 0 || !enclosed) { /* enclosed: the screen's one assignment */
+                    ms += t.assign_ms;
+                    count += t.assignments;
+                }
+            }
+            if (f >= WARMUP) {
+                assign[(size_t)(1 + enclosed) * n + (f - WARMUP)] = ms;
+                pairs[1 + enclosed] = count;
+            }
+        }
     }
     /* vpl: the same frames without indirect light: the eye pass less the gather. */
     double *base = s + (size_t)PASSES * n;
@@ -168,19 +214,32 @@ int bench_frame(int argc, char **argv)
                    renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu", lat->n[0],
                    lat->n[1], lat->n[2], fp.lpv_steps);
         if (gi == FRAME_GI_VPL)
-            printf(",\"vpl_count\":%d", fp.vpl_count);
+            printf(",\"vpl_count\":%d,\"vpl_lights\":\"%s\"", fp.vpl_count,
+                   lights_names[vpl_lights]);
         for (int p = 0; p < PASSES; p++)
             printf(",\"%s\":%.3f", names[p], med[p]);
-        double total = med[6] + med[7], gather = med[7] - med[PASSES];
+        double am[3];
+        for (int k = 0; k < 3; k++) {
+            qsort(assign + (size_t)k * n, (size_t)n, sizeof *assign, cmp_double);
+            am[k] = n % 2 ? assign[(size_t)k * n + n / 2]
+                          : 0.5 * (assign[(size_t)k * n + n / 2 - 1] + assign[(size_t)k * n + n / 2]);
+        }
+        double total = med[6] + med[7], gather = med[7] - med[PASSES] - am[0];
         if (gi == FRAME_GI_VPL)
-            printf(",\"eye_direct_only_ms\":%.3f,\"gather_ms\":%.3f", med[PASSES], gather);
+            printf(",\"eye_direct_only_ms\":%.3f,\"assign_ms\":%.3f,\"gather_ms\":%.3f,"
+                   "\"assignments\":%zu,\"stereo_assign_per_eye_ms\":%.3f,"
+                   "\"stereo_assign_enclosed_ms\":%.3f,\"stereo_assignments_per_eye\":%zu,"
+                   "\"stereo_assignments_enclosed\":%zu,\"enclosed_fewer\":%.3f",
+                   med[PASSES], am[0], gather, pairs[0], am[1], am[2], pairs[1], pairs[2],
+                   pairs[1] ? 1.0 - (double)pairs[2] / (double)pairs[1] : 0.0);
         /* The method's work: injection and propagation, or selection, shadows, gather. */
-        double work = med[1] + med[2] + (gi == FRAME_GI_VPL ? gather : 0.0);
+        double work = med[1] + med[2] + (gi == FRAME_GI_VPL ? am[0] + gather : 0.0);
         printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
     } else {
         fprintf(stderr, "bench frame: %s\n", renderer_last_error(r));
     }
     free(s);
+    free(assign);
     renderer_destroy(r);
     glctx_destroy(ctx);
     scene_free(&sc);

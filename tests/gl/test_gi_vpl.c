@@ -1,8 +1,9 @@
 /* The vpl GI method (node/gi_vpl.h) on llvmpipe, default room, 64x48: it lights the room
  * with the same direct light as ILPV; the same parameters give the same VPLs, checksum
  * and images in two renderers with different thread counts and frame after frame (the
- * frame pass then reuses them); the seed and a moved light change them; and with exact visibility the indirect image
- * approaches the many-VPL image as N grows. */
+ * frame pass then reuses them); the seed and a moved light change them; with exact visibility the indirect image
+ * approaches the many-VPL image as N grows; and the clustered and tiled gathers, per eye
+ * and enclosing both eyes of a stereo screen, equal the gather over every VPL. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -163,12 +164,77 @@ static void test_error_falls_with_n(void **state)
     gltest_close(&t);
 }
 
+/* Eye images of one frame from a renderer with the given light assignment; with
+ * `enclosed`, both eyes are announced as one screen first. */
+static void stereo_indirect(gltest *t, renderer_vpl_lights lights, int enclosed,
+                            const frame_params *p, float *out, size_t *assignments)
+{
+    char err[256];
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
+                        .gi = FRAME_GI_VPL, .vpl_lights = lights};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    assert_non_null(r);
+    renderer_frame_pass(r, p);
+    const float bl[3] = {-2, 0, -2}, br[3] = {2, 0, -2}, tl[3] = {-2, 3, -2};
+    const float head[3] = {0.3f, 1.6f, 1.5f}, right[3] = {1, 0, 0};
+    renderer_view eyes[2];
+    for (int e = 0; e < 2; e++) {
+        float eye[3];
+        frame_view_eye(head, right, FRAME_VIEW_EYE_SEPARATION, e ? 1 : -1, eye);
+        assert_int_equal(frame_view_screen(bl, br, tl, eye, 12.0f, W, H, &eyes[e], NULL), 0);
+    }
+    if (enclosed)
+        renderer_screen(r, eyes, 2);
+    *assignments = 0;
+    for (int e = 0; e < 2; e++) {
+        renderer_image img;
+        assert_int_equal(renderer_eye_pass(r, &eyes[e], 1, &img), 0);
+        memcpy(out + e * PIXELS, img.indirect, sizeof(float) * PIXELS);
+        renderer_timings tm;
+        renderer_get_timings(r, &tm);
+        if (e == 0 || !enclosed)
+            *assignments += tm.assignments;
+    }
+    renderer_destroy(r);
+}
+
+/* Clustered (per eye and enclosed) and tiled gathers against the loop over every VPL,
+ * all with the same influence cut: equal within float rounding, and the enclosing grid
+ * lists fewer lights than the two eyes' grids. */
+static void test_clustered_equals_brute_force(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    static float all[2 * PIXELS], img[2 * PIXELS];
+    frame_params p = vpl_params(&t, 128, 0);
+    size_t none, per_eye = 0, enclosed = 0, tiled;
+    stereo_indirect(&t, RENDERER_VPL_ALL, 0, &p, all, &none);
+    assert_true(none == 0);
+    assert_true(mean(all) > 0);
+    const struct { renderer_vpl_lights lights; int enclosed; size_t *count; } runs[3] = {
+        {RENDERER_VPL_CLUSTERED, 0, &per_eye}, {RENDERER_VPL_CLUSTERED, 1, &enclosed},
+        {RENDERER_VPL_TILED, 0, &tiled}};
+    for (int k = 0; k < 3; k++) {
+        stereo_indirect(&t, runs[k].lights, runs[k].enclosed, &p, img, runs[k].count);
+        double worst = 0;
+        for (int i = 0; i < 2 * PIXELS; i++)
+            worst = fmax(worst, fabs((double)img[i] - all[i]) / (fabs((double)all[i]) + 1e-6));
+        printf("lights %d, enclosed %d: %zu assignments, largest relative difference %.3g\n",
+               (int)runs[k].lights, runs[k].enclosed, *runs[k].count, worst);
+        assert_true(worst < 1e-5);
+    }
+    assert_true(enclosed < per_eye);
+    gltest_close(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lights_and_is_deterministic),
         cmocka_unit_test(test_light_types),
         cmocka_unit_test(test_error_falls_with_n),
+        cmocka_unit_test(test_clustered_equals_brute_force),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -69,7 +69,7 @@ static void test_unbiased(void **state)
     enum { SEEDS = 4000 };
     double sum[2] = {0}, sq[2] = {0};
     for (uint32_t seed = 0; seed < SEEDS; seed++) {
-        assert_int_equal(vpl_select(c, COUNT, N, seed, cdf, out), N);
+        assert_int_equal(vpl_select(c, COUNT, N, seed, cdf, out, NULL), N);
         double e[2] = {red_moment(out, N), area_sum(out, N)};
         for (int m = 0; m < 2; m++) {
             sum[m] += e[m];
@@ -98,7 +98,7 @@ static void test_total_flux_exact(void **state)
     for (int j = 0; j < COUNT; j++)
         total += (double)c[j].flux[0] + c[j].flux[1] + c[j].flux[2];
     for (uint32_t seed = 0; seed < 50; seed++) {
-        vpl_select(c, COUNT, N, seed, cdf, out);
+        vpl_select(c, COUNT, N, seed, cdf, out, NULL);
         double got = 0;
         for (int i = 0; i < N; i++) {
             got += (double)out[i].flux[0] + out[i].flux[1] + out[i].flux[2];
@@ -123,16 +123,19 @@ static void test_deterministic_and_coherent(void **state)
     static double cdf[COUNT];
     vpl a[N], b[N], other[N];
     candidates(c);
-    vpl_select(c, COUNT, N, 11, cdf, a);
-    vpl_select(c, COUNT, N, 11, cdf, b);
+    size_t chosen[N];
+    vpl_select(c, COUNT, N, 11, cdf, a, chosen);
+    vpl_select(c, COUNT, N, 11, cdf, b, NULL);
     assert_memory_equal(a, b, sizeof a);
+    for (int i = 0; i < N; i++) /* each slot names the candidate it copied */
+        assert_memory_equal(a[i].position, c[chosen[i]].position, sizeof a[i].position);
     assert_int_equal(vpl_checksum(a, N), vpl_checksum(b, N));
-    vpl_select(c, COUNT, N, 12, cdf, other);
+    vpl_select(c, COUNT, N, 12, cdf, other, NULL);
     assert_true(vpl_checksum(other, N) != vpl_checksum(a, N));
     int fresh = changed_slots(a, other);
     /* One candidate a percent brighter (a light moved a little): few slots move. */
     c[200].flux[0] *= 1.01f;
-    vpl_select(c, COUNT, N, 11, cdf, b);
+    vpl_select(c, COUNT, N, 11, cdf, b, NULL);
     int moved = changed_slots(a, b);
     assert_true(moved <= N / 10);
     assert_true(fresh >= N / 2);
@@ -146,9 +149,9 @@ static void test_no_flux(void **state)
     double cdf[4];
     vpl out[N];
     memset(out, 0x5a, sizeof out);
-    assert_int_equal(vpl_select(c, 4, N, 1, cdf, out), 0);
+    assert_int_equal(vpl_select(c, 4, N, 1, cdf, out, NULL), 0);
     assert_int_equal(((unsigned char *)out)[0], 0x5a);
-    assert_int_equal(vpl_select(c, 0, N, 1, cdf, out), 0);
+    assert_int_equal(vpl_select(c, 0, N, 1, cdf, out, NULL), 0);
 }
 
 static void test_slot_random_range(void **state)
@@ -156,12 +159,36 @@ static void test_slot_random_range(void **state)
     (void)state;
     double mean = 0;
     for (int i = 0; i < 10000; i++) {
-        double u = vpl_slot_random(3, i);
+        double u = vpl_slot_random(3, i, 0);
         assert_true(u >= 0.0 && u < 1.0);
         mean += u / 10000;
     }
     assert_true(fabs(mean - 0.5) < 0.02);
-    assert_true(vpl_slot_random(3, 5) != vpl_slot_random(4, 5));
+    assert_true(vpl_slot_random(3, 5, 0) != vpl_slot_random(4, 5, 0));
+}
+
+/* Points placed on an emitter's triangle from slot random numbers lie in it, and their
+ * mean is its centroid (uniform in area) within 5 standard errors. */
+static void test_emitter_point(void **state)
+{
+    (void)state;
+    vpl_emitter e = {.corner = {{0, 0, 0}, {2, 0, 0}, {0, 1, 0}}};
+    enum { M = 20000 };
+    double sum[2] = {0, 0}, sq[2] = {0, 0};
+    for (int i = 0; i < M; i++) {
+        float p[3];
+        vpl_emitter_point(&e, vpl_slot_random(5, i, 1), vpl_slot_random(5, i, 2), p);
+        assert_true(p[0] >= 0 && p[1] >= 0 && p[0] / 2 + p[1] <= 1.0f + 1e-6f && p[2] == 0);
+        for (int k = 0; k < 2; k++) {
+            sum[k] += p[k];
+            sq[k] += (double)p[k] * p[k];
+        }
+    }
+    const double centroid[2] = {2.0 / 3.0, 1.0 / 3.0};
+    for (int k = 0; k < 2; k++) {
+        double mean = sum[k] / M, se = sqrt((sq[k] / M - mean * mean) / M);
+        assert_true(fabs(mean - centroid[k]) < 5 * se);
+    }
 }
 
 /* A 4x4 map: a floor (y = 0, texel step 0.1 x 0.2) in columns 0..2, a wall (x = 0.5, normal
@@ -199,6 +226,7 @@ int main(void)
         cmocka_unit_test(test_deterministic_and_coherent),
         cmocka_unit_test(test_no_flux),
         cmocka_unit_test(test_slot_random_range),
+        cmocka_unit_test(test_emitter_point),
         cmocka_unit_test(test_texel_area),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
