@@ -42,6 +42,13 @@ echo "master RSS under churn: $before kB before, $warm kB after $cycles connect/
 [ "$(json '(r["drops"], r["nodes_live_min"], r["joins"])' "$tmp/r.json")" = "(0, 2, 2)" ] \
   || { cat "$tmp/master.log"; fail "drops, live, joins: $(json '(r["drops"], r["nodes_live_min"], r["joins"])' "$tmp/r.json")"; }
 [ "$(json 'r["refused_connections"] >= 1' "$tmp/r.json")" = True ] || fail "no churn connection reached the authentication handler"
+# AddressSanitizer's allocator keeps freed memory in quarantine and records every
+# allocation's stack, so its RSS measures the tool, not the master (18 MB per 300 cycles,
+# 2.8 MB with the quarantine off): there the churn runs for memory errors only.
+if grep -q '^CAVELIGHT_SANITIZE:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  echo "sanitized build: RSS growth not bounded"
+  exit 0
+fi
 # Loose, for a loaded machine's noise (about 100 kB measured); the 10 kB per connection
 # measured before the fixes of issue 14 would fail it.
 [ $(( after - warm )) -lt $(( 2048 + cycles / 2 )) ] || fail "the master grew $(( after - warm )) kB in $cycles cycles"
