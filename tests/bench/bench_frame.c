@@ -6,7 +6,10 @@
  * exceed the host time around it); with clustered or tiled lists (--vpl-lights) the light
  * assignment is its own stage, out of the gather, and a stereo pair of eyes from the
  * camera (parallel axes, FRAME_VIEW_EYE_SEPARATION apart) is assigned per eye and
- * enclosed (one grid for both eyes): milliseconds and (VPL, cluster) pairs of each. GPU passes use the
+ * enclosed (one grid for both eyes): milliseconds and (VPL, cluster) pairs of each.
+ * --vpl-visibility and --vpl-interleave choose the shadow test (shadow_ms is then the
+ * imperfect maps' time) and interleaved sampling (its gather and blur are in gather_ms).
+ * GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
  * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
@@ -25,6 +28,7 @@
 #include "frame/offaxis.h"
 #include "renderer.h"
 #include "scene/scene.h"
+#include "vpl_ism.h"
 
 enum { WARMUP = 2, PASSES = 8 };
 
@@ -49,6 +53,7 @@ int bench_frame(int argc, char **argv)
     int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
     int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO, gi_index = FRAME_GI_ILPV;
     int vpl_count = FRAME_VPL_DEFAULT, vpl_lights = RENDERER_VPL_CLUSTERED;
+    int visibility = RENDERER_VPL_EXACT, interleave = 0;
     static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
     static const char *const lpv_names[] = {"auto", "cpu", "gl"};
     static const char *const tiles_names[] = {"auto", "on", "off"};
@@ -67,6 +72,10 @@ int bench_frame(int argc, char **argv)
         BENCH_INT("vpl-count", "N", "vpl: lights per frame", &vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX),
         BENCH_CHOICE("vpl-lights", "clustered|tiled|all", "vpl: light assignment of the gather",
                      &vpl_lights, lights_names),
+        BENCH_CHOICE("vpl-visibility", "exact|ism|ism-splat", "vpl: shadow test of the VPLs",
+                     &visibility, vpl_visibility_names),
+        BENCH_INT("vpl-interleave", "K", "vpl: interleaved sampling in K x K blocks (0: off)",
+                  &interleave, 0, RENDERER_VPL_INTERLEAVE_MAX),
     };
     int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
     if (pr)
@@ -102,7 +111,9 @@ int bench_frame(int argc, char **argv)
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
                         .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles,
                         .converge_threshold = -1, .gi = gi, /* static frames: measure the work, never skip */
-                        .vpl_lights = (renderer_vpl_lights)vpl_lights};
+                        .vpl_lights = (renderer_vpl_lights)vpl_lights,
+                        .vpl_visibility = (renderer_vpl_visibility)visibility,
+                        .vpl_interleave = interleave};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);
@@ -214,8 +225,9 @@ int bench_frame(int argc, char **argv)
                    renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu", lat->n[0],
                    lat->n[1], lat->n[2], fp.lpv_steps);
         if (gi == FRAME_GI_VPL)
-            printf(",\"vpl_count\":%d,\"vpl_lights\":\"%s\"", fp.vpl_count,
-                   lights_names[vpl_lights]);
+            printf(",\"vpl_count\":%d,\"vpl_lights\":\"%s\",\"vpl_visibility\":\"%s\","
+                   "\"vpl_interleave\":%d", fp.vpl_count, lights_names[vpl_lights],
+                   vpl_visibility_names[visibility], interleave);
         for (int p = 0; p < PASSES; p++)
             printf(",\"%s\":%.3f", names[p], med[p]);
         double am[3];

@@ -42,6 +42,10 @@ for f in "$root"/* "$root"/.[!.]*; do
 done
 ln -s "$build" "$clone/build"
 
+# The README's cluster command binds its config's fixed port: two suites on one machine
+# (a CI run beside a developer's) would fail each other's run, so they take turns here.
+exec 9> /tmp/cavelight-readme.lock
+flock 9
 n=0
 while IFS= read -r cmd; do
     n=$((n + 1))

@@ -116,6 +116,15 @@ static void start_node(fake_node *n, const char *name, uint64_t checksum)
     pthread_create(&n->thread, NULL, fake_node_main, n);
 }
 
+/* Waits up to 2 s for a fake node's counter to reach want (what the master sent may still
+ * be in flight; on a loaded machine 50 ms was not always enough). */
+static int wait_count(volatile int *count, int want)
+{
+    for (int ms = 0; *count < want && ms < 2000; ms += 5)
+        usleep(5000);
+    return *count;
+}
+
 static void stop_node(fake_node *n)
 {
     n->stop = 1;
@@ -165,8 +174,7 @@ static void test_barrier_epoch_and_desync(void **state)
     cluster_master_stats_get(master, &st);
     assert_int_equal(st.desyncs, 1);
     /* Every READY frame got its SWAP (the last one may still be in flight). */
-    usleep(50000);
-    assert_int_equal(a.swaps, 21);
+    assert_int_equal(wait_count(&a.swaps, 21), 21);
     stop_node(&a);
     stop_node(&b);
 }
@@ -196,7 +204,7 @@ static void test_drop_after_timeout_and_rejoin(void **state)
         assert_int_equal(r.ready, 1);
         assert_true(r.barrier_ms < 250);
     }
-    usleep(50000);
+    assert_true(wait_count(&b.byes, 1) >= 1);
     assert_int_equal(b.last_bye, WIRE_BYE_DROPPED);
 
     /* It comes back: snapshot, and the next frame resets every node's history. */
