@@ -18,10 +18,15 @@
 #include "lpv/lpv_converge.h"
 #include "vpl_interleave.h"
 #include "vpl_ism.h"
+#include "vpl_view.h"
 
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
  * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
 enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_ATLAS_SIDE = 2048, VPL_FACES = 6 };
+/* The view rule evaluates the view term of at most this many candidates (evenly spaced,
+ * vpl_view_term()), so its cost is fixed whatever the RSM size: every texel of a 256^2
+ * map would take 65536 x VPL_VIEW_SAMPLES kernel evaluations per light view. */
+enum { VIEW_TERM_EVALS = 4096 };
 
 /* Cube faces +x, -x, +y, -y, +z, -z (face = 2 axis + negative): axis, right, up. The shader
  * takes them as uniforms, so this table is the only one. */
@@ -43,7 +48,10 @@ typedef struct gi_vpl {
     int have_last;
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
+    double *view;            /* the view rule's view term per candidate */
     size_t capacity;
+    vpl_selection rule;      /* renderer_desc.vpl_selection */
+    vpl_view *viewer;        /* the view rule's rays (vpl_view.h) */
     vpl *emitters;           /* as candidates: at their centroids */
     vpl_emitter *emitter_shape; /* their triangles */
     size_t emitter_count;
@@ -160,6 +168,8 @@ static void release(gi_vpl *v)
         free(v->rsm_read[i]);
     free(v->candidates);
     free(v->cdf);
+    free(v->view);
+    vpl_view_destroy(v->viewer);
     free(v->emitters);
     free(v->emitter_shape);
 }
@@ -222,7 +232,10 @@ static int reserve_candidates(gi_vpl *v, size_t need)
     double *d = c ? realloc(v->cdf, need * sizeof *d) : NULL;
     if (d)
         v->cdf = d;
-    if (!c || !d)
+    double *w = d ? realloc(v->view, need * sizeof *w) : NULL;
+    if (w)
+        v->view = w;
+    if (!c || !d || !w)
         return -1;
     v->capacity = need;
     return 0;
@@ -367,7 +380,14 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->lights = d->settings->vpl_lights;
     v->cut = d->settings->vpl_cut == 0 ? VPL_CUT_DEFAULT : d->settings->vpl_cut;
     v->never_reuse = d->settings->converge_threshold < 0;
+    v->rule = d->settings->vpl_selection;
     int bad = init(v, err, errlen);
+    if (!bad && (v->rule < 0 || v->rule >= VPL_SELECT_COUNT)) {
+        snprintf(err, errlen, "renderer: vpl_selection %d is not a selection rule", (int)v->rule);
+        bad = 1;
+    }
+    if (!bad && v->rule == VPL_SELECT_VIEW)
+        bad = !(v->viewer = vpl_view_create(d->scene, err, errlen));
     if (!bad && d->settings->vpl_visibility != RENDERER_VPL_EXACT) {
         vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,
                            .splat = d->settings->vpl_visibility == RENDERER_VPL_ISM_SPLAT};
@@ -397,13 +417,18 @@ static void destroy(void *state)
 }
 
 /* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
- * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed): a frame that changes none
- * of them, a moving head's, keeps last frame's. */
+ * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed), and under the view rule on
+ * the viewer: a frame that changes none of them keeps last frame's (the flux and regular
+ * rules: a moving head's too). */
 static int reuse(void *state, const frame_params *p)
 {
     gi_vpl *v = state;
+    float now[3], before[3];
+    vpl_view_point(p, now);
+    vpl_view_point(&v->last, before);
     int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
-               p->vpl_count == v->last.vpl_count && p->vpl_seed == v->last.vpl_seed;
+               p->vpl_count == v->last.vpl_count && p->vpl_seed == v->last.vpl_seed &&
+               (v->rule != VPL_SELECT_VIEW || memcmp(now, before, sizeof now) == 0);
     v->last = *p;
     v->have_last = 1;
     if (same)
@@ -416,8 +441,18 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     gi_vpl *v = state;
     double t0 = clock_now_ms();
     size_t texels, candidates = collect(v, rsm, &texels);
-    v->count = vpl_select(v->candidates, candidates, p->vpl_count, p->vpl_seed, v->cdf,
-                          v->chosen, v->chosen_index);
+    if (v->rule == VPL_SELECT_VIEW && candidates) {
+        float eye[3];
+        const float *samples;
+        vpl_view_point(p, eye);
+        int n = vpl_view_samples(v->viewer, eye, &samples);
+        size_t stride = (candidates + VIEW_TERM_EVALS - 1) / VIEW_TERM_EVALS;
+        vpl_view_term(v->candidates, candidates, samples, n, stride, v->view);
+    }
+    vpl_select_desc sd = {.candidates = v->candidates, .count = candidates, .texels = texels,
+                          .rule = v->rule, .view = v->view, .n = p->vpl_count,
+                          .seed = p->vpl_seed};
+    v->count = vpl_select(&sd, v->cdf, v->chosen, v->chosen_index);
     for (int i = 0; i < v->count; i++) /* an emitter's slot: a point of its triangle */
         if (v->chosen_index[i] >= texels)
             vpl_emitter_point(&v->emitter_shape[v->chosen_index[i] - texels],

@@ -1,9 +1,11 @@
 /* gi_vpl: the GI method "vpl", instant radiosity with exact visibility, behind gi.h.
  *
  * frame(): every RSM texel with flux and every emissive triangle is a candidate
- * (common/gi/vpl_source.h); frame_params.vpl_count of them are chosen in proportion to
- * their flux with frame_params.vpl_seed (common/gi/vpl_select.h: unbiased weights, the
- * same choice on every node); the checksum READY carries is vpl_checksum() of that set.
+ * (common/gi/vpl_source.h); frame_params.vpl_count of them are chosen with
+ * frame_params.vpl_seed by renderer_desc.vpl_selection's rule (common/gi/vpl_select.h:
+ * flux, bidirectional view importance from the head's view samples (vpl_view.h), or the
+ * regular pattern; unbiased weights, the same choice on every node); the checksum READY
+ * carries is vpl_checksum() of that set.
  * Each chosen VPL gets a real shadow map: a cube of six distance maps (faces wholly
  * behind its surface skipped), all VPLs' faces tiles of one depth array texture, rendered
  * once per frame and shared by every screen and eye; or, with renderer_desc.vpl_visibility
@@ -16,8 +18,8 @@
  * receivers within its influence radius (renderer_desc.vpl_cut), whichever assignment.
  *
  * reuse(): a frame whose lights, medium and VPL settings are those of the last frame (a
- * moving head's) keeps its VPLs and shadow maps, unless renderer_desc.converge_threshold
- * is negative (the benchmarks measure every frame).
+ * moving head's, except under the view rule) keeps its VPLs and shadow maps, unless
+ * renderer_desc.converge_threshold is negative (the benchmarks measure every frame).
  *
  * A VPL stands for a patch of surface of area A (its texel's or triangle's, times its
  * weight 1 / (N p)); the gather treats it as a disk of that area seen on its axis, so the
@@ -27,7 +29,6 @@
  *
  * With renderer_desc.vpl_interleave, eye_bind() runs the interleaved gather and its blur
  * first (vpl_interleave.h) and shade.frag reads their result.
- * Not here: view importance.
  * stats(): inject_ms is reading the RSMs and choosing the VPLs, propagate_ms their shadow
  * maps (GL work finished before the clock stops), assign_ms and assignments the last light
  * assignment. */

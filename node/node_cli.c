@@ -33,7 +33,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
-    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_ISM_SIZE, O_ISM_POINTS, O_VPL_INTERLEAVE, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
+    O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_VPL_SELECTION, O_ISM_SIZE, O_ISM_POINTS, O_VPL_INTERLEAVE, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
@@ -85,6 +85,8 @@ static const cli_option options[] = {
      "vpl: each light a disk of its area near it, or a point\n(unbounded: to measure the disk's bias)"},
     {O_VPL_VISIBILITY, "vpl-visibility", "exact|ism|ism-splat", "exact", G_GI, S,
      "vpl: a cube shadow map per light from the triangles, or\nimperfect maps from points (pull-push or splats)"},
+    {O_VPL_SELECTION, "vpl-selection", "flux|view|regular", "flux", G_GI, S,
+     "vpl: choose lights by flux, by flux and what the head\nsees (bidirectional), or on a regular pattern"},
     {O_ISM_SIZE, "ism-size", "N", NULL, G_GI, S, "vpl: texels per side of each imperfect map\n(a power of two, 8..256)"},
     {O_ISM_POINTS, "ism-points", "N", NULL, G_GI, S, "vpl: points per imperfect map (64..16384)"},
     {O_VPL_INTERLEAVE, "vpl-interleave", "K", "0 (every pixel every light)", G_GI, S,
@@ -193,6 +195,7 @@ static const char *set(void *user, int id, const char *v)
     }
     case O_VPL_BOUND: CHOICE(o->vpl_point, vpl_bound_names); break;
     case O_VPL_VISIBILITY: CHOICE(o->vpl_visibility, vpl_visibility_names); break;
+    case O_VPL_SELECTION: CHOICE(o->vpl_selection, vpl_selection_names); break;
     case O_ISM_SIZE:
         why = cli_int(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, &o->ism_size);
         if (!why && (o->ism_size & (o->ism_size - 1)))

@@ -78,49 +78,6 @@ static int build_tables(reference *ref)
     return 0;
 }
 
-static int build_embree(reference *ref, int threads, char *err, size_t errlen)
-{
-    const scene *s = ref->scene;
-    char config[64] = "";
-    if (threads > 0)
-        snprintf(config, sizeof config, "threads=%d", threads);
-    ref->device = rtcNewDevice(config);
-    if (!ref->device) {
-        snprintf(err, errlen, "reference: Embree device creation failed (error %d): check "
-                 "that libembree3 is installed", (int)rtcGetDeviceError(NULL));
-        return -1;
-    }
-    ref->rt = rtcNewScene(ref->device);
-    rtcSetSceneFlags(ref->rt, RTC_SCENE_FLAG_ROBUST); /* no leaks along shared edges */
-    rtcSetSceneBuildQuality(ref->rt, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry g = rtcNewGeometry(ref->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    size_t nv = 3 * s->triangle_count;
-    float *v = g ? rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                           3 * sizeof(float), nv) : NULL;
-    unsigned *ix = g ? rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                               3 * sizeof(unsigned), s->triangle_count) : NULL;
-    if (!v || !ix) {
-        if (g)
-            rtcReleaseGeometry(g);
-        snprintf(err, errlen, "reference: Embree could not allocate %zu triangles (error %d)",
-                 s->triangle_count, (int)rtcGetDeviceError(ref->device));
-        return -1;
-    }
-    memcpy(v, s->positions, nv * 3 * sizeof(float));
-    for (size_t i = 0; i < nv; i++)
-        ix[i] = (unsigned)i;
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(ref->rt, g); /* geometry id 0; primID = scene triangle index */
-    rtcReleaseGeometry(g);
-    rtcCommitScene(ref->rt);
-    enum RTCError e = rtcGetDeviceError(ref->device);
-    if (e != RTC_ERROR_NONE) {
-        snprintf(err, errlen, "reference: Embree scene build failed (error %d)", (int)e);
-        return -1;
-    }
-    return 0;
-}
-
 reference *reference_create(const scene *s, int threads, char *err, size_t errlen)
 {
     if (!s || s->triangle_count == 0 || s->material_count == 0) {
@@ -134,7 +91,9 @@ reference *reference_create(const scene *s, int threads, char *err, size_t errle
         reference_destroy(ref);
         return NULL;
     }
-    if (build_embree(ref, threads, err, errlen) != 0) {
+    char why[256];
+    if (scene_rt_build(&ref->rt, s, threads, why, sizeof why) != 0) {
+        snprintf(err, errlen, "reference: %s", why);
         reference_destroy(ref);
         return NULL;
     }
@@ -152,10 +111,7 @@ void reference_destroy(reference *ref)
         return;
     if (ref->pool)
         workpool_destroy(ref->pool);
-    if (ref->rt)
-        rtcReleaseScene(ref->rt);
-    if (ref->device)
-        rtcReleaseDevice(ref->device);
+    scene_rt_release(&ref->rt);
     if (ref->texture_linear)
         for (size_t i = 0; i < ref->scene->texture_count; i++)
             free(ref->texture_linear[i]);

@@ -8,13 +8,13 @@
 #include <math.h>
 
 #include "reference.h"
+#include "scene_rt.h"
 #include "base/vec3.h"
 #include "base/workpool.h"
 
 struct reference {
     const scene *scene;
-    RTCDevice device;
-    RTCScene rt;
+    scene_rt rt;              /* Embree device and BVH of the scene's triangles */
     workpool *pool;
     float *face_normal;       /* unit geometric normal per triangle */
     float **texture_linear;   /* per scene texture: width*height*3 linear RGB (sRGB decoded) */

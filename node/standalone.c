@@ -361,6 +361,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
         .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
         .threads = o->threads, .vpl_point = o->vpl_point, .vpl_visibility = o->vpl_visibility,
+        .vpl_selection = o->vpl_selection,
         .ism_size = o->ism_size, .ism_points = o->ism_points, .vpl_interleave = o->vpl_interleave,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
         .gi = fp->gi,
@@ -444,6 +445,11 @@ int standalone_run(const node_options *o)
     if (make_views(&opt, &sc, &cam, eyes, &eye_count) == 0) {
         frame_params fp;
         standalone_frame_params(o, &sc, &eyes[0].view, &fp);
+        /* No tracker: the head stands between the eyes, where the vpl method's view rule
+         * casts its rays from (vpl_view.h). */
+        for (int i = 0; i < 3; i++)
+            fp.head[12 + i] = 0.5f * (eyes[0].view.eye_position[i] +
+                                      eyes[eye_count - 1].view.eye_position[i]);
         if (o->reference) {
             reference_cli_desc rd = {.scene = &sc, .scene_name = o->scene, .params = &fp,
                                      .view = &eyes[0].view, .threads = o->threads,

@@ -55,7 +55,9 @@ def visibility(r):
     v = r.get("visibility", "exact")
     v = v if v == "exact" else f"{v} {r['ism_size']}px {r['ism_points']} pts"
     k = int(r.get("interleave") or 0)
-    return f"{v}, interleaved {k}x{k}" if k else v
+    v = f"{v}, interleaved {k}x{k}" if k else v
+    rule = r.get("selection") or "flux"
+    return v if rule == "flux" else f"{v}, {rule} selection"
 
 
 def config_name(c):

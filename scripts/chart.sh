@@ -49,7 +49,7 @@ else
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
-       --ism-points 256,1024 --interleave 0,4)
+       --ism-points 256,1024 --interleave 0,4 --selection flux,view,regular)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
@@ -79,7 +79,7 @@ echo "chart: measured in $((SECONDS - start)) s" >&2
 # Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
 # 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
 # 8 frame_ms, 9 rmse_rel_indirect, 16 visibility, 17 ism_size, 18 ism_points, 19
-# interleave). ILPV's GI
+# interleave, 28 selection). ILPV's GI
 # ms is its propagation, vpl's its selection, shadow maps and gather.
 while read -r scene; do
   csv=$out/sweep_$scene.csv
@@ -95,7 +95,8 @@ set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
 front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
-vis(v) = "< awk -F, 'NR>1 && \$19==0 && \$16==\"" . v . "\"' $vcsv"
+vis(v) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"flux\" && \$16==\"" . v . "\"' $vcsv"
+rule(r) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"" . r . "\"' $vcsv"
 inter = "< awk -F, 'NR>1 && \$19>0' $vcsv"
 set output "$out/speed_accuracy_$scene.png"
 set title "$scene: speed against accuracy (labels: lattice/steps; fit = 32^3 cells shaped to the scene)"
@@ -112,6 +113,8 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      vis("ism") using 7:9 with points pt 11 ps 1.3 lc rgb "#1d7874" title "vpl, ISM pull-push (labels: VPLs/size/points)", \
      vis("ism-splat") using 7:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
      inter using 7:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
+     rule("view") using 7:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection (any maps)", \
+     rule("regular") using 7:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern (any maps)", \
      "< tail -n +2 $vcsv" using 7:9:((strcol(16) eq "exact" ? sprintf("%d", \$2) : sprintf("%d/%d/%d", \$2, \$17, \$18)) . (\$19 > 0 ? sprintf(" k%d", \$19) : "")) with labels offset 0,-0.9 font ",8" notitle, \
      front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
@@ -125,7 +128,9 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      vis("exact") using 8:9 with linespoints pt 9 ps 1.3 lc rgb "#6a4c93" title "vpl, exact maps", \
      vis("ism") using 8:9 with points pt 11 ps 1.3 lc rgb "#1d7874" title "vpl, ISM pull-push", \
      vis("ism-splat") using 8:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
-     inter using 8:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)"
+     inter using 8:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
+     rule("view") using 8:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection", \
+     rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern"
 unset logscale x
 unset logscale y
 set logscale x 2

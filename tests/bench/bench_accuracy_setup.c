@@ -58,6 +58,7 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
                             &s->view);
     frame_params_default(&s->base);
     frame_params_lights_from_scene(&s->base, &s->sc);
+    memcpy(s->base.head + 12, cam.position, sizeof cam.position); /* the vpl view rule's viewer */
     s->encoding_gamma = frame_params_e2e_gamma(s->base.environment) / s->base.display_gamma;
     return 0;
 }
@@ -226,6 +227,7 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
         .gi = d->gi, .vpl_point = d->vpl_point, .vpl_cut = d->vpl_cut,
         .vpl_visibility = d->vpl_visibility, .ism_size = d->ism_size,
         .ism_points = d->ism_points, .vpl_interleave = d->vpl_interleave,
+        .vpl_selection = d->vpl_selection,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)

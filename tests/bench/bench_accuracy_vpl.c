@@ -23,7 +23,9 @@
  * its own noise), one image's error against the truth (the reference's noise taken out)
  * and that less the clamp's bias (the accuracy goal's figure); and the influence cut's
  * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
- * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0).
+ * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0), and
+ * --selection flux,view,regular: how the VPLs are chosen (vpl_select.h; default flux; the
+ * bound's bias is measured under flux only).
  * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
 #include <stdlib.h>
@@ -48,6 +50,23 @@ static int int_list(const char *v, int lo, int hi, int *out)
         if (n == MAX_LIST || end == c || (*end && *end != ',') || x < lo || x > hi)
             return 0;
         out[n++] = (int)x;
+    }
+    return n;
+}
+
+/* A comma list of names (at most count of them) as indices into names; 0 when one is
+ * unknown or the list is empty. */
+static int name_list(const char *v, const char *const *names, int count, int *out)
+{
+    int n = 0;
+    for (const char *c = v; *c; c += strcspn(c, ","), c += *c == ',') {
+        size_t len = strcspn(c, ",");
+        int k = 0;
+        while (k < count && (strlen(names[k]) != len || strncmp(c, names[k], len) != 0))
+            k++;
+        if (k == count || n == count)
+            return 0;
+        out[n++] = k;
     }
     return n;
 }
@@ -234,14 +253,15 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     for (int i = 0; i < 3; i++)
         free(one[i]);
     const char *vis = vpl_visibility_names[rd->vpl_visibility];
+    const char *rule = vpl_selection_names[rd->vpl_selection];
     char j[11][32];
     int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
     fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d,"
-            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s\n",
             s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
             scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave,
-            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level);
+            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level, rule);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
            "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
@@ -252,14 +272,14 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
            "\"bound_bias_rms\":%s,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
            "\"point_spread_rel\":%s,\"disk_bias_rel\":%s,\"clamp_bias_rel\":%s,"
            "\"rmse_rel_truth\":%s,\"beyond_clamp\":%s,\"cut_bias_rel\":%s,"
-           "\"cut_level_bias\":%s}\n",
+           "\"cut_level_bias\":%s,\"selection\":\"%s\"}\n",
            s->opt.scene, s->opt.width, s->opt.height, 2 * s->opt.ref_samples,
            ref->noise_indirect1, count, k, vis, size, points, rd->vpl_interleave, ms[0], ms[1], ms[2],
            ms[0] + ms[1] + ms[2], ms[3], err, ssim, scale, mean_err,
            json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
            ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
            json_number(clamp, j[5]), json_number(truth, j[6]), json_number(truth - clamp, j[7]),
-           json_number(cut_rel, j[8]), json_number(cut_level, j[9]));
+           json_number(cut_rel, j[8]), json_number(cut_level, j[9]), rule);
     fflush(stdout);
     return 0;
 }
@@ -273,6 +293,7 @@ int accuracy_vpl(int argc, char **argv)
     int sizes[MAX_LIST] = {RENDERER_DEFAULT_ISM_SIZE}, ns = 1;
     int points[MAX_LIST] = {RENDERER_DEFAULT_ISM_POINTS}, np = 1;
     int blocks[MAX_LIST] = {0}, ni = 1;
+    int rules[VPL_SELECT_COUNT] = {VPL_SELECT_FLUX}, nr = 1;
     for (int i = 1; i < argc; i++) {
         int bad = 0;
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -285,16 +306,9 @@ int accuracy_vpl(int argc, char **argv)
         } else if (v && strcmp(a, "--seeds") == 0) {
             bad = (seeds = atoi(v)) < 1, i++;
         } else if (v && strcmp(a, "--visibility") == 0) {
-            nv = 0;
-            for (const char *c = v; *c && nv < 3; c += strcspn(c, ","), c += *c == ',') {
-                int k = 0;
-                while (k < 3 && (strncmp(c, vpl_visibility_names[k], strcspn(c, ",")) != 0 ||
-                                 strlen(vpl_visibility_names[k]) != strcspn(c, ",")))
-                    k++;
-                bad |= k == 3;
-                vis[nv++] = k;
-            }
-            i++;
+            bad = !(nv = name_list(v, vpl_visibility_names, 3, vis)), i++;
+        } else if (v && strcmp(a, "--selection") == 0) {
+            bad = !(nr = name_list(v, vpl_selection_names, VPL_SELECT_COUNT, rules)), i++;
         } else if (v && strcmp(a, "--ism-sizes") == 0) {
             bad = !(ns = int_list(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, sizes)), i++;
             for (int k = 0; k < ns; k++)
@@ -309,7 +323,7 @@ int accuracy_vpl(int argc, char **argv)
         if (bad) {
             fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
                     "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
-                    "--ism-points %d..%d, --interleave 0..%d)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
+                    "--ism-points %d..%d, --interleave 0..%d, --selection flux,view,regular)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
                     RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, RENDERER_ISM_POINTS_MIN,
                     RENDERER_ISM_POINTS_MAX, RENDERER_VPL_INTERLEAVE_MAX);
             return 2;
@@ -331,7 +345,7 @@ int accuracy_vpl(int argc, char **argv)
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
         "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
         "ism_points,interleave,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
-        "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias");
+        "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias,selection");
     int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     frame_params fp = s.base;
@@ -339,15 +353,17 @@ int accuracy_vpl(int argc, char **argv)
     vpl_timing none;
     if (rc == 0)
         rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
-    for (int c = 0; c < nv * ns * np * ni && rc == 0; c++) {
-        acc_renderer_desc rd = {.gi = FRAME_GI_VPL, .vpl_visibility = vis[c / (ns * np * ni)],
+    for (int c = 0; c < nr * nv * ns * np * ni && rc == 0; c++) {
+        acc_renderer_desc rd = {.gi = FRAME_GI_VPL,
+                                .vpl_selection = (vpl_selection)rules[c / (nv * ns * np * ni)],
+                                .vpl_visibility = vis[c / (ns * np * ni) % nv],
                                 .ism_size = sizes[c / (np * ni) % ns],
                                 .ism_points = points[c / ni % np],
                                 .vpl_interleave = blocks[c % ni]};
         int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
         if (exact && c / ni % (ns * np) != 0)
             continue; /* the ISM settings do not change exact maps */
-        int bias = exact && rd.vpl_interleave == 0;
+        int bias = exact && rd.vpl_interleave == 0 && rd.vpl_selection == VPL_SELECT_FLUX;
         renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
         if (bias) {
             acc_renderer_desc as_points = rd, uncut = rd;
