@@ -144,7 +144,8 @@ static int master_run(const master_options *o)
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .gi = o->gi,
-                       .vpl_count = o->vpl_count, .exposure = o->exposure,
+                       .vpl_count = o->vpl_count, .vpl_selection = o->vpl_selection,
+                       .exposure = o->exposure,
                        .exposure_auto = o->exposure_auto};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {

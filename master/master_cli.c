@@ -14,7 +14,7 @@ static const char *const groups[G_COUNT] = {
 enum id {
     O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN,
     O_SPAWN_LOCAL, O_SPAWN_REMOTE, O_NODE_EXE, O_NODE_ARGS, O_WAIT_MS, O_RENDER, O_SCENE, O_GI,
-    O_VPL_COUNT,
+    O_VPL_COUNT, O_VPL_SELECTION,
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET, O_EXPOSURE,
     O_INPUT, O_RECORD,
@@ -45,6 +45,8 @@ static const cli_option options[] = {
      "the indirect-light method every node starts with (the\nsettings layout switches it live)"},
     {O_VPL_COUNT, "vpl-count", "N", "the frame default", G_NODES, 0,
      "vpl: virtual point lights per frame (64..4096)"},
+    {O_VPL_SELECTION, "vpl-selection", "flux|view|regular", "flux", G_NODES, 0,
+     "vpl: choose the lights by flux, by flux and what the\ntracked head sees, or on a regular pattern"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -104,6 +106,13 @@ static const char *set(void *user, int id, const char *v)
         break;
     }
     case O_VPL_COUNT: why = cli_int(v, FRAME_VPL_MIN, FRAME_VPL_MAX, &o->vpl_count); break;
+    case O_VPL_SELECTION: {
+        int k = cli_choice(v, vpl_selection_names, VPL_SELECT_COUNT);
+        if (k < 0)
+            return cli_choice_reason(vpl_selection_names, VPL_SELECT_COUNT);
+        o->vpl_selection = (vpl_selection)k;
+        break;
+    }
     case O_FRAMES: why = cli_int(v, 0, 1 << 30, &o->frames); break;
     case O_DT: why = cli_float(v, 0.0f, 10.0f, &f); o->dt = f; break;
     case O_FPS: why = cli_float(v, 0.0f, 1000.0f, &f); o->fps = f; break;

@@ -23,6 +23,7 @@ typedef struct master_options {
     frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
     int gi_given;               /* --gi was given: spawned nodes get it too */
     int vpl_count;              /* vpl's lights per frame; 0 = FRAME_VPL_DEFAULT */
+    vpl_selection vpl_selection; /* vpl's selection rule (0 = by flux) */
     float exposure;             /* 0 = the frame default */
     int exposure_auto;          /* --exposure auto */
 } master_options;

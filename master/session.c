@@ -65,6 +65,7 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     s->frame.gi = d->gi;
     if (d->vpl_count > 0)
         s->frame.vpl_count = d->vpl_count;
+    s->frame.vpl_selection = d->vpl_selection;
     if (d->exposure > 0)
         s->frame.exposure = d->exposure;
     if (d->exposure_auto) {

@@ -40,6 +40,7 @@ typedef struct session_desc {
     int print_poses;        /* 1: the head and wand poses on stdout, 4 lines a second */
     frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
     int vpl_count;          /* its VPLs when that is vpl (0 = FRAME_VPL_DEFAULT) */
+    vpl_selection vpl_selection; /* their selection rule (0 = by flux) */
     float exposure;         /* > 0: the nodes' exposure; 0: the frame default (1) */
     int exposure_auto;      /* 1: exposure_from_light() of the scene (frame/exposure.h) */
 } session_desc;

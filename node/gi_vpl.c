@@ -50,8 +50,7 @@ typedef struct gi_vpl {
     double *cdf;             /* vpl_select()'s scratch */
     double *view;            /* the view rule's view term per candidate */
     size_t capacity;
-    vpl_selection rule;      /* renderer_desc.vpl_selection */
-    vpl_view *viewer;        /* the view rule's rays (vpl_view.h) */
+    vpl_view *viewer;        /* the view rule's rays (vpl_view.h), ready for a live switch */
     vpl *emitters;           /* as candidates: at their centroids */
     vpl_emitter *emitter_shape; /* their triangles */
     size_t emitter_count;
@@ -380,13 +379,8 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->lights = d->settings->vpl_lights;
     v->cut = d->settings->vpl_cut == 0 ? VPL_CUT_DEFAULT : d->settings->vpl_cut;
     v->never_reuse = d->settings->converge_threshold < 0;
-    v->rule = d->settings->vpl_selection;
     int bad = init(v, err, errlen);
-    if (!bad && (v->rule < 0 || v->rule >= VPL_SELECT_COUNT)) {
-        snprintf(err, errlen, "renderer: vpl_selection %d is not a selection rule", (int)v->rule);
-        bad = 1;
-    }
-    if (!bad && v->rule == VPL_SELECT_VIEW)
+    if (!bad)
         bad = !(v->viewer = vpl_view_create(d->scene, err, errlen));
     if (!bad && d->settings->vpl_visibility != RENDERER_VPL_EXACT) {
         vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,
@@ -417,8 +411,8 @@ static void destroy(void *state)
 }
 
 /* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
- * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed), and under the view rule on
- * the viewer: a frame that changes none of them keeps last frame's (the flux and regular
+ * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed, vpl_selection), and under
+ * the view rule on the viewer: a frame that changes none of them keeps last frame's (the flux and regular
  * rules: a moving head's too). */
 static int reuse(void *state, const frame_params *p)
 {
@@ -428,7 +422,8 @@ static int reuse(void *state, const frame_params *p)
     vpl_view_point(&v->last, before);
     int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
                p->vpl_count == v->last.vpl_count && p->vpl_seed == v->last.vpl_seed &&
-               (v->rule != VPL_SELECT_VIEW || memcmp(now, before, sizeof now) == 0);
+               p->vpl_selection == v->last.vpl_selection &&
+               (p->vpl_selection != VPL_SELECT_VIEW || memcmp(now, before, sizeof now) == 0);
     v->last = *p;
     v->have_last = 1;
     if (same)
@@ -441,7 +436,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     gi_vpl *v = state;
     double t0 = clock_now_ms();
     size_t texels, candidates = collect(v, rsm, &texels);
-    if (v->rule == VPL_SELECT_VIEW && candidates) {
+    if (p->vpl_selection == VPL_SELECT_VIEW && candidates) {
         float eye[3];
         const float *samples;
         vpl_view_point(p, eye);
@@ -450,7 +445,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         vpl_view_term(v->candidates, candidates, samples, n, stride, v->view);
     }
     vpl_select_desc sd = {.candidates = v->candidates, .count = candidates, .texels = texels,
-                          .rule = v->rule, .view = v->view, .n = p->vpl_count,
+                          .rule = p->vpl_selection, .view = v->view, .n = p->vpl_count,
                           .seed = p->vpl_seed};
     v->count = vpl_select(&sd, v->cdf, v->chosen, v->chosen_index);
     for (int i = 0; i < v->count; i++) /* an emitter's slot: a point of its triangle */

@@ -2,7 +2,7 @@
  *
  * frame(): every RSM texel with flux and every emissive triangle is a candidate
  * (common/gi/vpl_source.h); frame_params.vpl_count of them are chosen with
- * frame_params.vpl_seed by renderer_desc.vpl_selection's rule (common/gi/vpl_select.h:
+ * frame_params.vpl_seed by frame_params.vpl_selection's rule (common/gi/vpl_select.h:
  * flux, bidirectional view importance from the head's view samples (vpl_view.h), or the
  * regular pattern; unbiased weights, the same choice on every node); the checksum READY
  * carries is vpl_checksum() of that set.

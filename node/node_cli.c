@@ -195,7 +195,10 @@ static const char *set(void *user, int id, const char *v)
     }
     case O_VPL_BOUND: CHOICE(o->vpl_point, vpl_bound_names); break;
     case O_VPL_VISIBILITY: CHOICE(o->vpl_visibility, vpl_visibility_names); break;
-    case O_VPL_SELECTION: CHOICE(o->vpl_selection, vpl_selection_names); break;
+    case O_VPL_SELECTION:
+        CHOICE(k, vpl_selection_names);
+        fp->vpl_selection = (vpl_selection)k;
+        break;
     case O_ISM_SIZE:
         why = cli_int(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, &o->ism_size);
         if (!why && (o->ism_size & (o->ism_size - 1)))

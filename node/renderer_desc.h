@@ -4,7 +4,6 @@
 #define CAVELIGHT_RENDERER_DESC_H
 
 #include "frame/frame_params.h"
-#include "gi/vpl_selection.h"
 #include "gl_functions.h"
 #include "scene/scene.h"
 
@@ -66,7 +65,6 @@ typedef struct renderer_desc {
     int vpl_point;       /* vpl: gather each VPL as a point, 1/r^2 unbounded, instead of as a
                             disk of its area: only to measure the bound's bias (docs/node.md) */
     renderer_vpl_visibility vpl_visibility;
-    vpl_selection vpl_selection; /* vpl: how the VPLs are chosen (0 = by flux) */
     int vpl_interleave;  /* vpl: 0 = every pixel gathers every VPL; k = 1..
                             RENDERER_VPL_INTERLEAVE_MAX: interleaved sampling in k x k
                             blocks (gi_vpl.h) */

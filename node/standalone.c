@@ -230,6 +230,7 @@ static void report_setup(cJSON *report, const node_options *o, glctx *ctx, rende
         frame_params_sanitize(&sane);
         cJSON_AddNumberToObject(report, "vpl_count", sane.vpl_count);
         cJSON_AddNumberToObject(report, "vpl_seed", sane.vpl_seed);
+        cJSON_AddStringToObject(report, "vpl_selection", vpl_selection_names[sane.vpl_selection]);
     }
     cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
@@ -361,7 +362,6 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
         .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
         .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
         .threads = o->threads, .vpl_point = o->vpl_point, .vpl_visibility = o->vpl_visibility,
-        .vpl_selection = o->vpl_selection,
         .ism_size = o->ism_size, .ism_points = o->ism_points, .vpl_interleave = o->vpl_interleave,
         .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
         .gi = fp->gi,

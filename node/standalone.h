@@ -22,7 +22,6 @@ typedef struct node_options {
     float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
     int rsm, lattice, threads, vpl_point;
     renderer_vpl_visibility vpl_visibility;
-    vpl_selection vpl_selection;
     int ism_size, ism_points; /* 0 = the renderer's defaults */
     int vpl_interleave;       /* renderer_desc.vpl_interleave */
     int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */

@@ -9,13 +9,14 @@
 static const char *const global_names[PARAMS_LIGHT_BASE] = {
     "head", "wand", "navigation", "time", "reset_epoch", "lpv_steps", "lambda_incr",
     "absorption", "scattering", "lpv_resolution", "environment", "display_gamma",
-    "exposure", "hud_layout", "pattern", "gi", "vpl_count", "vpl_seed", "light_count",
+    "exposure", "hud_layout", "pattern", "gi", "vpl_count", "vpl_seed", "vpl_selection",
+    "light_count",
 };
 static const params_type global_types[PARAMS_LIGHT_BASE] = {
     PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_F64, PARAMS_T_U32, PARAMS_T_I32,
     PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_F32,
     PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_U32,
-    PARAMS_T_I32,
+    PARAMS_T_I32, PARAMS_T_I32,
 };
 static const char *const light_names[PARAMS_LIGHT_FIELDS] = {
     "enabled", "pose", "color", "intensity", "cone", "type",
@@ -159,6 +160,7 @@ void params_set_from_frame(params_store *s, const frame_params *f)
     params_set_i32(s, PARAMS_GI, (int32_t)f->gi);
     params_set_i32(s, PARAMS_VPL_COUNT, f->vpl_count);
     params_set_u32(s, PARAMS_VPL_SEED, f->vpl_seed);
+    params_set_i32(s, PARAMS_VPL_SELECTION, (int32_t)f->vpl_selection);
     params_set_i32(s, PARAMS_LIGHT_COUNT, f->light_count);
     for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++)
         set_light(s, i, &f->lights[i]);
@@ -307,6 +309,7 @@ void params_to_frame(const params_store *s, frame_params *f)
     f->gi = (frame_gi)params_get_i32(s, PARAMS_GI);
     f->vpl_count = params_get_i32(s, PARAMS_VPL_COUNT);
     f->vpl_seed = params_get_u32(s, PARAMS_VPL_SEED);
+    f->vpl_selection = (vpl_selection)params_get_i32(s, PARAMS_VPL_SELECTION);
     f->light_count = params_get_i32(s, PARAMS_LIGHT_COUNT);
     for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++) {
         frame_light *l = &f->lights[i];

@@ -46,6 +46,7 @@ enum {
     PARAMS_GI,             /* i32, frame_gi */
     PARAMS_VPL_COUNT,      /* i32, VPLs of the vpl method */
     PARAMS_VPL_SEED,       /* u32, their random numbers' seed */
+    PARAMS_VPL_SELECTION,  /* i32, vpl_selection: the rule that chooses them */
     PARAMS_LIGHT_COUNT,    /* i32, 0..FRAME_MAX_LIGHTS */
     PARAMS_LIGHT_BASE      /* first per-light key, see params_light_key() */
 };

@@ -21,8 +21,8 @@
 
 enum {
     WIRE_MAGIC = 0x544c5643u, /* "CVLT" as little-endian bytes */
-    WIRE_PROTOCOL = 3,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
-                                 vpl_seed */
+    WIRE_PROTOCOL = 4,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
+                                 vpl_seed; 4: vpl_selection */
     WIRE_HEADER_SIZE = 16,
     WIRE_NAME_MAX = 32,
     WIRE_MAX_PAYLOAD = 8192,

@@ -30,6 +30,7 @@ void frame_params_default(frame_params *p)
     p->gi = FRAME_GI_ILPV;
     p->vpl_count = FRAME_VPL_DEFAULT;
     p->vpl_seed = 0;
+    p->vpl_selection = VPL_SELECT_FLUX;
 }
 
 const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none", "vpl"};
@@ -172,6 +173,10 @@ int frame_params_sanitize(frame_params *p)
     }
     if ((unsigned)p->gi >= FRAME_GI_COUNT) {
         p->gi = FRAME_GI_ILPV;
+        changed++;
+    }
+    if ((unsigned)p->vpl_selection >= VPL_SELECT_COUNT) {
+        p->vpl_selection = VPL_SELECT_FLUX;
         changed++;
     }
     if (p->vpl_count < FRAME_VPL_MIN || p->vpl_count > FRAME_VPL_MAX) {

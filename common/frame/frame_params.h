@@ -9,6 +9,7 @@
 
 #include <stdint.h>
 
+#include "gi/vpl_selection.h"
 #include "scene/scene.h"
 
 enum { FRAME_MAX_LIGHTS = 8 };
@@ -61,6 +62,7 @@ typedef struct frame_params {
     frame_gi gi;            /* indirect-light method */
     int vpl_count;          /* vpl: virtual point lights chosen per frame */
     uint32_t vpl_seed;      /* vpl: which random numbers choose them (the same on every node) */
+    vpl_selection vpl_selection; /* vpl: the rule that chooses them (vpl_select.h) */
 } frame_params;
 
 /* vpl_count's range and default: a few hundred VPLs with a shadow map each is what a
@@ -69,8 +71,8 @@ enum { FRAME_VPL_MIN = 64, FRAME_VPL_MAX = 4096, FRAME_VPL_DEFAULT = 256 };
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
  * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
- * environment, display gamma 2.2, exposure 1, no HUD, ILPV, FRAME_VPL_DEFAULT VPLs with
- * seed 0. */
+ * environment, display gamma 2.2, exposure 1, no HUD, ILPV, FRAME_VPL_DEFAULT VPLs chosen
+ * by flux with seed 0. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's lights (at most FRAME_MAX_LIGHTS), enabled. A scene loaded without
  * lights has one already (scene_load(), scene_default_light()). */
@@ -89,7 +91,8 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s);
  * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
- * display gamma, an unknown environment or GI method and non-finite poses or time get
+ * display gamma, an unknown environment, GI method or VPL
+ * selection rule and non-finite poses or time get
  * their defaults; vpl_count is clamped to [FRAME_VPL_MIN, FRAME_VPL_MAX] (not positive:
  * FRAME_VPL_DEFAULT).
  * Returns how many fields it changed (0 for valid parameters). This is the only place a

@@ -66,7 +66,6 @@ typedef struct acc_renderer_desc {
     int ism_size, ism_points;
     float vpl_cut;          /* vpl: influence cut (renderer_desc.vpl_cut) */
     int vpl_interleave;     /* vpl: renderer_desc's */
-    vpl_selection vpl_selection; /* vpl: renderer_desc's */
 } acc_renderer_desc;
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
 

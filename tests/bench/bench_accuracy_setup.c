@@ -227,7 +227,6 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
         .gi = d->gi, .vpl_point = d->vpl_point, .vpl_cut = d->vpl_cut,
         .vpl_visibility = d->vpl_visibility, .ism_size = d->ism_size,
         .ism_points = d->ism_points, .vpl_interleave = d->vpl_interleave,
-        .vpl_selection = d->vpl_selection,
     };
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)

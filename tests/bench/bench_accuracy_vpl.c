@@ -24,7 +24,8 @@
  * and that less the clamp's bias (the accuracy goal's figure); and the influence cut's
  * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
  * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0), and
- * --selection flux,view,regular: how the VPLs are chosen (vpl_select.h; default flux; the
+ * --selection flux,view,regular: how the VPLs are chosen (frame_params.vpl_selection;
+ * default flux; the
  * bound's bias is measured under flux only).
  * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
@@ -170,7 +171,7 @@ static const char *json_number(double x, char buf[32])
  * cut): one CSV row and one JSON line. disk and point are scratch images. */
 static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3], int count,
                    int seeds, const vpl_timing *none, float *disk, float *point, FILE *f,
-                   const acc_renderer_desc *rd)
+                   const acc_renderer_desc *rd, vpl_selection rule)
 {
     size_t n = (size_t)s->opt.width * s->opt.height * 3;
     memset(disk, 0, n * sizeof *disk);
@@ -193,6 +194,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
         fp.gi = FRAME_GI_VPL;
         fp.vpl_count = count;
         fp.vpl_seed = (uint32_t)seed;
+        fp.vpl_selection = rule;
         image_metrics m, unused;
         vpl_timing t, tp;
         if (run(s, r[0], &fp, ref, one[0], &m, &t) ||
@@ -253,7 +255,6 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     for (int i = 0; i < 3; i++)
         free(one[i]);
     const char *vis = vpl_visibility_names[rd->vpl_visibility];
-    const char *rule = vpl_selection_names[rd->vpl_selection];
     char j[11][32];
     int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
@@ -261,7 +262,8 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
             "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s\n",
             s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
             scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave,
-            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level, rule);
+            ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level,
+            vpl_selection_names[rule]);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
            "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
@@ -279,7 +281,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
            json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
            ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
            json_number(clamp, j[5]), json_number(truth, j[6]), json_number(truth - clamp, j[7]),
-           json_number(cut_rel, j[8]), json_number(cut_level, j[9]), rule);
+           json_number(cut_rel, j[8]), json_number(cut_level, j[9]), vpl_selection_names[rule]);
     fflush(stdout);
     return 0;
 }
@@ -354,8 +356,8 @@ int accuracy_vpl(int argc, char **argv)
     if (rc == 0)
         rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
     for (int c = 0; c < nr * nv * ns * np * ni && rc == 0; c++) {
+        vpl_selection rule = (vpl_selection)rules[c / (nv * ns * np * ni)];
         acc_renderer_desc rd = {.gi = FRAME_GI_VPL,
-                                .vpl_selection = (vpl_selection)rules[c / (nv * ns * np * ni)],
                                 .vpl_visibility = vis[c / (ns * np * ni) % nv],
                                 .ism_size = sizes[c / (np * ni) % ns],
                                 .ism_points = points[c / ni % np],
@@ -363,7 +365,7 @@ int accuracy_vpl(int argc, char **argv)
         int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
         if (exact && c / ni % (ns * np) != 0)
             continue; /* the ISM settings do not change exact maps */
-        int bias = exact && rd.vpl_interleave == 0 && rd.vpl_selection == VPL_SELECT_FLUX;
+        int bias = exact && rd.vpl_interleave == 0 && rule == VPL_SELECT_FLUX;
         renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
         if (bias) {
             acc_renderer_desc as_points = rd, uncut = rd;
@@ -374,7 +376,7 @@ int accuracy_vpl(int argc, char **argv)
         }
         rc = r[0] && ((r[1] && r[2]) || !bias) ? 0 : 1;
         for (int k = 0; k < nc && rc == 0; k++)
-            rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd);
+            rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd, rule);
         for (int i = 0; i < 3; i++)
             if (r[i])
                 renderer_destroy(r[i]);

@@ -221,61 +221,59 @@ static void test_moving_light_is_smooth(void **state)
     gltest_close(&t);
 }
 
-static renderer *selection_renderer(gltest *t, vpl_selection rule)
-{
-    char err[256];
-    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
-                        .gi = FRAME_GI_VPL, .vpl_selection = rule};
-    renderer *r = renderer_create(&rd, err, sizeof err);
-    if (!r)
-        fail_msg("%s", err);
-    return r;
-}
-
-/* The view and regular rules (vpl_select.h): each lights the room and is deterministic
- * across renderers; they choose other VPLs than the flux rule; the view rule chooses anew
- * when the head moves (its viewer) and keeps its VPLs when it does not, where the flux
- * rule keeps them either way. */
+/* The view and regular rules (frame_params.vpl_selection, vpl_select.h): each lights the
+ * room and is deterministic across renderers; they choose other VPLs than the flux rule;
+ * the view rule chooses anew when the head moves (its viewer) and keeps its VPLs when it
+ * does not, where the flux rule keeps them either way. One renderer switches between the
+ * rules frame by frame (a store key: the master switches every node live) and comes back
+ * to the same VPLs. */
 static void test_selection_rules(void **state)
 {
     (void)state;
     gltest t;
     assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    char err[256];
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .rsm_size = 64,
+                        .gi = FRAME_GI_VPL, .threads = 2};
+    renderer *other = renderer_create(&rd, err, sizeof err);
+    assert_non_null(other);
     frame_params p = vpl_params(&t, 64, 0);
     const float head[3] = {1.3f, 1.6f, 1.9f};
     memcpy(p.head + 12, head, sizeof head);
     uint64_t sum[VPL_SELECT_COUNT];
     for (int rule = 0; rule < VPL_SELECT_COUNT; rule++) {
-        renderer *a = selection_renderer(&t, (vpl_selection)rule);
-        renderer *b = selection_renderer(&t, (vpl_selection)rule);
-        sum[rule] = renderer_frame_pass(a, &p);
-        assert_true(renderer_frame_pass(b, &p) == sum[rule]);
+        p.vpl_selection = (vpl_selection)rule;
+        sum[rule] = renderer_frame_pass(t.r, &p);
+        renderer_timings tm;
+        renderer_get_timings(t.r, &tm);
+        assert_true(tm.inject_ms > 0); /* a new rule chooses anew */
+        assert_true(renderer_frame_pass(other, &p) == sum[rule]);
         renderer_view v;
         view(&v);
         renderer_image img;
-        assert_int_equal(renderer_eye_pass(a, &v, 1, &img), 0);
+        assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);
         double m = mean(img.indirect);
         printf("%s: checksum %016llx, mean indirect %.4g\n", vpl_selection_names[rule],
                (unsigned long long)sum[rule], m);
         assert_true(m > 0 && isfinite(m));
         frame_params q = p; /* the same frame again: reused */
         q.time = 0.5;
-        assert_true(renderer_frame_pass(a, &q) == sum[rule]);
-        renderer_timings tm;
-        renderer_get_timings(a, &tm);
+        assert_true(renderer_frame_pass(t.r, &q) == sum[rule]);
+        renderer_get_timings(t.r, &tm);
         assert_true(tm.inject_ms == 0);
         q.head[12] -= 0.5f; /* the head moves */
-        uint64_t moved = renderer_frame_pass(a, &q);
-        renderer_get_timings(a, &tm);
+        uint64_t moved = renderer_frame_pass(t.r, &q);
+        renderer_get_timings(t.r, &tm);
         if (rule == VPL_SELECT_VIEW)
             assert_true(moved != sum[rule] && tm.inject_ms > 0);
         else
             assert_true(moved == sum[rule] && tm.inject_ms == 0);
-        renderer_destroy(a);
-        renderer_destroy(b);
     }
     assert_true(sum[VPL_SELECT_VIEW] != sum[VPL_SELECT_FLUX]);
     assert_true(sum[VPL_SELECT_REGULAR] != sum[VPL_SELECT_FLUX]);
+    p.vpl_selection = VPL_SELECT_FLUX; /* back: the same VPLs as before the switches */
+    assert_true(renderer_frame_pass(t.r, &p) == sum[VPL_SELECT_FLUX]);
+    renderer_destroy(other);
     gltest_close(&t);
 }
 

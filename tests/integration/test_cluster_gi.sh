@@ -4,7 +4,8 @@
 # none -> vpl). Two rendering nodes switch in the same frame: no desync in any frame, the
 # none frames report none's constant checksum on both nodes, and the session ends on vpl
 # with equal VPL checksums. Then --gi none and --gi vpl on the master start every node on
-# that method, the vpl nodes with equal checksums in every frame.
+# that method, the vpl nodes with equal checksums in every frame, and --vpl-selection view
+# keeps them equal.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
 
@@ -58,3 +59,16 @@ echo "--gi none on the master: every node on none"
 bad=$("$build/cavelight-master" --config "$tmp/c2.json" --vpl-count 5000 2>&1 || true)
 grep -q -- "--vpl-count 5000: expected a whole number in 64..4096" <<< "$bad" || fail "bad --vpl-count accepted: $bad"
 echo "--gi vpl on the master: 2 nodes with equal VPL checksums in every frame"
+
+# The view rule on the master: the nodes choose by what the scripted head sees, each from
+# the same store, so they still agree in every frame; the VPLs are other than flux's.
+"$build/cavelight-master" --config "$tmp/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --gi vpl \
+  --vpl-count 64 --vpl-selection view --frames 3 --report "$tmp/r_view.json" --node-args "$small_render" \
+  --quiet 2> "$tmp/m4.log" || { cat "$tmp/m4.log"; fail "master --vpl-selection view failed"; }
+[ "$(json 'r["desyncs"]' "$tmp/r_view.json")" = 0 ] || { cat "$tmp/m4.log"; fail "view-rule nodes desynced"; }
+[ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$tmp/r_view.json")" = 1 ] || fail "view checksums differ"
+[ "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/r_view.json")" != \
+  "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/r_v.json")" ] || fail "--vpl-selection view not applied"
+bad=$("$build/cavelight-master" --config "$tmp/c2.json" --vpl-selection best 2>&1 || true)
+grep -q -- "--vpl-selection best: expected one of flux, view or regular" <<< "$bad" || fail "bad --vpl-selection accepted: $bad"
+echo "--vpl-selection view on the master: 2 nodes with equal VPL checksums in every frame"

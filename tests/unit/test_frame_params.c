@@ -119,7 +119,8 @@ static void test_globals_repaired(void **state)
     p.environment = (frame_environment)99;
     p.display_gamma = 0.0f;
     p.exposure = NAN;
-    assert_int_equal(frame_params_sanitize(&p), 11);
+    p.vpl_selection = (vpl_selection)VPL_SELECT_COUNT;
+    assert_int_equal(frame_params_sanitize(&p), 12);
     assert_memory_equal(p.head, d.head, sizeof p.head);
     assert_memory_equal(p.navigation, d.navigation, sizeof p.navigation);
     assert_true(p.time == 0.0);
@@ -129,6 +130,7 @@ static void test_globals_repaired(void **state)
     assert_true(p.absorption == 1.0f && p.scattering == 0.0f);
     assert_int_equal(p.environment, FRAME_ENV_DIM);
     assert_true(p.display_gamma == 2.2f && p.exposure == 1.0f);
+    assert_int_equal(p.vpl_selection, VPL_SELECT_FLUX);
 
     p = d;
     p.light_count = -3;

@@ -164,6 +164,7 @@ static void test_typed_setters(void **state)
     assert_int_equal(params_light_key(FRAME_MAX_LIGHTS, 0), -1);
     assert_string_equal(params_key_name(params_light_key(3, PARAMS_LIGHT_POSE)), "light3.pose");
     assert_string_equal(params_key_name(params_light_key(2, PARAMS_LIGHT_TYPE)), "light2.type");
+    assert_string_equal(params_key_name(PARAMS_VPL_SELECTION), "vpl_selection");
     assert_int_equal(params_changed_count(&s, 0), 0);
 
     frame_params f;
@@ -173,6 +174,7 @@ static void test_typed_setters(void **state)
     f.lights[1].position[0] = 4;
     f.lights[1].type = SCENE_LIGHT_DIRECTIONAL;
     f.lambda_incr = 0.5f;
+    f.vpl_selection = VPL_SELECT_REGULAR;
     params_set_from_frame(&s, &f);
     params_commit(&s);
     frame_params g;

@@ -104,10 +104,10 @@ static void test_encoding_unchanged(void **state)
     assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
     assert_memory_equal(got + 6, want + 6, 6);
     /* Every byte of the payload but light 0's key, which moved up by protocol 2's gi key
-     * and protocol 3's vpl_count and vpl_seed. */
+     * protocol 3's vpl_count and vpl_seed and protocol 4's vpl_selection. */
     assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 14 - WIRE_HEADER_SIZE);
     assert_int_equal(got[n - 14] | got[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
-    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 3);
+    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 4);
     assert_memory_equal(got + n - 12, want + n - 12, 12);
 }
 
