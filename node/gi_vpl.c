@@ -23,8 +23,8 @@
 /* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
  * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
 enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_ATLAS_SIDE = 2048, VPL_FACES = 6 };
-/* The view rule evaluates the view term of at most this many candidates (evenly spaced,
- * vpl_view_term()), so its cost is fixed whatever the RSM size: every texel of a 256^2
+/* The view rule evaluates the view term of about this many candidates (evenly spaced
+ * among the texels and among the emitters, vpl_view_term()), so its cost is fixed whatever the RSM size: every texel of a 256^2
  * map would take 65536 x VPL_VIEW_SAMPLES kernel evaluations per light view. */
 enum { VIEW_TERM_EVALS = 4096 };
 
@@ -442,7 +442,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         vpl_view_point(p, eye);
         int n = vpl_view_samples(v->viewer, eye, &samples);
         size_t stride = (candidates + VIEW_TERM_EVALS - 1) / VIEW_TERM_EVALS;
-        vpl_view_term(v->candidates, candidates, samples, n, stride, v->view);
+        vpl_view_term(v->candidates, candidates, texels, samples, n, stride, v->view);
     }
     vpl_select_desc sd = {.candidates = v->candidates, .count = candidates, .texels = texels,
                           .rule = p->vpl_selection, .view = v->view, .n = p->vpl_count,

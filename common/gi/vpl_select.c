@@ -102,14 +102,14 @@ int vpl_select(const vpl_select_desc *d, double *cdf, vpl *out, size_t *chosen)
     return n;
 }
 
-void vpl_view_term(const vpl *candidates, size_t count, const float *samples, int nsamples,
-                   size_t stride, double *out)
+void vpl_view_term(const vpl *candidates, size_t count, size_t texels, const float *samples,
+                   int nsamples, size_t stride, double *out)
 {
     const double pi = 3.14159265358979323846;
     if (stride < 1)
         stride = 1;
     for (size_t j = 0; j < count; j++) {
-        if (j % stride) {
+        if ((j < texels ? j : j - texels) % stride) {
             out[j] = out[j - 1];
             continue;
         }

@@ -63,11 +63,12 @@ int vpl_select(const vpl_select_desc *d, double *cdf, vpl *out, size_t *chosen);
  * candidate's flux gives there, cos_l cos_x / (A + pi r^2) with the gather's bound
  * (shade.frag's vpl_light(); eq. 10 of the high-res RSM paper with that bound for its
  * clamped 1 / max(1, r^2)), visibility left out. Candidates are evaluated every stride-th
- * (stride >= 1) and the ones between take the value of the last evaluated: the term is
- * smooth across neighbouring texels, and any positive importance keeps the selection
- * unbiased, so the shortcut costs variance only. Writes count values into out. */
-void vpl_view_term(const vpl *candidates, size_t count, const float *samples, int nsamples,
-                   size_t stride, double *out);
+ * (stride >= 1), counted afresh from the first emitter (candidate texels), and the ones
+ * between take the value of the last evaluated: the term is smooth across neighbouring
+ * texels, an emitter never takes a texel's, and any positive importance keeps the
+ * selection unbiased, so the shortcut costs variance only. Writes count values into out. */
+void vpl_view_term(const vpl *candidates, size_t count, size_t texels, const float *samples,
+                   int nsamples, size_t stride, double *out);
 /* The fixed random number in [0, 1) of slot i under seed, dimension dim: 0 is the
  * selection's, 1 and 2 place a chosen emitter's VPL on its triangle (vpl_source.h). */
 double vpl_slot_random(uint32_t seed, int i, int dim);

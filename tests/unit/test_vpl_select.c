@@ -96,7 +96,7 @@ static void test_unbiased(void **state)
     for (int j = 0; j < COUNT; j += 7) /* some candidates face away from every sample */
         c[j].normal[1] = -1.0f;
     view_samples(samples);
-    vpl_view_term(c, COUNT, samples, SAMPLES, 1, view);
+    vpl_view_term(c, COUNT, COUNT, samples, SAMPLES, 1, view);
     const double want[2] = {red_moment(c, COUNT), area_sum(c, COUNT)};
     enum { SEEDS = 4000 };
     for (int rule = 0; rule < VPL_SELECT_COUNT; rule++) {
@@ -134,7 +134,7 @@ static void test_view_and_regular_patterns(void **state)
     size_t chosen[N];
     candidates(c);
     view_samples(samples);
-    vpl_view_term(c, COUNT, samples, SAMPLES, 1, view);
+    vpl_view_term(c, COUNT, COUNT, samples, SAMPLES, 1, view);
     int near[2] = {0, 0};
     for (int r = 0; r < 2; r++)
         for (uint32_t seed = 0; seed < 200; seed++) {
@@ -202,7 +202,8 @@ static void test_regular_with_emitters(void **state)
 
 /* One candidate at the origin facing +y: a sample 2 m above facing down gets
  * 1 / (A + 4 pi); one beside it at 45 degrees cos^2 / (A + 8 pi); one below or facing away
- * 0. With stride 2 the odd candidates copy the even ones. */
+ * 0. With stride 2 the odd texels copy the even ones, but an emitter after a texel
+ * gets its own (the one far off: 0). */
 static void test_view_term_closed_form(void **state)
 {
     (void)state;
@@ -212,17 +213,19 @@ static void test_view_term_closed_form(void **state)
     const float above[6] = {0, 2, 0, 0, -1, 0}, diagonal[6] = {2, 2, 0, 0, -1, 0},
                 below[6] = {0, -2, 0, 0, 1, 0}, away[6] = {0, 2, 0, 0, 1, 0};
     double v[2];
-    vpl_view_term(c, 1, above, 1, 1, v);
+    vpl_view_term(c, 1, 1, above, 1, 1, v);
     assert_float_equal(v[0], 1.0 / (0.5 + 4 * pi), 1e-12);
-    vpl_view_term(c, 1, diagonal, 1, 1, v);
+    vpl_view_term(c, 1, 1, diagonal, 1, 1, v);
     assert_float_equal(v[0], 0.5 / (0.5 + 8 * pi), 1e-9);
     float two[12];
     memcpy(two, below, sizeof below);
     memcpy(two + 6, away, sizeof away);
-    vpl_view_term(c, 1, two, 2, 1, v);
+    vpl_view_term(c, 1, 1, two, 2, 1, v);
     assert_float_equal(v[0], 0.0, 0.0);
-    vpl_view_term(c, 2, above, 1, 2, v);
+    vpl_view_term(c, 2, 2, above, 1, 2, v);
     assert_float_equal(v[1], v[0], 0.0);
+    vpl_view_term(c, 2, 1, above, 1, 2, v); /* the second an emitter: its own term */
+    assert_true(v[0] > 0 && v[1] == 0.0);
 }
 
 /* The flux rule's chosen fluxes add up to the total (each slot carries total / n). */
