@@ -304,9 +304,13 @@ static int render_frame(const node_options *o, glctx *ctx, renderer *r, const ey
         stage_ms[m] = vals[m];
     }
     cJSON_AddItemToArray(frames, jf);
-    printf("frame %d: lpv %s%s, frame pass %.2f ms (rsm %.2f gpu, inject %.2f, propagate %.2f), "
-           "eyes %.2f ms\n", f, hex, ls.skipped_this_frame ? " (skipped, converged)" : "",
-           t.frame_host_ms, t.rsm_ms, t.inject_ms, t.propagate_ms, eye_sum[3]);
+    /* renderer_timings' inject and propagate are the vpl method's selection and maps. */
+    int vpl = renderer_get_gi(r) == FRAME_GI_VPL;
+    printf("frame %d: %s %s%s, frame pass %.2f ms (rsm %.2f gpu, %s %.2f, %s %.2f), "
+           "eyes %.2f ms\n", f, frame_gi_name(renderer_get_gi(r)), hex,
+           ls.skipped_this_frame ? " (skipped, converged)" : "", t.frame_host_ms, t.rsm_ms,
+           vpl ? "select" : "inject", t.inject_ms, vpl ? "shadow maps" : "propagate",
+           t.propagate_ms, eye_sum[3]);
     return closed;
 }
 
