@@ -24,8 +24,9 @@
  * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
 enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_ATLAS_SIDE = 2048, VPL_FACES = 6 };
 /* The view rule evaluates the view term of about this many candidates (evenly spaced
- * among the texels and among the emitters, vpl_view_term()), so its cost is fixed whatever the RSM size: every texel of a 256^2
- * map would take 65536 x VPL_VIEW_SAMPLES kernel evaluations per light view. */
+ * among the texels and among the emitters, vpl_view_term()), so its cost is fixed whatever
+ * the RSM size: every texel of a 256^2 map would take 65536 x VPL_VIEW_SAMPLES kernel
+ * evaluations per light view. */
 enum { VIEW_TERM_EVALS = 4096 };
 
 /* Cube faces +x, -x, +y, -y, +z, -z (face = 2 axis + negative): axis, right, up. The shader
@@ -412,8 +413,8 @@ static void destroy(void *state)
 
 /* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
  * only (lpv_converge_inputs_equal() and vpl_count, vpl_seed, vpl_selection), and under
- * the view rule on the viewer: a frame that changes none of them keeps last frame's (the flux and regular
- * rules: a moving head's too). */
+ * the view rule on the viewer: a frame that changes none of them keeps last frame's (the
+ * flux and regular rules: a moving head's too). */
 static int reuse(void *state, const frame_params *p)
 {
     gi_vpl *v = state;

@@ -91,9 +91,8 @@ void frame_params_lights_from_scene(frame_params *p, const scene *s);
  * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
  * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
  * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
- * display gamma, an unknown environment, GI method or VPL
- * selection rule and non-finite poses or time get
- * their defaults; vpl_count is clamped to [FRAME_VPL_MIN, FRAME_VPL_MAX] (not positive:
+ * display gamma, an unknown environment, GI method or VPL selection rule and non-finite
+ * poses or time get their defaults; vpl_count is clamped to [FRAME_VPL_MIN, FRAME_VPL_MAX] (not positive:
  * FRAME_VPL_DEFAULT).
  * Returns how many fields it changed (0 for valid parameters). This is the only place a
  * frame's values are clamped: the renderer applies it to its own copy once per frame, in

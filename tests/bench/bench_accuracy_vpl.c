@@ -25,8 +25,7 @@
  * bias (vpl_cluster.h): the first seed's image against the same VPLs with no cut.
  * And --interleave 0,4,...: interleaved sampling in k x k blocks (0: off; default 0), and
  * --selection flux,view,regular: how the VPLs are chosen (frame_params.vpl_selection;
- * default flux; the
- * bound's bias is measured under flux only).
+ * default flux; the bound's bias is measured under flux only).
  * Writes <out>/vpl_<scene>.csv and prints one JSON line per count and visibility. */
 #include <math.h>
 #include <stdlib.h>
@@ -36,6 +35,7 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
+#include "seed_stats.h"
 #include "vpl_ism.h"
 
 enum { MAX_COUNTS = 8, MAX_LIST = 4, TIMED = 3 };
@@ -122,42 +122,6 @@ static double compare(const acc_setup *s, const acc_reference *ref, const float 
     if (level)
         *level = 1.0 - m.mean / m.reference_mean;
     return m.rmse_rel;
-}
-
-/* Per-pixel sums over the seeds of one estimate: its mean and its spread. */
-typedef struct seed_sums {
-    double *sum, *sq;
-} seed_sums;
-
-static void seed_add(seed_sums *a, const float *x, const float *minus, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        double v = (double)x[i] - (minus ? minus[i] : 0.0f);
-        a->sum[i] += v;
-        a->sq[i] += v * v;
-    }
-}
-
-/* Over the covered pixels, relative to mean: *spread, one seed's standard deviation
- * (RMS over the pixels, from the seeds' sample variance), and the RMS of the seeds' mean
- * less its own noise (var / k): the part of the mean that more seeds do not remove. */
-static double seed_bias(const seed_sums *a, const uint8_t *coverage, size_t n, int k,
-                        double mean, double *spread)
-{
-    double var = 0, sq = 0;
-    size_t covered = 0;
-    for (size_t i = 0; i < n; i++) {
-        if (!coverage[i / 3])
-            continue;
-        double m = a->sum[i] / k;
-        var += k > 1 ? (a->sq[i] - k * m * m) / (k - 1) : 0.0;
-        sq += m * m;
-        covered++;
-    }
-    var /= (double)(covered ? covered : 1);
-    sq /= (double)(covered ? covered : 1);
-    *spread = sqrt(var) / mean;
-    return sqrt(fmax(sq - var / k, 0.0)) / mean;
 }
 
 /* x with 4 decimals, or null when not measured (NaN). */
@@ -249,7 +213,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
         clamp = seed_bias(&sums[2], ref->coverage, n, k, mean_ref, &spread_clamp);
         disk_bias = sqrt(fmax(mean_err * mean_err - spread * spread / k - ref_noise * ref_noise,
                               0.0));
-        truth = sqrt(fmax(err * err - ref_noise * ref_noise, 0.0));
+        truth = seed_error_vs_truth(err, ref_noise);
     }
     free(acc);
     for (int i = 0; i < 3; i++)

@@ -16,6 +16,7 @@
 #include "gl/gl_testutil.h"
 #include "image/image_metrics.h"
 #include "reference.h"
+#include "seed_stats.h"
 
 enum { W = 80, H = 60, N = W * H * 3, SEEDS = 4, VPLS = 1024, REF_SAMPLES = 1024 };
 
@@ -97,44 +98,32 @@ static void test_exact_matches_reference(void **state)
     m.ref_mean /= (double)covered;
     m.ref_noise = noise.indirect1_rms / m.ref_mean;
 
-    /* Per seed: the disk image's error; the point - disk difference summed per pixel. */
+    /* Per seed: the disk image's error; the point - disk difference over the seeds. */
     renderer *disk = vpl_renderer(&m, 0), *point = vpl_renderer(&m, 1);
     assert_non_null(disk);
     assert_non_null(point);
     static float d[N], p[N];
     static double diff_sum[N], diff_sq[N];
-    double err2 = 0, err2_off = 0;
+    seed_sums diff = {diff_sum, diff_sq};
+    double rel = 0, rel_off = 0; /* mean relRMSE over the seeds: disk, and level x1.25 */
     for (uint32_t s = 0; s < SEEDS; s++) {
         indirect(disk, &m, s, d);
         indirect(point, &m, s, p);
-        double e = error(&m, d, 1.0f), e_off = error(&m, d, 1.25f);
-        err2 += e * e / SEEDS;
-        err2_off += e_off * e_off / SEEDS;
-        for (int i = 0; i < N; i++) {
-            double v = (double)p[i] - d[i];
-            diff_sum[i] += v;
-            diff_sq[i] += v * v;
-        }
+        rel += error(&m, d, 1.0f) / SEEDS;
+        rel_off += error(&m, d, 1.25f) / SEEDS;
+        seed_add(&diff, p, d, N);
     }
     renderer_destroy(disk);
     renderer_destroy(point);
 
-    /* The clamp's bias: the RMS of the mean difference less its noise (variance / SEEDS). */
-    double var = 0, sq = 0;
-    for (int i = 0; i < N; i++) {
-        if (!m.ref.coverage[i / 3])
-            continue;
-        double mean = diff_sum[i] / SEEDS;
-        var += (diff_sq[i] - SEEDS * mean * mean) / (SEEDS - 1);
-        sq += mean * mean;
-    }
-    double clamp = sqrt(fmax(sq - var / SEEDS, 0.0) / (double)covered) / m.ref_mean;
-    /* One image's error against the truth: the reference's own noise taken out. */
-    double truth = sqrt(fmax(err2 - m.ref_noise * m.ref_noise, 0.0));
-    double truth_off = sqrt(fmax(err2_off - m.ref_noise * m.ref_noise, 0.0));
+    /* As cavelight-bench accuracy vpl takes it apart (seed_stats.h). */
+    double spread;
+    double clamp = seed_bias(&diff, m.ref.coverage, N, SEEDS, m.ref_mean, &spread);
+    double truth = seed_error_vs_truth(rel, m.ref_noise);
+    double truth_off = seed_error_vs_truth(rel_off, m.ref_noise);
     printf("relRMSE against the reference %.3f (its noise %.3f), against the truth %.3f, "
            "clamp bias %.3f: beyond the clamp %.3f (goal <= %.2f); level x1.25: %.3f\n",
-           sqrt(err2), m.ref_noise, truth, clamp, truth - clamp, GOAL, truth_off - clamp);
+           rel, m.ref_noise, truth, clamp, truth - clamp, GOAL, truth_off - clamp);
     assert_true(m.ref_noise < 0.05); /* a reference precise enough to judge 0.10 */
     assert_true(truth - clamp <= GOAL);
     assert_true(truth_off - clamp > GOAL);
