@@ -231,10 +231,10 @@ static void test_selection_rules(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 3), 0);
     char err[256];
     renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .rsm_size = 64,
-                        .gi = FRAME_GI_VPL, .threads = 2};
+                        .gi = FRAME_GI_VPL, .threads = 1};
     renderer *other = renderer_create(&rd, err, sizeof err);
     assert_non_null(other);
     frame_params p = vpl_params(&t, 64, 0);
