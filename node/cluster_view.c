@@ -201,22 +201,26 @@ static int make_renderer(cluster_view *v, char *err, size_t errlen)
     return 0;
 }
 
-/* One untracked frame before the node says HELLO: llvmpipe compiles shaders at first use
- * (0.1 to 0.4 s for a 32x64 stereo node under load here), which would hold every screen
- * at the barrier in the node's first frame after a (re)join, or get it dropped. The
- * renderer is then built afresh, so the node starts from the same state as any other;
- * Mesa keeps the compiled code (that first frame: about 50 ms instead of 100 to 240,
+/* One untracked frame of every GI method (the config's settings) before the node says
+ * HELLO: llvmpipe compiles shaders at first use (0.1 to 0.4 s for a 32x64 stereo node
+ * under load here), which would hold every screen at the barrier in the node's first frame
+ * after a (re)join or a live switch of the method, or get it dropped. The renderer is then
+ * built afresh, so the node starts from the same state as any other; Mesa keeps the
+ * compiled code (the first frame: about 50 ms instead of 100 to 240,
  * tests/integration/cluster_lib.sh's 2-node config, ready_after_frame_ms max). */
 static int warm_up(cluster_view *v, char *err, size_t errlen)
 {
     frame_params f = v->first;
     frame_params_lights_from_scene(&f, &v->sc);
     memcpy(&f.head[12], v->cfg->observer.home, sizeof v->cfg->observer.home);
-    uint64_t checksum;
-    float timings[WIRE_TIMING_COUNT];
-    int fixed;
-    if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
-        return -1;
+    for (int m = 0; m < gi_method_count(); m++) {
+        uint64_t checksum;
+        float timings[WIRE_TIMING_COUNT];
+        int fixed;
+        f.gi = m;
+        if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
+            return -1;
+    }
     return make_renderer(v, err, errlen);
 }
 

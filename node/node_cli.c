@@ -252,14 +252,9 @@ cli_result node_cli_parse(int argc, char **argv, node_cli *c)
     frame_params_default(&c->standalone.frame);
     c->cluster = (cluster_node_desc){.output = -1, .render = CLUSTER_RENDER_GL};
     static cli_option all[CLI_MAX_OPTIONS];
-    static cli_setting_text texts[CLI_MAX_OPTIONS];
     int count = (int)(sizeof options / sizeof *options);
     memcpy(all, options, sizeof options);
-    for (int i = 0; i < gi_option_count() && count < CLI_MAX_OPTIONS; i++) {
-        const gi_option *g = gi_option_at(i);
-        cli_option_from_setting(g->row, O_SETTING + i, g->display ? G_DISPLAY : G_GI,
-                                MODE_STANDALONE, &texts[i], &all[count++]);
-    }
+    count = gi_cli_options(all, count, O_SETTING, G_GI, G_DISPLAY, MODE_STANDALONE);
     cli_program p = {
         .name = "cavelight-node",
         .usage = "usage: cavelight-node --standalone [options]\n"

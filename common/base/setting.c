@@ -73,7 +73,9 @@ int setting_clamp(const setting *s, setting_value *v)
             *v = setting_default(s);
         break;
     case SETTING_INT:
-        if (v->i < s->min)
+        if (s->min > 0 && v->i <= 0)
+            *v = setting_default(s);
+        else if (v->i < s->min)
             v->i = (int32_t)s->min;
         else if (v->i > s->max)
             v->i = (int32_t)s->max;
@@ -85,7 +87,7 @@ int setting_clamp(const setting *s, setting_value *v)
         }
         break;
     case SETTING_FLOAT:
-        if (isnan(v->f))
+        if (isnan(v->f) || (s->min > 0 && v->f <= 0))
             *v = setting_default(s);
         else if (v->f < s->min)
             v->f = (float)s->min;

@@ -49,9 +49,11 @@ setting_value setting_default(const setting *s);
 /* The text as a value of s: NULL, or the reason it is refused ("a whole number in
  * 64..4096", "one of exact, ism or ism-splat", "a power of two in 8..256"). */
 const char *setting_parse(const setting *s, const char *text, setting_value *out);
-/* What a receiver does with a value it did not check itself: a NaN or an unknown choice
- * becomes the default, a number outside the range its nearest end, a whole number that is
- * no power of two where one is wanted the power of two below it. Returns 1 if changed. */
+/* What a receiver does with a value it did not check itself: a NaN, an unknown choice, or
+ * zero or less where the range is positive (a value that means nothing there, as a size or
+ * a gamma of 0) becomes the default; another number outside the range its nearest end; a
+ * whole number that is no power of two where one is wanted the power of two below it.
+ * Returns 1 if changed. */
 int setting_clamp(const setting *s, setting_value *v);
 /* "256", "0.8", "ism". */
 void setting_format(const setting *s, setting_value v, char *buf, size_t cap);

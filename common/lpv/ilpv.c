@@ -7,13 +7,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-int ilpv_init(ilpv *s, const lattice_desc *lat, const ilpv_backend *backend)
+int ilpv_init(ilpv *s, const ilpv_desc *d)
 {
+    const lattice_desc *lat = d->lattice;
     memset(s, 0, sizeof *s);
-    if (backend)
-        s->backend = *backend;
+    s->blockers = d->blockers;
+    s->pool = d->pool;
+    if (d->backend)
+        s->backend = *d->backend;
     else if (lat) {
-        ilpv_cpu *own = ilpv_cpu_create(lat, NULL, NULL);
+        ilpv_cpu *own = ilpv_cpu_create(lat, d->blockers, d->pool);
         if (own)
             s->backend = ilpv_cpu_backend(own);
     }
@@ -175,7 +178,7 @@ static void compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_v
 /* A new chain from this frame's splat. */
 static int start_chain(ilpv *s, const ilpv_frame_desc *d)
 {
-    lpv_splat_desc sd = {&s->injected, &s->origin, d->blockers, d->absorption, d->pool};
+    lpv_splat_desc sd = {&s->injected, &s->origin, s->blockers, d->absorption, s->pool};
     int rc = lpv_splat_run(&s->splat, &sd, &s->near, &s->shell);
     s->backend.start(s->backend.state, &s->near, &s->shell);
     return rc;

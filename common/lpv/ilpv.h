@@ -87,6 +87,8 @@ typedef struct ilpv_backend {
 
 typedef struct ilpv {
     lattice_desc lattice;
+    const lpv_blockers *blockers; /* the splat's (the backend has them too) */
+    workpool *pool;
     lpv_volume injected, origin; /* this frame's VPLs (lpv_inject.h) */
     lpv_volume near, shell;      /* lpv_splat.h */
     lpv_volume early;            /* the sum after the chain's first frame */
@@ -102,15 +104,21 @@ typedef struct ilpv_frame_desc {
     float lambda_incr;         /* [0,1): share of the earlier light kept per frame */
     double emitted_energy;     /* E of this frame's lights, from their parameters */
     int classic;               /* 1: classic LPV, this frame's chain alone */
-    const lpv_blockers *blockers; /* for the splat; the backend has its own */
     float absorption, scattering; /* per step (lpv_transfer_step_probability()) */
-    workpool *pool;            /* the splat's threads */
 } ilpv_frame_desc;
 
-/* backend: where the chain runs; NULL: a CPU backend of its own (ilpv_cpu_create() with no
- * blockers and no pool: tests). Returns 0, or -1 (nothing to free) for a bad lattice or
- * no memory; the backend is then destroyed. */
-int ilpv_init(ilpv *s, const lattice_desc *lat, const ilpv_backend *backend);
+typedef struct ilpv_desc {
+    const lattice_desc *lattice;
+    const lpv_blockers *blockers; /* what blocks light (lpv_geometry.h); NULL: nothing. The
+                                     backend must hold the same ones */
+    workpool *pool;               /* the splat's threads; NULL: the calling thread */
+    const ilpv_backend *backend;  /* where the chain runs; NULL: a CPU backend of its own
+                                     with these blockers and pool */
+} ilpv_desc;
+
+/* Returns 0, or -1 (nothing to free) for a bad lattice or no memory; the backend is then
+ * destroyed. */
+int ilpv_init(ilpv *s, const ilpv_desc *desc);
 void ilpv_free(ilpv *s);
 void ilpv_reset(ilpv *s);                 /* forget the history */
 lpv_volume *ilpv_injection(ilpv *s);      /* cleared by ilpv_begin_frame() */

@@ -199,6 +199,18 @@ const char *gi_check(const frame_params *p)
     return NULL;
 }
 
+int gi_cli_options(cli_option *rows, int count, int first_id, int gi_group, int display_group,
+                   unsigned modes)
+{
+    ready();
+    static cli_setting_text texts[MAX_OPTIONS]; /* the same for every caller */
+    for (int i = 0; i < reg.count && count < CLI_MAX_OPTIONS; i++)
+        cli_option_from_setting(reg.options[i].row, first_id + i,
+                                reg.options[i].display ? display_group : gi_group, modes,
+                                &texts[i], &rows[count++]);
+    return count;
+}
+
 void gi_settings_read(int method, const frame_params *p, void *out)
 {
     ready();

@@ -17,6 +17,7 @@
 #ifndef CAVELIGHT_GI_SETTINGS_H
 #define CAVELIGHT_GI_SETTINGS_H
 
+#include "base/cli.h"
 #include "base/setting.h"
 #include "cluster/cluster_config.h"
 #include "cluster/params.h"
@@ -75,6 +76,11 @@ int gi_set_config(const cluster_config *cfg, frame_params *p, char *err, size_t 
 /* Every method's cross-setting check (gi_method_settings.check): NULL or the first line. */
 const char *gi_check(const frame_params *p);
 
+/* Every option as a command-line row after the count rows in rows[CLI_MAX_OPTIONS] (base/
+ * cli.h): id first_id + its index, the display settings in display_group, the rest in
+ * gi_group, working in modes. Returns the new count. */
+int gi_cli_options(cli_option *rows, int count, int first_id, int gi_group,
+                   int display_group, unsigned modes);
 /* Method m's settings from p into its struct (out: struct_size bytes). */
 void gi_settings_read(int method, const frame_params *p, void *out);
 /* 1 when a and b differ in a setting of method m that rebuilds it (SETTING_REBUILD). */

@@ -118,7 +118,8 @@ static int make_driver(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
             goto oom;
         b = ilpv_cpu_backend(c);
     }
-    if (ilpv_init(&r->driver, &r->lattice, &b) != 0)
+    ilpv_desc id = {.lattice = &r->lattice, .blockers = &r->blockers, .pool = r->pool, .backend = &b};
+    if (ilpv_init(&r->driver, &id) != 0)
         goto oom;
     return 0;
 oom:
@@ -222,7 +223,6 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     ilpv_frame(&r->driver, &(ilpv_frame_desc){
         .steps = p->lpv_steps, .lambda_incr = p->lambda_incr,
         .emitted_energy = emitted_energy(r, p), .classic = r->settings.mode == ILPV_MODE_CLASSIC,
-        .blockers = &r->blockers, .pool = r->pool,
         .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
         .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell)});
     const lpv_volume *result = ilpv_result(&r->driver);
