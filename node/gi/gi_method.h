@@ -88,7 +88,7 @@ typedef struct gi_stats {
     int figure_count;              /* anything else worth reporting (its name says its unit) */
     gi_stat figure[GI_STATS_MAX];
     int hud_cells;                 /* the HUD's steps bar is steps over this many (ILPV: its
-                                      lattice's longest axis); 0: the lattice default */
+                                      lattice's longest axis); 0: the default lattice's */
 } gi_stats;
 
 /* The stage or figure named name, or 0 (with *found 0 when found is not NULL). */

@@ -89,7 +89,7 @@ static int fit_lattice(gi_ilpv *r, char *err, size_t errlen)
     lattice_fit_desc fit = {
         .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
         .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
-        .max_axis_cells = budget > 0 ? ILPV_LATTICE_MAX : r->settings.lattice,
+        .max_axis_cells = budget > 0 ? ILPV_FITTED_AXIS_MAX : r->settings.lattice,
         .max_cells = budget > 0 ? budget : 0,
         .margin_cells = -1.0f,
     };

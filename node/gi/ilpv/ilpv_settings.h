@@ -25,8 +25,13 @@ typedef enum ilpv_mode {
     ILPV_MODE_CLASSIC,         /* classic LPV: the sum of this frame's steps alone */
 } ilpv_mode;
 
-/* The largest lattice a node builds: 128^3 cells of its volumes are about 0.5 GB. */
-enum { ILPV_LATTICE_MAX = 128, ILPV_LATTICE_CELLS_MAX = ILPV_LATTICE_MAX * ILPV_LATTICE_MAX * ILPV_LATTICE_MAX };
+/* The largest lattice a node builds: 128^3 cells of its volumes are about 0.5 GB. A
+ * lattice fitted to a cell budget may stretch further along a long scene's axis. */
+enum {
+    ILPV_LATTICE_MAX = 128,
+    ILPV_LATTICE_CELLS_MAX = ILPV_LATTICE_MAX * ILPV_LATTICE_MAX * ILPV_LATTICE_MAX,
+    ILPV_FITTED_AXIS_MAX = 1024,
+};
 
 typedef struct ilpv_settings {
     int lattice;          /* cells along the scene's longest axis */

@@ -243,6 +243,7 @@ void vpl_ism_bind(const vpl_ism *m, GLuint program, int unit)
     const gl_functions *gl = m->gl;
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + unit));
     gl->BindTexture(GL_TEXTURE_2D, m->result);
+    gl->Uniform1i(gl->GetUniformLocation(program, "u_ism"), unit);
     gl->Uniform1i(gl->GetUniformLocation(program, "u_ism_size"), m->tile);
     gl->Uniform1i(gl->GetUniformLocation(program, "u_ism_tiles"), m->tiles);
     gl->Uniform1f(gl->GetUniformLocation(program, "u_ism_radius"), m->radius);
