@@ -54,6 +54,15 @@ static char *read_text(const char *name, char *err, size_t errlen)
 
 enum { MAX_FILES = 4 };
 
+/* A driver's log cut to its first line: error messages are one line. */
+static const char *first_line(char *log)
+{
+    char *nl = strchr(log, '\n');
+    if (nl)
+        *nl = '\0';
+    return log;
+}
+
 /* Source = version + defines + common.glsl + the files in order, with "// @BODY@" in a
  * file replaced by body. defines and body may be NULL. */
 static GLuint compile(const gl_functions *gl, GLenum type, const char *const *names, int files,
@@ -89,10 +98,8 @@ static GLuint compile(const gl_functions *gl, GLenum type, const char *const *na
         if (!compiled) {
             char log[512] = "";
             gl->GetShaderInfoLog(s, sizeof log, NULL, log);
-            char *nl = strchr(log, '\n');
-            if (nl)
-                *nl = '\0';
-            snprintf(err, errlen, "shader %s does not compile: %s", names[files - 1], log);
+            snprintf(err, errlen, "shader %s does not compile: %s", names[files - 1],
+                     first_line(log));
             gl->DeleteShader(s);
             s = 0;
         }
@@ -102,8 +109,8 @@ static GLuint compile(const gl_functions *gl, GLenum type, const char *const *na
     return s;
 }
 
-static GLuint link_program(const gl_functions *gl, const GLuint *shaders, int n, const char *name,
-                   char *err, size_t errlen)
+static GLuint link_program(const gl_functions *gl, const GLuint *shaders, int n,
+                           const char *name, char *err, size_t errlen)
 {
     GLuint p = gl->CreateProgram();
     for (int i = 0; i < n; i++)
@@ -116,10 +123,7 @@ static GLuint link_program(const gl_functions *gl, const GLuint *shaders, int n,
     if (!ok) {
         char log[512] = "";
         gl->GetProgramInfoLog(p, sizeof log, NULL, log);
-        char *nl = strchr(log, '\n');
-        if (nl)
-            *nl = '\0';
-        snprintf(err, errlen, "shader program %s does not link: %s", name, log);
+        snprintf(err, errlen, "shader program %s does not link: %s", name, first_line(log));
         gl->DeleteProgram(p);
         return 0;
     }
