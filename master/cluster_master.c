@@ -1,4 +1,5 @@
 #include "cluster_master.h"
+#include "gi/gi_settings.h"
 #include "base/xalloc.h"
 
 #include <errno.h>
@@ -35,7 +36,9 @@ struct cluster_master {
     int closing;             /* destroy() runs: a HELLO gets BYE(shutdown), not a snapshot */
     double ready_ring[STALL_SAMPLES];
     int ready_count;
+    params_schema schema;    /* the store's keys (gi_params_schema()) */
     params_store params;
+    uint64_t hello_hash;     /* what a node's HELLO must carry (params_session_hash()) */
     int barrier_timeout_ms;
     int quiet;
     int raise_epoch;         /* a node joined: the next commit resets LPV history */
@@ -106,12 +109,13 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
 {
     peer *p = &m->peers[node];
     char note[96];
-    if (msg->config_hash != m->cfg->hash) {
+    if (msg->config_hash != m->hello_hash) {
         if (node_log(m, node, note, sizeof note))
-            fprintf(stderr, "cavelight-master: node %s runs another cluster config (hash %016llx, "
-                    "master %s has %016llx): refused, give both the same file%s\n",
+            fprintf(stderr, "cavelight-master: node %s runs another cluster config or another "
+                    "build (hash %016llx, master %s has %016llx): refused, give both the same "
+                    "file and the same cavelight version%s\n",
                     m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
-                    (unsigned long long)m->cfg->hash, note);
+                    (unsigned long long)m->hello_hash, note);
         send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);
         return;
     }
@@ -373,7 +377,9 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     m->cfg = desc->config;
     m->quiet = desc->quiet;
     m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;
-    params_init(&m->params);
+    gi_params_schema(&m->schema);
+    params_init(&m->params, &m->schema);
+    m->hello_hash = params_session_hash(m->cfg->hash, &m->schema);
     m->ctx = zmq_ctx_new();
     m->sock = m->ctx ? zmq_socket(m->ctx, ZMQ_ROUTER) : NULL;
     const char *ep = desc->bind ? desc->bind : m->cfg->master_bind;

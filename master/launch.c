@@ -26,9 +26,8 @@ static int node_argv(const master_options *o, const char *config, const char *ex
         argv[n++] = (char *)connect;
     }
     const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", out_dir},
-                              {"--scene", o->scene},
-                              {"--gi", o->gi_given ? frame_gi_name(o->gi) : NULL}};
-    for (int i = 0; i < 5; i++)
+                              {"--scene", o->scene}};
+    for (int i = 0; i < 4; i++)
         if (pairs[i][1]) {
             argv[n++] = (char *)pairs[i][0];
             argv[n++] = (char *)pairs[i][1];

@@ -139,13 +139,16 @@ static int master_run(const master_options *o)
             fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
                     "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
                     cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
+    static frame_params settings;
+    if (master_settings(o, &cfg, &settings, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        return 2;
+    }
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
-                       .print_poses = o->print_poses, .gi = o->gi,
-                       .vpl_count = o->vpl_count, .vpl_selection = o->vpl_selection,
-                       .exposure = o->exposure,
+                       .print_poses = o->print_poses, .settings = &settings,
                        .exposure_auto = o->exposure_auto};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {

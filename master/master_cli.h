@@ -6,6 +6,9 @@
 
 #include "base/cli.h"
 #include "frame/frame_params.h"
+#include "cluster/cluster_config.h"
+
+enum { MASTER_MAX_SETTINGS = 96 };
 
 typedef struct master_options {
     const char *config;
@@ -20,15 +23,18 @@ typedef struct master_options {
     const char *report, *overview;
     int keep_frames, pattern, print_poses, preview;
     const char *input, *record;
-    frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
-    int gi_given;               /* --gi was given: spawned nodes get it too */
-    int vpl_count;              /* vpl's lights per frame; 0 = FRAME_VPL_DEFAULT */
-    vpl_selection vpl_selection; /* vpl's selection rule (0 = by flux) */
-    float exposure;             /* 0 = the frame default */
+    /* The GI and display settings given (gi_settings.h), as name and text in the order
+     * given, each checked already: the session applies them over the config's "settings". */
+    int setting_count;
+    const char *setting_name[MASTER_MAX_SETTINGS], *setting_value[MASTER_MAX_SETTINGS];
     int exposure_auto;          /* --exposure auto */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */
 cli_result master_cli_parse(int argc, char **argv, master_options *o);
+/* The session's first frame settings: the defaults, the config's "settings", then the
+ * command line's (gi_check() over all of them). 0, or -1 with one line in err. */
+int master_settings(const master_options *o, const cluster_config *cfg, frame_params *out,
+                    char *err, size_t errlen);
 
 #endif

@@ -59,15 +59,12 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         scene_light_added_note(&sc, scene_path, note, sizeof note);
         fprintf(stderr, "cavelight-master: warning: %s\n", note);
     }
-    frame_params_default(&s->frame);
+    if (d->settings)
+        s->frame = *d->settings;
+    else
+        frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     s->frame.pattern = d->pattern;
-    s->frame.gi = d->gi;
-    if (d->vpl_count > 0)
-        s->frame.vpl_count = d->vpl_count;
-    s->frame.vpl_selection = d->vpl_selection;
-    if (d->exposure > 0)
-        s->frame.exposure = d->exposure;
     if (d->exposure_auto) {
         s->frame.exposure = exposure_from_light(&s->frame, &sc);
         if (!d->quiet)

@@ -1,4 +1,5 @@
 #include "cluster_client.h"
+#include "gi/gi_settings.h"
 #include "base/xalloc.h"
 
 #include <errno.h>
@@ -31,6 +32,7 @@ struct cluster_client {
     client_state state;
     int ended;               /* the master ended the session (BYE) and no new one joined */
     double lost_at;          /* when the master was lost or ended the session (ms clock) */
+    params_schema schema;    /* the store's keys (gi_params_schema()) */
     params_store params;
     /* curve: this node's key pair and the one master key it accepts */
     char public_key[CLUSTER_KEY_Z85 + 1], secret_key[CLUSTER_KEY_Z85 + 1], master_key[CLUSTER_KEY_Z85 + 1];
@@ -56,7 +58,8 @@ static int send_msg(cluster_client *c, wire_msg *msg)
 
 static void send_hello(cluster_client *c)
 {
-    wire_msg m = {.type = WIRE_HELLO, .config_hash = c->cfg->hash, .version = c->params.version};
+    wire_msg m = {.type = WIRE_HELLO, .config_hash = params_session_hash(c->cfg->hash, &c->schema),
+                  .version = c->params.version};
     /* Not yet connected (ZMQ_IMMEDIATE): the next housekeeping round tries again. */
     if (send_msg(c, &m) == 0)
         c->last_hello = clock_now_ms();
@@ -166,7 +169,8 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     c->cfg = desc->config;
     c->quiet = desc->quiet;
     snprintf(c->name, sizeof c->name, "%s", desc->name);
-    params_init(&c->params);
+    gi_params_schema(&c->schema);
+    params_init(&c->params, &c->schema);
     c->ctx = zmq_ctx_new();
     c->endpoint = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
     if (c->cfg->security == CLUSTER_SECURITY_CURVE) {
@@ -311,7 +315,7 @@ static void drop_malformed(cluster_client *c, zmq_msg_t *msg, wire_error e)
 static int join(cluster_client *c, const wire_msg *m)
 {
     params_store fresh;
-    params_init(&fresh);
+    params_init(&fresh, &c->schema);
     if (params_apply(&fresh, m->version, m->params, m->params_len) != 0) {
         refuse_params(c, "snapshot", m->version);
         return 0;

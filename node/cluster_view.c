@@ -12,6 +12,7 @@
 #include "base/ratelog.h"
 #include "frame/pattern.h"
 #include "cluster_window.h"
+#include "gi/gi_settings.h"
 #include "glctx.h"
 #include "image/image.h"
 #include "base/mat4.h"
@@ -28,8 +29,8 @@ struct cluster_view {
     int node;
     cluster_output output;
     char out_dir[1024];
-    int lpv_threads, rsm_size, lattice_desc, lattice_now, lattice_refused, lpv_mode, gi;
-    double converge_threshold;
+    int threads;
+    frame_params first;  /* the config's settings on the defaults: the warm-up frame */
     scene sc;
     int scene_loaded;
     glctx *ctx;          /* headless context, or the first window's */
@@ -44,6 +45,7 @@ struct cluster_view {
     int rendered;
     int keep_frames;
     uint64_t version;    /* of the last rendered frame */
+    char refusal[256];   /* the renderer's last refusal, said once */
     ratelog eye_log;     /* eyes moved in front of a screen, screens without a projection */
 };
 
@@ -77,7 +79,7 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     /* Eye in CAVE space: head pose times the head-to-eye offset, then along the head's
      * right axis (the pose's first column). */
     float mid[3], right[3], eye_cave[3];
-    mat4_transform_point(f->head, o->head_to_eye, mid);
+    frame_view_head_centre(f->head, o->head_to_eye, mid);
     memcpy(right, f->head, sizeof right);
     if (!(vec3_normalize(right) > 0))
         memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
@@ -184,39 +186,42 @@ static int present_window(cluster_view *v, char *err, size_t errlen)
     return open ? 0 : 1;
 }
 
-static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
+/* A renderer built for the config's settings (the master's frames may change them). */
+static int make_renderer(cluster_view *v, char *err, size_t errlen)
 {
-    renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
-                        .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads,
-                        .lpv_mode = (renderer_lpv_mode)v->lpv_mode, .gi = (frame_gi)v->gi,
-                        .converge_threshold = v->converge_threshold};
+    renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .first = &v->first,
+                        .threads = v->threads};
+    memcpy(rd.head_to_eye, v->cfg->observer.head_to_eye, sizeof rd.head_to_eye);
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
         return -1;
     if (v->r)
         renderer_destroy(v->r);
     v->r = r;
-    v->lattice_now = lattice;
     return 0;
 }
 
-/* One untracked frame before the node says HELLO: llvmpipe compiles shaders at first use
- * (0.1 to 0.4 s for a 32x64 stereo node under load here), which would hold every screen
- * at the barrier in the node's first frame after a (re)join, or get it dropped. The
- * renderer is then built afresh, so the node starts from the same state as any other;
- * Mesa keeps the compiled code (that first frame: about 50 ms instead of 100 to 240,
+/* One untracked frame of every GI method (the config's settings) before the node says
+ * HELLO: llvmpipe compiles shaders at first use (0.1 to 0.4 s for a 32x64 stereo node
+ * under load here), which would hold every screen at the barrier in the node's first frame
+ * after a (re)join or a live switch of the method, or get it dropped. The renderer is then
+ * built afresh, so the node starts from the same state as any other; Mesa keeps the
+ * compiled code (the first frame: about 50 ms instead of 100 to 240,
  * tests/integration/cluster_lib.sh's 2-node config, ready_after_frame_ms max). */
 static int warm_up(cluster_view *v, char *err, size_t errlen)
 {
-    frame_params f;
-    frame_params_default(&f);
+    frame_params f = v->first;
     frame_params_lights_from_scene(&f, &v->sc);
     memcpy(&f.head[12], v->cfg->observer.home, sizeof v->cfg->observer.home);
-    uint64_t checksum;
-    float timings[WIRE_TIMING_COUNT];
-    if (cluster_view_render(v, &f, 0, &checksum, timings, err, errlen) != 0)
-        return -1;
-    return make_renderer(v, v->lattice_desc, err, errlen);
+    for (int m = 0; m < gi_method_count(); m++) {
+        uint64_t checksum;
+        float timings[WIRE_TIMING_COUNT];
+        int fixed;
+        f.gi = m;
+        if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
+            return -1;
+    }
+    return make_renderer(v, err, errlen);
 }
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen)
@@ -225,13 +230,11 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->cfg = desc->config;
     v->node = desc->node;
     v->output = desc->output;
-    v->lpv_threads = desc->lpv_threads;
-    v->rsm_size = desc->rsm_size;
-    v->lpv_mode = desc->lpv_mode;
-    v->gi = desc->gi;
-    v->converge_threshold = desc->converge_threshold;
-    v->lattice_desc = desc->lattice_cells;
+    v->threads = desc->threads;
     v->keep_frames = desc->keep_frames;
+    frame_params_default(&v->first);
+    if (gi_set_config(v->cfg, &v->first, err, errlen) != 0)
+        goto fail;
     snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : CLUSTER_DEFAULT_OUT);
     const cluster_node *n = &v->cfg->nodes[v->node];
     char why[300];
@@ -267,7 +270,7 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
             v->ctx = glctx_create(&gd, err, errlen);
         }
     }
-    if (!v->ctx || make_renderer(v, v->lattice_desc, err, errlen) != 0)
+    if (!v->ctx || make_renderer(v, err, errlen) != 0)
         goto fail;
     for (int s = 0; s < n->screen_count; s++)
         for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
@@ -333,23 +336,24 @@ static void report_eye(cluster_view *v, uint64_t version, int screen, int eye, i
                 (unsigned long long)skipped);
 }
 
-int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
-                        float timings[WIRE_TIMING_COUNT], char *err, size_t errlen)
+/* A method or setting the renderer could not build (memory) keeps the current one: the
+ * checksums then tell the master if the nodes disagree. Said once per refusal. */
+static void report_refusal(cluster_view *v)
 {
-    int want = lattice_cells > 0 ? lattice_cells : v->lattice_desc;
-    if (want != v->lattice_now && want != v->lattice_refused) {
-        /* A lattice the node cannot build (memory) keeps the current one: the checksums
-         * then tell the master if the nodes disagree. */
-        char why[256];
-        if (make_renderer(v, want, why, sizeof why) != 0) {
-            fprintf(stderr, "cavelight-node %s: lattice %d refused (%s): keeping %d\n",
-                    v->cfg->nodes[v->node].name, want, why, v->lattice_now);
-            v->lattice_refused = want;
-        }
-    }
+    const char *why = renderer_last_error(v->r);
+    if (why[0] && strcmp(why, v->refusal) != 0)
+        fprintf(stderr, "cavelight-node %s: %s\n", v->cfg->nodes[v->node].name, why);
+    snprintf(v->refusal, sizeof v->refusal, "%s", why);
+}
+
+int cluster_view_render(cluster_view *v, const frame_params *f, uint64_t *checksum,
+                        float timings[WIRE_TIMING_COUNT], int *fixed, char *err, size_t errlen)
+{
     *checksum = renderer_frame_pass(v->r, f);
+    report_refusal(v);
     renderer_timings t;
     renderer_get_timings(v->r, &t);
+    *fixed = t.fixed;
     timings[WIRE_TIMING_FRAME] = (float)t.frame_host_ms;
     double eyes = 0;
     const cluster_node *n = &v->cfg->nodes[v->node];

@@ -21,7 +21,7 @@ rm -f "$out"/*.png "$out"/report.json
   --config "$root/configs/clusters/cave5-local.json" --spawn-local \
   --frames 48 --dt 0.0833333 \
   --output png --out "$out" --overview "$out/overview.png" --report "$out/report.json" --exposure auto \
-  --node-args "--threads 1 --lattice 24 --rsm 128" ${DISPLAY:+--preview} --quiet
+  --lattice 24 --rsm 128 --node-args "--threads 1" ${DISPLAY:+--preview} --quiet
 
 python3 - "$out/report.json" <<'PY' 2>/dev/null || true
 import json, sys

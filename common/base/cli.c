@@ -242,6 +242,14 @@ void cli_help(const cli_program *p, FILE *f)
         fprintf(f, "\n%s", p->epilogue);
 }
 
+void cli_option_from_setting(const setting *s, int id, int group, unsigned modes,
+                             cli_setting_text *text, cli_option *out)
+{
+    setting_arg(s, text->arg, sizeof text->arg);
+    setting_format(s, setting_default(s), text->def, sizeof text->def);
+    *out = (cli_option){id, s->name, text->arg, text->def, group, modes, s->help};
+}
+
 const char *cli_int(const char *s, int lo, int hi, int *out)
 {
     static char why[64];

@@ -404,6 +404,43 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     }
 }
 
+/* "settings": {"NAME": value, ...}: kept as text; the programs that know the names check
+ * them (cavelight-master at start, every node when it builds its first frame). */
+static void parse_settings(parse_ctx *c, const cJSON *o, cluster_config *cfg)
+{
+    if (!o || c->failed)
+        return;
+    if (!cJSON_IsObject(o)) {
+        fail(c, "settings", "must be an object of option names and values ({\"gi\": \"vpl\", ...})");
+        return;
+    }
+    const cJSON *v;
+    cJSON_ArrayForEach(v, o)
+    {
+        char field[CLUSTER_NAME_MAX + 16];
+        snprintf(field, sizeof field, "settings.%.*s", CLUSTER_NAME_MAX, v->string);
+        if (cfg->setting_count == CLUSTER_MAX_SETTINGS) {
+            fail(c, field, "more than %d settings", (int)CLUSTER_MAX_SETTINGS);
+            return;
+        }
+        cluster_setting *st = &cfg->settings[cfg->setting_count];
+        if (strlen(v->string) > CLUSTER_NAME_MAX) {
+            fail(c, "settings", "a name longer than %d characters", (int)CLUSTER_NAME_MAX);
+            return;
+        }
+        snprintf(st->name, sizeof st->name, "%s", v->string);
+        if (cJSON_IsString(v) && strlen(v->valuestring) < sizeof st->value)
+            snprintf(st->value, sizeof st->value, "%s", v->valuestring);
+        else if (cJSON_IsNumber(v))
+            snprintf(st->value, sizeof st->value, "%.9g", v->valuedouble);
+        else {
+            fail(c, field, "must be a number or a short string, as the option takes it");
+            return;
+        }
+        cfg->setting_count++;
+    }
+}
+
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
                          char *err, size_t errlen)
 {
@@ -465,6 +502,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
     parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
     parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);
+    parse_settings(&c, cJSON_GetObjectItemCaseSensitive(root, "settings"), cfg);
 
     const cJSON *screens = cJSON_GetObjectItemCaseSensitive(root, "screens");
     if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||

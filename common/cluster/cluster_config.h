@@ -19,6 +19,9 @@
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
  *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
  *                          "join_ms"},
+ *             "settings": {"NAME": value, ...} (the options of cavelight-master's GI and
+ *             display groups by their names, e.g. {"gi": "vpl", "vpl-interleave": 4}: the
+ *             session's settings for every node, checked by the programs that know them),
  *             "security": {"mode": "curve" (default) | "insecure", "keys": DIR}
  *             (curve: every connection authenticated and encrypted with the key files
  *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
@@ -36,6 +39,7 @@ enum {
     CLUSTER_NODE_MAX_SCREENS = 8,
     CLUSTER_NAME_MAX = 32,
     CLUSTER_TEXT_MAX = 256,
+    CLUSTER_MAX_SETTINGS = 64,
 };
 
 /* Where the master and the nodes write what they make (images, overview, report, logs,
@@ -107,6 +111,12 @@ typedef struct cluster_observer {
     float home[3];          /* untracked head position in CAVE space (default 0, 1.7, 0) */
 } cluster_observer;
 
+/* One entry of "settings", as text. */
+typedef struct cluster_setting {
+    char name[CLUSTER_NAME_MAX + 1];
+    char value[64];
+} cluster_setting;
+
 typedef struct cluster_config {
     char path[CLUSTER_TEXT_MAX];
     char name[CLUSTER_TEXT_MAX];
@@ -124,6 +134,8 @@ typedef struct cluster_config {
     int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
     double corner_tolerance_mm; /* measured corners further from a rectangle are refused (20) */
     cluster_observer observer;
+    int setting_count;
+    cluster_setting settings[CLUSTER_MAX_SETTINGS];
     int screen_count;
     cluster_screen screens[CLUSTER_MAX_SCREENS];
     int node_count;

@@ -3,10 +3,11 @@
  * Header, 16 bytes little-endian: magic "CVLT", protocol version u16, type u16, payload
  * length u32, CRC-32 (IEEE) of the first 12 header bytes followed by the payload.
  * Payloads:
- *   HELLO     name, config hash u64, version the sender holds u64
+ *   HELLO     name, hash u64 (the config's and the parameter schema's,
+ *             params_session_hash()), version the sender holds u64
  *   SNAPSHOT  version u64, params encoding (all keys)
  *   FRAME     version u64, base version u64, params delta (keys changed after base)
- *   READY     name, version u64, LPV checksum u64, timings 4 x f32 (ms)
+ *   READY     name, version u64, GI checksum u64, timings 4 x f32 (ms)
  *   SWAP      version u64
  *   BYE       name, reason u32
  *   HEARTBEAT name, version u64
@@ -21,8 +22,9 @@
 
 enum {
     WIRE_MAGIC = 0x544c5643u, /* "CVLT" as little-endian bytes */
-    WIRE_PROTOCOL = 4,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
-                                 vpl_seed; 4: vpl_selection */
+    WIRE_PROTOCOL = 5,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
+                                 vpl_seed; 4: vpl_selection; 5: keys from a schema (every
+                                 GI setting), HELLO's hash covers it */
     WIRE_HEADER_SIZE = 16,
     WIRE_NAME_MAX = 32,
     WIRE_MAX_PAYLOAD = 8192,

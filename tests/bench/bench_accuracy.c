@@ -35,7 +35,7 @@ enum { GOAL_LATTICE = 32, GOAL_MAX_STEPS = 4 };
 static const int goal_lattices[3] = {16, 32, 64};
 
 typedef struct sweep_row {
-    renderer_lpv_backend backend;
+    ilpv_backend_choice backend;
     int classic, lattice, n[3], steps, frames;
     float lambda;
     double propagate_ms, frame_pass_ms, eye_ms;
@@ -87,7 +87,7 @@ static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_ref
         }
         renderer_timings t;
         renderer_get_timings(r, &t);
-        prop[f - warm] = t.propagate_ms;
+        prop[f - warm] = gi_stats_value(&t.gi, "propagate", NULL);
         pass[f - warm] = t.frame_host_ms;
         eye[f - warm] = t.eye_host_ms;
     }
@@ -139,7 +139,7 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
         const sweep_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d," FMT_MS ",%.4f,%.4f,%.4f,"
                    "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d\n",
-                s->opt.scene, r->backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                s->opt.scene, r->backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                 r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
                 r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
                 r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
@@ -149,7 +149,7 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
     }
 }
 
-static const sweep_row *find_row(const sweep_row *rows, int n, renderer_lpv_backend b,
+static const sweep_row *find_row(const sweep_row *rows, int n, ilpv_backend_choice b,
                                  int lattice, int classic, int steps, float lambda)
 {
     for (int i = 0; i < n; i++)
@@ -171,14 +171,14 @@ typedef struct sweep_run {
     uint8_t *display, *self;
 } sweep_run;
 
-static int sweep_renderer(sweep_run *run, renderer_lpv_backend backend, int lattice, int mode,
+static int sweep_renderer(sweep_run *run, ilpv_backend_choice backend, int lattice, int mode,
                           const double *steps, int ns, const double *lambdas, int nlam)
 {
     acc_renderer_desc d = {.backend = backend, .lattice = lattice, .classic = mode};
-    renderer *r = acc_renderer_create(run->s, &d);
+    renderer *r = acc_renderer_create(run->s, &d, run->fp);
     if (!r)
         return 1;
-    const lattice_desc *lat = renderer_get_lattice(r);
+    const lattice_desc *lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)));
     size_t px = (size_t)run->s->opt.width * run->s->opt.height;
     int rc = 0;
     if (!mode) {
@@ -195,7 +195,7 @@ static int sweep_renderer(sweep_run *run, renderer_lpv_backend backend, int latt
             rc = run_config(run->s, r, run->fp, run->ref, run->timing, row, run->display);
             row->self_mae = mode ? NAN : acc_display_mae(run->display, run->self, px);
             fprintf(stderr, "  %s %s lattice %d steps %d lambda %.2f: %.2f ms, indirect "
-                    "relRMSE %.3f\n", backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                    "relRMSE %.3f\n", backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                     mode ? "classic" : "ilpv", lattice, row->steps, row->lambda,
                     row->propagate_ms, row->indirect.rmse_rel);
         }
@@ -219,7 +219,7 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
 {
     const sweep_row *g[3];
     for (int i = 0; i < 3; i++)
-        g[i] = find_row(rows, n, RENDERER_LPV_CPU, goal_lattices[i], 0, steps, lambda);
+        g[i] = find_row(rows, n, ILPV_BACKEND_CPU, goal_lattices[i], 0, steps, lambda);
     const sweep_row *at = g[1];
     int never_worse = 1;
     for (int i = 1; i < 3; i++)
@@ -297,20 +297,20 @@ static int accuracy_sweep(int argc, char **argv)
                      .display = malloc(px * 3), .self = malloc(px * 3)};
     int rc = run.rows && run.display && run.self ? 0 : 1;
     for (int b = 0; b < nb && rc == 0; b++) {
-        renderer_lpv_backend backend = backends[b] ? RENDERER_LPV_GL : RENDERER_LPV_CPU;
+        ilpv_backend_choice backend = backends[b] ? ILPV_BACKEND_GL : ILPV_BACKEND_CPU;
         for (int l = 0; l < nl && rc == 0; l++) {
             int lattice = (int)lattices[l];
             int axis = lattice == ACC_FITTED ? 32 : lattice; /* about a 32^3 cost */
-            if (backend == RENDERER_LPV_GL && axis > gl_max_lattice)
+            if (backend == ILPV_BACKEND_GL && axis > gl_max_lattice)
                 continue;
             for (int mode = 0; mode <= classic && rc == 0; mode++)
                 rc = sweep_renderer(&run, backend, lattice, mode, steps, ns, lambdas, nlam);
         }
     }
     for (int i = 0; i < 3 && rc == 0 && goal; i++)
-        if (!find_row(run.rows, run.n, RENDERER_LPV_CPU, goal_lattices[i], 0, (int)goal_steps,
+        if (!find_row(run.rows, run.n, ILPV_BACKEND_CPU, goal_lattices[i], 0, (int)goal_steps,
                       (float)goal_lambda))
-            rc = sweep_renderer(&run, RENDERER_LPV_CPU, goal_lattices[i], 0, &goal_steps, 1,
+            rc = sweep_renderer(&run, ILPV_BACKEND_CPU, goal_lattices[i], 0, &goal_steps, 1,
                                 &goal_lambda, 1);
     if (rc == 0) {
         mark_pareto(run.rows, run.n);
@@ -328,8 +328,8 @@ static int accuracy_sweep(int argc, char **argv)
     if (rc == 0) {
         /* The paper's comparison: 8 steps with lambda 0.8 against 8 plain steps, 32 cells. */
         int lat = 32;
-        const sweep_row *inc = find_row(run.rows, run.n, RENDERER_LPV_CPU, lat, 0, 8, 0.8f);
-        const sweep_row *plain = find_row(run.rows, run.n, RENDERER_LPV_CPU, lat, 0, 8, 0.0f);
+        const sweep_row *inc = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.8f);
+        const sweep_row *plain = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.0f);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
                "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
                "\"reference_seconds\":%.4g,\"reference_cached\":%s,"

@@ -86,15 +86,22 @@ static void moved_light(const acc_setup *s, const frame_params *a, float distanc
     b->lights[0].position[axis] += a->lights[0].position[axis] > centre ? -distance : distance;
 }
 
-/* Configuration k: the lambdas in turn, then the classic LPV; on the CPU backend. */
+/* Configuration k: the lambdas in turn, then the classic LPV; on the CPU backend. Its
+ * settings go into every frame of frames[0..n). */
 static renderer *config_renderer(acc_setup *s, const motion_options *m, int k, int *classic,
-                                 float *lambda)
+                                 float *lambda, frame_params **frames, int n)
 {
     *classic = k == m->lambda_count;
     *lambda = *classic ? 0.0f : (float)m->lambdas[k];
-    acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m->lattice,
+    acc_renderer_desc d = {.backend = ILPV_BACKEND_CPU, .lattice = m->lattice,
                            .classic = *classic};
-    return acc_renderer_create(s, &d);
+    renderer *r = acc_renderer_create(s, &d, frames[0]);
+    for (int i = 1; i < n; i++) {
+        frames[i]->rsm_size = frames[0]->rsm_size;
+        frames[i]->gi = frames[0]->gi;
+        memcpy(frames[i]->gi_settings, frames[0]->gi_settings, sizeof frames[0]->gi_settings);
+    }
+    return r;
 }
 
 static double lattice_difference(const lpv_volume *a, const lpv_volume *b)
@@ -144,9 +151,9 @@ int accuracy_move(int argc, char **argv)
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
         int classic;
         float lambda;
-        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda, (frame_params *[]){&a, &b}, 2);
         lpv_volume steady = {0};
-        if (!r || lpv_volume_init(&steady, renderer_get_lattice(r)->n, LPV_LIGHT_CHANNELS)) {
+        if (!r || lpv_volume_init(&steady, gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)))->n, LPV_LIGHT_CHANNELS)) {
             rc = 1;
             break;
         }
@@ -157,7 +164,7 @@ int accuracy_move(int argc, char **argv)
         b.reset_epoch = a.reset_epoch + 1;
         for (int f = 0; f < 2 * acc_warm_frames(lambda) + 2; f++)
             renderer_frame_pass(r, &b);
-        lpv_volume_copy(&steady, renderer_get_lpv(r));
+        lpv_volume_copy(&steady, gi_ilpv_volume(gi_ilpv_of(renderer_gi(r))));
         rc = renderer_eye_pass(r, &s.view, 1, &img);
         if (rc == 0) {
             memcpy(steady_indirect, img.indirect, px * 3 * sizeof(float));
@@ -174,7 +181,7 @@ int accuracy_move(int argc, char **argv)
             renderer_frame_pass(r, &b);
             if ((rc = renderer_eye_pass(r, &s.view, 1, &img)) != 0)
                 break;
-            double lat = lattice_difference(renderer_get_lpv(r), &steady);
+            double lat = lattice_difference(gi_ilpv_volume(gi_ilpv_of(renderer_gi(r))), &steady);
             double ind = steady_mean > 0
                              ? acc_linear_mae(img.indirect, steady_indirect, px) / steady_mean : 0;
             if (settle < 0 && lat < 0.05)
@@ -221,12 +228,12 @@ int accuracy_path(int argc, char **argv)
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
         int classic;
         float lambda;
-        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
+        frame_params fp = s.base;
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda, (frame_params *[]){&fp}, 1);
         if (!r) {
             rc = 1;
             break;
         }
-        frame_params fp = s.base;
         fp.lpv_steps = m.steps;
         fp.lambda_incr = lambda;
         fp.reset_epoch = (uint32_t)k + 1;

@@ -23,6 +23,7 @@
 #include "cluster/cluster_config.h"
 #include "cluster/cluster_keys.h"
 #include "cluster/params.h"
+#include "gi/gi_settings.h"
 #include "cluster/wire.h"
 
 typedef struct stranger {
@@ -66,7 +67,11 @@ static void send_wire(void *sock, const wire_msg *m)
 
 static void hello(stranger *s, void *sock, int bad_hash)
 {
-    wire_msg m = {.type = WIRE_HELLO, .config_hash = s->cfg.hash ^ (bad_hash ? 1u : 0u)};
+    static params_schema schema;
+    if (!schema.count)
+        gi_params_schema(&schema);
+    wire_msg m = {.type = WIRE_HELLO,
+                  .config_hash = params_session_hash(s->cfg.hash, &schema) ^ (bad_hash ? 1u : 0u)};
     snprintf(m.name, sizeof m.name, "%s", s->victim);
     send_wire(sock, &m);
 }
@@ -111,11 +116,13 @@ static void fake_master(stranger *s)
         fclose(f);
     }
     /* Parameters no node should take: a huge lattice and step count, a blinding light. */
-    params_store p;
-    params_init(&p);
-    params_set_i32(&p, PARAMS_LPV_RESOLUTION, 100000);
+    static params_schema schema;
+    static params_store p;
+    gi_params_schema(&schema);
+    params_init(&p, &schema);
+    params_set_i32(&p, params_schema_find(&schema, "lattice"), 100000);
     params_set_f32(&p, params_light_key(0, PARAMS_LIGHT_INTENSITY), 1e30f);
-    params_set_i32(&p, PARAMS_LPV_STEPS, 1 << 30);
+    params_set_i32(&p, params_schema_find(&schema, "steps"), 1 << 30);
     uint64_t v = params_commit(&p) + 1000000;
     uint8_t enc[PARAMS_ENCODED_MAX];
     size_t n = params_encode_snapshot(&p, enc, sizeof enc);

@@ -216,13 +216,16 @@ static void render(const scene *s, const frame_params *p, rendered *out)
     char err[512];
     glctx_desc gd = {.backend = GLCTX_EGL};
     assert_non_null(t.ctx = glctx_create(&gd, err, sizeof err));
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 256, .lattice_cells = 16};
+    frame_params q = *p;
+    gltest_setn(&q, "rsm", 256);
+    gltest_setn(&q, "lattice", 16);
+    gltest_set(&q, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = s, .first = &q};
     assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     renderer_view v;
     assert_int_equal(frame_view_scene_camera(&s->camera, s->camera.position, scene_far_plane(s),
                                              W, H, &v), 0);
-    renderer_frame_pass(t.r, p);
+    renderer_frame_pass(t.r, &q);
     renderer_image img;
     assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);
     size_t bytes = (size_t)W * H * 3 * sizeof(float);
@@ -434,7 +437,7 @@ static void test_view_without_light(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     renderer_view v;
     gltest_look_at(&v, t.scene.camera.position, t.scene.camera.target, t.scene.camera.yfov, 64, 48);
     /* The default room's emissive panel is out of this view's sight only if we look away:
@@ -443,8 +446,8 @@ static void test_view_without_light(void **state)
         memset(t.scene.materials[m].emissive, 0, sizeof t.scene.materials[m].emissive);
     renderer_destroy(t.r);
     char err[256];
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 64, .lattice_cells = 16};
+    gltest_setn(&t.params, "lattice", 16);
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .first = &t.params};
     assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     renderer_image img;
     for (int f = 0; f < 3; f++) {

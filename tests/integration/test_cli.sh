@@ -24,9 +24,23 @@ done
 for g in "Mode" "Cluster (--cluster)" "Scene and view" "Output" "GI: indirect light"; do
     grep -qF "$g" "$out/node" || fail "node --help lacks the group $g"
 done
-for g in "Cluster" "Nodes" "Output" "Input"; do
+for g in "Cluster" "Nodes" "Output" "Input" "GI: indirect light" "Display"; do
     grep -q "^$g" "$out/master" || fail "master --help lacks the group $g"
 done
+# Every GI and display option of the node (its GI group and the settings of its display
+# group) the master lists too, with the same argument: it sets them for every node.
+options() { # the options of the group whose title starts with $2 in help file $1
+    awk -v g="$2" '/^[^ ]/ { on = index($0, g) == 1 } on && /^  --/ { print $1, $2 }' "$1"
+}
+options "$out/node" "GI: indirect light" > "$out/node-gi"
+options "$out/node" "Display" | grep -v -e "^--hud" -e "^--wand" >> "$out/node-gi"
+[ "$(wc -l < "$out/node-gi")" -ge 20 ] || fail "the node lists only $(wc -l < "$out/node-gi") GI options"
+{ options "$out/master" "GI: indirect light"; options "$out/master" "Display"; } > "$out/master-gi"
+while read -r line; do
+    case $line in --threads*|--budget-ms*) continue ;; esac # the node's machine and its own choice
+    grep -qxF -- "$line" "$out/master-gi" || fail "master --help lacks the node's $line"
+done < "$out/node-gi"
+echo "the master lists all $(grep -vc -e '^--threads' -e '^--budget-ms' "$out/node-gi") GI and display options of the node"
 
 # Errors: exit 2, one line, naming what is wrong and what to use instead.
 one_line_error() { # expected-substring command...
@@ -44,6 +58,8 @@ one_line_error "did you mean --mask-background?" "$build/cavelight-compare" a b 
 one_line_error "did you mean --iterations?" "$build/cavelight-bench" input --iteration 5
 one_line_error "did you mean lpv?" "$build/cavelight-bench" lpx
 one_line_error "--gl works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --gl egl
+one_line_error "--lattice works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --lattice 8
+one_line_error "--vpl-count 5: expected a whole number in 64..4096" "$build/cavelight-master" --config x.json --vpl-count 5
 one_line_error "--name works only in cluster mode" "$build/cavelight-node" --standalone --name a
 one_line_error "--width needs a value" "$build/cavelight-node" --standalone --width
 one_line_error "--frames 0: expected a whole number in 1..1000000" "$build/cavelight-node" --standalone --frames 0

@@ -142,7 +142,7 @@ cat > "$out/c2.json" <<'JSON'
 JSON
 for scene in cams dark; do
     "$master" --config "$out/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --scene "$out/$scene.gltf" \
-        --frames 4 --report "$out/$scene.json" --node-args "--threads 1 --lattice 16 --rsm 64" \
+        --frames 4 --report "$out/$scene.json" --lattice 16 --rsm 64 --node-args "--threads 1" \
         --quiet 2> "$out/$scene-master.log" || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene failed"; }
     python3 - "$out/$scene.json" <<'PY' || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene: desync"; }
 import json, sys

@@ -17,7 +17,18 @@
 #include <zmq.h>
 #include <cmocka.h>
 
+#include "gi/gi_settings.h"
+
 #include "cluster_master.h"
+
+/* What a node of this build says in HELLO for cfg (params_session_hash()). */
+static uint64_t hello_hash(const cluster_config *cfg)
+{
+    static params_schema schema;
+    if (!schema.count)
+        gi_params_schema(&schema);
+    return params_session_hash(cfg->hash, &schema);
+}
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
@@ -112,7 +123,7 @@ static void start_node(fake_node *n, const char *name, uint64_t checksum)
     memset(n, 0, sizeof *n);
     n->name = name;
     n->checksum = checksum;
-    n->config_hash = cfg.hash;
+    n->config_hash = hello_hash(&cfg);
     pthread_create(&n->thread, NULL, fake_node_main, n);
 }
 
@@ -224,7 +235,7 @@ static void test_config_mismatch_refused(void **state)
     fake_node c;
     memset(&c, 0, sizeof c);
     c.name = "c";
-    c.config_hash = cfg.hash ^ 1;
+    c.config_hash = hello_hash(&cfg) ^ 1;
     pthread_create(&c.thread, NULL, fake_node_main, &c);
     for (int i = 0; i < 100 && c.byes == 0; i++)
         cluster_master_wait_nodes(master, 3, 10);
@@ -355,7 +366,7 @@ static void test_shutdown_answers_hello_with_bye(void **state)
     assert_non_null(m);
     assert_int_equal(cluster_master_endpoint(m, ep, sizeof ep), 0);
     void *a = open_dealer_to(ep, "a"), *b = open_dealer_to(ep, "b");
-    wire_msg hello = {.type = WIRE_HELLO, .config_hash = cfg.hash};
+    wire_msg hello = {.type = WIRE_HELLO, .config_hash = hello_hash(&cfg)};
     send_wire(a, &hello, "a");
     send_wire(b, &hello, "b");
     assert_int_equal(cluster_master_wait_nodes(m, 2, 3000), 2);

@@ -51,8 +51,8 @@ static const struct { int type; const char *hex; } golden[] = {
          "43564c54010007000c000000c91c79d9036e30312a00000000000000"},
 };
 /* A protocol 1 FRAME carrying a delta: head pose, time, lambda_incr and light 0's colour,
- * in key order. Light 0's colour is key 0x12 there since PARAMS_PATTERN (the calibration
- * pattern) came before the per-light keys; protocol 2's gi key moves it to 0x13. */
+ * in key order. The keys of lambda_incr (6) and light 0's colour (0x12) have moved since
+ * (protocol 5 numbers keys by a schema: the core keys, the lights, then the settings). */
 static const char *golden_frame_delta =
     "43564c5401000300740000007cee990f02000000000000000100000000000000"
     "6000000000000000803f000000000000000000000000000000000000803f0000"
@@ -84,13 +84,16 @@ static void test_encoding_unchanged(void **state)
         wire_msg m;
         assert_int_equal(wire_decode(got, n, &m), WIRE_OK);
     }
+    static params_schema schema;
     static params_store s;
-    params_init(&s);
+    params_schema_init(&schema);
+    params_init(&s, &schema);
     params_commit(&s);
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.25f, 1.7f, -0.5f, 1};
+    int lambda = params_schema_find(&schema, "lambda"), color_key = params_light_key(0, PARAMS_LIGHT_COLOR);
     params_set_mat4(&s, PARAMS_HEAD, head);
     params_set_f64(&s, PARAMS_TIME, 1.0 / 30);
-    params_set_f32(&s, PARAMS_LAMBDA_INCR, 0.625f);
+    params_set_f32(&s, lambda, 0.625f);
     const float color[3] = {0.5f, 0.25f, 1};
     params_set(&s, params_light_key(0, PARAMS_LIGHT_COLOR), color, sizeof color);
     uint64_t v = params_commit(&s);
@@ -103,12 +106,15 @@ static void test_encoding_unchanged(void **state)
     assert_memory_equal(got, want, 4);
     assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
     assert_memory_equal(got + 6, want + 6, 6);
-    /* Every byte of the payload but light 0's key, which moved up by protocol 2's gi key
-     * protocol 3's vpl_count and vpl_seed and protocol 4's vpl_selection. */
-    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 14 - WIRE_HEADER_SIZE);
-    assert_int_equal(got[n - 14] | got[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
-    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 4);
-    assert_memory_equal(got + n - 12, want + n - 12, 12);
+    /* The same records, in key order: versions, head and time (keys 0 and 3) alike; then
+     * protocol 1 had lambda (6) before the colour (0x12), protocol 5 the colour first. */
+    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 20 - WIRE_HEADER_SIZE);
+    assert_int_equal(want[n - 20] | want[n - 19] << 8, 6);
+    assert_int_equal(want[n - 14] | want[n - 13] << 8, 0x12);
+    assert_int_equal(got[n - 20] | got[n - 19] << 8, color_key);
+    assert_memory_equal(got + n - 18, want + n - 12, 12);
+    assert_int_equal(got[n - 6] | got[n - 5] << 8, lambda);
+    assert_memory_equal(got + n - 4, want + n - 18, 4);
 }
 
 static void test_round_trip_every_type(void **state)
