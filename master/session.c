@@ -66,6 +66,9 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     if (d->vpl_count > 0)
         s->frame.vpl_count = d->vpl_count;
     s->frame.vpl_selection = d->vpl_selection;
+    script_init(&s->script, d->config);
+    if (!d->input) /* the lamp of the scripted path is what --exposure auto must see */
+        script_frame(&s->script, 0.0, &s->frame);
     if (d->exposure > 0)
         s->frame.exposure = d->exposure;
     if (d->exposure_auto) {
@@ -91,7 +94,6 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
-    script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
         input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
@@ -175,6 +177,14 @@ static void print_poses(session *s, const input_state *ist)
     fflush(stdout);
 }
 
+/* The session's frame into the store: only the keys whose values changed get the new
+ * version. */
+static void publish(session *s, params_store *store)
+{
+    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
+    params_set_from_frame(store, &s->frame);
+}
+
 /* Live or recorded input through the interaction layouts into the store. Returns
  * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
 static session_step apply_input(session *s, params_store *store)
@@ -194,8 +204,7 @@ static session_step apply_input(session *s, params_store *store)
         print_poses(s, &ist);
     interaction_update(&s->ia, &ist, ist.dt, &s->frame);
     s->frame.time = ist.time;
-    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
-    params_set_from_frame(store, &s->frame);
+    publish(s, store);
     return SESSION_FRAME_DONE;
 }
 
@@ -238,7 +247,8 @@ session_step session_frame(session *s, cluster_frame_result *result)
             return step;
     } else {
         double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
-        script_apply(&s->script, t, store);
+        script_frame(&s->script, t, &s->frame);
+        publish(s, store);
     }
     if (cluster_master_frame(s->m, result) != 0)
         return SESSION_NO_NODES;
