@@ -10,6 +10,7 @@
 
 #include "base/clock.h"
 #include "input.h"
+#include "input_config.h"
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
