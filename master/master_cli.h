@@ -26,6 +26,8 @@ typedef struct master_options {
     vpl_selection vpl_selection; /* vpl's selection rule (0 = by flux) */
     float exposure;             /* 0 = the frame default */
     int exposure_auto;          /* --exposure auto */
+    int check;                  /* --check: validate the config and exit (check.h) */
+    int strict;                 /* unknown keys in the cluster or input config are errors */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

@@ -82,6 +82,12 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     return 0;
 }
 
+static void input_warning(void *user, const char *line)
+{
+    if (!((const session_desc *)user)->quiet)
+        fprintf(stderr, "cavelight-master: warning: %s\n", line);
+}
+
 session *session_create(const session_desc *d, char *err, size_t errlen)
 {
     session *s = xcalloc(1, sizeof *s); /* large (the statistics): never on the stack */
@@ -96,7 +102,8 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
     if (d->input) {
-        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
+        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir,
+                            .strict = d->strict, .warn = input_warning, .warn_user = (void *)d};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))

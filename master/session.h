@@ -43,6 +43,7 @@ typedef struct session_desc {
     vpl_selection vpl_selection; /* their selection rule (0 = by flux) */
     float exposure;         /* > 0: the nodes' exposure; 0: the frame default (1) */
     int exposure_auto;      /* 1: exposure_from_light() of the scene (frame/exposure.h) */
+    int strict;             /* 1: unknown keys in the input config are errors */
 } session_desc;
 
 typedef enum session_step {
