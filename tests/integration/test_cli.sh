@@ -18,6 +18,12 @@ for prog in cavelight-master cavelight-node cavelight-bench cavelight-compare; d
     "$build/$prog" -h | cmp -s - "$out/help" || fail "$prog -h differs from --help"
     echo "$prog --help: $(grep -c '^  --' "$out/help") options"
 done
+# A subcommand's own help: the accuracy sweep's options (and the common ones) with defaults.
+"$build/cavelight-bench" accuracy sweep --help > "$out/sweep" 2> "$out/err" || fail "accuracy sweep --help exited $?"
+[ ! -s "$out/err" ] && grep -q "^usage: cavelight-bench accuracy sweep" "$out/sweep" &&
+  grep -q "^  --lattices N,N" "$out/sweep" && grep -q "(default: 16,32,64,fit)" "$out/sweep" &&
+  grep -q "^  --scene" "$out/sweep" \
+  || fail "accuracy sweep --help: $(cat "$out/sweep" "$out/err")"
 # The groups the node and the master print.
 "$build/cavelight-node" --help > "$out/node"
 "$build/cavelight-master" --help > "$out/master"
@@ -43,6 +49,9 @@ one_line_error "did you mean --spawn-local?" "$build/cavelight-master" --config 
 one_line_error "did you mean --mask-background?" "$build/cavelight-compare" a b --mask-backgrund
 one_line_error "did you mean --iterations?" "$build/cavelight-bench" input --iteration 5
 one_line_error "did you mean lpv?" "$build/cavelight-bench" lpx
+one_line_error "--lambdas 0.5,1.5: expected 1..16 comma-separated numbers in 0..0.999" \
+  "$build/cavelight-bench" accuracy sweep --lambdas 0.5,1.5
+one_line_error "did you mean --lattices?" "$build/cavelight-bench" accuracy sweep --lattice 8
 one_line_error "--gl works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --gl egl
 one_line_error "--name works only in cluster mode" "$build/cavelight-node" --standalone --name a
 one_line_error "--width needs a value" "$build/cavelight-node" --standalone --width
