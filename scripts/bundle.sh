@@ -8,7 +8,8 @@
 #
 # Left out, because they must come from the host:
 #   glibc (libc, libm, libdl, libpthread, librt, libresolv, the loader ld-linux): the
-#     programs run under the host's loader, which only works with its own C library;
+#     programs run under the host's loader, which only works with its own C library (so
+#     the host's glibc must be at least as new as this machine's: `ldd --version`);
 #   the GL vendor libraries (glvnd: libEGL, libGL, libGLX, libOpenGL, libGLdispatch, libGLES):
 #     the host's GPU driver installs them and registers its GPU there (NVIDIA's, Mesa's);
 #     a copy from this machine would not know that driver;
