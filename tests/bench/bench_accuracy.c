@@ -254,40 +254,58 @@ static int list_option(const char *name, const char *text, double lo, double hi,
     return n < 1 ? 0 : n;
 }
 
-static int accuracy_sweep(int argc, char **argv)
+/* The sweep's command line. */
+typedef struct sweep_options {
+    acc_options o;
+    double lattices[MAX_LIST], steps[MAX_LIST], lambdas[MAX_LIST], backends[2];
+    int nl, ns, nlam, nb, gl_max_lattice, timing, classic, goal;
+} sweep_options;
+
+/* 0, 1 after --help (exit 0), -1 after one line on stderr (exit 2). */
+static int sweep_parse(int argc, char **argv, sweep_options *w)
 {
-    acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
-                     .ref_samples = 64};
-    double lattices[MAX_LIST], steps[MAX_LIST], lambdas[MAX_LIST];
+    *w = (sweep_options){.o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
+                               .ref_samples = 64},
+                         .gl_max_lattice = 32, .timing = 3, .classic = 1, .goal = 1};
     const char *lattice_text = "16,32,64,fit", *steps_text = "1,2,4,8,16,32", *lambda_text = "0,0.5,0.8,0.9";
-    int backend_choice = 2, gl_max_lattice = 32, timing = 3, classic = 1, goal = 1;
+    int backend_choice = 2;
     static const char *const backend_names[] = {"cpu", "gl", "cpu,gl"};
     const bench_option opts[] = {
-        ACC_COMMON_OPTIONS(&o),
+        ACC_COMMON_OPTIONS(&w->o),
         BENCH_TEXT("lattices", "N,N,..", "cells along the longest axis; fit: a 32^3 budget fitted "
                    "to\nthe scene's shape", &lattice_text),
         BENCH_TEXT("steps", "S,S,..", "propagation steps per frame", &steps_text),
         BENCH_TEXT("lambdas", "L,L,..", "lambda_incr values, each in [0, 1)", &lambda_text),
         BENCH_CHOICE("backends", "cpu|gl|cpu,gl", "the LPV backends to sweep", &backend_choice, backend_names),
-        BENCH_INT("gl-max-lattice", "N", "the GL backend only up to this lattice", &gl_max_lattice, 2, 1024),
-        BENCH_INT("timing-frames", "N", "frames timed after the steady state", &timing, 1, 32),
-        BENCH_INT("classic", "0|1", "also the classic accumulating LPV", &classic, 0, 1),
-        BENCH_INT("goal", "0|1", "also issue 10's goal setting at 16, 32 and 64 cells", &goal, 0, 1),
+        BENCH_INT("gl-max-lattice", "N", "the GL backend only up to this lattice", &w->gl_max_lattice, 2, 1024),
+        BENCH_INT("timing-frames", "N", "frames timed after the steady state", &w->timing, 1, 32),
+        BENCH_INT("classic", "0|1", "also the classic accumulating LPV", &w->classic, 0, 1),
+        BENCH_INT("goal", "0|1", "also issue 10's goal setting at 16, 32 and 64 cells", &w->goal, 0, 1),
     };
-    switch (BENCH_PARSE("accuracy sweep", "every (backend, lattice, steps, lambda_incr) of the lists "
-                        "against the path-traced reference,\n  each run to its steady state "
-                        "(scripts/chart.sh runs it)", opts, argc, argv)) {
-    case 0: break;
-    case 1: return 0;
-    default: return 2;
-    }
-    int nl = list_option("lattices", lattice_text, 2, 512, 1, lattices);
-    int ns = nl ? list_option("steps", steps_text, 0, 1024, 0, steps) : 0;
-    int nlam = ns ? list_option("lambdas", lambda_text, 0, 0.999, 0, lambdas) : 0;
-    if (!nlam)
-        return 2;
-    double backends[2] = {backend_choice == 1, 1};
-    int nb = backend_choice == 2 ? 2 : 1;
+    int rc = BENCH_PARSE("accuracy sweep", "every (backend, lattice, steps, lambda_incr) of the lists "
+                         "against the path-traced reference,\n  each run to its steady state "
+                         "(scripts/chart.sh runs it)", opts, argc, argv);
+    if (rc != 0)
+        return rc;
+    w->nl = list_option("lattices", lattice_text, 2, 512, 1, w->lattices);
+    w->ns = w->nl ? list_option("steps", steps_text, 0, 1024, 0, w->steps) : 0;
+    w->nlam = w->ns ? list_option("lambdas", lambda_text, 0, 0.999, 0, w->lambdas) : 0;
+    w->backends[0] = backend_choice == 1; /* cpu, gl or both (cpu first) */
+    w->backends[1] = 1;
+    w->nb = backend_choice == 2 ? 2 : 1;
+    return w->nlam ? 0 : -1;
+}
+
+static int accuracy_sweep(int argc, char **argv)
+{
+    sweep_options w;
+    int parsed = sweep_parse(argc, argv, &w);
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
+    const acc_options o = w.o;
+    const double *lattices = w.lattices, *steps = w.steps, *lambdas = w.lambdas, *backends = w.backends;
+    int nl = w.nl, ns = w.ns, nlam = w.nlam, nb = w.nb, gl_max_lattice = w.gl_max_lattice;
+    int timing = w.timing, classic = w.classic, goal = w.goal;
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)
         return 1;
