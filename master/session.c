@@ -68,12 +68,14 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         s->frame.vpl_count = d->vpl_count;
     s->frame.vpl_selection = d->vpl_selection;
     script_init(&s->script, d->config);
-    if (!d->input) /* the lamp of the scripted path is what --exposure auto must see */
-        script_frame(&s->script, 0.0, &s->frame);
     if (d->exposure > 0)
         s->frame.exposure = d->exposure;
     if (d->exposure_auto) {
-        s->frame.exposure = exposure_from_light(&s->frame, &sc);
+        /* The lights of the first frame: the scripted path's lamp when it plays. */
+        frame_params first = s->frame;
+        if (!d->input)
+            script_frame(&s->script, 0.0, &first);
+        s->frame.exposure = exposure_from_light(&first, &sc);
         if (!d->quiet)
             fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
     }
