@@ -336,12 +336,14 @@ static void note_unknown(void *user, const char *field, const char *key, const c
     char words[512], line[1024];
     json_keys_describe(key, nearest, valid, words, sizeof words);
     snprintf(line, sizeof line, "input config %s: field %s: %s", u->path, field, words);
-    if (u->desc->strict && u->count == 0)
-        snprintf(u->err, u->errlen, "%s", line);
-    if (u->desc->warn)
+    if (u->desc->strict) { /* an error: the first one, and how many more */
+        if (u->count == 0)
+            snprintf(u->err, u->errlen, "%s", line);
+    } else if (u->desc->warn) {
         u->desc->warn(u->desc->warn_user, line);
-    else if (!u->desc->strict)
+    } else {
         fprintf(stderr, "warning: %s\n", line);
+    }
     u->count++;
 }
 
@@ -394,6 +396,10 @@ static int parse_config(const input_desc *desc, parsed_config *p, char *err, siz
     if (rc == 0) {
         unknown_ctx u = {.desc = desc, .path = desc->path, .err = err, .errlen = errlen};
         json_keys_unknown(c.keys, p->root, note_unknown, &u);
+        if (desc->strict && u.count > 1) {
+            size_t used = strlen(err);
+            snprintf(err + used, errlen - used, " (and %d more unknown keys)", u.count - 1);
+        }
         rc = desc->strict && u.count ? -1 : 0;
     }
     json_keys_destroy(c.keys);

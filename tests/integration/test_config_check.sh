@@ -78,4 +78,8 @@ rc=0; "$master" --config "$tmp/bad.json" --bind 'tcp://127.0.0.1:*' --scene defa
 [ $rc = 1 ] && grep -q "2 unknown keys in .*bad.json: refused (--strict)" "$tmp/strict.log" \
   || fail "--strict: rc $rc, $(cat "$tmp/strict.log")"
 [ ! -e "$tmp/strict/logs" ] || fail "--strict started nodes"
+"$master" --config "$tmp/good.json" --bind 'tcp://127.0.0.1:*' --render none --spawn-local --frames 2 \
+  --input "$tmp/input.json" --strict --quiet --out "$tmp/strict_in" 2> "$tmp/strict_in.log" && fail "--strict took the input config"
+[ "$(wc -l < "$tmp/strict_in.log")" = 1 ] && grep -q "sources\[0\].prot: unknown key \"prot\" (did you mean \"port\"?) (and 1 more unknown keys)" \
+  "$tmp/strict_in.log" || fail "--strict input config: $(cat "$tmp/strict_in.log")"
 echo "unknown keys: warned in a session, refused with --strict"
