@@ -24,6 +24,11 @@ done
   grep -q "^  --lattices N,N" "$out/sweep" && grep -q "(default: 16,32,64,fit)" "$out/sweep" &&
   grep -q "^  --scene" "$out/sweep" \
   || fail "accuracy sweep --help: $(cat "$out/sweep" "$out/err")"
+for e in move path savings; do
+  "$build/cavelight-bench" accuracy $e --help > "$out/exp" 2> "$out/err" && [ ! -s "$out/err" ] &&
+    grep -q "^usage: cavelight-bench accuracy $e" "$out/exp" && grep -q "^  --lattice N" "$out/exp" \
+    || fail "accuracy $e --help: $(cat "$out/exp" "$out/err")"
+done
 # The groups the node and the master print.
 "$build/cavelight-node" --help > "$out/node"
 "$build/cavelight-master" --help > "$out/master"
@@ -52,6 +57,7 @@ one_line_error "did you mean lpv?" "$build/cavelight-bench" lpx
 one_line_error "--lambdas 0.5,1.5: expected 1..16 comma-separated numbers in 0..0.999" \
   "$build/cavelight-bench" accuracy sweep --lambdas 0.5,1.5
 one_line_error "did you mean --lattices?" "$build/cavelight-bench" accuracy sweep --lattice 8
+one_line_error "--distance -1: expected a positive number" "$build/cavelight-bench" accuracy move --distance -1
 one_line_error "--gl works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --gl egl
 one_line_error "--name works only in cluster mode" "$build/cavelight-node" --standalone --name a
 one_line_error "--width needs a value" "$build/cavelight-node" --standalone --width
