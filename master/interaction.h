@@ -21,7 +21,7 @@
 
 #include <stdint.h>
 #include "frame/frame_params.h"
-#include "input.h"
+#include "input_state.h"
 
 typedef enum interaction_layout {
     INTERACTION_NAVIGATION = 0,

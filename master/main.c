@@ -6,6 +6,7 @@
 #include "base/clock.h"
 #include "base/folder.h"
 #include "cluster_auth.h"
+#include "check.h"
 #include "cluster_master.h"
 #include "master_cli.h"
 #include "launch.h"
@@ -123,6 +124,18 @@ static int keygen(const cluster_config *cfg)
     return 0;
 }
 
+/* Keys no section of the config reads: warnings, or errors with --strict. 0, or -1. */
+static int unknown_keys(const master_options *o, const cluster_config *cfg)
+{
+    for (int i = 0; i < cfg->unknown_key_count && i < CLUSTER_MAX_UNKNOWN_KEYS; i++)
+        if (o->strict || !o->quiet)
+            fprintf(stderr, "cavelight-master: %s%s\n", o->strict ? "" : "warning: ", cfg->unknown_keys[i]);
+    if (o->strict && cfg->unknown_key_count)
+        fprintf(stderr, "cavelight-master: %d unknown key%s in %s: refused (--strict)\n", cfg->unknown_key_count,
+                cfg->unknown_key_count == 1 ? "" : "s", cfg->path);
+    return o->strict && cfg->unknown_key_count ? -1 : 0;
+}
+
 static int master_run(const master_options *o)
 {
     static cluster_config cfg;
@@ -132,6 +145,8 @@ static int master_run(const master_options *o)
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
+    if (unknown_keys(o, &cfg) != 0)
+        return 1;
     if (o->keygen)
         return keygen(&cfg);
     for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
@@ -149,7 +164,7 @@ static int master_run(const master_options *o)
                        .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .settings = &settings,
-                       .exposure_auto = o->exposure_auto};
+                       .exposure_auto = o->exposure_auto, .strict = o->strict};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);
@@ -203,6 +218,6 @@ int main(int argc, char **argv)
     switch (master_cli_parse(argc, argv, &o)) {
     case CLI_HELP: return 0;
     case CLI_ERROR: return 2;
-    default: return master_run(&o);
+    default: return o.check ? check_run(&o) : master_run(&o);
     }
 }

@@ -22,6 +22,7 @@ enum id {
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET,
     O_INPUT, O_RECORD,
     O_PATTERN, O_PRINT_POSES,
+    O_CHECK, O_STRICT,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
 
@@ -34,6 +35,10 @@ static const cli_option options[] = {
      "drop a node not READY this long after FRAME"},
     {O_KEYGEN, "keygen", NULL, NULL, G_CLUSTER, 0,
      "write CURVE key pairs (master and every node) into the\nconfig's security.keys folder, then exit"},
+    {O_CHECK, "check", NULL, NULL, G_CLUSTER, 0,
+     "validate the config and exit, starting nothing: its keys,\nthe scene, the hosts, the CURVE keys, --input; one line\nper problem, exit 0 or 2"},
+    {O_STRICT, "strict", NULL, NULL, G_CLUSTER, 0,
+     "a key no part of the cluster or input config reads\n(a misspelling) is an error, not a warning"},
     {O_SPAWN_LOCAL, "spawn-local", NULL, NULL, G_NODES, 0, "start every node on this machine"},
     {O_SPAWN_REMOTE, "spawn-remote", NULL, NULL, G_NODES, 0,
      "start every node on its host through the config's launch\ncommand (ssh by default)"},
@@ -134,6 +139,8 @@ static const char *set(void *user, int id, const char *v)
     case O_RECORD: o->record = v; break;
     case O_PATTERN: o->pattern = 1; break;
     case O_PRINT_POSES: o->print_poses = 1; break;
+    case O_CHECK: o->check = 1; break;
+    case O_STRICT: o->strict = 1; break;
     case O_SETTING: break;
     }
     return why;
@@ -149,7 +156,8 @@ cli_result master_cli_parse(int argc, char **argv, master_options *o)
     cli_program p = {
         .name = "cavelight-master",
         .usage = "usage: cavelight-master --config FILE [--spawn-local | --spawn-remote] [options]\n"
-                 "       cavelight-master --config FILE --keygen\n",
+                 "       cavelight-master --config FILE --keygen\n"
+                 "       cavelight-master --config FILE --check [--input FILE] [--scene FILE]\n",
         .groups = groups, .group_count = G_COUNT,
         .options = all, .count = count,
         .epilogue = "Without --spawn-*, nodes are started by hand or as services (docs/deploy.md)\n"

@@ -28,6 +28,8 @@ typedef struct master_options {
     int setting_count;
     const char *setting_name[MASTER_MAX_SETTINGS], *setting_value[MASTER_MAX_SETTINGS];
     int exposure_auto;          /* --exposure auto */
+    int check;                  /* --check: validate the config and exit (check.h) */
+    int strict;                 /* unknown keys in the cluster or input config are errors */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

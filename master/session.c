@@ -10,6 +10,7 @@
 
 #include "base/clock.h"
 #include "input.h"
+#include "input_config.h"
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
@@ -65,14 +66,25 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     s->frame.pattern = d->pattern;
+    script_init(&s->script, d->config);
     if (d->exposure_auto) {
-        s->frame.exposure = exposure_from_light(&s->frame, &sc);
+        /* The lights of the first frame: the scripted path's lamp when it plays. */
+        frame_params first = s->frame;
+        if (!d->input)
+            script_frame(&s->script, 0.0, &first);
+        s->frame.exposure = exposure_from_light(&first, &sc);
         if (!d->quiet)
             fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
     }
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     return 0;
+}
+
+static void input_warning(void *user, const char *line)
+{
+    if (!((const session_desc *)user)->quiet)
+        fprintf(stderr, "cavelight-master: warning: %s\n", line);
 }
 
 session *session_create(const session_desc *d, char *err, size_t errlen)
@@ -88,9 +100,9 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
-    script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
-        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
+        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir,
+                            .strict = d->strict, .warn = input_warning, .warn_user = (void *)d};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))
@@ -172,6 +184,14 @@ static void print_poses(session *s, const input_state *ist)
     fflush(stdout);
 }
 
+/* The session's frame into the store: only the keys whose values changed get the new
+ * version. */
+static void publish(session *s, params_store *store)
+{
+    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
+    params_set_from_frame(store, &s->frame);
+}
+
 /* Live or recorded input through the interaction layouts into the store. Returns
  * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
 static session_step apply_input(session *s, params_store *store)
@@ -191,8 +211,7 @@ static session_step apply_input(session *s, params_store *store)
         print_poses(s, &ist);
     interaction_update(&s->ia, &ist, ist.dt, &s->frame);
     s->frame.time = ist.time;
-    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
-    params_set_from_frame(store, &s->frame);
+    publish(s, store);
     return SESSION_FRAME_DONE;
 }
 
@@ -235,7 +254,8 @@ session_step session_frame(session *s, cluster_frame_result *result)
             return step;
     } else {
         double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
-        script_apply(&s->script, t, store);
+        script_frame(&s->script, t, &s->frame);
+        publish(s, store);
     }
     if (cluster_master_frame(s->m, result) != 0)
         return SESSION_NO_NODES;

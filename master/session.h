@@ -42,6 +42,7 @@ typedef struct session_desc {
     const frame_params *settings; /* the GI and display settings the session starts with
                                      (master_settings()); NULL: the defaults */
     int exposure_auto;      /* 1: exposure_from_light() of the scene (frame/exposure.h) */
+    int strict;             /* 1: unknown keys in the input config are errors */
 } session_desc;
 
 typedef enum session_step {

@@ -1,8 +1,8 @@
 /* gl_functions: the GL 4.3 core entry points the node uses, as one table.
  *
  * Every GL call goes through a gl_functions table filled from the active context
- * backend's GetProcAddress (DESIGN.md pitfalls: libOpenGL and libOSMesa in one program
- * would otherwise route direct glXxx() calls to whichever library the linker saw first).
+ * backend's GetProcAddress: libOpenGL and libOSMesa in one program would otherwise route
+ * direct glXxx() calls to whichever library the linker saw first.
  * Call as gl->Clear(...). GL_FUNCTIONS is an X-macro list: X(type, name). */
 #ifndef CAVELIGHT_GL_FUNCTIONS_H
 #define CAVELIGHT_GL_FUNCTIONS_H

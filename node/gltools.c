@@ -8,9 +8,11 @@
 
 #include "base/textfile.h"
 
-/* CAVELIGHT_SHADERS; else the source tree's shaders/ when it is there; else
- * PREFIX/share/cavelight/shaders beside an installed PREFIX/bin/cavelight-node, as
- * scripts/install_nodes.py lays a render host out. */
+/* Where the shaders are, in this order: CAVELIGHT_SHADERS; the installed folder beside the
+ * program (PREFIX/bin/cavelight-node -> PREFIX/CAVELIGHT_SHADERS_FROM_BIN, the layout of
+ * `cmake --install`, scripts/install_nodes.py and scripts/bundle.sh) when it holds them; the
+ * source tree the program was built from (a build folder's programs). An installed program
+ * thus never reads a source tree that may have moved on. */
 static void shader_dir(char *dir, size_t cap)
 {
     const char *env = getenv("CAVELIGHT_SHADERS");
@@ -18,18 +20,17 @@ static void shader_dir(char *dir, size_t cap)
         snprintf(dir, cap, "%s", env);
         return;
     }
+    char exe[900], probe[1100]; /* exe, the suffix and the file name fit */
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    char *slash = n > 0 ? (exe[n] = 0, strrchr(exe, '/')) : NULL;
+    if (slash) {
+        *slash = 0;
+        snprintf(dir, cap, "%s/%s", exe, CAVELIGHT_SHADERS_FROM_BIN);
+        snprintf(probe, sizeof probe, "%s/common.glsl", dir);
+        if (access(probe, R_OK) == 0)
+            return;
+    }
     snprintf(dir, cap, "%s", CAVELIGHT_SHADER_DIR);
-    char exe[992], probe[1100]; /* exe and the suffix fit a 1024-byte dir */
-    snprintf(probe, sizeof probe, "%s/common.glsl", dir);
-    ssize_t n = access(probe, R_OK) == 0 ? -1 : readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0)
-        return;
-    exe[n] = 0;
-    char *slash = strrchr(exe, '/');
-    if (!slash)
-        return;
-    *slash = 0;
-    snprintf(dir, cap, "%s/../share/cavelight/shaders", exe);
 }
 
 /* name under the shader folder, or under its gi/ folder (a GI method's own shaders: the
@@ -47,8 +48,9 @@ static char *read_text(const char *name, char *err, size_t errlen)
     char why[128];
     char *s = textfile_read(path, NULL, why, sizeof why);
     if (!s)
-        snprintf(err, errlen, "shader %s: %s; set CAVELIGHT_SHADERS to the shaders/ folder",
-                 path, why);
+        snprintf(err, errlen, "shader %s: %s; set CAVELIGHT_SHADERS to the shaders/ folder (looked in "
+                 "CAVELIGHT_SHADERS, then %s beside the program, then %s)", path, why,
+                 CAVELIGHT_SHADERS_FROM_BIN, CAVELIGHT_SHADER_DIR);
     return s;
 }
 

@@ -46,6 +46,14 @@ static int distance(const char *a, const char *b)
     return row[lb];
 }
 
+static size_t common_start(const char *a, const char *b)
+{
+    size_t i = 0;
+    while (a[i] && a[i] == b[i])
+        i++;
+    return i;
+}
+
 const char *cli_nearest(const char *word, const char *const *candidates, int n)
 {
     const char *best = NULL;
@@ -55,7 +63,9 @@ const char *cli_nearest(const char *word, const char *const *candidates, int n)
         /* A name typed too long ("--framesx") is close. */
         if (strncmp(candidates[i], word, strlen(candidates[i])) == 0)
             d = d < 1 ? d : 1;
-        if (d < best_d) {
+        /* A tie goes to the longer common start: slips come late in a word more often
+         * ("scren" is "screens", not "scene"). */
+        if (d < best_d || (d == best_d && common_start(word, candidates[i]) > common_start(word, best))) {
             best_d = d;
             best = candidates[i];
         }

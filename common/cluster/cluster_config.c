@@ -7,12 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json_keys.h"
 #include "base/textfile.h"
 #include "frame/frame_view.h"
 #include "frame/screen_fit.h"
 #include "cluster/wire.h"
 
 typedef struct parse_ctx {
+    json_keys *keys; /* every member is read through it: the unknown ones are reported */
     const char *path;
     char *err;
     size_t errlen;
@@ -56,7 +58,7 @@ int cluster_stereo_parse(const char *s) { return lookup(s, stereo_names, 5); }
 static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                        char *out, size_t cap, const char *def)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (!def)
             fail(c, field, "missing (a string is required)");
@@ -78,7 +80,7 @@ static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const ch
 static double get_number(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                          double def, int required, double lo, double hi)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (required)
             fail(c, field, "missing (a number is required)");
@@ -116,7 +118,7 @@ static int get_vector(parse_ctx *c, const cJSON *v, const char *field, float *ou
 static int get_enum(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                     const char *const *names, int n, int def)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v)
         return def;
     int i = cJSON_IsString(v) ? lookup(v->valuestring, names, n) : -1;
@@ -169,13 +171,13 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         return;
     }
     obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", FRAME_VIEW_EYE_SEPARATION, 0, 0, 0.2);
-    const cJSON *h = cJSON_GetObjectItemCaseSensitive(o, "head_to_eye");
+    const cJSON *h = json_keys_get(c->keys, o, "head_to_eye");
     if (h)
         get_vector(c, h, "observer.head_to_eye", obs->head_to_eye, 3, -1, 1);
-    const cJSON *home = cJSON_GetObjectItemCaseSensitive(o, "home");
+    const cJSON *home = json_keys_get(c->keys, o, "home");
     if (home)
         get_vector(c, home, "observer.home", obs->home, 3, -1e4, 1e4);
-    const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "tracker_to_cave");
+    const cJSON *t = json_keys_get(c->keys, o, "tracker_to_cave");
     if (t) {
         if (!cJSON_IsObject(t)) {
             fail(c, "observer.tracker_to_cave", "must be an object with translation, rotation_deg, scale");
@@ -183,9 +185,9 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         }
         float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
         const cJSON *v;
-        if ((v = cJSON_GetObjectItemCaseSensitive(t, "translation")))
+        if ((v = json_keys_get(c->keys, t, "translation")))
             get_vector(c, v, "observer.tracker_to_cave.translation", tr, 3, -1e4, 1e4);
-        if ((v = cJSON_GetObjectItemCaseSensitive(t, "rotation_deg")))
+        if ((v = json_keys_get(c->keys, t, "rotation_deg")))
             get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
         float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
         rigid_transform(tr, rot, scale, obs->tracker_to_cave);
@@ -259,7 +261,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
     float *dst[3] = {scr->bottom_left, scr->bottom_right, scr->top_left};
     for (int k = 0; k < 3; k++) {
         snprintf(field, sizeof field, "screens[%d].%s", index, corner[k]);
-        const cJSON *v = cJSON_GetObjectItemCaseSensitive(s, corner[k]);
+        const cJSON *v = json_keys_get(c->keys, s, corner[k]);
         if (!v) {
             fail(c, field, "missing (three corners in CAVE space are required)");
             return;
@@ -269,7 +271,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
     }
     /* Measured corners: the nearest rectangle, within the tolerance. */
     float top_right[3];
-    const cJSON *tr = cJSON_GetObjectItemCaseSensitive(s, "top_right");
+    const cJSON *tr = json_keys_get(c->keys, s, "top_right");
     snprintf(field, sizeof field, "screens[%d].top_right", index);
     if (tr && get_vector(c, tr, field, top_right, 3, -1e4, 1e4))
         return;
@@ -293,7 +295,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
         memcpy(scr->top_left, fit.top_left, sizeof fit.top_left);
     }
     scr->overview[0] = scr->overview[1] = -1;
-    const cJSON *o = cJSON_GetObjectItemCaseSensitive(s, "overview");
+    const cJSON *o = json_keys_get(c->keys, s, "overview");
     if (o) {
         float xy[2];
         snprintf(field, sizeof field, "screens[%d].overview", index);
@@ -333,12 +335,12 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     get_string(c, n, "host", field, node->host, sizeof node->host, "localhost");
 
     int dw = 0, dh = 0;
-    const cJSON *res = cJSON_GetObjectItemCaseSensitive(n, "resolution");
+    const cJSON *res = json_keys_get(c->keys, n, "resolution");
     snprintf(field, sizeof field, "nodes[%d].resolution", index);
     if (res && parse_resolution(c, res, field, &dw, &dh))
         return;
 
-    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(n, "screens");
+    const cJSON *screens = json_keys_get(c->keys, n, "screens");
     snprintf(field, sizeof field, "nodes[%d].screens", index);
     if (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
         cJSON_GetArraySize(screens) > CLUSTER_NODE_MAX_SCREENS) {
@@ -356,9 +358,9 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         if (cJSON_IsString(e)) {
             sname = e->valuestring;
         } else if (cJSON_IsObject(e)) {
-            const cJSON *nm = cJSON_GetObjectItemCaseSensitive(e, "name");
+            const cJSON *nm = json_keys_get(c->keys, e, "name");
             sname = cJSON_IsString(nm) ? nm->valuestring : NULL;
-            const cJSON *r = cJSON_GetObjectItemCaseSensitive(e, "resolution");
+            const cJSON *r = json_keys_get(c->keys, e, "resolution");
             snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
             if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
                 return;
@@ -386,7 +388,7 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
     snprintf(field, sizeof field, "nodes[%d].monitor", index);
     node->monitor = (int)get_number(c, n, "monitor", field, 0, 0, 0, 64);
-    const cJSON *fs = cJSON_GetObjectItemCaseSensitive(n, "fullscreen");
+    const cJSON *fs = json_keys_get(c->keys, n, "fullscreen");
     if (fs && !cJSON_IsBool(fs)) {
         snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
         fail(c, field, "must be true or false");
@@ -405,7 +407,8 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
 }
 
 /* "settings": {"NAME": value, ...}: kept as text; the programs that know the names check
- * them (cavelight-master at start, every node when it builds its first frame). */
+ * them (cavelight-master at start and with --check, every node when it builds its first
+ * frame), so none of them is an unknown key here. */
 static void parse_settings(parse_ctx *c, const cJSON *o, cluster_config *cfg)
 {
     if (!o || c->failed)
@@ -417,6 +420,7 @@ static void parse_settings(parse_ctx *c, const cJSON *o, cluster_config *cfg)
     const cJSON *v;
     cJSON_ArrayForEach(v, o)
     {
+        json_keys_get(c->keys, o, v->string); /* its name is the master's to check */
         char field[CLUSTER_NAME_MAX + 16];
         snprintf(field, sizeof field, "settings.%.*s", CLUSTER_NAME_MAX, v->string);
         if (cfg->setting_count == CLUSTER_MAX_SETTINGS) {
@@ -441,10 +445,23 @@ static void parse_settings(parse_ctx *c, const cJSON *o, cluster_config *cfg)
     }
 }
 
+/* An unknown key: one line kept for the program to warn with (or refuse, --strict). */
+static void note_unknown(void *user, const char *field, const char *key, const char *nearest, const char *valid)
+{
+    cluster_config *cfg = user;
+    if (cfg->unknown_key_count < CLUSTER_MAX_UNKNOWN_KEYS) {
+        char words[CLUSTER_TEXT_MAX], line[CLUSTER_LINE_MAX];
+        json_keys_describe(key, nearest, valid, words, sizeof words);
+        snprintf(line, sizeof line, "cluster config %.160s: field %.100s: %.200s", cfg->path, field, words);
+        memcpy(cfg->unknown_keys[cfg->unknown_key_count], line, sizeof line);
+    }
+    cfg->unknown_key_count++;
+}
+
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
                          char *err, size_t errlen)
 {
-    parse_ctx c = {.path = path, .err = err, .errlen = errlen};
+    parse_ctx c = {.keys = json_keys_create(), .path = path, .err = err, .errlen = errlen};
     memset(cfg, 0, sizeof *cfg);
     snprintf(cfg->path, sizeof cfg->path, "%s", path);
     uint64_t h = 1469598103934665603ull;
@@ -460,6 +477,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         for (size_t i = 0; i < off && i < len; i++)
             line += text[i] == '\n';
         snprintf(err, errlen, "cluster config %s: not valid JSON near line %d: fix the syntax", path, line);
+        json_keys_destroy(c.keys);
         return -1;
     }
     if (!cJSON_IsObject(root)) {
@@ -470,7 +488,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
     get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
 
-    const cJSON *m = cJSON_GetObjectItemCaseSensitive(root, "master");
+    const cJSON *m = json_keys_get(c.keys, root, "master");
     if (!cJSON_IsObject(m)) {
         fail(&c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
         goto done;
@@ -482,7 +500,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     if (!c.failed && strncmp(cfg->master_connect, "tcp://", 6) && strncmp(cfg->master_connect, "ipc://", 6))
         fail(&c, "master.connect", "'%s' must start with tcp:// or ipc://", cfg->master_connect);
 
-    const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "timeouts");
+    const cJSON *t = json_keys_get(c.keys, root, "timeouts");
     if (t && !cJSON_IsObject(t))
         fail(&c, "timeouts", "must be an object");
     cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
@@ -500,11 +518,11 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 
     cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
-    parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
-    parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);
-    parse_settings(&c, cJSON_GetObjectItemCaseSensitive(root, "settings"), cfg);
+    parse_observer(&c, json_keys_get(c.keys, root, "observer"), &cfg->observer);
+    parse_security(&c, json_keys_get(c.keys, root, "security"), cfg);
+    parse_settings(&c, json_keys_get(c.keys, root, "settings"), cfg);
 
-    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(root, "screens");
+    const cJSON *screens = json_keys_get(c.keys, root, "screens");
     if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
                       cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
         fail(&c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
@@ -514,7 +532,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         parse_screen(&c, cJSON_GetArrayItem(screens, i), i, cfg);
         cfg->screen_count = i + 1;
     }
-    const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(root, "nodes");
+    const cJSON *nodes = json_keys_get(c.keys, root, "nodes");
     if (!c.failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
                       cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
         fail(&c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);
@@ -524,7 +542,10 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         parse_node(&c, cJSON_GetArrayItem(nodes, i), i, cfg);
         cfg->node_count = i + 1;
     }
+    if (!c.failed)
+        json_keys_unknown(c.keys, root, note_unknown, cfg);
 done:
+    json_keys_destroy(c.keys);
     cJSON_Delete(root);
     return c.failed ? -1 : 0;
 }

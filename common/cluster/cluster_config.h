@@ -26,7 +26,11 @@
  *             (curve: every connection authenticated and encrypted with the key files
  *             in DIR, default NAME.keys beside the config; see cluster_keys.h. insecure:
  *             no authentication, for local runs and tests only)
- * Loading validates everything; a failure is one line naming the file and the field. */
+ * Loading validates everything; a failure is one line naming the file and the field. A key
+ * that no section reads (misspelt, or in the wrong place) is no failure: it is kept as a
+ * line in unknown_keys, with the nearest key the section does read, for the program to
+ * warn with or, when asked to be strict, refuse (base/json_keys.h: each section's valid
+ * keys are the ones its parser reads). */
 #ifndef CAVELIGHT_CLUSTER_CONFIG_H
 #define CAVELIGHT_CLUSTER_CONFIG_H
 
@@ -40,6 +44,8 @@ enum {
     CLUSTER_NAME_MAX = 32,
     CLUSTER_TEXT_MAX = 256,
     CLUSTER_MAX_SETTINGS = 64,
+    CLUSTER_MAX_UNKNOWN_KEYS = 16, /* lines kept; unknown_key_count counts them all */
+    CLUSTER_LINE_MAX = 512,        /* one message line */
 };
 
 /* Where the master and the nodes write what they make (images, overview, report, logs,
@@ -141,6 +147,10 @@ typedef struct cluster_config {
     int node_count;
     cluster_node nodes[CLUSTER_MAX_NODES];
     uint64_t hash;           /* FNV-1a of the file bytes; HELLO carries it */
+    int unknown_key_count;   /* keys no section reads */
+    /* "cluster config FILE: field nodes[0].resolutoin: unknown key "resolutoin" (did you
+     * mean "resolution"?)", the first CLUSTER_MAX_UNKNOWN_KEYS of them */
+    char unknown_keys[CLUSTER_MAX_UNKNOWN_KEYS][CLUSTER_LINE_MAX];
 } cluster_config;
 
 /* Return 0, or -1 with "cluster config FILE: field F: problem" in err. */

@@ -47,6 +47,16 @@ typedef struct acc_reference {
 
 /* Parses the options every accuracy subcommand takes; returns 1 if argv[*i] was one. */
 int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad);
+/* The same options as rows of a bench_option table (bench.h), for an experiment whose
+ * command line is a table: its --help then lists them. */
+#define ACC_COMMON_OPTIONS(o)                                                                  \
+    BENCH_TEXT("scene", "NAME|FILE", "a built-in scene or a glTF file", &(o)->scene),         \
+    BENCH_TEXT("out", "DIR", "folder for the CSVs and the cached reference", &(o)->out),      \
+    BENCH_INT("width", "W", "image width", &(o)->width, 8, 16384),                            \
+    BENCH_INT("height", "H", "image height", &(o)->height, 8, 16384),                         \
+    BENCH_INT("ref-samples", "N", "paths per pixel of each of the reference's two halves",    \
+              &(o)->ref_samples, 1, 1 << 20),                                                  \
+    BENCH_INT("threads", "T", "CPU LPV threads (0: all cores)", &(o)->threads, 0, 1024)
 int acc_setup_open(acc_setup *s, const acc_options *o);
 void acc_setup_close(acc_setup *s);
 

@@ -77,22 +77,15 @@ int accuracy_savings(int argc, char **argv)
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 1};
     int frames = 300, lattice = 32;
-    for (int i = 1; i < argc; i++) {
-        int bad = 0;
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (acc_parse_common(&o, argc, argv, &i, &bad)) {
-        } else if (v && strcmp(a, "--frames") == 0) {
-            bad = (frames = atoi(v)) < 2, i++;
-        } else if (v && strcmp(a, "--lattice") == 0) {
-            bad = (lattice = atoi(v)) < 2, i++;
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "bench accuracy savings: bad or unknown option %s\n", a);
-            return 2;
-        }
-    }
+    const bench_option opts[] = {
+        ACC_COMMON_OPTIONS(&o),
+        BENCH_INT("frames", "N", "frames of the static scene", &frames, 2, 100000),
+        BENCH_INT("lattice", "N", "cells along the longest axis", &lattice, 2, 512),
+    };
+    int parsed = BENCH_PARSE("accuracy savings", "what skipping converged frames and a fitted lattice save "
+                             "(scripts/chart.sh runs it)", opts, argc, argv);
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)
         return 1;

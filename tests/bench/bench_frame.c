@@ -11,12 +11,10 @@
  * imperfect maps' time) and interleaved sampling (its gather and blur are in gather_ms).
  * GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
- * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
- * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
+ * two frames are warm-up and not counted. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "bench.h"
 
@@ -37,14 +35,6 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* <source>/../shared/scenes/bunny/bunny.gltf, the source folder found from this file. */
-static void bunny_path(char *out, size_t n)
-{
-    const char *file = __FILE__, *cut = strstr(file, "/tests/bench/");
-    int len = cut ? (int)(cut - file) : 1;
-    snprintf(out, n, "%.*s/../shared/scenes/bunny/bunny.gltf", len, cut ? file : ".");
-}
-
 int bench_frame(int argc, char **argv)
 {
     const char *scene_arg = "default";
@@ -53,7 +43,7 @@ int bench_frame(int argc, char **argv)
     frame_params fp;
     frame_params_default(&fp);
     const bench_option opts[] = {
-        BENCH_TEXT("scene", "default|bunny|FILE", "scene (bunny: ../shared/scenes/bunny)", &scene_arg),
+        BENCH_TEXT("scene", "NAME|FILE", "a built-in scene or a glTF file", &scene_arg),
         BENCH_INT("width", "W", "image width", &width, 1, 16384),
         BENCH_INT("height", "H", "image height", &height, 1, 16384),
         BENCH_INT("frames", "N", "frames (the first ones warm up)", &frames, WARMUP + 1, 1000000),
@@ -70,15 +60,8 @@ int bench_frame(int argc, char **argv)
     }
     const char *gl_name = gl_names[gl_index];
     int vpl = fp.gi == gi_method_find("vpl");
-    char path[4096], err[512];
-    snprintf(path, sizeof path, "%s", scene_arg);
-    if (strcmp(scene_arg, "bunny") == 0) {
-        bunny_path(path, sizeof path);
-        if (access(path, R_OK) != 0) {
-            printf("{\"bench\":\"frame\",\"scene\":\"bunny\",\"skipped\":\"%s not found\"}\n", path);
-            return 0;
-        }
-    }
+    char err[512];
+    const char *path = scene_arg;
     glctx_backend backend;
     if (glctx_parse_backend(gl_name, &backend) != 0) {
         fprintf(stderr, "bench frame: --gl egl|osmesa|glfw\n");

@@ -18,6 +18,17 @@ for prog in cavelight-master cavelight-node cavelight-bench cavelight-compare; d
     "$build/$prog" -h | cmp -s - "$out/help" || fail "$prog -h differs from --help"
     echo "$prog --help: $(grep -c '^  --' "$out/help") options"
 done
+# A subcommand's own help: the accuracy sweep's options (and the common ones) with defaults.
+"$build/cavelight-bench" accuracy sweep --help > "$out/sweep" 2> "$out/err" || fail "accuracy sweep --help exited $?"
+[ ! -s "$out/err" ] && grep -q "^usage: cavelight-bench accuracy sweep" "$out/sweep" &&
+  grep -q "^  --lattices N,N" "$out/sweep" && grep -q "(default: 16,32,64,fit)" "$out/sweep" &&
+  grep -q "^  --scene" "$out/sweep" \
+  || fail "accuracy sweep --help: $(cat "$out/sweep" "$out/err")"
+for e in move path savings; do
+  "$build/cavelight-bench" accuracy $e --help > "$out/exp" 2> "$out/err" && [ ! -s "$out/err" ] &&
+    grep -q "^usage: cavelight-bench accuracy $e" "$out/exp" && grep -q "^  --lattice N" "$out/exp" \
+    || fail "accuracy $e --help: $(cat "$out/exp" "$out/err")"
+done
 # The groups the node and the master print.
 "$build/cavelight-node" --help > "$out/node"
 "$build/cavelight-master" --help > "$out/master"
@@ -57,6 +68,10 @@ one_line_error "did you mean --spawn-local?" "$build/cavelight-master" --config 
 one_line_error "did you mean --mask-background?" "$build/cavelight-compare" a b --mask-backgrund
 one_line_error "did you mean --iterations?" "$build/cavelight-bench" input --iteration 5
 one_line_error "did you mean lpv?" "$build/cavelight-bench" lpx
+one_line_error "--lambdas 0.5,1.5: expected 1..16 comma-separated numbers in 0..0.999" \
+  "$build/cavelight-bench" accuracy sweep --lambdas 0.5,1.5
+one_line_error "did you mean --lattices?" "$build/cavelight-bench" accuracy sweep --lattice 8
+one_line_error "--distance -1: expected a positive number" "$build/cavelight-bench" accuracy move --distance -1
 one_line_error "--gl works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --gl egl
 one_line_error "--lattice works only in standalone mode" "$build/cavelight-node" --cluster x.json --name a --lattice 8
 one_line_error "--vpl-count 5: expected a whole number in 64..4096" "$build/cavelight-master" --config x.json --vpl-count 5

@@ -42,6 +42,8 @@ static void test_shipped_configs(void **state)
             assert_non_null(strstr(cfg.master_connect, "127.0.0.1"));
         else /* the defaults: nodes call a hung master lost well under a second */
             assert_true(cfg.master_timeout_ms > cfg.heartbeat_ms && cfg.master_timeout_ms < 1000);
+        if (cfg.unknown_key_count) /* every key of a shipped config is read somewhere */
+            fail_msg("%s", cfg.unknown_keys[0]);
     }
     /* The CAVE: 10 half walls of 1.5 x 3 m (walls) or 3 x 1.5 m (floor and ceiling). */
     load_shipped("cave5-local");
@@ -132,6 +134,55 @@ static void test_bad_configs(void **state)
                  "nodes[0].exe");
     expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"display\": [0]}"),
                  "nodes[0].display");
+}
+
+/* Parses json (which must load) and returns its unknown-key lines joined by '|'. */
+static const char *unknown_lines(const char *json)
+{
+    static char lines[4096];
+    char err[512] = "";
+    if (cluster_config_parse(json, strlen(json), "keys.json", &cfg, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    lines[0] = '\0';
+    for (int i = 0; i < cfg.unknown_key_count && i < CLUSTER_MAX_UNKNOWN_KEYS; i++) {
+        assert_null(strchr(cfg.unknown_keys[i], '\n'));
+        snprintf(lines + strlen(lines), sizeof lines - strlen(lines), "%s|", cfg.unknown_keys[i]);
+    }
+    return lines;
+}
+
+/* A key no section reads is kept as one line naming the file, the field and the nearest
+ * valid key of that section; the config still loads (the program warns, or refuses with
+ * --strict). Keys are matched per section: "resolution" is valid on a node, not on a
+ * screen. */
+static void test_unknown_keys(void **state)
+{
+    char buf[2048];
+    const char *node = "{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4]";
+    snprintf(buf, sizeof buf, "%s \"nodes\": [%s}]}", good_head, node);
+    assert_string_equal(unknown_lines(buf), "");
+    assert_int_equal(cfg.unknown_key_count, 0);
+
+    snprintf(buf, sizeof buf, "%s \"nodes\": [%s, \"resolutoin\": [8,8]}]}", good_head, node);
+    assert_string_equal(unknown_lines(buf), "cluster config keys.json: field nodes[0].resolutoin: unknown key "
+                        "\"resolutoin\" (did you mean \"resolution\"?)|");
+    assert_int_equal(cfg.nodes[0].screens[0].width, 4); /* nothing else changed */
+
+    snprintf(buf, sizeof buf, "%s \"nodes\": [{\"name\": \"a\", \"scren\": 1, \"screens\": [\"s\"], "
+             "\"resolution\": [4,4]}]}", good_head);
+    assert_non_null(strstr(unknown_lines(buf), "field nodes[0].scren: unknown key \"scren\" (did you mean \"screens\"?)"));
+
+    /* Nested sections, several at once, and a key with nothing near it. */
+    snprintf(buf, sizeof buf, "{\"master\": {\"bind\": \"tcp://*:5570\", \"connect\": \"tcp://h:5570\", "
+             "\"conect\": 1}, \"observer\": {\"tracker_to_cave\": {\"scael\": 2}}, \"screens\": "
+             "[{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0], \"top_left\": [0,1,0], "
+             "\"resolution\": [4,4]}], \"zzzzzz\": 0, \"nodes\": [%s}]}", node);
+    const char *l = unknown_lines(buf);
+    assert_int_equal(cfg.unknown_key_count, 4);
+    assert_non_null(strstr(l, "field master.conect: unknown key \"conect\" (did you mean \"connect\"?)"));
+    assert_non_null(strstr(l, "field observer.tracker_to_cave.scael: unknown key \"scael\" (did you mean \"scale\"?)"));
+    assert_non_null(strstr(l, "field screens[0].resolution: unknown key \"resolution\" (keys here: name, "));
+    assert_non_null(strstr(l, "field zzzzzz: unknown key \"zzzzzz\" (keys here: name, scene, launch, master"));
 }
 
 static void test_missing_file(void **state)
@@ -266,6 +317,7 @@ int main(void)
         cmocka_unit_test(test_measured_corners),
         cmocka_unit_test(test_shipped_configs),
         cmocka_unit_test(test_bad_configs),
+        cmocka_unit_test(test_unknown_keys),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_tracker_transform),
     };

@@ -65,7 +65,7 @@ int vpl_view_samples(vpl_view *v, const float viewer[3], const float **samples)
                     .mask = 0xffffffffu},
             .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .primID = RTC_INVALID_GEOMETRY_ID},
         };
-        rtcIntersect1(v->rt.scene, &ctx, &rh);
+        scene_rt_intersect(&v->rt, &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             continue;
         float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
