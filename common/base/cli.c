@@ -19,31 +19,31 @@ static const cli_option *by_id(const cli_program *p, int id, int *index)
     return NULL;
 }
 
-/* Levenshtein distance, for "did you mean". */
+/* Edit distance with a swap of two neighbours counted as one edit (optimal string
+ * alignment), for "did you mean": "cuont" is one slip from "count". */
 static int distance(const char *a, const char *b)
 {
     enum { MAX = 64 };
     int la = (int)strlen(a), lb = (int)strlen(b);
     if (la >= MAX || lb >= MAX)
         return MAX;
-    int row[MAX + 1];
+    int d[MAX + 1][MAX + 1];
+    for (int i = 0; i <= la; i++)
+        d[i][0] = i;
     for (int j = 0; j <= lb; j++)
-        row[j] = j;
-    for (int i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = i;
+        d[0][j] = j;
+    for (int i = 1; i <= la; i++)
         for (int j = 1; j <= lb; j++) {
-            int up = row[j];
-            int best = diag + (a[i - 1] != b[j - 1]);
-            if (row[j] + 1 < best)
-                best = row[j] + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best)
+                best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best)
+                best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
         }
-    }
-    return row[lb];
+    return d[la][lb];
 }
 
 static size_t common_start(const char *a, const char *b)

@@ -23,7 +23,7 @@ wait_for_file "$tmp/port" 10
 mkdir "$tmp/cwd"
 (cd "$tmp/cwd" && "$master" --config "$tmp/good.json" --check) 2> "$tmp/good.log" \
   || { cat "$tmp/good.log"; fail "a good config failed --check"; }
-grep -q "check: $tmp/good.json: ok (5 screens, every key known, scene default (38 triangles), 2 nodes on 1 hosts" \
+grep -q "check: $tmp/good.json: ok (5 screens, every key known, GI ilpv, scene default (38 triangles), 2 nodes on 1 hosts" \
   "$tmp/good.log" || fail "no ok line: $(cat "$tmp/good.log")"
 [ -z "$(ls -A "$tmp/cwd")" ] || fail "--check wrote output: $(ls "$tmp/cwd")"
 
@@ -36,6 +36,7 @@ c["nodes"][0]["resolution"] = [32, 64]
 c["scren"] = []
 c["scene"] = "no-such-scene.gltf"
 c["nodes"][1]["host"] = "no-such-host.invalid"
+c["settings"] = {"vpl-cuont": 64}
 json.dump(c, open(sys.argv[2], "w"))
 PY
 rc=0; "$master" --config "$tmp/bad.json" --check 2> "$tmp/bad.log" || rc=$?
@@ -45,9 +46,12 @@ grep -q "field nodes\[0\].resolutoin: unknown key \"resolutoin\" (did you mean \
 grep -q "field scren: unknown key \"scren\" (did you mean \"screens\"?)" "$tmp/bad.log" || fail "no scren line"
 grep -q "no-such-scene.gltf" "$tmp/bad.log" || fail "the missing scene is not named"
 grep -q "field nodes\[1\].host: 'no-such-host.invalid' does not resolve" "$tmp/bad.log" || fail "the host is not named"
-[ "$(grep -c "check: " "$tmp/bad.log")" = 5 ] && grep -q "bad.json: 4 problems" "$tmp/bad.log" \
+grep -q "settings.vpl-cuont: 64: not a setting (did you mean vpl-count?)" "$tmp/bad.log" || fail "the setting is not named"
+[ "$(grep -c "check: " "$tmp/bad.log")" = 6 ] && grep -q "bad.json: 5 problems" "$tmp/bad.log" \
   || fail "not one line per problem: $(cat "$tmp/bad.log")"
-echo "--check: a good config ok with its port taken; 4 problems in 4 lines, exit 2"
+echo "--check: a good config ok with its port taken; 5 problems in 5 lines, exit 2"
+python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); del c["settings"]; json.dump(c, open(sys.argv[1], "w"))' \
+  "$tmp/bad.json" # the sessions below run on its unknown keys, which a bad setting would stop
 
 # CURVE keys: named when missing, ok after --keygen.
 CLUSTER_SECURITY=curve make_config "$tmp/curve.json" 5000 a
