@@ -27,7 +27,8 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                                 .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
                                 .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size,
                                 .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold,
-                                .gi = d->gi, .keep_frames = d->keep_frames};
+                                .gi = d->gi, .keep_frames = d->keep_frames, .show_blend = d->show_blend,
+                                .quiet = d->quiet};
         view = cluster_view_create(&vd, err, errlen);
         if (!view)
             return 1;

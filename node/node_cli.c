@@ -32,7 +32,7 @@ enum id {
     O_STANDALONE, O_CLUSTER, O_NAME, O_MASTER, O_EXIT_WITH_MASTER, O_RENDER, O_QUIET,
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
-    O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
+    O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_SHOW_BLEND, O_PFM,
     O_GI, O_VPL_COUNT, O_VPL_SEED, O_VPL_BOUND, O_VPL_VISIBILITY, O_VPL_SELECTION, O_ISM_SIZE, O_ISM_POINTS, O_VPL_INTERLEAVE, O_LPV, O_RSM, O_LATTICE, O_LATTICE_CELLS, O_THREADS, O_STEPS, O_LAMBDA, O_ABSORPTION,
     O_SCATTERING, O_GL_TILES, O_LPV_MODE, O_CONVERGE, O_BUDGET,
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
@@ -76,6 +76,8 @@ static const cli_option options[] = {
      "what the node does with its images"},
     {O_KEEP_FRAMES, "keep-frames", NULL, NULL, G_OUTPUT, C,
      "png output: also keep every frame as SCREEN-EYE-NNNNNN.png"},
+    {O_SHOW_BLEND, "show-blend", NULL, NULL, G_OUTPUT, C,
+     "while the master shows the pattern: tint where each\nprojector's blend dims it (docs/cluster.md)"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
     {O_GI, "gi", "ilpv|none|vpl", "ilpv", G_GI, 0,
      "indirect-light method: incremental LPV, none (direct\nlight only), or virtual point lights with a shadow map\neach; cluster: the first, the master's frames choose"},
@@ -184,6 +186,7 @@ static const char *set(void *user, int id, const char *v)
             return "one of window, headless or png";
         break;
     case O_KEEP_FRAMES: d->keep_frames = 1; break;
+    case O_SHOW_BLEND: d->show_blend = 1; break;
     case O_PFM: o->pfm = 1; break;
     case O_GI: CHOICE(k, frame_gi_names); fp->gi = (frame_gi)k; d->gi = k; break;
     case O_VPL_COUNT: why = cli_int(v, FRAME_VPL_MIN, FRAME_VPL_MAX, &fp->vpl_count); break;
