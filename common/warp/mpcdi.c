@@ -31,6 +31,9 @@ static int fail(ctx *c, const char *part, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     snprintf(c->err, c->errlen, "MPCDI %s: %s: %s", c->name, part, msg);
+    for (char *ch = c->err; *ch; ch++) /* quoted file content stays on one line */
+        if ((unsigned char)*ch < ' ')
+            *ch = '?';
     return -1;
 }
 

@@ -28,6 +28,9 @@ static int fail(parser *p, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     snprintf(p->err, p->errlen, "warp mesh %s: line %d: %s", p->name, p->line, msg);
+    for (char *ch = p->err; *ch; ch++) /* quoted file content stays on one line */
+        if ((unsigned char)*ch < ' ')
+            *ch = '?';
     return -1;
 }
 
@@ -147,10 +150,12 @@ int warp_mesh_parse(const char *text, size_t len, const char *name, warp_map *ou
         memcpy(line, text + at, end - at);
         line[end - at] = 0;
         at = end + 1;
+        if (line[strspn(line, " \t\r")] == '#')
+            continue;
         int n = tokens(line, tok);
         if (n < 0)
             rc = fail(&p, "more than %d items", TOKENS_MAX);
-        else if (n == 0 || tok[0][0] == '#')
+        else if (n == 0)
             continue;
         else if (header)
             rc = line_item(&p, tok, n, out, &vertices);
