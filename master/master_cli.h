@@ -19,6 +19,7 @@ typedef struct master_options {
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
     int keep_frames, pattern, print_poses, preview;
+    int pattern_blend;  /* --pattern-blend: the pattern, and started nodes tint their blend regions */
     const char *input, *record;
     frame_gi gi;                /* the GI method the session starts with (0 = ILPV) */
     int gi_given;               /* --gi was given: spawned nodes get it too */

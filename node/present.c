@@ -105,12 +105,14 @@ static int open_windows(present *p, const present_desc *d, char *err, size_t err
     for (int e = 0; e < p->targets; e++) {
         char title[160];
         snprintf(title, sizeof title, "%s%s", d->title ? d->title : "cavelight", p->targets == 2 ? (e ? " right" : " left") : "");
+        int width = cw->size[0] ? cw->size[0] : p->comp_w, height = cw->size[1] ? cw->size[1] : p->comp_h;
         present_window_desc wd = {
-            .title = title, .width = cw->size[0] ? cw->size[0] : p->comp_w, .height = cw->size[1] ? cw->size[1] : p->comp_h,
+            .title = title, .width = width, .height = height,
             .want_quad = p->eyes == 2 && p->stereo == CLUSTER_STEREO_QUAD, .monitor_name = cw->monitor_name[e],
             .monitor = cw->monitor[e], .fullscreen = cw->fullscreen, .have_position = cw->have_position,
-            .position = {cw->position[0] + e * p->comp_w, cw->position[1]}, .swap_interval = cw->swap_interval,
-            .swap_group = cw->swap_group, .swap_barrier = cw->swap_barrier, .log_name = p->log_name, .quiet = p->quiet};
+            .position = {cw->position[0] + e * width, cw->position[1]}, /* the right eye's beside the left's */
+            .swap_interval = cw->swap_interval, .swap_group = cw->swap_group, .swap_barrier = cw->swap_barrier,
+            .log_name = p->log_name, .quiet = p->quiet};
         target *t = &p->t[e];
         t->eye = p->targets == 2 ? e : -1;
         if (present_window_open(&t->win, &wd, err, errlen) != 0)
@@ -120,9 +122,10 @@ static int open_windows(present *p, const present_desc *d, char *err, size_t err
             fprintf(stderr, "%s: the driver offers no quad-buffered window: showing side-by-side\n", p->log_name);
             p->stereo = CLUSTER_STEREO_SIDE_BY_SIDE;
             composition(p);
-            if (!cw->size[0] && !cw->fullscreen)
+            if (!cw->size[0] && !t->win.fullscreen)
                 present_window_resize(&t->win, p->comp_w, p->comp_h);
         }
+        present_window_report(&t->win, &wd);
     }
     return 0;
 }

@@ -83,28 +83,34 @@ static GLFWwindow *create(present_window *w, const present_window_desc *d, GLFWm
     return win;
 }
 
-/* One line of what the window is; one more for an asked swap group. */
-static void report(present_window *w, const present_window_desc *d, GLFWmonitor *mon, const char *monitor_note)
+/* An asked swap group: joined, or not and why, in one line. */
+static void join_swap_group(present_window *w, const present_window_desc *d)
+{
+    if (d->swap_group <= 0)
+        return;
+    char why[200];
+    int joined = present_swap_group_join(w->handle, d->swap_group, d->swap_barrier, why, sizeof why);
+    fprintf(stderr, "%s: swap group %d: %s: %s%s\n", d->log_name, d->swap_group, joined ? "joined" : "not joined",
+            why, joined ? "" : "; frames are released by the software barrier alone");
+}
+
+void present_window_report(present_window *w, const present_window_desc *d)
 {
     GLFWwindow *win = w->handle;
-    if (monitor_note[0] && (d->fullscreen || (d->monitor_name && *d->monitor_name)))
-        fprintf(stderr, "%s: %s: %s\n", d->log_name, monitor_note, d->fullscreen ? "staying windowed" : "placed by the window manager");
-    if (!d->quiet) {
-        int fw, fh, x, y;
-        glfwGetFramebufferSize(win, &fw, &fh);
-        glfwGetWindowPos(win, &x, &y);
-        const char *name = mon ? glfwGetMonitorName(mon) : NULL;
-        fprintf(stderr, "%s: window %dx%d at (%d, %d)%s%s%s%s, vsync %s (swap interval %d)%s\n", d->log_name, fw, fh,
-                x, y, mon ? " on monitor '" : "", mon && name ? name : "", mon ? "'" : "",
-                glfwGetWindowMonitor(win) ? " fullscreen" : "", d->swap_interval ? "on" : "off", d->swap_interval,
-                w->quad ? ", quad-buffered" : "");
-    }
-    if (d->swap_group > 0) {
-        char why[200];
-        int joined = present_swap_group_join(win, d->swap_group, d->swap_barrier, why, sizeof why);
-        fprintf(stderr, "%s: swap group %d: %s (%s)%s\n", d->log_name, d->swap_group, joined ? "joined" : "not joined",
-                why, joined ? "" : "; frames are released by the software barrier alone");
-    }
+    if (w->monitor_note[0] && (d->fullscreen || (d->monitor_name && *d->monitor_name)))
+        fprintf(stderr, "%s: %s: %s\n", d->log_name, w->monitor_note,
+                d->fullscreen ? "staying windowed" : "placed by the window manager");
+    if (d->quiet)
+        return;
+    int fw, fh, x, y;
+    glfwGetFramebufferSize(win, &fw, &fh);
+    glfwGetWindowPos(win, &x, &y);
+    GLFWmonitor *mon = w->monitor;
+    const char *name = mon ? glfwGetMonitorName(mon) : NULL;
+    fprintf(stderr, "%s: window %dx%d at (%d, %d)%s%s%s%s, vsync %s (swap interval %d)%s\n", d->log_name, fw, fh, x,
+            y, mon ? " on monitor '" : "", mon && name ? name : "", mon ? "'" : "",
+            w->fullscreen ? " fullscreen" : "", d->swap_interval ? "on" : "off", d->swap_interval,
+            w->quad ? ", quad-buffered" : "");
 }
 
 int present_window_open(present_window *w, const present_window_desc *d, char *err, size_t errlen)
@@ -116,8 +122,8 @@ int present_window_open(present_window *w, const present_window_desc *d, char *e
         return -1;
     }
     glfw_users++;
-    char note[200] = "";
-    GLFWmonitor *mon = pick_monitor(d, note, sizeof note);
+    GLFWmonitor *mon = pick_monitor(d, w->monitor_note, sizeof w->monitor_note);
+    w->monitor = mon;
     GLFWwindow *win = create(w, d, mon);
     if (!win) {
         snprintf(err, errlen, "GLFW: no OpenGL 4.3 core window (%s; update the GPU driver)", glfw_reason());
@@ -125,13 +131,14 @@ int present_window_open(present_window *w, const present_window_desc *d, char *e
         return -1;
     }
     w->handle = win;
+    w->fullscreen = glfwGetWindowMonitor(win) != NULL;
     glfwMakeContextCurrent(win);
     glfwSwapInterval(d->swap_interval);
     if (!(w->ctx = glctx_adopt(glfw_load, "GLFW window", err, errlen))) {
         present_window_close(w);
         return -1;
     }
-    report(w, d, mon, note);
+    join_swap_group(w, d);
     return 0;
 }
 
@@ -160,6 +167,12 @@ void present_window_framebuffer(present_window *w, int *width, int *height)
 void present_window_resize(present_window *w, int width, int height)
 {
     glfwSetWindowSize(w->handle, width, height);
+    /* X resizes when the server has it: wait a little, so that the first frame has it too. */
+    int fw = 0, fh = 0;
+    for (int i = 0; i < 10 && (fw != width || fh != height); i++) {
+        glfwWaitEventsTimeout(0.02);
+        glfwGetFramebufferSize(w->handle, &fw, &fh);
+    }
 }
 
 int present_window_swap(present_window *w)

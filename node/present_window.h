@@ -4,9 +4,9 @@
  * index or by its output's name, fullscreen at the monitor's current video mode or at a
  * position and size, quad-buffered when asked and offered (else an ordinary window, quad
  * 0), swapping every swap_interval-th refresh, and in an NVIDIA swap group and barrier
- * when asked (GLX_NV_swap_group, present_swap_group.c). What it chose is one line on
- * stderr, and one more for the swap group: joined, or not and why. GLFW starts with the
- * first window and ends with the last. Draws nothing (present.c does). */
+ * when asked (GLX_NV_swap_group, present_swap_group.c: one line says joined, or not and
+ * why). present_window_report() says in one line what the window became. GLFW starts
+ * with the first window and ends with the last. Draws nothing (present.c does). */
 #ifndef CAVELIGHT_PRESENT_WINDOW_H
 #define CAVELIGHT_PRESENT_WINDOW_H
 
@@ -30,13 +30,18 @@ typedef struct present_window_desc {
 
 typedef struct present_window {
     void *handle;             /* GLFWwindow */
+    void *monitor;            /* GLFWmonitor it went to, or NULL */
+    char monitor_note[200];   /* why not the asked monitor, or "" */
     glctx *ctx;
     int quad;                 /* quad buffers were offered */
+    int fullscreen;           /* it covers its monitor */
 } present_window;
 
 /* 0, or -1 with err (no display, no 4.3 context). */
 int present_window_open(present_window *w, const present_window_desc *d, char *err, size_t errlen);
 void present_window_close(present_window *w);
+/* One line: size, place, monitor, vsync, quad buffers (and the asked monitor when missing). */
+void present_window_report(present_window *w, const present_window_desc *d);
 void present_window_make_current(present_window *w);
 void present_window_framebuffer(present_window *w, int *width, int *height);
 void present_window_resize(present_window *w, int width, int height);

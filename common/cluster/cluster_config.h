@@ -86,7 +86,8 @@ typedef struct cluster_screen {
  *                  name as xrandr lists it, e.g. "DP-1"); the second is the right eye's
  *                  window under window-per-eye (default: the next index)
  *   "fullscreen": bool        cover the monitor at its current video mode
- *   "position": [x, y]        the window's top-left on the desktop, pixels
+ *   "position": [x, y]        the window's top-left on the desktop, pixels (window-per-eye:
+ *                             the right eye's window to the right of the left's)
  *   "size": [w, h]            the window's size (default: the images' size)
  *   "vsync": bool | n         swap every n-th refresh (true: 1, the default; false: 0)
  *   "swap_group": n, "swap_barrier": n   NVIDIA GLX_NV_swap_group: the group to join and
