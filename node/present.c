@@ -106,9 +106,10 @@ static int open_windows(present *p, const present_desc *d, char *err, size_t err
         char title[160];
         snprintf(title, sizeof title, "%s%s", d->title ? d->title : "cavelight", p->targets == 2 ? (e ? " right" : " left") : "");
         int width = cw->size[0] ? cw->size[0] : p->comp_w, height = cw->size[1] ? cw->size[1] : p->comp_h;
+        int quad = p->eyes == 2 && p->stereo == CLUSTER_STEREO_QUAD;
         present_window_desc wd = {
-            .title = title, .width = width, .height = height,
-            .want_quad = p->eyes == 2 && p->stereo == CLUSTER_STEREO_QUAD, .monitor_name = cw->monitor_name[e],
+            .title = title, .width = width, .height = height, .want_quad = quad,
+            .width_without_quad = quad && !cw->size[0] ? 2 * p->comp_w : 0, .monitor_name = cw->monitor_name[e],
             .monitor = cw->monitor[e], .fullscreen = cw->fullscreen, .have_position = cw->have_position,
             .position = {cw->position[0] + e * width, cw->position[1]}, /* the right eye's beside the left's */
             .swap_interval = cw->swap_interval, .swap_group = cw->swap_group, .swap_barrier = cw->swap_barrier,
@@ -120,10 +121,8 @@ static int open_windows(present *p, const present_desc *d, char *err, size_t err
         t->ctx = t->win.ctx;
         if (wd.want_quad && !t->win.quad) {
             fprintf(stderr, "%s: the driver offers no quad-buffered window: showing side-by-side\n", p->log_name);
-            p->stereo = CLUSTER_STEREO_SIDE_BY_SIDE;
+            p->stereo = CLUSTER_STEREO_SIDE_BY_SIDE; /* the window was made that wide */
             composition(p);
-            if (!cw->size[0] && !t->win.fullscreen)
-                present_window_resize(&t->win, p->comp_w, p->comp_h);
         }
         present_window_report(&t->win, &wd);
     }

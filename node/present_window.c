@@ -67,7 +67,8 @@ static GLFWwindow *create(present_window *w, const present_window_desc *d, GLFWm
     GLFWwindow *win = NULL;
     for (int stereo = d->want_quad; !win && stereo >= 0; stereo--) {
         window_hints(d, stereo, mode);
-        win = glfwCreateWindow(width, height, d->title, fullscreen ? mon : NULL, NULL);
+        int w_now = !fullscreen && d->want_quad && !stereo && d->width_without_quad ? d->width_without_quad : width;
+        win = glfwCreateWindow(w_now, height, d->title, fullscreen ? mon : NULL, NULL);
         w->quad = win && stereo;
     }
     if (!win)
@@ -162,17 +163,6 @@ void present_window_make_current(present_window *w)
 void present_window_framebuffer(present_window *w, int *width, int *height)
 {
     glfwGetFramebufferSize(w->handle, width, height);
-}
-
-void present_window_resize(present_window *w, int width, int height)
-{
-    glfwSetWindowSize(w->handle, width, height);
-    /* X resizes when the server has it: wait a little, so that the first frame has it too. */
-    int fw = 0, fh = 0;
-    for (int i = 0; i < 10 && (fw != width || fh != height); i++) {
-        glfwWaitEventsTimeout(0.02);
-        glfwGetFramebufferSize(w->handle, &fw, &fh);
-    }
 }
 
 int present_window_swap(present_window *w)

@@ -18,6 +18,7 @@ typedef struct present_window_desc {
     const char *title;
     int width, height;        /* the window's size (fullscreen: the monitor's mode instead) */
     int want_quad;            /* a left and a right back buffer */
+    int width_without_quad;   /* the width when the driver offers none; 0: width */
     const char *monitor_name; /* the output's name ("DP-1"); NULL or "": by index */
     int monitor;
     int fullscreen;
@@ -44,7 +45,6 @@ void present_window_close(present_window *w);
 void present_window_report(present_window *w, const present_window_desc *d);
 void present_window_make_current(present_window *w);
 void present_window_framebuffer(present_window *w, int *width, int *height);
-void present_window_resize(present_window *w, int width, int height);
 /* Swaps and handles events; 0 once the window was asked to close, else 1. */
 int present_window_swap(present_window *w);
 
