@@ -93,7 +93,8 @@ static void composition(present *p)
 /* The windows: one, or one per eye; a quad window the driver refuses becomes side-by-side. */
 static int open_windows(present *p, const present_desc *d, char *err, size_t errlen)
 {
-    static const cluster_window defaults = {.monitor = {0, 1}, .swap_interval = 1};
+    cluster_window defaults;
+    cluster_window_default(&defaults);
     const cluster_window *cw = d->window ? d->window : &defaults;
     const char *env = getenv("DISPLAY");
     if (d->display && *d->display && (!env || !*env) && !getenv("WAYLAND_DISPLAY")) {

@@ -363,10 +363,15 @@ static int get_flag_or_int(parse_ctx *c, const cJSON *obj, const char *key, cons
     return (int)v->valuedouble;
 }
 
+void cluster_window_default(cluster_window *w)
+{
+    *w = (cluster_window){.monitor = {0, 1}, .swap_interval = 1};
+}
+
 static void parse_window(parse_ctx *c, const cJSON *n, int index, cluster_window *w)
 {
     char field[96];
-    *w = (cluster_window){.monitor = {0, 1}, .swap_interval = 1};
+    cluster_window_default(w);
     const cJSON *m = cJSON_GetObjectItemCaseSensitive(n, "monitor");
     snprintf(field, sizeof field, "nodes[%d].monitor", index);
     if (cJSON_IsArray(m) && cJSON_GetArraySize(m) == 2) {

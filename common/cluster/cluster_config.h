@@ -103,6 +103,9 @@ typedef struct cluster_window {
     int swap_group, swap_barrier;
 } cluster_window;
 
+/* The window of a node that sets none of the keys: monitor 0 (the right eye's 1), vsync on. */
+void cluster_window_default(cluster_window *w);
+
 typedef enum cluster_warp_kind {
     CLUSTER_WARP_NONE = 0,
     CLUSTER_WARP_MPCDI,    /* a region of an MPCDI file (warp/mpcdi.h) */
