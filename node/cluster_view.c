@@ -89,12 +89,11 @@ static int open_output(cluster_view *v, const cluster_view_desc *desc, char *err
 {
     const cluster_node *n = &v->cfg->nodes[v->node];
     int eyes = cluster_view_eye_count(v->cfg, v->node), count = 0, rc = 0;
-    static warp_map maps[CLUSTER_NODE_MAX_SCREENS];
+    warp_map maps[CLUSTER_NODE_MAX_SCREENS] = {0};
     present_viewport vps[PRESENT_MAX_VIEWPORTS];
     char names[PRESENT_MAX_VIEWPORTS][2 * CLUSTER_NAME_MAX + 8], log_name[64];
-    for (int s = 0; s < n->screen_count; s++) {
+    for (int s = 0; rc == 0 && s < n->screen_count; s++) {
         const cluster_warp *w = &n->screens[s].warp;
-        memset(&maps[s], 0, sizeof maps[s]);
         if (w->kind == CLUSTER_WARP_MPCDI)
             rc = mpcdi_load(w->path, w->region, &maps[s], err, errlen);
         else if (w->kind == CLUSTER_WARP_MESH)
@@ -121,7 +120,7 @@ static int open_output(cluster_view *v, const cluster_view_desc *desc, char *err
         v->out = present_create(&pd, err, errlen);
     for (int s = 0; s < n->screen_count; s++)
         warp_map_free(&maps[s]);
-    if (!v->out && v->output == CLUSTER_OUTPUT_WINDOW) {
+    if (rc == 0 && !v->out && v->output == CLUSTER_OUTPUT_WINDOW) {
         size_t used = strlen(err);
         snprintf(err + used, errlen - used, "; or render without a window: --output headless or png (or the "
                  "node's \"output\" in the config)");

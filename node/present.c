@@ -10,6 +10,7 @@
 
 #include "base/folder.h"
 #include "base/xalloc.h"
+#include "frame/frame_params.h"
 #include "gltools.h"
 #include "image/image.h"
 #include "present_warp.h"
@@ -352,10 +353,17 @@ static int write_pngs(present *p, const present_frame_desc *f, char *err, size_t
     return 0;
 }
 
-int present_frame(present *p, const present_frame_desc *f, char *err, size_t errlen)
+int present_frame(present *p, const present_frame_desc *desc, char *err, size_t errlen)
 {
     if (p->output == PRESENT_HEADLESS)
         return 0;
+    present_frame_desc fd = *desc;
+    if (!(fd.display_gamma > 0)) { /* 0: the frame's default */
+        frame_params def;
+        frame_params_default(&def);
+        fd.display_gamma = def.display_gamma;
+    }
+    const present_frame_desc *f = &fd;
     if (p->output == PRESENT_PNG && write_pngs(p, f, err, errlen) != 0)
         return -1;
     int open = 1;

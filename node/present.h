@@ -68,7 +68,8 @@ typedef struct present present;
 
 typedef struct present_frame_desc {
     uint64_t version;        /* keep_frames: the file's number */
-    float display_gamma;     /* the frame's (sanitized): blending works in linear light */
+    float display_gamma;     /* the frame's: blending works in linear light; 0 = the
+                                frame's default (frame_params_default()) */
     int show_blend;          /* tint the blend regions instead of blending (--pattern-blend) */
 } present_frame_desc;
 
