@@ -67,7 +67,7 @@ CONF
 xvfb() {
   command -v Xvfb >/dev/null || return 1
   exec 3> "$tmp/display"
-  Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp > /dev/null 2>&1 &
+  Xvfb -displayfd 3 -noreset -screen 0 1280x1024x24 -nolisten tcp > /dev/null 2>&1 &
   xpid=$!
   for _ in $(seq 100); do grep -q . "$tmp/display" 2>/dev/null && break; sleep 0.1; done
   exec 3>&-
