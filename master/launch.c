@@ -36,6 +36,8 @@ static int node_argv(const master_options *o, const char *config, const char *ex
         argv[n++] = "--quiet";
     if (o->keep_frames)
         argv[n++] = "--keep-frames";
+    if (o->pattern_blend)
+        argv[n++] = "--show-blend";
     if (o->node_args) {
         snprintf(storage, cap, "%s", o->node_args);
         for (char *tok = strtok(storage, " "); tok && n < max - 1; tok = strtok(NULL, " "))

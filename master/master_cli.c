@@ -21,7 +21,7 @@ enum id {
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET,
     O_INPUT, O_RECORD,
-    O_PATTERN, O_PRINT_POSES,
+    O_PATTERN, O_PATTERN_BLEND, O_PRINT_POSES,
     O_CHECK, O_STRICT,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
@@ -72,6 +72,8 @@ static const cli_option options[] = {
      "record the merged input there"},
     {O_PATTERN, "pattern", NULL, NULL, G_CALIBRATION, 0,
      "every screen shows a calibration pattern: a grid in CAVE\ncoordinates, screen names and corners, head and wand"},
+    {O_PATTERN_BLEND, "pattern-blend", NULL, NULL, G_CALIBRATION, 0,
+     "the pattern, and each started node tints where its\nprojectors' blend maps dim them (node --show-blend)"},
     {O_PRINT_POSES, "print-poses", NULL, NULL, G_CALIBRATION, 0,
      "print the head and wand poses (CAVE and tracker space,\npointing direction) and the buttons on stdout, 4 a second"},
 };
@@ -138,6 +140,7 @@ static const char *set(void *user, int id, const char *v)
     case O_INPUT: o->input = v; break;
     case O_RECORD: o->record = v; break;
     case O_PATTERN: o->pattern = 1; break;
+    case O_PATTERN_BLEND: o->pattern = o->pattern_blend = 1; break;
     case O_PRINT_POSES: o->print_poses = 1; break;
     case O_CHECK: o->check = 1; break;
     case O_STRICT: o->strict = 1; break;

@@ -22,6 +22,7 @@ typedef struct master_options {
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
     int keep_frames, pattern, print_poses, preview;
+    int pattern_blend;  /* --pattern-blend: the pattern, and started nodes tint their blend regions */
     const char *input, *record;
     /* The GI and display settings given (gi_settings.h), as name and text in the order
      * given, each checked already: the session applies them over the config's "settings". */

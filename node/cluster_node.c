@@ -69,7 +69,8 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
         cluster_view_desc vd = {.config = d->config, .node = node,
                                 .output = d->output >= 0 ? (cluster_output)d->output : d->config->nodes[node].output,
                                 .out_dir = d->out_dir, .scene = d->scene, .threads = d->threads,
-                                .keep_frames = d->keep_frames};
+                                .keep_frames = d->keep_frames, .show_blend = d->show_blend,
+                                .quiet = d->quiet};
         view = cluster_view_create(&vd, err, errlen);
         if (!view)
             return 1;

@@ -32,6 +32,7 @@ typedef struct cluster_node_desc {
                                    method and its settings come from the master) */
     int exit_with_master;       /* 1: leave when the master ends the session */
     int keep_frames;            /* png output: also SCREEN-EYE-NNNNNN.png for every frame */
+    int show_blend;             /* the pattern tints the projectors' blend regions */
     int quiet;
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */
     volatile sig_atomic_t *stop;  /* set to leave the loop, may be NULL */

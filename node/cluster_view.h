@@ -7,14 +7,14 @@
  * screens and eyes go from CAVE space to world space through the navigation transform.
  * While the frame asks for the calibration pattern (frame_params.pattern), every screen
  * shows it (frame/pattern.h) instead of the scene; the frame pass still runs.
- * cluster_view_present() shows the images of the last rendered frame: PNG files
- * (DIR/SCREEN-EYE.png, replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png
- * numbered by the frame's version, so that a replay can be reviewed frame by frame), a GLFW window in the node's stereo mode
- * (the node's screens side by side; stereo as side-by-side, top-bottom, red-cyan
- * anaglyph, quad-buffered when the driver offers it (else side-by-side), or one window
- * per eye), or nothing (headless). The renderer follows the frames' GI method and
- * settings (renderer.h). cluster_view_create() renders one untracked frame with the
- * config's settings, so shaders are compiled before a join. */
+ * cluster_view_present() shows the images of the last rendered frame through the node's
+ * presentation (present.h: one viewport per screen and eye, each through its screen's
+ * projector warp and blend from the config, read once here): PNG files (DIR/SCREEN-EYE.png,
+ * replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png numbered by the
+ * frame's version, so that a replay can be reviewed frame by frame), windows in the node's
+ * stereo mode on its monitors, or nothing (headless). The renderer follows the
+ * frames' GI method and settings (renderer.h). cluster_view_create() renders one untracked
+ * frame with the config's settings, so shaders are compiled before a join. */
 #ifndef CAVELIGHT_CLUSTER_VIEW_H
 #define CAVELIGHT_CLUSTER_VIEW_H
 
@@ -36,6 +36,8 @@ typedef struct cluster_view_desc {
     const char *scene;        /* NULL = config scene, "" there = "default" */
     int threads;              /* CPU threads of the GI methods, 0 = all cores */
     int keep_frames;          /* PNG output: also SCREEN-EYE-NNNNNN.png (frame version) */
+    int show_blend;           /* while the pattern shows: tint the blend regions (present.h) */
+    int quiet;                /* no informational lines (the window's) */
 } cluster_view_desc;
 
 enum { CLUSTER_VIEW_MAX_EYES = 2 };

@@ -33,7 +33,7 @@ enum id {
     O_STANDALONE, O_CLUSTER, O_NAME, O_MASTER, O_EXIT_WITH_MASTER, O_RENDER, O_QUIET,
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
-    O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_PFM,
+    O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_SHOW_BLEND, O_PFM,
     O_THREADS, O_BUDGET, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
     O_FAULT_CHECKSUM,
@@ -76,6 +76,8 @@ static const cli_option options[] = {
      "what the node does with its images"},
     {O_KEEP_FRAMES, "keep-frames", NULL, NULL, G_OUTPUT, C,
      "png output: also keep every frame as SCREEN-EYE-NNNNNN.png"},
+    {O_SHOW_BLEND, "show-blend", NULL, NULL, G_OUTPUT, C,
+     "while the master shows the pattern: tint where each\nprojector's blend dims it (docs/cluster.md)"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
     {O_THREADS, "threads", "T", "all cores", G_GI, 0, "CPU threads of the GI methods (and the path tracer)"},
     {O_BUDGET, "budget-ms", "X", NULL, G_GI, S,
@@ -183,6 +185,7 @@ static const char *set(void *user, int id, const char *v)
             return "one of window, headless or png";
         break;
     case O_KEEP_FRAMES: d->keep_frames = 1; break;
+    case O_SHOW_BLEND: d->show_blend = 1; break;
     case O_THREADS: {
         const char *why = cli_int(v, 0, 256, &o->threads);
         d->threads = o->threads;

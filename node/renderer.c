@@ -574,19 +574,6 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     return 0;
 }
 
-void renderer_present(renderer *r, int width, int height)
-{
-    const gl_functions *gl = r->gl;
-    if (!r->final_fbo)
-        return;
-    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->final_fbo);
-    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    gl->BlitFramebuffer(0, 0, r->eye_w, r->eye_h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                        GL_LINEAR);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
 const char *renderer_last_error(const renderer *r)
 {
     return r->error;

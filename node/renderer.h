@@ -68,9 +68,6 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
 void renderer_get_timings(const renderer *r, renderer_timings *out);
 /* One line: why the last renderer_eye_pass() returned -1. */
 const char *renderer_last_error(const renderer *r);
-/* Copies the last eye pass's final image into the default framebuffer (a window),
- * scaled to width x height; for the GLFW backend before glctx_swap(). */
-void renderer_present(renderer *r, int width, int height);
 /* The last frame pass's shadow maps and the VPL source every GI method shares
  * (renderer_rsm.h); the renderer owns them. */
 struct renderer_rsm *renderer_get_rsm(renderer *r);

@@ -16,6 +16,7 @@
 #include "base/xalloc.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
+#include "present.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
@@ -219,9 +220,10 @@ static void add_stats(cJSON *obj, const gi_stats *g)
     }
 }
 
-/* The eye passes of one frame: images written, stage times summed over the eyes. */
-static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes, int eye_count,
-                       int f, double eye_sum[4])
+/* The eye passes of one frame: images written, the first eye handed to the window, stage
+ * times summed over the eyes. */
+static int render_eyes(const node_options *o, renderer *r, present *out, const eye_setup *eyes,
+                       int eye_count, int f, double eye_sum[4])
 {
     renderer_view views[2];
     for (int e = 0; e < eye_count; e++)
@@ -236,6 +238,8 @@ static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes
         }
         if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
             return -1;
+        if (e == 0)
+            memcpy(present_source(out, 0), img.rgb, (size_t)img.width * img.height * 3);
         renderer_timings te;
         renderer_get_timings(r, &te);
         eye_sum[0] += te.gbuffer_ms;
@@ -248,7 +252,7 @@ static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes
 
 /* Frame f: the frame pass, every eye, the window; its line on stdout and its entry in the
  * report. Returns 0, 1 when the window was closed, -1 on an error. */
-static int render_frame(const node_options *o, glctx *ctx, renderer *r, const eye_setup *eyes,
+static int render_frame(const node_options *o, present *out, renderer *r, const eye_setup *eyes,
                         int eye_count, frame_params *fp, int f, cJSON *frames,
                         double stage_ms[M_COUNT])
 {
@@ -258,12 +262,15 @@ static int render_frame(const node_options *o, glctx *ctx, renderer *r, const ey
     renderer_timings t;
     renderer_get_timings(r, &t);
     double eye_sum[4] = {0, 0, 0, 0};
-    if (render_eyes(o, r, eyes, eye_count, f, eye_sum) != 0)
+    if (render_eyes(o, r, out, eyes, eye_count, f, eye_sum) != 0)
         return -1;
-    int closed = 0;
-    if (o->gl == GLCTX_GLFW) { /* a window shows the first eye; closing it ends the run */
-        renderer_present(r, o->width, o->height);
-        closed = !glctx_swap(ctx);
+    /* A window (--gl glfw) shows the first eye; closing it ends the run. */
+    char err[512];
+    present_frame_desc pf = {.version = (uint64_t)f, .display_gamma = fp->display_gamma};
+    int closed = present_frame(out, &pf, err, sizeof err);
+    if (closed < 0) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        return -1;
     }
     char hex[17];
     snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
@@ -328,15 +335,18 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
                   frame_params *fp)
 {
     char err[512];
-    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
-                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
-    glctx *ctx = glctx_create(&gd, err, sizeof err);
-    if (!ctx) {
+    present_viewport vp = {.name = "window", .width = o->width, .height = o->height};
+    present_desc pd = {.output = o->gl == GLCTX_GLFW ? PRESENT_WINDOW : PRESENT_HEADLESS, .backend = o->gl,
+                       .log_name = "cavelight-node", .viewport_count = 1, .viewports = &vp,
+                       .title = "cavelight-node", .quiet = 1};
+    present *out = present_create(&pd, err, sizeof err);
+    if (!out) {
         /* The context's own message names no option: the one to try is this mode's. */
         fprintf(stderr, "cavelight-node: %s%s\n", err,
                 o->gl == GLCTX_GLFW ? "; or render without a window: --gl egl" : "");
         return 1;
     }
+    glctx *ctx = present_context(out);
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = sc, .first = fp, .threads = o->threads};
     cJSON *report = cJSON_CreateObject();
     renderer *r = NULL;
@@ -353,7 +363,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
     int step = 0;
     for (int f = 0; f < o->frames && step == 0; f++) {
         double stage_ms[M_COUNT];
-        if ((step = render_frame(o, ctx, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
+        if ((step = render_frame(o, out, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
             goto out;
         for (int m = 0; m < M_COUNT; m++)
             samples[(size_t)m * o->frames + f] = stage_ms[m];
@@ -364,7 +374,7 @@ out:
     free(samples);
     cJSON_Delete(report);
     renderer_destroy(r);
-    glctx_destroy(ctx);
+    present_destroy(out);
     return rc;
 }
 

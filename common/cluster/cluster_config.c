@@ -159,6 +159,30 @@ static void rigid_transform(const float t[3], const float deg[3], float scale, f
     m[14] = t[2];
 }
 
+/* {"translation", "rotation_deg", "scale"} at field (absent: identity). */
+static void parse_transform(parse_ctx *c, const cJSON *t, const char *field, float m[16])
+{
+    identity(m);
+    if (!t)
+        return;
+    char f[96];
+    if (!cJSON_IsObject(t)) {
+        fail(c, field, "must be an object with translation, rotation_deg, scale");
+        return;
+    }
+    float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
+    const cJSON *v;
+    snprintf(f, sizeof f, "%s.translation", field);
+    if ((v = json_keys_get(c->keys, t, "translation")))
+        get_vector(c, v, f, tr, 3, -1e4, 1e4);
+    snprintf(f, sizeof f, "%s.rotation_deg", field);
+    if ((v = json_keys_get(c->keys, t, "rotation_deg")))
+        get_vector(c, v, f, rot, 3, -360, 360);
+    snprintf(f, sizeof f, "%s.scale", field);
+    float scale = (float)get_number(c, t, "scale", f, 1, 0, 1e-6, 1e3);
+    rigid_transform(tr, rot, scale, m);
+}
+
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
 {
     obs->eye_separation = FRAME_VIEW_EYE_SEPARATION;
@@ -177,25 +201,21 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
     const cJSON *home = json_keys_get(c->keys, o, "home");
     if (home)
         get_vector(c, home, "observer.home", obs->home, 3, -1e4, 1e4);
-    const cJSON *t = json_keys_get(c->keys, o, "tracker_to_cave");
-    if (t) {
-        if (!cJSON_IsObject(t)) {
-            fail(c, "observer.tracker_to_cave", "must be an object with translation, rotation_deg, scale");
-            return;
-        }
-        float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
-        const cJSON *v;
-        if ((v = json_keys_get(c->keys, t, "translation")))
-            get_vector(c, v, "observer.tracker_to_cave.translation", tr, 3, -1e4, 1e4);
-        if ((v = json_keys_get(c->keys, t, "rotation_deg")))
-            get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
-        float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
-        rigid_transform(tr, rot, scale, obs->tracker_to_cave);
-    }
+    parse_transform(c, json_keys_get(c->keys, o, "tracker_to_cave"), "observer.tracker_to_cave",
+                    obs->tracker_to_cave);
 }
 
-/* Relative key folders are relative to the config file's folder, like a scene would be
- * to its glTF. The default is NAME.keys beside the config (NAME: file name less .json). */
+/* A path the config names (key folder, warp file): relative ones are relative to the config
+ * file's folder, like a scene's files to its glTF. */
+static void beside_config(parse_ctx *c, const char *path, const char *field, char out[CLUSTER_TEXT_MAX])
+{
+    const char *slash = strrchr(c->path, '/');
+    int folder = slash && path[0] != '/' ? (int)(slash - c->path) + 1 : 0;
+    if (snprintf(out, CLUSTER_TEXT_MAX, "%.*s%s", folder, c->path, path) >= CLUSTER_TEXT_MAX)
+        fail(c, field, "the path beside the config is longer than %d characters", CLUSTER_TEXT_MAX - 1);
+}
+
+/* The default key folder is NAME.keys beside the config (NAME: file name less .json). */
 static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
 {
     if (o && !cJSON_IsObject(o)) {
@@ -213,13 +233,8 @@ static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
     char keys[CLUSTER_TEXT_MAX], def[CLUSTER_TEXT_MAX];
     snprintf(def, sizeof def, "%.*s.keys", stem, base);
     get_string(c, o, "keys", "security.keys", keys, sizeof keys, def);
-    if (c->failed)
-        return;
-    if (keys[0] == '/')
-        snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%s", keys);
-    else if (snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%.*s%s", folder, c->path, keys) >=
-             (int)sizeof cfg->keys_dir)
-        fail(c, "security.keys", "the key folder's path is longer than %d characters", CLUSTER_TEXT_MAX - 1);
+    if (!c->failed)
+        beside_config(c, keys, "security.keys", cfg->keys_dir);
 }
 
 /* Entry index of a list of named objects ("screens", "nodes"): an object whose name is
@@ -320,6 +335,106 @@ static int parse_resolution(parse_ctx *c, const cJSON *v, const char *field, int
     return 0;
 }
 
+/* ---- display hardware (cluster_window, cluster_warp): the keys in one place ------------- */
+
+/* One monitor: an index or an output's name. */
+static void parse_monitor(parse_ctx *c, const cJSON *v, const char *field, int *index, char *name)
+{
+    if (cJSON_IsString(v) && v->valuestring[0] && strlen(v->valuestring) <= CLUSTER_NAME_MAX)
+        snprintf(name, CLUSTER_NAME_MAX + 1, "%s", v->valuestring);
+    else if (cJSON_IsNumber(v) && v->valuedouble >= 0 && v->valuedouble <= 64 && v->valuedouble == floor(v->valuedouble))
+        *index = (int)v->valuedouble;
+    else
+        fail(c, field, "must be a monitor index 0..64 or an output's name of 1..%d characters (as xrandr "
+             "lists them, e.g. \"DP-1\")", CLUSTER_NAME_MAX);
+}
+
+/* A flag or a whole number in lo..hi ("vsync": true, false or an interval). */
+static int get_flag_or_int(parse_ctx *c, const cJSON *obj, const char *key, const char *field, int def,
+                           int lo, int hi)
+{
+    const cJSON *v = json_keys_get(c->keys, obj, key);
+    if (!v)
+        return def;
+    if (cJSON_IsBool(v))
+        return cJSON_IsTrue(v);
+    if (!cJSON_IsNumber(v) || v->valuedouble != floor(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
+        fail(c, field, "must be true, false or a whole number in %d..%d", lo, hi);
+        return def;
+    }
+    return (int)v->valuedouble;
+}
+
+void cluster_window_default(cluster_window *w)
+{
+    *w = (cluster_window){.monitor = {0, 1}, .swap_interval = 1};
+}
+
+static void parse_window(parse_ctx *c, const cJSON *n, int index, cluster_window *w)
+{
+    char field[96];
+    cluster_window_default(w);
+    const cJSON *m = json_keys_get(c->keys, n, "monitor");
+    snprintf(field, sizeof field, "nodes[%d].monitor", index);
+    if (cJSON_IsArray(m) && cJSON_GetArraySize(m) == 2) {
+        for (int e = 0; e < 2; e++)
+            parse_monitor(c, cJSON_GetArrayItem(m, e), field, &w->monitor[e], w->monitor_name[e]);
+    } else if (m) {
+        parse_monitor(c, m, field, &w->monitor[0], w->monitor_name[0]);
+        w->monitor[1] = w->monitor[0] + 1; /* the right eye's window: the next monitor */
+    }
+    const cJSON *fs = json_keys_get(c->keys, n, "fullscreen");
+    snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
+    if (fs && !cJSON_IsBool(fs))
+        fail(c, field, "must be true or false");
+    w->fullscreen = fs && cJSON_IsTrue(fs);
+    float xy[2];
+    const cJSON *v = json_keys_get(c->keys, n, "position");
+    snprintf(field, sizeof field, "nodes[%d].position", index);
+    if (v && get_vector(c, v, field, xy, 2, -65536, 65536) == 0) {
+        w->position[0] = (int)xy[0];
+        w->position[1] = (int)xy[1];
+        w->have_position = 1;
+    }
+    v = json_keys_get(c->keys, n, "size");
+    snprintf(field, sizeof field, "nodes[%d].size", index);
+    if (v)
+        parse_resolution(c, v, field, &w->size[0], &w->size[1]);
+    snprintf(field, sizeof field, "nodes[%d].vsync", index);
+    w->swap_interval = get_flag_or_int(c, n, "vsync", field, 1, 0, 8);
+    snprintf(field, sizeof field, "nodes[%d].swap_group", index);
+    w->swap_group = (int)get_number(c, n, "swap_group", field, 0, 0, 0, 1 << 20);
+    snprintf(field, sizeof field, "nodes[%d].swap_barrier", index);
+    w->swap_barrier = (int)get_number(c, n, "swap_barrier", field, 0, 0, 0, 1 << 20);
+    if (!c->failed && w->swap_barrier && !w->swap_group)
+        fail(c, field, "binds a swap group to a barrier: give swap_group too");
+}
+
+/* A screen's projector: {"mpcdi": FILE, "region": ID, "to_cave": {...}} or {"mesh": FILE}. */
+static int parse_warp(parse_ctx *c, const cJSON *w, const char *field, cluster_warp *out)
+{
+    identity(out->to_cave);
+    if (!w)
+        return 0;
+    const cJSON *mpcdi = cJSON_IsObject(w) ? json_keys_get(c->keys, w, "mpcdi") : NULL;
+    const cJSON *mesh = cJSON_IsObject(w) ? json_keys_get(c->keys, w, "mesh") : NULL;
+    if (!mpcdi == !mesh || !cJSON_IsString(mpcdi ? mpcdi : mesh) || !(mpcdi ? mpcdi : mesh)->valuestring[0]) {
+        fail(c, field, "must be {\"mpcdi\": FILE, \"region\": ID} or {\"mesh\": FILE}");
+        return -1;
+    }
+    out->kind = mpcdi ? CLUSTER_WARP_MPCDI : CLUSTER_WARP_MESH;
+    char f[128];
+    snprintf(f, sizeof f, "%s.%s", field, mpcdi ? "mpcdi" : "mesh");
+    beside_config(c, (mpcdi ? mpcdi : mesh)->valuestring, f, out->path);
+    snprintf(f, sizeof f, "%s.region", field);
+    get_string(c, w, "region", f, out->region, sizeof out->region, "");
+    snprintf(f, sizeof f, "%s.to_cave", field);
+    parse_transform(c, json_keys_get(c->keys, w, "to_cave"), f, out->to_cave);
+    if (!c->failed && mesh && (out->region[0] || json_keys_get(c->keys, w, "to_cave")))
+        fail(c, field, "region and to_cave belong to an MPCDI file, not a warp mesh");
+    return c->failed ? -1 : 0;
+}
+
 static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *cfg)
 {
     char field[96];
@@ -364,6 +479,9 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
             snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
             if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
                 return;
+            snprintf(field, sizeof field, "nodes[%d].screens[%d].warp", index, i);
+            if (parse_warp(c, json_keys_get(c->keys, e, "warp"), field, &ns->warp))
+                return;
             snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
         }
         if (!sname) {
@@ -386,14 +504,7 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     node->output = (cluster_output)get_enum(c, n, "output", field, output_names, 3, CLUSTER_OUTPUT_WINDOW);
     snprintf(field, sizeof field, "nodes[%d].stereo", index);
     node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
-    snprintf(field, sizeof field, "nodes[%d].monitor", index);
-    node->monitor = (int)get_number(c, n, "monitor", field, 0, 0, 0, 64);
-    const cJSON *fs = json_keys_get(c->keys, n, "fullscreen");
-    if (fs && !cJSON_IsBool(fs)) {
-        snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
-        fail(c, field, "must be true or false");
-    }
-    node->fullscreen = fs && cJSON_IsTrue(fs);
+    parse_window(c, n, index, &node->window);
     static const struct { const char *key; size_t offset; const char *def; } texts[] = {
         {"exe", offsetof(cluster_node, exe), ""},
         {"workdir", offsetof(cluster_node, workdir), ""},

@@ -8,10 +8,10 @@
  *               "overview": [x, y] (pixel offset in the unfolded overview, optional)}]
  *             Measured corners are fitted to the nearest rectangle (screen_fit.h) and
  *             refused when one moves more than "corner_tolerance_mm" (top level, 20).
- *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution"}],
+ *   nodes     [{"name", "host", "screens": ["name" | {"name", "resolution", "warp"}],
  *               "resolution": [w, h], "eyes": "mono|stereo|left|right",
  *               "output": "window|headless|png", "stereo": "quad|side-by-side|top-bottom|
- *               window-per-eye|anaglyph", "monitor": n, "fullscreen": bool,
+ *               window-per-eye|anaglyph", the window keys (cluster_window below),
  *               "exe", "workdir", "config" (the node program, its working folder and this
  *               file's path on the node's host, for --spawn-remote and scripts/
  *               install_nodes.py; default: the master's), "display" (X display for window
@@ -89,9 +89,53 @@ typedef struct cluster_screen {
     int overview[2]; /* pixel offset in the overview; -1 = not shown */
 } cluster_screen;
 
+/* ---- display hardware: a node's window and each screen's projector --------------------- */
+
+/* A node's window(s) for window output, from the node's keys:
+ *   "monitor": INDEX | "NAME" | [LEFT, RIGHT]  the monitor (GLFW index, or the output's
+ *                  name as xrandr lists it, e.g. "DP-1"); the second is the right eye's
+ *                  window under window-per-eye (default: the next index)
+ *   "fullscreen": bool        cover the monitor at its current video mode
+ *   "position": [x, y]        the window's top-left on the desktop, pixels (window-per-eye:
+ *                             the right eye's window to the right of the left's)
+ *   "size": [w, h]            the window's size (default: the images' size)
+ *   "vsync": bool | n         swap every n-th refresh (true: 1, the default; false: 0)
+ *   "swap_group": n, "swap_barrier": n   NVIDIA GLX_NV_swap_group: the group to join and
+ *                  the barrier to bind it to (0: none); joined when the driver has the
+ *                  extension, the software barrier runs in either case */
+typedef struct cluster_window {
+    int monitor[2];                              /* by index: left (or only), right */
+    char monitor_name[2][CLUSTER_NAME_MAX + 1];  /* by name when not "" */
+    int fullscreen;
+    int position[2], have_position;
+    int size[2];                                 /* 0 0: the images' size */
+    int swap_interval;
+    int swap_group, swap_barrier;
+} cluster_window;
+
+/* The window of a node that sets none of the keys: monitor 0 (the right eye's 1), vsync on. */
+void cluster_window_default(cluster_window *w);
+
+typedef enum cluster_warp_kind {
+    CLUSTER_WARP_NONE = 0,
+    CLUSTER_WARP_MPCDI,    /* a region of an MPCDI file (warp/mpcdi.h) */
+    CLUSTER_WARP_MESH,     /* a cavelight warp mesh file (warp/warp_mesh.h) */
+} cluster_warp_kind;
+
+/* A screen's projector (a node screen's "warp": {"mpcdi": FILE, "region": ID,
+ * "to_cave": {"translation", "rotation_deg", "scale"}} or {"mesh": FILE}); FILE is
+ * relative to the config's folder. The node reads it once at start. */
+typedef struct cluster_warp {
+    cluster_warp_kind kind;
+    char path[CLUSTER_TEXT_MAX];   /* resolved against the config's folder */
+    char region[CLUSTER_TEXT_MAX]; /* MPCDI region id; "" = the file's only region */
+    float to_cave[16];             /* MPCDI 3d: the file's points (metres) to CAVE space */
+} cluster_warp;
+
 typedef struct cluster_node_screen {
     int screen;        /* index into cluster_config.screens */
     int width, height; /* pixels */
+    cluster_warp warp;
 } cluster_node_screen;
 
 typedef struct cluster_node {
@@ -102,8 +146,7 @@ typedef struct cluster_node {
     cluster_eyes eyes;
     cluster_output output;
     cluster_stereo stereo;
-    int monitor;    /* GLFW monitor index for fullscreen windows */
-    int fullscreen;
+    cluster_window window;
     char exe[CLUSTER_TEXT_MAX];     /* "" = the master's choice (--node-exe, or beside it) */
     char workdir[CLUSTER_TEXT_MAX]; /* "" = wherever the launch starts it */
     char config[CLUSTER_TEXT_MAX];  /* this config's path on the host; "" = the master's */

@@ -45,7 +45,7 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
         fprintf(stderr, "bench accuracy: %s\n", err);
         return -1;
     }
-    glctx_desc gd = {.backend = GLCTX_EGL, .width = o->width, .height = o->height};
+    glctx_desc gd = {.backend = GLCTX_EGL};
     s->ctx = glctx_create(&gd, err, sizeof err);
     if (!s->ctx) {
         fprintf(stderr, "bench accuracy: %s\n", err);

@@ -21,6 +21,7 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
 #include "glctx.h"
+#include "present.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
 #include "renderer.h"
@@ -72,8 +73,12 @@ int bench_frame(int argc, char **argv)
         fprintf(stderr, "bench frame: %s\n", err);
         return 1;
     }
-    glctx_desc gd = {.backend = backend, .width = width, .height = height};
-    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    /* glfw: the context of a window, as a node's window output makes it (present.h). */
+    present_viewport pv = {.name = "bench", .width = width, .height = height};
+    present_desc pd = {.output = backend == GLCTX_GLFW ? PRESENT_WINDOW : PRESENT_HEADLESS, .backend = backend,
+                       .log_name = "bench frame", .quiet = 1, .viewport_count = 1, .viewports = &pv};
+    present *out = present_create(&pd, err, sizeof err);
+    glctx *ctx = out ? present_context(out) : NULL;
     if (!ctx) {
         fprintf(stderr, "bench frame: %s\n", err);
         scene_free(&sc);
@@ -85,7 +90,7 @@ int bench_frame(int argc, char **argv)
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);
-        glctx_destroy(ctx);
+        present_destroy(out);
         scene_free(&sc);
         return 1;
     }
@@ -218,7 +223,7 @@ int bench_frame(int argc, char **argv)
     free(s);
     free(assign);
     renderer_destroy(r);
-    glctx_destroy(ctx);
+    present_destroy(out);
     scene_free(&sc);
     return rc ? 1 : 0;
 }

@@ -78,7 +78,7 @@ static void test_exact_matches_reference(void **state)
     (void)state;
     room m = {0};
     char err[512];
-    glctx_desc gd = {.backend = GLCTX_EGL, .width = W, .height = H};
+    glctx_desc gd = {.backend = GLCTX_EGL};
     assert_non_null(m.ctx = glctx_create(&gd, err, sizeof err));
     assert_int_equal(scene_load("default", &m.sc, err, sizeof err), 0);
     scene_camera cam;
