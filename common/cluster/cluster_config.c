@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mat4.h"
 #include "base/textfile.h"
 #include "frame/frame_view.h"
 #include "frame/screen_fit.h"
@@ -136,27 +137,6 @@ static void identity(float m[16])
     m[0] = m[5] = m[10] = m[15] = 1;
 }
 
-/* M = T * Rz * Ry * Rx * S, column-major. */
-static void rigid_transform(const float t[3], const float deg[3], float scale, float m[16])
-{
-    double r[3];
-    for (int i = 0; i < 3; i++)
-        r[i] = deg[i] * 3.14159265358979323846 / 180.0;
-    double cx = cos(r[0]), sx = sin(r[0]), cy = cos(r[1]), sy = sin(r[1]), cz = cos(r[2]), sz = sin(r[2]);
-    double R[3][3] = { /* R[row][col] = Rz*Ry*Rx */
-        {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-        {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-        {-sy, cy * sx, cy * cx},
-    };
-    identity(m);
-    for (int col = 0; col < 3; col++)
-        for (int row = 0; row < 3; row++)
-            m[col * 4 + row] = (float)(R[row][col] * scale);
-    m[12] = t[0];
-    m[13] = t[1];
-    m[14] = t[2];
-}
-
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
 {
     obs->eye_separation = FRAME_VIEW_EYE_SEPARATION;
@@ -188,7 +168,7 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         if ((v = cJSON_GetObjectItemCaseSensitive(t, "rotation_deg")))
             get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
         float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
-        rigid_transform(tr, rot, scale, obs->tracker_to_cave);
+        mat4_from_trs_deg(tr, rot, scale, obs->tracker_to_cave);
     }
 }
 
