@@ -19,6 +19,7 @@ enum id {
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET, O_EXPOSURE,
     O_INPUT, O_RECORD,
     O_PATTERN, O_PRINT_POSES,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
 };
 
 static const cli_option options[] = {
@@ -41,6 +42,10 @@ static const cli_option options[] = {
      "how long to wait for the nodes to join"},
     {O_RENDER, "render", "gl|none", "gl", G_NODES, 0, "started nodes: none renders nothing (tests)"},
     {O_SCENE, "scene", "FILE|NAME", "the config's scene", G_NODES, 0, "the scene every node loads"},
+    {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_NODES, 0,
+     "where the scene stands in the CAVE, e.g. '{\"up\": \"z\",\n\"scale\": 0.01}' or '{\"fit\": true}' (docs/cluster.md)"},
+    {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
+     "glTF buffers and images from outside the scene file's\nfolder too"},
     {O_GI, "gi", "ilpv|none|vpl", "ilpv", G_NODES, 0,
      "the indirect-light method every node starts with (the\nsettings layout switches it live)"},
     {O_VPL_COUNT, "vpl-count", "N", "the frame default", G_NODES, 0,
@@ -97,6 +102,18 @@ static const char *set(void *user, int id, const char *v)
         o->render = v;
         break;
     case O_SCENE: o->scene = v; break;
+    case O_SCENE_TRANSFORM: {
+        static char reason[400];
+        char text[300];
+        if (cluster_scene_transform_parse(v, &o->scene_transform, text, sizeof text) != 0) {
+            snprintf(reason, sizeof reason, "a scene_transform object (%s)", text);
+            return reason;
+        }
+        o->scene_transform_text = v;
+        o->has_scene_transform = 1;
+        break;
+    }
+    case O_ALLOW_OUTSIDE: o->allow_outside_paths = 1; break;
     case O_GI: {
         int k = cli_choice(v, frame_gi_names, FRAME_GI_COUNT);
         if (k < 0)

@@ -6,6 +6,7 @@
 
 #include "base/cli.h"
 #include "frame/frame_params.h"
+#include "scene/scene_transform.h"
 
 typedef struct master_options {
     const char *config;
@@ -26,6 +27,10 @@ typedef struct master_options {
     vpl_selection vpl_selection; /* vpl's selection rule (0 = by flux) */
     float exposure;             /* 0 = the frame default */
     int exposure_auto;          /* --exposure auto */
+    const char *scene_transform_text; /* --scene-transform JSON, passed on to spawned nodes */
+    int has_scene_transform;
+    scene_transform scene_transform;  /* its parse; replaces the config's */
+    int allow_outside_paths;    /* --allow-outside-paths (spawned nodes get it too) */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

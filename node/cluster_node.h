@@ -28,6 +28,9 @@ typedef struct cluster_node_desc {
     int output;                 /* cluster_output, or -1 for the config's */
     const char *out_dir;        /* png output folder, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;          /* NULL = config scene or the built-in default */
+    int has_scene_transform;    /* --scene-transform: replaces the config's */
+    scene_transform scene_transform;
+    int allow_outside_paths;    /* --allow-outside-paths */
     int lpv_threads;            /* CPU LPV threads, 0 = all cores */
     int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
     int lpv_mode;               /* renderer_lpv_mode; every node must use the same */

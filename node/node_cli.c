@@ -38,6 +38,7 @@ enum id {
     O_ENV, O_DISPLAY_GAMMA, O_EXPOSURE, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
     O_FAULT_CHECKSUM,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
 };
 
 #define S MODE_STANDALONE
@@ -56,6 +57,10 @@ static const cli_option options[] = {
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
      "corridor, doorway, courtyard, leak-lid, leak-panel,\nleak-wall (docs/node.md)"},
+    {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_CLUSTER, C,
+     "where the scene stands in the CAVE (docs/cluster.md)"},
+    {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_SCENE, 0,
+     "glTF buffers and images from outside the scene file's\nfolder too"},
     {O_CAMERA, "camera", "NAME|INDEX", "the file's first; without one, a view inside the scene",
      G_SCENE, S, "the scene file's camera to look through"},
     {O_FRAMES, "frames", "N", "1", G_SCENE, S, "frames to render"},
@@ -162,6 +167,17 @@ static const char *set(void *user, int id, const char *v)
             return "one of egl, osmesa or glfw";
         break;
     case O_SCENE: o->scene = d->scene = v; break;
+    case O_SCENE_TRANSFORM: {
+        static char reason[400];
+        char text[300];
+        if (cluster_scene_transform_parse(v, &d->scene_transform, text, sizeof text) != 0) {
+            snprintf(reason, sizeof reason, "a scene_transform object (%s)", text);
+            return reason;
+        }
+        d->has_scene_transform = 1;
+        break;
+    }
+    case O_ALLOW_OUTSIDE: o->allow_outside_paths = d->allow_outside_paths = 1; break;
     case O_FRAMES: why = cli_int(v, 1, 1000000, &o->frames); break;
     case O_WIDTH: why = cli_int(v, 1, 16384, &o->width); break;
     case O_HEIGHT: why = cli_int(v, 1, 16384, &o->height); o->have_height = 1; break;

@@ -15,6 +15,7 @@ typedef struct node_options {
     int standalone;
     glctx_backend gl;
     const char *scene;
+    int allow_outside_paths;     /* glTF buffers and images from outside the file's folder */
     renderer_lpv_backend lpv;
     renderer_tiles tiles;
     renderer_lpv_mode mode;

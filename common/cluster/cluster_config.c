@@ -14,7 +14,7 @@
 #include "cluster/wire.h"
 
 typedef struct parse_ctx {
-    const char *path;
+    const char *path;       /* NULL: not a file (a command line's JSON) */
     char *err;
     size_t errlen;
     int failed;
@@ -30,7 +30,10 @@ static void fail(parse_ctx *c, const char *field, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    if (c->path)
+        snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    else
+        snprintf(c->err, c->errlen, "%s: %s", field, msg);
 }
 
 static const char *const eyes_names[] = {"mono", "stereo", "left", "right"};
@@ -169,6 +172,73 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
             get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
         float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
         mat4_from_trs_deg(tr, rot, scale, obs->tracker_to_cave);
+    }
+}
+
+/* "scene_transform" (scene/scene_transform.h): checked here, once, for the file and for
+ * --scene-transform alike; every program applies it through scene_load_with(). */
+static void parse_scene_transform(parse_ctx *c, const cJSON *o, scene_transform *t)
+{
+    static const char *const keys[] = {"scale", "up", "anchor", "fit", "rotation_deg", "translation"};
+    memset(t, 0, sizeof *t);
+    if (!cJSON_IsObject(o)) {
+        fail(c, "scene_transform", "must be an object with scale, up, anchor, fit, rotation_deg, translation");
+        return;
+    }
+    for (const cJSON *e = o->child; e; e = e->next)
+        if (lookup(e->string, keys, 6) < 0) {
+            char field[96];
+            snprintf(field, sizeof field, "scene_transform.%.60s", e->string);
+            fail(c, field, "unknown (scale, up, anchor, fit, rotation_deg or translation)");
+            return;
+        }
+    t->scale = (float)get_number(c, o, "scale", "scene_transform.scale", 0, 0, SCENE_TRANSFORM_SCALE_MIN,
+                                 SCENE_TRANSFORM_SCALE_MAX);
+    t->up = (scene_up)get_enum(c, o, "up", "scene_transform.up", scene_up_names, SCENE_UP_COUNT, SCENE_UP_Y);
+    t->anchor = (scene_anchor)get_enum(c, o, "anchor", "scene_transform.anchor", scene_anchor_names,
+                                       SCENE_ANCHOR_COUNT, SCENE_ANCHOR_AUTO);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, "fit");
+    if (v && !cJSON_IsBool(v))
+        fail(c, "scene_transform.fit", "must be true or false");
+    t->fit = v && cJSON_IsTrue(v);
+    if ((v = cJSON_GetObjectItemCaseSensitive(o, "rotation_deg")))
+        get_vector(c, v, "scene_transform.rotation_deg", t->rotation_deg, 3, -360, 360);
+    if ((v = cJSON_GetObjectItemCaseSensitive(o, "translation")))
+        get_vector(c, v, "scene_transform.translation", t->translation, 3, -SCENE_TRANSFORM_TRANSLATION_MAX,
+                   SCENE_TRANSFORM_TRANSLATION_MAX);
+    if (!c->failed && t->fit &&
+        (cJSON_GetObjectItemCaseSensitive(o, "scale") || cJSON_GetObjectItemCaseSensitive(o, "anchor")))
+        fail(c, "scene_transform.fit", "chooses the scale and the anchor: give fit, or scale and anchor");
+}
+
+int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen)
+{
+    parse_ctx c = {.err = err, .errlen = errlen};
+    cJSON *root = cJSON_Parse(json);
+    if (!root) {
+        snprintf(err, errlen, "not valid JSON; give one such as '{\"up\": \"z\", \"scale\": 0.01}'");
+        return -1;
+    }
+    parse_scene_transform(&c, root, out);
+    cJSON_Delete(root);
+    return c.failed ? -1 : 0;
+}
+
+void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out)
+{
+    memset(out, 0, sizeof *out);
+    out->transform = c->has_scene_transform ? &c->scene_transform : NULL;
+    out->allow_outside_paths = c->scene_outside_paths;
+    memcpy(out->stage.home, c->observer.home, sizeof out->stage.home);
+    for (int i = 0; i < c->screen_count; i++) {
+        const cluster_screen *sc = &c->screens[i];
+        for (int k = 0; k < 4; k++)
+            for (int a = 0; a < 3; a++) {
+                float x = k == 0 ? sc->bottom_left[a] : k == 1 ? sc->bottom_right[a] : k == 2 ? sc->top_left[a]
+                          : sc->bottom_right[a] + sc->top_left[a] - sc->bottom_left[a];
+                out->stage.box_min[a] = i == 0 && k == 0 ? x : fminf(out->stage.box_min[a], x);
+                out->stage.box_max[a] = i == 0 && k == 0 ? x : fmaxf(out->stage.box_max[a], x);
+            }
     }
 }
 
@@ -412,6 +482,10 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
     get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
     get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
+    const cJSON *st = cJSON_GetObjectItemCaseSensitive(root, "scene_transform");
+    cfg->has_scene_transform = st != NULL;
+    if (st)
+        parse_scene_transform(&c, st, &cfg->scene_transform);
 
     const cJSON *m = cJSON_GetObjectItemCaseSensitive(root, "master");
     if (!cJSON_IsObject(m)) {

@@ -1467,6 +1467,48 @@ void load(const std::vector<unsigned char> &bytes, const char *path, const jvalu
     }
 }
 
+void put_le32(unsigned char *p, uint32_t v)
+{
+    for (int k = 0; k < 4; k++)
+        p[k] = (unsigned char)(v >> (8 * k));
+}
+
+// tinygltf insists that an indices accessor has a bufferView, which a Draco primitive's
+// need not have (Draco holds the faces): such primitives go to tinygltf without indices.
+bool drop_draco_indices(jvalue *root)
+{
+    bool changed = false;
+    auto meshes = root->find("meshes");
+    for (size_t m = 0; meshes != root->end() && m < meshes->size(); m++) {
+        auto prims = (*meshes)[m].find("primitives");
+        for (size_t p = 0; prims != (*meshes)[m].end() && p < prims->size(); p++) {
+            jvalue &prim = (*prims)[p];
+            auto ext = prim.find("extensions");
+            if (ext != prim.end() && ext->contains("KHR_draco_mesh_compression") && prim.erase("indices"))
+                changed = true;
+        }
+    }
+    return changed;
+}
+
+// The file's bytes with its JSON replaced (a GLB keeps its BIN chunk).
+std::vector<unsigned char> with_json(const std::vector<unsigned char> &bytes, std::string text)
+{
+    if (!is_glb(bytes))
+        return std::vector<unsigned char>(text.begin(), text.end());
+    while (text.size() % 4)
+        text += ' ';
+    size_t rest = 20 + (size_t)le32(bytes.data() + 12);
+    std::vector<unsigned char> out(20 + text.size() + (bytes.size() - rest));
+    std::memcpy(out.data(), bytes.data(), 8);
+    put_le32(out.data() + 8, (uint32_t)out.size());
+    put_le32(out.data() + 12, (uint32_t)text.size());
+    put_le32(out.data() + 16, 0x4E4F534Au);
+    std::memcpy(out.data() + 20, text.data(), text.size());
+    std::memcpy(out.data() + 20 + text.size(), bytes.data() + rest, bytes.size() - rest);
+    return out;
+}
+
 std::string joined(const std::vector<std::string> &notes)
 {
     std::string s;
@@ -1490,6 +1532,9 @@ extern "C" int gltf_import(const char *path, int allow_outside_paths, scene *out
         check_types(root);
         std::vector<std::string> notes;
         check_extensions(root, &notes);
+        jvalue given = root;
+        if (drop_draco_indices(&given))
+            bytes = with_json(bytes, given.dump());
         tinygltf::Model model;
         load(bytes, path, root, allow_outside_paths != 0, &model);
         validator{model}.run();
