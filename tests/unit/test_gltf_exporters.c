@@ -356,6 +356,16 @@ static void test_material_warning(void **state)
     assert_string_equal(s.warning, "1 of 1 materials drawn differently from the file: materials[0] \"Coat\" "
                                    "(KHR_materials_clearcoat: no clear-coat layer, alphaMode BLEND: opaque)");
     scene_free(&s);
+    /* Specular-glossiness (older exporters): its diffuse colour is the base colour. */
+    path = write_case("spec_gloss", TRI_JSON("\"extensionsUsed\":[\"KHR_materials_pbrSpecularGlossiness\"],"
+                                             "\"materials\":[{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":"
+                                             "{\"diffuseFactor\":[0.2,0.4,0.6,1]}}}],", "[{\"mesh\":0}]"), tri, sizeof tri);
+    assert_int_equal(load(path, 0, &s, err, sizeof err), 0);
+    const float *base = s.materials[s.triangle_material[0]].base_color;
+    assert_true(base[0] == 0.2f && base[1] == 0.4f && base[2] == 0.6f);
+    assert_string_equal(s.warning, "1 of 1 materials drawn differently from the file: materials[0] "
+                                   "(KHR_materials_pbrSpecularGlossiness: diffuse colour only)");
+    scene_free(&s);
 }
 
 /* Fields of the wrong JSON type, which tinygltf would skip, are refused by their path. */
