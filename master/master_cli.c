@@ -102,17 +102,12 @@ static const char *set(void *user, int id, const char *v)
         o->render = v;
         break;
     case O_SCENE: o->scene = v; break;
-    case O_SCENE_TRANSFORM: {
-        static char reason[400];
-        char text[300];
-        if (cluster_scene_transform_parse(v, &o->scene_transform, text, sizeof text) != 0) {
-            snprintf(reason, sizeof reason, "a scene_transform object (%s)", text);
-            return reason;
-        }
+    case O_SCENE_TRANSFORM:
+        if ((why = cluster_scene_transform_option(v, &o->scene_transform)) != NULL)
+            break;
         o->scene_transform_text = v;
         o->has_scene_transform = 1;
         break;
-    }
     case O_ALLOW_OUTSIDE: o->allow_outside_paths = 1; break;
     case O_GI: {
         int k = cli_choice(v, frame_gi_names, FRAME_GI_COUNT);

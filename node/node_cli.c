@@ -167,16 +167,7 @@ static const char *set(void *user, int id, const char *v)
             return "one of egl, osmesa or glfw";
         break;
     case O_SCENE: o->scene = d->scene = v; break;
-    case O_SCENE_TRANSFORM: {
-        static char reason[400];
-        char text[300];
-        if (cluster_scene_transform_parse(v, &d->scene_transform, text, sizeof text) != 0) {
-            snprintf(reason, sizeof reason, "a scene_transform object (%s)", text);
-            return reason;
-        }
-        d->has_scene_transform = 1;
-        break;
-    }
+    case O_SCENE_TRANSFORM: d->has_scene_transform = !(why = cluster_scene_transform_option(v, &d->scene_transform)); break;
     case O_ALLOW_OUTSIDE: o->allow_outside_paths = d->allow_outside_paths = 1; break;
     case O_FRAMES: why = cli_int(v, 1, 1000000, &o->frames); break;
     case O_WIDTH: why = cli_int(v, 1, 16384, &o->width); break;

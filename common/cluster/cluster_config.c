@@ -224,6 +224,16 @@ int cluster_scene_transform_parse(const char *json, scene_transform *out, char *
     return c.failed ? -1 : 0;
 }
 
+const char *cluster_scene_transform_option(const char *json, scene_transform *out)
+{
+    static char reason[400];
+    char why[300];
+    if (cluster_scene_transform_parse(json, out, why, sizeof why) == 0)
+        return NULL;
+    snprintf(reason, sizeof reason, "a scene_transform object (%s)", why);
+    return reason;
+}
+
 void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out)
 {
     memset(out, 0, sizeof *out);

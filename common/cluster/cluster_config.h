@@ -146,6 +146,8 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
 /* A scene_transform object as JSON text (the master's and the node's --scene-transform):
  * the same rules as the config's key. 0, or -1 with "scene_transform.F: ..." in err. */
 int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen);
+/* The same for an option's value (base/cli.h's set()): NULL, or why it is refused. */
+const char *cluster_scene_transform_option(const char *json, scene_transform *out);
 /* How every program of this cluster loads its scene: the transform, the stage (the
  * observer's home, the box of every screen's corners) and the path rule. */
 void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out);
