@@ -149,6 +149,14 @@ static int master_run(const master_options *o)
         return 1;
     if (o->keygen)
         return keygen(&cfg);
+    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
+        cfg.scene_transform = o->scene_transform;
+        cfg.has_scene_transform = 1;
+        if (!o->spawn_local && !o->spawn_remote)
+            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
+                    "start every node with the same --scene-transform\n");
+    }
+    cfg.scene_outside_paths = o->allow_outside_paths;
     for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
         if (cfg.screens[i].fit_mm >= 0.05f)
             fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "

@@ -23,6 +23,7 @@ enum id {
     O_INPUT, O_RECORD,
     O_PATTERN, O_PATTERN_BLEND, O_PRINT_POSES,
     O_CHECK, O_STRICT,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
 
@@ -50,6 +51,10 @@ static const cli_option options[] = {
      "how long to wait for the nodes to join"},
     {O_RENDER, "render", "gl|none", "gl", G_NODES, 0, "started nodes: none renders nothing (tests)"},
     {O_SCENE, "scene", "FILE|NAME", "the config's scene", G_NODES, 0, "the scene every node loads"},
+    {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_NODES, 0,
+     "where the scene stands in the CAVE, e.g. '{\"up\": \"z\",\n\"scale\": 0.01}' or '{\"fit\": true}' (docs/cluster.md)"},
+    {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
+     "glTF buffers and images from outside the scene file's\nfolder too"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -123,6 +128,13 @@ static const char *set(void *user, int id, const char *v)
         o->render = v;
         break;
     case O_SCENE: o->scene = v; break;
+    case O_SCENE_TRANSFORM:
+        if ((why = cluster_scene_transform_option(v, &o->scene_transform)) != NULL)
+            break;
+        o->scene_transform_text = v;
+        o->has_scene_transform = 1;
+        break;
+    case O_ALLOW_OUTSIDE: o->allow_outside_paths = 1; break;
     case O_FRAMES: why = cli_int(v, 0, 1 << 30, &o->frames); break;
     case O_DT: why = cli_float(v, 0.0f, 10.0f, &f); o->dt = f; break;
     case O_FPS: why = cli_float(v, 0.0f, 1000.0f, &f); o->fps = f; break;

@@ -9,6 +9,7 @@
 #include "cluster/cluster_config.h"
 
 enum { MASTER_MAX_SETTINGS = 96 };
+#include "scene/scene_transform.h"
 
 typedef struct master_options {
     const char *config;
@@ -31,6 +32,10 @@ typedef struct master_options {
     int exposure_auto;          /* --exposure auto */
     int check;                  /* --check: validate the config and exit (check.h) */
     int strict;                 /* unknown keys in the cluster or input config are errors */
+    const char *scene_transform_text; /* --scene-transform JSON, passed on to spawned nodes */
+    int has_scene_transform;
+    scene_transform scene_transform;  /* its parse; replaces the config's */
+    int allow_outside_paths;    /* --allow-outside-paths (spawned nodes get it too) */
 } master_options;
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */

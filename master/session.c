@@ -14,7 +14,7 @@
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
-#include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "script.h"
 
 enum { MAX_SAMPLES = 100000 };
@@ -53,9 +53,13 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
                 size_t errlen)
 {
     scene sc;
-    if (scene_load(scene_path, &sc, err, errlen) != 0)
+    scene_load_desc sd;
+    cluster_config_scene_desc(s->cfg, &sd); /* as every node places it */
+    if (scene_load_with(scene_path, &sd, &sc, err, errlen) != 0)
         return -1;
-    if (sc.light_added) { /* the nodes load it too; the master says it once */
+    if (sc.warning[0]) /* the nodes load it too; the master says it once */
+        fprintf(stderr, "cavelight-master: warning: scene %s: %s\n", scene_path, sc.warning);
+    if (sc.light_added) {
         char note[400];
         scene_light_added_note(&sc, scene_path, note, sizeof note);
         fprintf(stderr, "cavelight-master: warning: %s\n", note);

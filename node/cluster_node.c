@@ -162,6 +162,11 @@ int cluster_node_start(const char *config_path, cluster_node_desc *d)
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (d->has_scene_transform) {
+        cfg.scene_transform = d->scene_transform;
+        cfg.has_scene_transform = 1;
+    }
+    cfg.scene_outside_paths = d->allow_outside_paths;
     d->config = &cfg;
     d->stop = &node_stop;
     struct sigaction sa;

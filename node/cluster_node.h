@@ -28,6 +28,9 @@ typedef struct cluster_node_desc {
     int output;                 /* cluster_output, or -1 for the config's */
     const char *out_dir;        /* png output folder, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;          /* NULL = config scene or the built-in default */
+    int has_scene_transform;    /* --scene-transform: replaces the config's */
+    scene_transform scene_transform;
+    int allow_outside_paths;    /* --allow-outside-paths */
     int threads;                /* CPU threads of the GI methods, 0 = all cores (the GI
                                    method and its settings come from the master) */
     int exit_with_master;       /* 1: leave when the master ends the session */

@@ -182,7 +182,9 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     if (gi_set_config(v->cfg, &v->first, err, errlen) != 0)
         goto fail;
     const char *scene_path = desc->scene ? desc->scene : v->cfg->scene[0] ? v->cfg->scene : "default";
-    if (scene_load(scene_path, &v->sc, err, errlen) != 0)
+    scene_load_desc sd;
+    cluster_config_scene_desc(v->cfg, &sd); /* as the master and every node place it */
+    if (scene_load_with(scene_path, &sd, &v->sc, err, errlen) != 0)
         goto fail;
     v->scene_loaded = 1;
     v->far_plane = scene_far_plane(&v->sc);

@@ -37,6 +37,7 @@ enum id {
     O_THREADS, O_BUDGET, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
     O_FAULT_CHECKSUM,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
 
@@ -56,6 +57,10 @@ static const cli_option options[] = {
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
      "corridor, doorway, courtyard, leak-lid, leak-panel,\nleak-wall (docs/node.md)"},
+    {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_CLUSTER, C,
+     "where the scene stands in the CAVE (docs/cluster.md)"},
+    {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_SCENE, 0,
+     "glTF buffers and images from outside the scene file's\nfolder too"},
     {O_CAMERA, "camera", "NAME|INDEX", "the file's first; without one, a view inside the scene",
      G_SCENE, S, "the scene file's camera to look through"},
     {O_FRAMES, "frames", "N", "1", G_SCENE, S, "frames to render"},
@@ -179,6 +184,12 @@ static const char *set(void *user, int id, const char *v)
     case O_RENDER: CHOICE(d->render, render_names); break;
     case O_QUIET: d->quiet = 1; break;
     case O_SCENE: o->scene = d->scene = v; break;
+    case O_SCENE_TRANSFORM: {
+        const char *why = cluster_scene_transform_option(v, &d->scene_transform);
+        d->has_scene_transform = !why;
+        return why;
+    }
+    case O_ALLOW_OUTSIDE: o->allow_outside_paths = d->allow_outside_paths = 1; break;
     case O_OUT: o->out = d->out_dir = v; break;
     case O_OUTPUT:
         if ((d->output = cluster_output_parse(v)) < 0)

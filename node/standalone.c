@@ -20,7 +20,7 @@
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
-#include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "standalone.h"
 
 void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
@@ -386,10 +386,13 @@ int standalone_run(const node_options *o)
         return 1;
     }
     scene sc;
-    if (scene_load(o->scene, &sc, err, sizeof err) != 0) {
+    scene_load_desc sd = {.allow_outside_paths = o->allow_outside_paths};
+    if (scene_load_with(o->scene, &sd, &sc, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (sc.warning[0])
+        fprintf(stderr, "cavelight-node: warning: scene %s: %s\n", o->scene, sc.warning);
     if (o->camera && scene_pick_camera(&sc, o->camera, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: --camera: %s\n", err);
         scene_free(&sc);

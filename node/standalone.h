@@ -15,6 +15,7 @@ typedef struct node_options {
     int standalone;
     glctx_backend gl;
     const char *scene;
+    int allow_outside_paths;     /* glTF buffers and images from outside the file's folder */
     float budget_ms;          /* > 0: choose the ILPV's lattice and steps (ilpv_budget.h) */
     int threads;
     int frames, width, height;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/json_keys.h"
+#include "base/mat4.h"
 #include "base/textfile.h"
 #include "frame/frame_view.h"
 #include "frame/screen_fit.h"
@@ -15,7 +16,7 @@
 
 typedef struct parse_ctx {
     json_keys *keys; /* every member is read through it: the unknown ones are reported */
-    const char *path;
+    const char *path;       /* NULL: not a file (a command line's JSON) */
     char *err;
     size_t errlen;
     int failed;
@@ -31,7 +32,10 @@ static void fail(parse_ctx *c, const char *field, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    if (c->path)
+        snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    else
+        snprintf(c->err, c->errlen, "%s: %s", field, msg);
 }
 
 static const char *const eyes_names[] = {"mono", "stereo", "left", "right"};
@@ -138,27 +142,6 @@ static void identity(float m[16])
     m[0] = m[5] = m[10] = m[15] = 1;
 }
 
-/* M = T * Rz * Ry * Rx * S, column-major. */
-static void rigid_transform(const float t[3], const float deg[3], float scale, float m[16])
-{
-    double r[3];
-    for (int i = 0; i < 3; i++)
-        r[i] = deg[i] * 3.14159265358979323846 / 180.0;
-    double cx = cos(r[0]), sx = sin(r[0]), cy = cos(r[1]), sy = sin(r[1]), cz = cos(r[2]), sz = sin(r[2]);
-    double R[3][3] = { /* R[row][col] = Rz*Ry*Rx */
-        {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-        {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-        {-sy, cy * sx, cy * cx},
-    };
-    identity(m);
-    for (int col = 0; col < 3; col++)
-        for (int row = 0; row < 3; row++)
-            m[col * 4 + row] = (float)(R[row][col] * scale);
-    m[12] = t[0];
-    m[13] = t[1];
-    m[14] = t[2];
-}
-
 /* {"translation", "rotation_deg", "scale"} at field (absent: identity). */
 static void parse_transform(parse_ctx *c, const cJSON *t, const char *field, float m[16])
 {
@@ -180,7 +163,7 @@ static void parse_transform(parse_ctx *c, const cJSON *t, const char *field, flo
         get_vector(c, v, f, rot, 3, -360, 360);
     snprintf(f, sizeof f, "%s.scale", field);
     float scale = (float)get_number(c, t, "scale", f, 1, 0, 1e-6, 1e3);
-    rigid_transform(tr, rot, scale, m);
+    mat4_from_trs_deg(tr, rot, scale, m);
 }
 
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
@@ -203,6 +186,85 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         get_vector(c, home, "observer.home", obs->home, 3, -1e4, 1e4);
     parse_transform(c, json_keys_get(c->keys, o, "tracker_to_cave"), "observer.tracker_to_cave",
                     obs->tracker_to_cave);
+}
+
+/* "scene_transform" (scene/scene_transform.h): checked here, once, for the file and for
+ * --scene-transform alike; every program applies it through scene_load_with(). */
+static void parse_scene_transform(parse_ctx *c, const cJSON *o, scene_transform *t)
+{
+    static const char *const keys[] = {"scale", "up", "anchor", "fit", "rotation_deg", "translation"};
+    memset(t, 0, sizeof *t);
+    if (!cJSON_IsObject(o)) {
+        fail(c, "scene_transform", "must be an object with scale, up, anchor, fit, rotation_deg, translation");
+        return;
+    }
+    for (const cJSON *e = o->child; e; e = e->next)
+        if (lookup(e->string, keys, 6) < 0) {
+            char field[96];
+            snprintf(field, sizeof field, "scene_transform.%.60s", e->string);
+            fail(c, field, "unknown (scale, up, anchor, fit, rotation_deg or translation)");
+            return;
+        }
+    t->scale = (float)get_number(c, o, "scale", "scene_transform.scale", 0, 0, SCENE_TRANSFORM_SCALE_MIN,
+                                 SCENE_TRANSFORM_SCALE_MAX);
+    t->up = (scene_up)get_enum(c, o, "up", "scene_transform.up", scene_up_names, SCENE_UP_COUNT, SCENE_UP_Y);
+    t->anchor = (scene_anchor)get_enum(c, o, "anchor", "scene_transform.anchor", scene_anchor_names,
+                                       SCENE_ANCHOR_COUNT, SCENE_ANCHOR_AUTO);
+    const cJSON *v = json_keys_get(c->keys, o, "fit");
+    if (v && !cJSON_IsBool(v))
+        fail(c, "scene_transform.fit", "must be true or false");
+    t->fit = v && cJSON_IsTrue(v);
+    if ((v = json_keys_get(c->keys, o, "rotation_deg")))
+        get_vector(c, v, "scene_transform.rotation_deg", t->rotation_deg, 3, -360, 360);
+    if ((v = json_keys_get(c->keys, o, "translation")))
+        get_vector(c, v, "scene_transform.translation", t->translation, 3, -SCENE_TRANSFORM_TRANSLATION_MAX,
+                   SCENE_TRANSFORM_TRANSLATION_MAX);
+    if (!c->failed && t->fit &&
+        (json_keys_get(c->keys, o, "scale") || json_keys_get(c->keys, o, "anchor")))
+        fail(c, "scene_transform.fit", "chooses the scale and the anchor: give fit, or scale and anchor");
+}
+
+int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen)
+{
+    parse_ctx c = {.err = err, .errlen = errlen};
+    cJSON *root = cJSON_Parse(json);
+    if (!root) {
+        snprintf(err, errlen, "not valid JSON; give one such as '{\"up\": \"z\", \"scale\": 0.01}'");
+        return -1;
+    }
+    c.keys = json_keys_create();
+    parse_scene_transform(&c, root, out);
+    json_keys_destroy(c.keys);
+    cJSON_Delete(root);
+    return c.failed ? -1 : 0;
+}
+
+const char *cluster_scene_transform_option(const char *json, scene_transform *out)
+{
+    static char reason[400];
+    char why[300];
+    if (cluster_scene_transform_parse(json, out, why, sizeof why) == 0)
+        return NULL;
+    snprintf(reason, sizeof reason, "a scene_transform object (%s)", why);
+    return reason;
+}
+
+void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out)
+{
+    memset(out, 0, sizeof *out);
+    out->transform = c->has_scene_transform ? &c->scene_transform : NULL;
+    out->allow_outside_paths = c->scene_outside_paths;
+    memcpy(out->stage.home, c->observer.home, sizeof out->stage.home);
+    for (int i = 0; i < c->screen_count; i++) {
+        const cluster_screen *sc = &c->screens[i];
+        for (int k = 0; k < 4; k++)
+            for (int a = 0; a < 3; a++) {
+                float x = k == 0 ? sc->bottom_left[a] : k == 1 ? sc->bottom_right[a] : k == 2 ? sc->top_left[a]
+                          : sc->bottom_right[a] + sc->top_left[a] - sc->bottom_left[a];
+                out->stage.box_min[a] = i == 0 && k == 0 ? x : fminf(out->stage.box_min[a], x);
+                out->stage.box_max[a] = i == 0 && k == 0 ? x : fmaxf(out->stage.box_max[a], x);
+            }
+    }
 }
 
 /* A path the config names (key folder, warp file): relative ones are relative to the config
@@ -598,6 +660,10 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
     get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
     get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
+    const cJSON *st = json_keys_get(c.keys, root, "scene_transform");
+    cfg->has_scene_transform = st != NULL;
+    if (st)
+        parse_scene_transform(&c, st, &cfg->scene_transform);
 
     const cJSON *m = json_keys_get(c.keys, root, "master");
     if (!cJSON_IsObject(m)) {

@@ -17,6 +17,9 @@
  *               install_nodes.py; default: the master's), "display" (X display for window
  *               output when DISPLAY is unset, default ":0")}]
  *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
+ *             "scene_transform": {"scale", "up": "y|z", "anchor": "auto|camera|centre|none",
+ *                                 "fit": bool, "rotation_deg": [x,y,z], "translation":
+ *                                 [x,y,z]} (scene/scene_transform.h; --scene-transform),
  *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
  *                          "join_ms"},
  *             "settings": {"NAME": value, ...} (the options of cavelight-master's GI and
@@ -36,6 +39,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "scene/scene_load.h"
 
 enum {
     CLUSTER_MAX_SCREENS = 32,
@@ -170,6 +175,9 @@ typedef struct cluster_config {
     char path[CLUSTER_TEXT_MAX];
     char name[CLUSTER_TEXT_MAX];
     char scene[CLUSTER_TEXT_MAX];          /* "" = the built-in default scene */
+    int has_scene_transform;               /* 0: the scene as modelled */
+    scene_transform scene_transform;       /* "scene_transform", or --scene-transform */
+    int scene_outside_paths;               /* --allow-outside-paths (never from the file) */
     char master_bind[CLUSTER_TEXT_MAX];
     char master_connect[CLUSTER_TEXT_MAX];
     char launch[CLUSTER_TEXT_MAX];         /* {host} and {command} are substituted */
@@ -200,6 +208,14 @@ typedef struct cluster_config {
 int cluster_config_load(const char *path, cluster_config *out, char *err, size_t errlen);
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *out,
                          char *err, size_t errlen);
+/* A scene_transform object as JSON text (the master's and the node's --scene-transform):
+ * the same rules as the config's key. 0, or -1 with "scene_transform.F: ..." in err. */
+int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen);
+/* The same for an option's value (base/cli.h's set()): NULL, or why it is refused. */
+const char *cluster_scene_transform_option(const char *json, scene_transform *out);
+/* How every program of this cluster loads its scene: the transform, the stage (the
+ * observer's home, the box of every screen's corners) and the path rule. */
+void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out);
 /* Index of the node or screen with this name, or -1. */
 int cluster_config_find_node(const cluster_config *c, const char *name);
 int cluster_config_find_screen(const cluster_config *c, const char *name);
