@@ -138,24 +138,17 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
                 rejoin ? "rejoined" : "joined", (unsigned long long)m->params.version, note);
 }
 
-/* Receives one message if any is queued. Returns 1 when a message was handled (valid or
- * not), 0 when none was waiting. */
-static int handle_one(cluster_master *m)
+/* Reads one ROUTER message, [routing id][body], into id and body. Frames beyond the second
+ * are read and discarded so that the next message starts clean. Returns how many frames the
+ * message had, 0 when none was waiting. */
+static int recv_message(cluster_master *m, zmq_msg_t *id, zmq_msg_t *body)
 {
-    zmq_msg_t id, body;
-    zmq_msg_init(&id);
-    zmq_msg_init(&body);
-    if (zmq_msg_recv(&id, m->sock, ZMQ_DONTWAIT) < 0) {
-        zmq_msg_close(&id);
-        zmq_msg_close(&body);
+    if (zmq_msg_recv(id, m->sock, ZMQ_DONTWAIT) < 0)
         return 0;
-    }
-    /* ROUTER delivers [routing id][body]; anything else is malformed. Extra frames are
-     * read and discarded so the next message starts clean. */
     int parts = 1;
-    if (zmq_msg_more(&id) && zmq_msg_recv(&body, m->sock, 0) >= 0) {
+    if (zmq_msg_more(id) && zmq_msg_recv(body, m->sock, 0) >= 0) {
         parts++;
-        while (zmq_msg_more(&body)) {
+        while (zmq_msg_more(body)) {
             zmq_msg_t extra;
             zmq_msg_init(&extra);
             int rc = zmq_msg_recv(&extra, m->sock, 0);
@@ -166,75 +159,94 @@ static int handle_one(cluster_master *m)
                 break;
         }
     }
+    return parts;
+}
+
+/* Who sent it: in curve mode the key's node, whatever the routing id; insecure, the
+ * routing id's name. -1 (counted and logged) for anybody else. */
+static int sender(cluster_master *m, zmq_msg_t *id, zmq_msg_t *body)
+{
     char rid_name[WIRE_NAME_MAX + 1] = "";
-    size_t idlen = zmq_msg_size(&id);
+    size_t idlen = zmq_msg_size(id);
     if (idlen <= WIRE_NAME_MAX) {
-        memcpy(rid_name, zmq_msg_data(&id), idlen);
+        memcpy(rid_name, zmq_msg_data(id), idlen);
         rid_name[idlen] = 0;
     }
-    /* Who sent it: in curve mode the key's node, whatever the routing id; insecure, the
-     * routing id's name. */
-    int node = cluster_auth_node(m->auth, &body, wire_name_valid(rid_name) ? rid_name : NULL);
-    const char *name = node >= 0 ? m->cfg->nodes[node].name : rid_name;
-    size_t len = zmq_msg_size(&body);
-    m->st.messages_received++;
-    m->st.bytes_received += len;
-    wire_msg msg;
-    wire_error e = WIRE_OK;
+    int node = cluster_auth_node(m->auth, body, wire_name_valid(rid_name) ? rid_name : NULL);
     uint64_t skipped = 0;
     if (node < 0) {
         m->st.unknown_peers++;
         if (ratelog_event(&m->unknown_log, clock_now_ms(), &skipped))
             fprintf(stderr, "cavelight-master: message from unknown or unauthenticated peer '%s' dropped "
                     "(%llu so far, %llu not logged): only nodes named in %s may connect\n",
-                    wire_name_valid(name) ? name : "?", (unsigned long long)m->st.unknown_peers,
+                    wire_name_valid(rid_name) ? rid_name : "?", (unsigned long long)m->st.unknown_peers,
                     (unsigned long long)skipped, m->cfg->path);
-        goto done;
     }
-    e = parts == 2 ? wire_decode(zmq_msg_data(&body), len, &msg) : WIRE_E_PAYLOAD;
-    if (e == WIRE_OK && (msg.type == WIRE_SNAPSHOT || msg.type == WIRE_FRAME || msg.type == WIRE_SWAP))
+    return node;
+}
+
+/* Decodes a node's message into msg: 0, or -1 (counted and logged) when it is malformed,
+ * of a master-to-node type, or speaks for another node. */
+static int decode_from(cluster_master *m, int node, int parts, zmq_msg_t *body, wire_msg *msg)
+{
+    const char *name = m->cfg->nodes[node].name;
+    wire_error e = parts == 2 ? wire_decode(zmq_msg_data(body), zmq_msg_size(body), msg) : WIRE_E_PAYLOAD;
+    if (e == WIRE_OK && (msg->type == WIRE_SNAPSHOT || msg->type == WIRE_FRAME || msg->type == WIRE_SWAP))
         e = WIRE_E_TYPE; /* master-to-node messages */
-    if (e == WIRE_OK && strcmp(msg.name, name) != 0)
+    if (e == WIRE_OK && strcmp(msg->name, name) != 0)
         e = WIRE_E_PAYLOAD; /* a node speaking for another */
-    if (e != WIRE_OK) {
-        m->st.malformed++;
-        if (ratelog_event(&m->malformed_log, clock_now_ms(), &skipped))
-            fprintf(stderr, "cavelight-master: malformed message from node %s dropped (%s; %llu so far, "
-                    "%llu not logged)\n", name, wire_error_string(e), (unsigned long long)m->st.malformed,
-                    (unsigned long long)skipped);
-        goto done;
+    if (e == WIRE_OK)
+        return 0;
+    m->st.malformed++;
+    uint64_t skipped = 0;
+    if (ratelog_event(&m->malformed_log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-master: malformed message from node %s dropped (%s; %llu so far, "
+                "%llu not logged)\n", name, wire_error_string(e), (unsigned long long)m->st.malformed,
+                (unsigned long long)skipped);
+    return -1;
+}
+
+static void on_ready(cluster_master *m, peer *p, const wire_msg *msg)
+{
+    if (p->s.state != CLUSTER_PEER_LIVE || !p->in_barrier || p->ready || msg->version != m->params.version) {
+        m->st.stale++;
+        return;
     }
+    p->ready = 1;
+    p->s.version = msg->version;
+    p->s.checksum = msg->checksum;
+    p->s.frames_ready++;
+    memcpy(p->s.timings, msg->timings, sizeof p->s.timings);
+    p->s.ready_ms = p->last_heard - p->frame_sent;
+    m->ready_ring[m->ready_count++ % STALL_SAMPLES] = p->s.ready_ms;
+}
+
+/* A valid message of a node: where it came from (its newest connection, where answers go)
+ * and what it says. */
+static void dispatch(cluster_master *m, int node, zmq_msg_t *id, zmq_msg_t *body, const wire_msg *msg)
+{
     peer *p = &m->peers[node];
     p->last_heard = clock_now_ms();
-    p->fd = (int)zmq_msg_get(&body, ZMQ_SRCFD);
-    if (idlen <= sizeof p->rid) { /* the node's newest connection (a restart makes a new one) */
-        memcpy(p->rid, zmq_msg_data(&id), idlen);
+    p->fd = (int)zmq_msg_get(body, ZMQ_SRCFD);
+    size_t idlen = zmq_msg_size(id);
+    if (idlen <= sizeof p->rid) { /* a restart makes a new connection */
+        memcpy(p->rid, zmq_msg_data(id), idlen);
         p->rid_len = idlen;
     }
-    switch (msg.type) {
+    switch (msg->type) {
     case WIRE_HELLO:
         if (m->closing)
             send_bye(m, node, WIRE_BYE_SHUTDOWN); /* no new session with a master that is leaving */
         else
-            join(m, node, &msg);
+            join(m, node, msg);
         break;
     case WIRE_READY:
-        if (p->s.state == CLUSTER_PEER_LIVE && p->in_barrier && !p->ready && msg.version == m->params.version) {
-            p->ready = 1;
-            p->s.version = msg.version;
-            p->s.checksum = msg.checksum;
-            p->s.frames_ready++;
-            memcpy(p->s.timings, msg.timings, sizeof p->s.timings);
-            p->s.ready_ms = p->last_heard - p->frame_sent;
-            m->ready_ring[m->ready_count++ % STALL_SAMPLES] = p->s.ready_ms;
-        } else {
-            m->st.stale++;
-        }
+        on_ready(m, p, msg);
         break;
     case WIRE_BYE: {
         char note[96];
         if (p->s.state == CLUSTER_PEER_LIVE && !m->quiet && node_log(m, node, note, sizeof note))
-            fprintf(stderr, "cavelight-master: node %s left%s\n", name, note);
+            fprintf(stderr, "cavelight-master: node %s left%s\n", m->cfg->nodes[node].name, note);
         p->s.state = CLUSTER_PEER_ABSENT;
         p->in_barrier = 0;
         break;
@@ -242,10 +254,27 @@ static int handle_one(cluster_master *m)
     default: /* HEARTBEAT: last_heard is enough */
         break;
     }
-done:
+}
+
+/* Receives one message if any is queued. Returns 1 when a message was handled (valid or
+ * not), 0 when none was waiting. */
+static int handle_one(cluster_master *m)
+{
+    zmq_msg_t id, body;
+    zmq_msg_init(&id);
+    zmq_msg_init(&body);
+    int parts = recv_message(m, &id, &body);
+    if (parts > 0) {
+        m->st.messages_received++;
+        m->st.bytes_received += zmq_msg_size(&body);
+        wire_msg msg;
+        int node = sender(m, &id, &body);
+        if (node >= 0 && decode_from(m, node, parts, &body, &msg) == 0)
+            dispatch(m, node, &id, &body, &msg);
+    }
     zmq_msg_close(&id);
     zmq_msg_close(&body);
-    return 1;
+    return parts > 0;
 }
 
 /* A node whose connection closed (process killed or crashed, heartbeat timed out) leaves
@@ -568,7 +597,7 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
         m->st.desyncs++;
     uint64_t skipped = 0;
     if (out->desync && ratelog_event(&m->desync_log, clock_now_ms(), &skipped)) {
-        fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): LPV checksums "
+        fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): GI checksums "
                 "differ:", (unsigned long long)v, (unsigned long long)m->st.desyncs, (unsigned long long)skipped);
         for (int i = 0; i < m->cfg->node_count; i++)
             if (m->peers[i].in_barrier && m->peers[i].ready)

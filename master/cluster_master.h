@@ -5,7 +5,7 @@
  * incremental LPV restarts from the same frame. cluster_master_frame() commits the
  * parameter store as version v, sends FRAME(v, delta since each node's version), waits
  * for READY(v) from every live node until the stall timeout, drops the late ones,
- * compares LPV checksums (a difference is a desync) and sends SWAP(v).
+ * compares the frame's GI checksums (a difference is a desync) and sends SWAP(v).
  * The stall timeout adapts: 4 x the p99 READY latency of the last 64 frames, at least
  * timeouts.stall_min_ms and at most barrier_ms. A node whose connection closes (killed,
  * crashed, heartbeats unanswered) is dropped at once from the socket's disconnect event.
@@ -41,7 +41,7 @@ typedef enum cluster_peer_state {
 typedef struct cluster_peer_stats {
     cluster_peer_state state;
     uint64_t version;        /* last version the node applied (snapshot or READY) */
-    uint64_t checksum;       /* LPV checksum of its last READY */
+    uint64_t checksum;       /* the frame's GI checksum of its last READY */
     uint64_t frames_ready;
     uint32_t joins, drops;
     float timings[WIRE_TIMING_COUNT]; /* of the last READY */

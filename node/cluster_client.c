@@ -384,6 +384,116 @@ static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
     return CLUSTER_EVENT_SHUTDOWN;
 }
 
+/* Reads one message from the master into msg and decodes it into m (whose params point into
+ * msg). Returns 1 (valid: the caller closes msg), 0 (none waiting) or -1 (malformed: counted,
+ * logged and dropped). */
+static int recv_decoded(cluster_client *c, zmq_msg_t *msg, wire_msg *m)
+{
+    zmq_msg_init(msg);
+    if (zmq_msg_recv(msg, c->sock, ZMQ_DONTWAIT) < 0) {
+        zmq_msg_close(msg);
+        return 0;
+    }
+    size_t len = zmq_msg_size(msg);
+    c->st.bytes_received += len;
+    wire_error e = zmq_msg_more(msg) ? WIRE_E_PAYLOAD : wire_decode(zmq_msg_data(msg), len, m);
+    if (e == WIRE_OK && (m->type == WIRE_HELLO || m->type == WIRE_READY))
+        e = WIRE_E_TYPE; /* node-to-master messages */
+    if (e != WIRE_OK) {
+        drop_malformed(c, msg, e);
+        return -1;
+    }
+    return 1;
+}
+
+/* FRAME(v, delta): applied on top when its base is our version, else a snapshot is asked
+ * for. *pending: a FRAME applied and not yet overtaken. */
+static void on_frame(cluster_client *c, const wire_msg *m, int *pending, cluster_event *ev)
+{
+    if (c->state != STATE_JOINED) {
+        *pending = 0; /* a snapshot is on its way */
+        return;
+    }
+    if (m->base_version != c->params.version) {
+        /* A gap in the chain of deltas: only a snapshot can repair it. */
+        c->st.resyncs++;
+        ask_snapshot(c);
+        *pending = 0;
+        return;
+    }
+    double t0 = clock_now_ms();
+    if (params_apply(&c->params, m->version, m->params, m->params_len) != 0) {
+        refuse_params(c, "frame", m->version);
+        ask_snapshot(c);
+        *pending = 0;
+        return;
+    }
+    ev->apply_ms += clock_now_ms() - t0;
+    if (*pending)
+        c->st.skipped++;
+    c->st.frames++;
+    *pending = 1;
+    ev->version = m->version;
+}
+
+/* One valid message from the master. Returns the event to hand to the caller, or NONE to
+ * read on. */
+static cluster_event_type on_message(cluster_client *c, const wire_msg *m, int *pending, cluster_event *ev)
+{
+    c->last_heard = clock_now_ms();
+    /* The master is back: resync, unless a HELLO already went out since the loss (it
+     * waits in the master's queue; a second one would be a second rejoin). */
+    if (c->state == STATE_LOST && m->type != WIRE_SNAPSHOT && m->type != WIRE_BYE && c->last_hello < c->lost_at)
+        ask_snapshot(c);
+    switch (m->type) {
+    case WIRE_SNAPSHOT:
+        if (!join(c, m))
+            return CLUSTER_EVENT_NONE;
+        ev->version = m->version;
+        return ev->type = CLUSTER_EVENT_JOINED;
+    case WIRE_FRAME:
+        on_frame(c, m, pending, ev);
+        return CLUSTER_EVENT_NONE;
+    case WIRE_SWAP:
+        if (*pending)
+            return CLUSTER_EVENT_NONE;
+        c->st.swaps++;
+        ev->version = m->version;
+        return ev->type = CLUSTER_EVENT_SWAP;
+    case WIRE_BYE:
+        *pending = 0;
+        return ev->type = on_bye(c, m);
+    default: /* HEARTBEAT */
+        return CLUSTER_EVENT_NONE;
+    }
+}
+
+/* Nothing queued. A joined node whose master went silent has lost it (silence counts only
+ * once the queue is empty: a node that was stalled reads what the master sent before it
+ * decides); one not joined says HELLO again or opens a fresh socket. Then waits for the
+ * next message until the deadline. Returns LOST, or NONE with *expired set at the deadline. */
+static cluster_event_type wait_idle(cluster_client *c, double now, double deadline, cluster_event *ev,
+                                    int *expired)
+{
+    if (c->state == STATE_JOINED && now - c->last_heard > c->cfg->master_timeout_ms)
+        return lose_master(c, CLUSTER_LOST_SILENT, ev);
+    if (c->state != STATE_JOINED) {
+        hello_again(c, now);
+        reopen_if_dead(c, now);
+    }
+    if (now >= deadline) {
+        *expired = 1;
+        return CLUSTER_EVENT_NONE;
+    }
+    double wait = deadline - now;
+    if (wait > c->cfg->heartbeat_ms)
+        wait = c->cfg->heartbeat_ms;
+    zmq_pollitem_t items[2] = {{.socket = c->sock, .events = ZMQ_POLLIN},
+                               {.socket = c->monitor, .events = ZMQ_POLLIN}};
+    zmq_poll(items, c->monitor ? 2 : 1, (long)(wait + 0.999));
+    return CLUSTER_EVENT_NONE;
+}
+
 cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluster_event *ev)
 {
     memset(ev, 0, sizeof *ev);
@@ -397,103 +507,22 @@ cluster_event_type cluster_client_poll(cluster_client *c, int timeout_ms, cluste
         if (c->link == LINK_DOWN && c->state == STATE_JOINED && !pending)
             return lose_master(c, CLUSTER_LOST_CLOSED, ev);
         zmq_msg_t msg;
-        zmq_msg_init(&msg);
-        if (zmq_msg_recv(&msg, c->sock, ZMQ_DONTWAIT) < 0) {
-            zmq_msg_close(&msg);
-            if (pending) {
-                ev->type = CLUSTER_EVENT_FRAME;
-                return ev->type;
-            }
-            /* Silence counts only once the queue is empty: a node that was stalled reads
-             * what the master sent before it decides the master is gone. */
-            if (c->state == STATE_JOINED && now - c->last_heard > c->cfg->master_timeout_ms)
-                return lose_master(c, CLUSTER_LOST_SILENT, ev);
-            if (c->state != STATE_JOINED) {
-                hello_again(c, now);
-                reopen_if_dead(c, now);
-            }
-            if (now >= deadline)
-                return CLUSTER_EVENT_NONE;
-            double wait = deadline - now;
-            if (wait > c->cfg->heartbeat_ms)
-                wait = c->cfg->heartbeat_ms;
-            zmq_pollitem_t items[2] = {{.socket = c->sock, .events = ZMQ_POLLIN},
-                                       {.socket = c->monitor, .events = ZMQ_POLLIN}};
-            zmq_poll(items, c->monitor ? 2 : 1, (long)(wait + 0.999));
-            continue;
-        }
-        size_t len = zmq_msg_size(&msg);
-        c->st.bytes_received += len;
         wire_msg m;
-        wire_error e = zmq_msg_more(&msg) ? WIRE_E_PAYLOAD : wire_decode(zmq_msg_data(&msg), len, &m);
-        if (e == WIRE_OK && (m.type == WIRE_HELLO || m.type == WIRE_READY))
-            e = WIRE_E_TYPE; /* node-to-master messages */
-        if (e != WIRE_OK) {
-            drop_malformed(c, &msg, e);
-            if (!pending && clock_now_ms() >= deadline)
-                return CLUSTER_EVENT_NONE;
+        int got = recv_decoded(c, &msg, &m);
+        if (got == 0 && pending)
+            return ev->type = CLUSTER_EVENT_FRAME;
+        if (got == 0) {
+            int expired = 0;
+            if (wait_idle(c, now, deadline, ev, &expired) != CLUSTER_EVENT_NONE || expired)
+                return ev->type;
             continue;
         }
-        c->last_heard = clock_now_ms();
-        /* The master is back: resync, unless a HELLO already went out since the loss (it
-         * waits in the master's queue; a second one would be a second rejoin). */
-        if (c->state == STATE_LOST && m.type != WIRE_SNAPSHOT && m.type != WIRE_BYE && c->last_hello < c->lost_at)
-            ask_snapshot(c);
-        switch (m.type) {
-        case WIRE_SNAPSHOT:
-            if (join(c, &m)) {
-                ev->type = CLUSTER_EVENT_JOINED;
-                ev->version = m.version;
-                zmq_msg_close(&msg);
-                return ev->type;
-            }
-            break;
-        case WIRE_FRAME:
-            if (c->state != STATE_JOINED) {
-                pending = 0; /* a snapshot is on its way */
-                break;
-            }
-            if (m.base_version != c->params.version) {
-                /* A gap in the chain of deltas: only a snapshot can repair it. */
-                c->st.resyncs++;
-                ask_snapshot(c);
-                pending = 0;
-                break;
-            }
-            double t0 = clock_now_ms();
-            if (params_apply(&c->params, m.version, m.params, m.params_len) != 0) {
-                refuse_params(c, "frame", m.version);
-                ask_snapshot(c);
-                pending = 0;
-                break;
-            }
-            ev->apply_ms += clock_now_ms() - t0;
-            if (pending)
-                c->st.skipped++;
-            c->st.frames++;
-            pending = 1;
-            ev->version = m.version;
-            break;
-        case WIRE_SWAP:
-            if (!pending) {
-                c->st.swaps++;
-                ev->type = CLUSTER_EVENT_SWAP;
-                ev->version = m.version;
-                zmq_msg_close(&msg);
-                return ev->type;
-            }
-            break;
-        case WIRE_BYE:
-            pending = 0;
-            if ((ev->type = on_bye(c, &m)) != CLUSTER_EVENT_NONE) {
-                zmq_msg_close(&msg);
-                return ev->type;
-            }
-            break;
-        default: /* HEARTBEAT */
-            break;
+        if (got > 0) {
+            cluster_event_type t = on_message(c, &m, &pending, ev);
+            zmq_msg_close(&msg);
+            if (t != CLUSTER_EVENT_NONE)
+                return t;
         }
-        zmq_msg_close(&msg);
         if (!pending && clock_now_ms() >= deadline)
             return CLUSTER_EVENT_NONE; /* a flood cannot hold the caller past its timeout */
     }

@@ -46,7 +46,7 @@ enum { CLUSTER_VIEW_MAX_EYES = 2 };
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen);
 void cluster_view_destroy(cluster_view *v);
-/* Frame pass + all eye passes. Returns 0 and the LPV checksum, or -1 with err.
+/* Frame pass + all eye passes. Returns 0 and the frame's GI checksum, or -1 with err.
  * lattice_cells: the lpv_resolution key (0 = keep the desc's). */
 int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
                         float timings[WIRE_TIMING_COUNT], char *err, size_t errlen);

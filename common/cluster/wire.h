@@ -6,7 +6,7 @@
  *   HELLO     name, config hash u64, version the sender holds u64
  *   SNAPSHOT  version u64, params encoding (all keys)
  *   FRAME     version u64, base version u64, params delta (keys changed after base)
- *   READY     name, version u64, LPV checksum u64, timings 4 x f32 (ms)
+ *   READY     name, version u64, the frame's GI checksum u64, timings 4 x f32 (ms)
  *   SWAP      version u64
  *   BYE       name, reason u32
  *   HEARTBEAT name, version u64
