@@ -1,6 +1,7 @@
 #include "cluster_master.h"
 #include "base/xalloc.h"
 
+#include <arpa/inet.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +27,8 @@ typedef struct peer {
 
 /* The stall timeout adapts to the READY latencies of recent frames (ring of samples). */
 enum { STALL_SAMPLES = 64, STALL_MIN_SAMPLES = 16, STALL_FACTOR = 4 };
+/* Messages read before a closed connection drops its node (a bound: a flood cannot hold it). */
+enum { DRAIN_BEFORE_DROP = 64 };
 
 struct cluster_master {
     const cluster_config *cfg;
@@ -288,6 +291,10 @@ static void drop_disconnected(cluster_master *m, int fd)
         p->fd = -1;
         if (p->s.state != CLUSTER_PEER_LIVE)
             continue;
+        if (m->closing) { /* the session's end: nodes leave after our BYE, nobody is dropped */
+            p->s.state = CLUSTER_PEER_ABSENT;
+            continue;
+        }
         p->s.state = CLUSTER_PEER_DROPPED;
         p->s.drops++;
         m->st.drops++;
@@ -315,6 +322,9 @@ static int handle_event(cluster_master *m)
         memcpy(&value, (const uint8_t *)zmq_msg_data(&ev) + 2, 4);
         uint64_t skipped = 0;
         if (event == ZMQ_EVENT_DISCONNECTED) {
+            /* What came before the close is read first: a node that said BYE has left. */
+            for (int k = 0; k < DRAIN_BEFORE_DROP && handle_one(m); k++)
+                ;
             drop_disconnected(m, (int)value);
         } else if (event & (ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
                             ZMQ_EVENT_HANDSHAKE_FAILED_AUTH)) {
@@ -396,6 +406,54 @@ static int stall_timeout_ms(const cluster_master *m)
     return t < m->barrier_timeout_ms ? (int)t : m->barrier_timeout_ms;
 }
 
+/* 1 when a bound endpoint is reachable from this machine only: ipc, inproc, or tcp on
+ * 127.0.0.0/8 or ::1 (an IPv4-mapped 127.x too). */
+static int endpoint_is_local(const char *ep)
+{
+    if (strncmp(ep, "ipc://", 6) == 0 || strncmp(ep, "inproc://", 9) == 0)
+        return 1;
+    if (strncmp(ep, "tcp://", 6) != 0)
+        return 0;
+    char host[256];
+    const char *colon = strrchr(ep, ':');
+    size_t len = colon && colon > ep + 6 ? (size_t)(colon - (ep + 6)) : 0;
+    if (len == 0 || len >= sizeof host)
+        return 0;
+    memcpy(host, ep + 6, len);
+    host[len] = 0;
+    if (host[0] == '[' && host[len - 1] == ']') {
+        memmove(host, host + 1, len - 2);
+        host[len - 2] = 0;
+    }
+    struct in_addr a4;
+    struct in6_addr a6;
+    if (inet_pton(AF_INET, host, &a4) == 1)
+        return (ntohl(a4.s_addr) >> 24) == 127;
+    if (inet_pton(AF_INET6, host, &a6) != 1)
+        return 0;
+    return IN6_IS_ADDR_LOOPBACK(&a6) || (IN6_IS_ADDR_V4MAPPED(&a6) && a6.s6_addr[12] == 127);
+}
+
+/* Insecure mode trusts anybody who reaches the port: refused outside the loopback range
+ * unless asked for, and always said, naming the endpoint actually bound. */
+static int check_insecure(cluster_master *m, const cluster_master_desc *desc, char *err, size_t errlen)
+{
+    char ep[256] = "?";
+    cluster_master_endpoint(m, ep, sizeof ep);
+    int local = endpoint_is_local(ep);
+    if (!local && !desc->insecure_anywhere) {
+        snprintf(err, errlen, "cluster master: security \"insecure\" in %s, and %s (from %s) is outside the "
+                 "loopback range: any host that reaches it could join as a node or steer the nodes; bind "
+                 "127.0.0.1, use security \"curve\" (--keygen), or pass --insecure-anywhere", m->cfg->path, ep,
+                 desc->bind ? "--bind" : "master.bind");
+        return -1;
+    }
+    if (!m->quiet)
+        fprintf(stderr, "cavelight-master: security \"insecure\" in %s: any peer that reaches %s may join as a "
+                "node (%s)\n", m->cfg->path, ep, local ? "local runs and tests only" : "--insecure-anywhere");
+    return 0;
+}
+
 cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen)
 {
     cluster_master *m = xcalloc(1, sizeof *m);
@@ -449,6 +507,10 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     if (zmq_bind(m->sock, ep) != 0) {
         snprintf(err, errlen, "cluster master: cannot bind %s (%s, from %s): free the port or pass --bind",
                  ep, zmq_strerror(errno), desc->bind ? "--bind" : m->cfg->path);
+        cluster_master_destroy(m);
+        return NULL;
+    }
+    if (m->cfg->security == CLUSTER_SECURITY_INSECURE && check_insecure(m, desc, err, errlen) != 0) {
         cluster_master_destroy(m);
         return NULL;
     }

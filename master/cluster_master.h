@@ -30,6 +30,7 @@ typedef struct cluster_master_desc {
     const char *bind;        /* NULL = config->master_bind */
     int barrier_timeout_ms;  /* 0 = config->barrier_timeout_ms */
     int quiet;               /* 1: log only errors */
+    int insecure_anywhere;   /* 1: security "insecure" may bind outside the loopback range */
 } cluster_master_desc;
 
 typedef enum cluster_peer_state {
@@ -71,7 +72,8 @@ typedef struct cluster_frame_result {
     size_t frame_bytes;      /* bytes of one FRAME message (to a node at v-1) */
 } cluster_frame_result;
 
-/* Returns NULL with a one-line reason in err. */
+/* Returns NULL with a one-line reason in err: among them security "insecure" on an
+ * endpoint outside the loopback range (127.0.0.0/8, ::1, ipc) without insecure_anywhere. */
 cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen);
 /* Sends BYE(shutdown) to every live node, then closes. */
 void cluster_master_destroy(cluster_master *m);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
 #include "base/folder.h"
 #include "cluster_auth.h"
 #include "cluster_master.h"
@@ -40,6 +41,7 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
 {
     double start = clock_now_ms();
     int rc = 0;
+    ratelog idle_log = {0}; /* nodes that come and go (churn) must not flood the output */
     while ((o->frames == 0 || session_frames(s) < o->frames) && !stop_requested) {
         cluster_frame_result r;
         session_step step = session_frame(s, &r);
@@ -57,8 +59,12 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
             rc = 1;
             break;
         }
+        uint64_t skipped = 0;
         if (step == SESSION_NO_NODES) {
-            fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", wait_ms);
+            if (ratelog_event(&idle_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one (%llu times so far, "
+                        "%llu not logged)\n", wait_ms, (unsigned long long)idle_log.count,
+                        (unsigned long long)skipped);
             if (session_wait_nodes(s, 1, wait_ms, &stop_requested) == 0) {
                 fprintf(stderr, "cavelight-master: no node came back: stopping\n");
                 rc = 1;
@@ -141,7 +147,7 @@ static int master_run(const master_options *o)
                     cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     handle_signals();
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
-                       .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
+                       .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .gi = o->gi,
                        .vpl_count = o->vpl_count, .vpl_selection = o->vpl_selection,

@@ -10,6 +10,7 @@
 typedef struct master_options {
     const char *config;
     int spawn_local, spawn_remote, keygen, quiet;
+    int insecure_anywhere;      /* security "insecure" may bind outside the loopback range */
     const char *bind, *endpoint_file;
     int frames;                 /* 0 = until stopped */
     double dt, fps;             /* scripted seconds per frame; pacing (0 = as fast as possible) */

@@ -85,7 +85,8 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->dt = d->dt;
     s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
-                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
+                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet,
+                              .insecure_anywhere = d->insecure_anywhere};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
     if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;

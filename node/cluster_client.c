@@ -35,6 +35,7 @@ struct cluster_client {
     /* curve: this node's key pair and the one master key it accepts */
     char public_key[CLUSTER_KEY_Z85 + 1], secret_key[CLUSTER_KEY_Z85 + 1], master_key[CLUSTER_KEY_Z85 + 1];
     ratelog malformed_log, refused_log;
+    ratelog link_log;        /* joins, losses, drops, the session's end: cluster_client_log_link() */
     double last_heard, last_sent, last_hello;
     cluster_client_stats st;
     uint8_t buf[WIRE_MAX_MESSAGE];
@@ -137,22 +138,31 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
     return 0;
 }
 
-/* ZeroMQ does not reconnect after a protocol error (e.g. an oversized message): a node
- * with no connection that has heard nothing for RETRY_MS since its socket opened starts
- * a fresh one. A connection that is up is kept: its master has our HELLO, and a fresh
- * socket would lose the answer and make the master count a second join. */
-static void reopen_if_dead(cluster_client *c, double now)
+/* A fresh socket, and so a fresh connection; HELLO goes out once its handshake succeeds. */
+static void reopen(cluster_client *c)
 {
-    if (c->link == LINK_UP || now - c->last_heard < RETRY_MS || now - c->opened < RETRY_MS)
-        return;
-    char err[256];
+    char err[256], note[96];
     close_socket(c);
     if (open_socket(c, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+        if (cluster_client_log_link(c, note, sizeof note))
+            fprintf(stderr, "%s%s\n", err, note);
         return;
     }
     c->st.reopens++;
     send_hello(c);
+}
+
+/* ZeroMQ does not reconnect after a protocol error (e.g. an oversized message): a node
+ * with no connection that has heard nothing for RETRY_MS since its socket opened starts
+ * a fresh one. A connection that is up is kept for twice as long: its master has our HELLO,
+ * and a fresh socket would lose a late answer and make the master count a second join;
+ * but a connection whose HELLOs go unanswered that long leads nowhere (in insecure mode a
+ * stranger may have taken over our name on the master's side). */
+static void reopen_if_dead(cluster_client *c, double now)
+{
+    double since = now - (c->last_heard > c->opened ? c->last_heard : c->opened);
+    if (since >= (c->link == LINK_UP ? 2 * RETRY_MS : RETRY_MS))
+        reopen(c);
 }
 
 cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err, size_t errlen)
@@ -307,6 +317,43 @@ static void drop_malformed(cluster_client *c, zmq_msg_t *msg, wire_error e)
     zmq_msg_close(msg);
 }
 
+int cluster_client_log_link(cluster_client *c, char *note, size_t cap)
+{
+    uint64_t skipped = 0;
+    note[0] = 0;
+    if (c->quiet || !ratelog_event(&c->link_log, clock_now_ms(), &skipped))
+        return 0;
+    if (skipped)
+        snprintf(note, cap, " (%llu lines about the master not logged)", (unsigned long long)skipped);
+    return 1;
+}
+
+/* The join line names what happened: a first join, the next session after the master ended
+ * one, a reconnect after a loss (to the same session, or to a new master whose versions
+ * restarted), or a resync (dropped, or a gap in the deltas). */
+static void say_joined(cluster_client *c, const wire_msg *m)
+{
+    char note[96];
+    if (!cluster_client_log_link(c, note, sizeof note))
+        return;
+    unsigned long long v = (unsigned long long)m->version;
+    double gap = clock_now_ms() - c->lost_at;
+    if (c->st.snapshots == 0)
+        fprintf(stderr, "cavelight-node %s: joined the master at version %llu%s\n", c->name, v, note);
+    else if (c->ended)
+        fprintf(stderr, "cavelight-node %s: joined the master's new session at version %llu, %.0f ms after "
+                "the last one ended%s\n", c->name, v, gap, note);
+    else if (c->state == STATE_LOST && m->version < c->params.version)
+        fprintf(stderr, "cavelight-node %s: reconnected to a new master at version %llu, %.0f ms after "
+                "losing the old one%s\n", c->name, v, gap, note);
+    else if (c->state == STATE_LOST)
+        fprintf(stderr, "cavelight-node %s: reconnected to the master at version %llu, %.0f ms after "
+                "losing it%s\n", c->name, v, gap, note);
+    else
+        fprintf(stderr, "cavelight-node %s: resynchronized with the master at version %llu (snapshot)%s\n",
+                c->name, v, note);
+}
+
 /* A SNAPSHOT replaces the store: 1 when it applied (the node has joined), 0 when refused. */
 static int join(cluster_client *c, const wire_msg *m)
 {
@@ -316,27 +363,7 @@ static int join(cluster_client *c, const wire_msg *m)
         refuse_params(c, "snapshot", m->version);
         return 0;
     }
-    /* The line names what happened: a first join, the next session after the master
-     * ended one, a reconnect after a loss (to the same session, or to a new master whose
-     * versions restarted), or a resync (dropped, or a gap in the deltas). */
-    if (!c->quiet) {
-        unsigned long long v = (unsigned long long)m->version;
-        double gap = clock_now_ms() - c->lost_at;
-        if (c->st.snapshots == 0)
-            fprintf(stderr, "cavelight-node %s: joined the master at version %llu\n", c->name, v);
-        else if (c->ended)
-            fprintf(stderr, "cavelight-node %s: joined the master's new session at version %llu, %.0f ms after "
-                    "the last one ended\n", c->name, v, gap);
-        else if (c->state == STATE_LOST && m->version < c->params.version)
-            fprintf(stderr, "cavelight-node %s: reconnected to a new master at version %llu, %.0f ms after "
-                    "losing the old one\n", c->name, v, gap);
-        else if (c->state == STATE_LOST)
-            fprintf(stderr, "cavelight-node %s: reconnected to the master at version %llu, %.0f ms after "
-                    "losing it\n", c->name, v, gap);
-        else
-            fprintf(stderr, "cavelight-node %s: resynchronized with the master at version %llu (snapshot)\n",
-                    c->name, v);
-    }
+    say_joined(c, m);
     c->params = fresh;
     c->state = STATE_JOINED;
     c->ended = 0;
@@ -344,12 +371,17 @@ static int join(cluster_client *c, const wire_msg *m)
     return 1;
 }
 
-/* Joined, and the master is gone: its connection closed, or it went silent. */
+/* Joined, and the master is gone: its connection closed, or it went silent. A silent
+ * master's connection is replaced at once: a stopped master takes the new one when it
+ * continues, and a connection that the master's side no longer reads (in insecure mode a
+ * stranger's message under our name takes our routing id over) leads nowhere. */
 static cluster_event_type lose_master(cluster_client *c, cluster_lost_reason why, cluster_event *ev)
 {
     c->state = STATE_LOST;
     c->lost_at = clock_now_ms();
     c->st.lost++;
+    if (why == CLUSTER_LOST_SILENT)
+        reopen(c);
     ev->type = CLUSTER_EVENT_LOST;
     ev->lost = why;
     return ev->type;
@@ -359,10 +391,11 @@ static cluster_event_type lose_master(cluster_client *c, cluster_lost_reason why
  * session (acknowledged). */
 static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
 {
+    char note[96];
     if (m->reason == WIRE_BYE_DROPPED) {
-        if (!c->quiet)
-            fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining\n",
-                    c->name);
+        if (cluster_client_log_link(c, note, sizeof note))
+            fprintf(stderr, "cavelight-node %s: dropped by the master (too slow for the barrier); rejoining%s\n",
+                    c->name, note);
         c->state = STATE_HELLO;
         ask_snapshot(c);
         return CLUSTER_EVENT_NONE;

@@ -15,6 +15,7 @@
 #ifndef CAVELIGHT_CLUSTER_CLIENT_H
 #define CAVELIGHT_CLUSTER_CLIENT_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "cluster/cluster_config.h"
@@ -67,5 +68,9 @@ const params_store *cluster_client_params(const cluster_client *c);
 int cluster_client_ready(cluster_client *c, uint64_t version, uint64_t checksum,
                          const float timings[WIRE_TIMING_COUNT]);
 void cluster_client_stats_get(const cluster_client *c, cluster_client_stats *out);
+/* The rate limit of the lines about the link to the master (joins, losses, drops, the end
+ * of a session), which a master coming and going, or a stranger posing as one, repeats:
+ * returns 1 to print one (never when quiet), with note saying how many were left out. */
+int cluster_client_log_link(cluster_client *c, char *note, size_t cap);
 
 #endif

@@ -41,6 +41,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     int rc = 0, lost_reported = 0;
     uint64_t pending_swap = 0;
     ratelog range_log = {0};
+    char note[96];
     while (!(d->stop && *d->stop)) {
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
@@ -100,19 +101,19 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             }
             break;
         case CLUSTER_EVENT_LOST:
-            if (!lost_reported && !d->quiet && ev.lost == CLUSTER_LOST_CLOSED)
+            if (!lost_reported && ev.lost == CLUSTER_LOST_CLOSED && cluster_client_log_link(client, note, sizeof note))
                 fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
-                        "unreachable); keeping the output up, reconnecting when one answers\n", d->name);
-            else if (!lost_reported && !d->quiet)
+                        "unreachable); keeping the output up, reconnecting when one answers%s\n", d->name, note);
+            else if (!lost_reported && ev.lost != CLUSTER_LOST_CLOSED && cluster_client_log_link(client, note, sizeof note))
                 fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
-                        "or stopped); keeping the output up, waiting for it\n", d->name,
-                        d->config->master_timeout_ms);
+                        "or stopped); keeping the output up, reconnecting%s\n", d->name,
+                        d->config->master_timeout_ms, note);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:
-            if (!d->quiet)
-                fprintf(stderr, "cavelight-node %s: the master ended the session%s\n", d->name,
-                        d->exit_with_master ? "" : "; waiting for it to return");
+            if (cluster_client_log_link(client, note, sizeof note))
+                fprintf(stderr, "cavelight-node %s: the master ended the session%s%s\n", d->name,
+                        d->exit_with_master ? "" : "; waiting for it to return", note);
             if (d->exit_with_master)
                 goto out;
             break;
