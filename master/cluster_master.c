@@ -6,11 +6,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <zmq.h>
 
 #include "base/clock.h"
 #include "base/ratelog.h"
 #include "cluster_auth.h"
+#include "conn_guard.h"
 
 typedef struct peer {
     cluster_peer_stats s;
@@ -34,7 +36,8 @@ struct cluster_master {
     const cluster_config *cfg;
     void *ctx, *sock, *monitor;
     cluster_auth *auth;
-    ratelog unknown_log, malformed_log, handshake_log, desync_log;
+    conn_guard *guard;       /* connections no node has spoken on yet */
+    ratelog unknown_log, malformed_log, handshake_log, desync_log, guard_log, accept_log;
     int closing;             /* destroy() runs: a HELLO gets BYE(shutdown), not a snapshot */
     double ready_ring[STALL_SAMPLES];
     int ready_count;
@@ -230,7 +233,16 @@ static void dispatch(cluster_master *m, int node, zmq_msg_t *id, zmq_msg_t *body
 {
     peer *p = &m->peers[node];
     p->last_heard = clock_now_ms();
-    p->fd = (int)zmq_msg_get(body, ZMQ_SRCFD);
+    int fd = (int)zmq_msg_get(body, ZMQ_SRCFD);
+    if (fd != p->fd) {
+        /* The node speaks on fd now; a connection it spoke on before (still open) is
+         * nobody's again, and counts against the bound like a new one. */
+        char shed[64];
+        if (p->fd >= 0 && conn_guard_add(m->guard, p->fd, p->last_heard, shed, sizeof shed))
+            m->st.unauthenticated_dropped++;
+        conn_guard_forget(m->guard, fd);
+        p->fd = fd;
+    }
     size_t idlen = zmq_msg_size(id);
     if (idlen <= sizeof p->rid) { /* a restart makes a new connection */
         memcpy(p->rid, zmq_msg_data(id), idlen);
@@ -306,7 +318,37 @@ static void drop_disconnected(cluster_master *m, int fd)
     }
 }
 
-/* Socket events: [u16 event, u32 value] then the endpoint. */
+/* A connection accepted on fd: counted against the bound until a node speaks on it
+ * (a node's first message may have come before the event: then it is the node's already). */
+static void on_accepted(cluster_master *m, int fd)
+{
+    for (int i = 0; i < m->cfg->node_count; i++)
+        if (m->peers[i].fd == fd)
+            return;
+    char shed[64];
+    uint64_t skipped = 0;
+    if (!conn_guard_add(m->guard, fd, clock_now_ms(), shed, sizeof shed))
+        return;
+    m->st.unauthenticated_dropped++;
+    if (ratelog_event(&m->guard_log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-master: %d connections wait for a node's first message: shut the oldest from %s "
+                "down (%llu so far, %llu not logged); a flood of unfinished handshakes? nodes still get in\n",
+                conn_guard_count(m->guard), shed, (unsigned long long)m->st.unauthenticated_dropped,
+                (unsigned long long)skipped);
+}
+
+static void on_handshake_failed(cluster_master *m, uint16_t event)
+{
+    uint64_t skipped = 0;
+    m->st.handshakes_failed++;
+    if (ratelog_event(&m->handshake_log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-master: a connection failed its handshake (%s; %llu so far, %llu "
+                "not logged): a peer without this cluster's security settings\n",
+                event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH ? "authentication" : "protocol, mechanism or timeout",
+                (unsigned long long)m->st.handshakes_failed, (unsigned long long)skipped);
+}
+
+/* Socket events: [u16 event, u32 value (a descriptor, or an error)] then the endpoint. */
 static int handle_event(cluster_master *m)
 {
     zmq_msg_t ev, ep;
@@ -321,19 +363,23 @@ static int handle_event(cluster_master *m)
         memcpy(&event, zmq_msg_data(&ev), 2);
         memcpy(&value, (const uint8_t *)zmq_msg_data(&ev) + 2, 4);
         uint64_t skipped = 0;
-        if (event == ZMQ_EVENT_DISCONNECTED) {
+        if (event == ZMQ_EVENT_ACCEPTED) {
+            on_accepted(m, (int)value);
+        } else if (event == ZMQ_EVENT_DISCONNECTED) {
+            conn_guard_forget(m->guard, (int)value);
             /* What came before the close is read first: a node that said BYE has left. */
             for (int k = 0; k < DRAIN_BEFORE_DROP && handle_one(m); k++)
                 ;
             drop_disconnected(m, (int)value);
+        } else if (event == ZMQ_EVENT_ACCEPT_FAILED) {
+            m->st.accept_failures++;
+            if (ratelog_event(&m->accept_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-master: cannot accept a connection: %s (%llu so far, %llu not logged; "
+                        "descriptor limit %ld)\n", zmq_strerror((int)value), (unsigned long long)m->st.accept_failures,
+                        (unsigned long long)skipped, m->st.fd_limit);
         } else if (event & (ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
                             ZMQ_EVENT_HANDSHAKE_FAILED_AUTH)) {
-            m->st.handshakes_failed++;
-            if (ratelog_event(&m->handshake_log, clock_now_ms(), &skipped))
-                fprintf(stderr, "cavelight-master: a connection failed its handshake (%s; %llu so far, %llu "
-                        "not logged): a peer without this cluster's security settings\n",
-                        event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH ? "authentication" : "protocol or mechanism",
-                        (unsigned long long)m->st.handshakes_failed, (unsigned long long)skipped);
+            on_handshake_failed(m, event);
         }
     }
     zmq_msg_close(&ev);
@@ -469,12 +515,16 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
         cluster_master_destroy(m);
         return NULL;
     }
-    int zero = 0, hwm = 1000;
+    int zero = 0, hwm = 1000, handshake = WIRE_HANDSHAKE_MS;
     int64_t maxmsg = WIRE_MAX_MESSAGE;
     zmq_setsockopt(m->sock, ZMQ_LINGER, &zero, sizeof zero);
     zmq_setsockopt(m->sock, ZMQ_SNDHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_RCVHWM, &hwm, sizeof hwm);
     zmq_setsockopt(m->sock, ZMQ_MAXMSGSIZE, &maxmsg, sizeof maxmsg);
+    zmq_setsockopt(m->sock, ZMQ_HANDSHAKE_IVL, &handshake, sizeof handshake);
+    m->guard = conn_guard_create(desc->pending_max);
+    struct rlimit fds;
+    m->st.fd_limit = getrlimit(RLIMIT_NOFILE, &fds) == 0 ? (long)fds.rlim_cur : -1;
     /* Insecure, the routing id is the node's name: a restarted node's new connection
      * takes it over (ZMQ_ROUTER_HANDOVER), as anybody's could. Curve: no handover, so a
      * peer holding one node's key cannot displace another; nodes set no routing ids (ROUTER
@@ -494,8 +544,10 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     }
     char mon[64];
     snprintf(mon, sizeof mon, "inproc://cavelight-master-monitor-%p", (void *)m);
-    if (zmq_socket_monitor(m->sock, mon, ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
-                                             ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) != 0 ||
+    int events = ZMQ_EVENT_ACCEPTED | ZMQ_EVENT_ACCEPT_FAILED | ZMQ_EVENT_DISCONNECTED |
+                 ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                 ZMQ_EVENT_HANDSHAKE_FAILED_AUTH;
+    if (zmq_socket_monitor(m->sock, mon, events) != 0 ||
         !(m->monitor = zmq_socket(m->ctx, ZMQ_PAIR)) || zmq_setsockopt(m->monitor, ZMQ_LINGER, &zero, sizeof zero) != 0 ||
         zmq_connect(m->monitor, mon) != 0) {
         snprintf(err, errlen, "cluster master: cannot watch the socket's connections: %s", zmq_strerror(errno));
@@ -546,6 +598,7 @@ void cluster_master_destroy(cluster_master *m)
     if (m->monitor)
         zmq_close(m->monitor);
     cluster_auth_stop(m->auth);
+    conn_guard_destroy(m->guard);
     if (m->ctx)
         zmq_ctx_term(m->ctx);
     free(m);

@@ -12,6 +12,9 @@
  * Every live node hears from the master at least every heartbeat_ms (FRAME, or HEARTBEAT
  * while it waits), so nodes notice a hung master within master_ms.
  * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
+ * Handshakes must finish within WIRE_HANDSHAKE_MS, and at most pending_max connections may
+ * wait for a node's first message (conn_guard.h): a flood of unfinished handshakes cannot
+ * take every descriptor, and a restarted node gets in while one runs.
  * Queues are bounded by high-water marks and a maximum message size; every wait times out. */
 #ifndef CAVELIGHT_CLUSTER_MASTER_H
 #define CAVELIGHT_CLUSTER_MASTER_H
@@ -31,6 +34,8 @@ typedef struct cluster_master_desc {
     int barrier_timeout_ms;  /* 0 = config->barrier_timeout_ms */
     int quiet;               /* 1: log only errors */
     int insecure_anywhere;   /* 1: security "insecure" may bind outside the loopback range */
+    int pending_max;         /* connections no node has spoken on yet, at most (conn_guard.h;
+                                0 = CONN_GUARD_DEFAULT); the oldest beyond it is shut down */
 } cluster_master_desc;
 
 typedef enum cluster_peer_state {
@@ -57,6 +62,9 @@ typedef struct cluster_master_stats {
     uint64_t refused;        /* connections refused for an unknown CURVE key */
     uint64_t disconnects;    /* live nodes dropped when their connection closed */
     uint64_t handshakes_failed;
+    uint64_t unauthenticated_dropped; /* connections shut down by the pending_max bound */
+    uint64_t accept_failures; /* connections the socket could not accept (no descriptor left) */
+    long fd_limit;           /* the process's descriptor limit when the master started */
 } cluster_master_stats;
 
 typedef struct cluster_frame_result {

@@ -2,6 +2,7 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "base/clock.h"
 #include "base/ratelog.h"
@@ -129,6 +130,31 @@ static int keygen(const cluster_config *cfg)
     return 0;
 }
 
+/* Every connection costs a descriptor: take as many as the system allows (the hard limit)
+ * and say so, before a handshake flood can reach the usual soft limit of 1024. A hard limit
+ * under FD_LIMIT_LOW is named too. The report has the limit either way. */
+enum { FD_LIMIT_LOW = 4096 };
+static void raise_fd_limit(int quiet)
+{
+    struct rlimit r;
+    if (getrlimit(RLIMIT_NOFILE, &r) != 0)
+        return;
+    rlim_t before = r.rlim_cur;
+    if (r.rlim_cur < r.rlim_max) {
+        r.rlim_cur = r.rlim_max == RLIM_INFINITY ? 1 << 20 : r.rlim_max;
+        if (setrlimit(RLIMIT_NOFILE, &r) != 0 || getrlimit(RLIMIT_NOFILE, &r) != 0)
+            r.rlim_cur = before;
+    }
+    if (quiet)
+        return;
+    if (r.rlim_cur > before)
+        fprintf(stderr, "cavelight-master: file descriptor limit raised from %llu to %llu (the hard limit)\n",
+                (unsigned long long)before, (unsigned long long)r.rlim_cur);
+    else if (r.rlim_cur < FD_LIMIT_LOW)
+        fprintf(stderr, "cavelight-master: file descriptor limit %llu, the hard limit (LimitNOFILE= or "
+                "ulimit -Hn raise it)\n", (unsigned long long)r.rlim_cur);
+}
+
 static int master_run(const master_options *o)
 {
     static cluster_config cfg;
@@ -146,6 +172,7 @@ static int master_run(const master_options *o)
                     "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
                     cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     handle_signals();
+    raise_fd_limit(o->quiet);
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
                        .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,

@@ -320,6 +320,9 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON_AddNumberToObject(root, "unauthenticated_dropped", (double)st.unauthenticated_dropped);
+    cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
+    cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {

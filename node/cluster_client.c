@@ -99,7 +99,7 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
         snprintf(err, errlen, "cluster node: cannot create a ZeroMQ socket: %s", zmq_strerror(errno));
         return -1;
     }
-    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 250;
+    int one = 1, zero = 0, hwm = 1000, ivl = 100, ivl_max = 250, handshake = WIRE_HANDSHAKE_MS;
     int64_t maxmsg = WIRE_MAX_MESSAGE;
     /* Insecure: the routing id names the node. Curve: the key does, and ROUTER's own
      * unique ids mean nobody can squat on this node's name. */
@@ -112,6 +112,7 @@ static int open_socket(cluster_client *c, char *err, size_t errlen)
     zmq_setsockopt(c->sock, ZMQ_IMMEDIATE, &one, sizeof one);
     zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL, &ivl, sizeof ivl);
     zmq_setsockopt(c->sock, ZMQ_RECONNECT_IVL_MAX, &ivl_max, sizeof ivl_max);
+    zmq_setsockopt(c->sock, ZMQ_HANDSHAKE_IVL, &handshake, sizeof handshake);
     /* curve: the handshake fails against any master without the configured key. */
     if (c->cfg->security == CLUSTER_SECURITY_CURVE &&
         (zmq_setsockopt(c->sock, ZMQ_CURVE_SERVERKEY, c->master_key, CLUSTER_KEY_Z85) != 0 ||

@@ -27,6 +27,10 @@ enum {
     WIRE_NAME_MAX = 32,
     WIRE_MAX_PAYLOAD = 8192,
     WIRE_MAX_MESSAGE = WIRE_HEADER_SIZE + WIRE_MAX_PAYLOAD,
+    /* The longest a connection may take to finish its ZMTP (and CURVE) handshake, on both
+     * ends (ZMQ_HANDSHAKE_IVL): a node's takes milliseconds, and libzmq's default of 30 s
+     * let a stranger's unfinished handshakes hold the master's descriptors. */
+    WIRE_HANDSHAKE_MS = 2000,
 };
 
 typedef enum wire_type {

@@ -12,11 +12,21 @@
  *   churn      connects and disconnects N times, sending nothing (the master's memory)
  *   master     binds --endpoint as a fake master (own CURVE key, or none) and answers any
  *              message with a SNAPSHOT of hostile parameters for --listen-ms
+ *   flood      holds --count plain TCP connections (from --source ADDR when given) that send
+ *              only the start of a ZMTP greeting and never finish the handshake, opening a
+ *              new one whenever the master closes one, for --listen-ms
  * Every loop is bounded by --count and --listen-ms. Only loopback endpoints are meant. */
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <unistd.h>
 #include <zmq.h>
 
 #include "base/clock.h"
@@ -27,12 +37,13 @@
 
 typedef struct stranger {
     cluster_config cfg;
-    const char *endpoint, *victim, *endpoint_file;
+    const char *endpoint, *victim, *endpoint_file, *source;
     int curve, count, listen_ms;
     char master_key[CLUSTER_KEY_Z85 + 1];
     char own_public[CLUSTER_KEY_Z85 + 1], own_secret[CLUSTER_KEY_Z85 + 1]; /* insider: a node's */
     void *ctx;
     long attempts, replies, received;
+    long closed;           /* flood: connections the master closed */
 } stranger;
 
 static void *open_dealer(stranger *s)
@@ -145,6 +156,77 @@ static void fake_master(stranger *s)
     zmq_close(sock);
 }
 
+/* A TCP connection to the endpoint's host and port that sends the 10-byte start of a ZMTP
+ * greeting (signature) and nothing more; -1 when it cannot be opened. */
+static int open_unfinished(const stranger *s, const struct sockaddr_in *to)
+{
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0)
+        return -1;
+    if (s->source) {
+        struct sockaddr_in from = {.sin_family = AF_INET};
+        inet_pton(AF_INET, s->source, &from.sin_addr);
+        if (bind(fd, (struct sockaddr *)&from, sizeof from) != 0) {
+            close(fd);
+            return -1;
+        }
+    }
+    /* Never blocks long: a master whose backlog is full leaves the connect pending. */
+    static const unsigned char greeting[10] = {0xff, 0, 0, 0, 0, 0, 0, 0, 1, 0x7f};
+    fcntl(fd, F_SETFL, O_NONBLOCK);
+    struct pollfd out = {.fd = fd, .events = POLLOUT};
+    int err = 0;
+    socklen_t len = sizeof err;
+    if ((connect(fd, (const struct sockaddr *)to, sizeof *to) != 0 && errno != EINPROGRESS) ||
+        poll(&out, 1, 200) != 1 || getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) != 0 || err ||
+        write(fd, greeting, sizeof greeting) != 10) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+/* --count unfinished handshakes held for --listen-ms; each one the master closes is
+ * opened again at once. */
+static void flood(stranger *s)
+{
+    struct sockaddr_in to = {.sin_family = AF_INET};
+    const char *host = strstr(s->endpoint, "://"), *colon = strrchr(s->endpoint, ':');
+    char addr[64] = "";
+    if (host && colon && colon - (host + 3) < (long)sizeof addr)
+        memcpy(addr, host + 3, (size_t)(colon - (host + 3)));
+    if (inet_pton(AF_INET, addr, &to.sin_addr) != 1) {
+        fprintf(stderr, "cluster_stranger: flood needs a tcp://IPV4:PORT endpoint, not %s\n", s->endpoint);
+        exit(2);
+    }
+    to.sin_port = htons((uint16_t)atoi(colon + 1));
+    struct pollfd *fds = calloc((size_t)s->count, sizeof *fds);
+    for (int i = 0; i < s->count; i++, s->attempts++)
+        fds[i] = (struct pollfd){.fd = open_unfinished(s, &to), .events = POLLIN};
+    double end = clock_now_ms() + s->listen_ms;
+    while (clock_now_ms() < end) {
+        if (poll(fds, (nfds_t)s->count, 20) < 0 && errno != EINTR)
+            break;
+        for (int i = 0; i < s->count; i++) {
+            char buf[256];
+            if (fds[i].fd >= 0 && !(fds[i].revents & (POLLIN | POLLHUP | POLLERR)))
+                continue;
+            if (fds[i].fd >= 0 && read(fds[i].fd, buf, sizeof buf) > 0)
+                continue; /* the master's greeting: never answered */
+            if (fds[i].fd >= 0) {
+                close(fds[i].fd);
+                s->closed++;
+            }
+            fds[i].fd = open_unfinished(s, &to);
+            s->attempts++;
+        }
+    }
+    for (int i = 0; i < s->count; i++)
+        if (fds[i].fd >= 0)
+            close(fds[i].fd);
+    free(fds);
+}
+
 int main(int argc, char **argv)
 {
     static stranger s = {.count = 100, .listen_ms = 1000};
@@ -159,11 +241,12 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--count") == 0) s.count = atoi(v);
         else if (strcmp(a, "--listen-ms") == 0) s.listen_ms = atoi(v);
         else if (strcmp(a, "--endpoint-file") == 0) s.endpoint_file = v;
+        else if (strcmp(a, "--source") == 0) s.source = v;
     }
     char err[512];
     if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|churn|master "
-                "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS]\n");
+        fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|churn|master|flood "
+                "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS] [--source ADDR]\n");
         return 2;
     }
     if (!s.victim)
@@ -188,6 +271,8 @@ int main(int argc, char **argv)
     s.ctx = zmq_ctx_new();
     if (strcmp(attack, "master") == 0) {
         fake_master(&s);
+    } else if (strcmp(attack, "flood") == 0) {
+        flood(&s);
     } else if (strcmp(attack, "takeover") == 0 || strcmp(attack, "churn") == 0) {
         int say_hello = strcmp(attack, "takeover") == 0;
         for (int i = 0; i < s.count; i++, s.attempts++) {
@@ -215,7 +300,7 @@ int main(int argc, char **argv)
         zmq_close(sock);
     }
     zmq_ctx_term(s.ctx);
-    printf("stranger %s key=%s attempts=%ld replies=%ld received=%ld\n", attack, key, s.attempts,
-           s.replies, s.received);
+    printf("stranger %s key=%s attempts=%ld replies=%ld received=%ld closed=%ld\n", attack, key, s.attempts,
+           s.replies, s.received, s.closed);
     return 0;
 }
