@@ -121,12 +121,10 @@ static preview *open_preview(const master_options *o, const cluster_config *cfg)
 static int keygen(const cluster_config *cfg)
 {
     char err[1024];
-    if (cluster_keygen(cfg, err, sizeof err) != 0) {
+    if (cluster_keygen(cfg, stderr, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
-    fprintf(stderr, "cavelight-master: wrote master.key/.pub and one pair per node into %s; give "
-            "each host its own .key and master.pub\n", cfg->keys_dir);
     return 0;
 }
 

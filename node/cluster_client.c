@@ -36,6 +36,7 @@ struct cluster_client {
     char public_key[CLUSTER_KEY_Z85 + 1], secret_key[CLUSTER_KEY_Z85 + 1], master_key[CLUSTER_KEY_Z85 + 1];
     ratelog malformed_log, refused_log;
     ratelog link_log;        /* joins, losses, drops, the session's end: cluster_client_log_link() */
+    ratelog handshake_log;   /* failed handshakes with the master */
     double last_heard, last_sent, last_hello;
     cluster_client_stats st;
     uint8_t buf[WIRE_MAX_MESSAGE];
@@ -83,7 +84,9 @@ static int watch_socket(cluster_client *c)
     char ep[96];
     snprintf(ep, sizeof ep, "inproc://cavelight-node-monitor-%p-%d", (void *)c, c->monitors++);
     int zero = 0;
-    if (zmq_socket_monitor(c->sock, ep, ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_SUCCEEDED) != 0)
+    int events = ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
+                 ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH;
+    if (zmq_socket_monitor(c->sock, ep, events) != 0)
         return -1;
     c->monitor = zmq_socket(c->ctx, ZMQ_PAIR);
     if (!c->monitor)
@@ -186,9 +189,9 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
             cluster_client_destroy(c);
             return NULL;
         }
-        if (cluster_key_read(c->cfg, c->name, CLUSTER_KEY_PUBLIC, c->public_key, err, errlen) != 0 ||
-            cluster_key_read(c->cfg, c->name, CLUSTER_KEY_SECRET, c->secret_key, err, errlen) != 0 ||
-            cluster_key_read(c->cfg, "master", CLUSTER_KEY_PUBLIC, c->master_key, err, errlen) != 0) {
+        if (cluster_key_read_pair(c->cfg, c->name, c->name, zmq_curve_public, c->public_key, c->secret_key, err,
+                                  errlen) != 0 ||
+            cluster_key_read(c->cfg, c->name, "master", CLUSTER_KEY_PUBLIC, c->master_key, err, errlen) != 0) {
             cluster_client_destroy(c);
             return NULL;
         }
@@ -272,6 +275,43 @@ static void ask_snapshot(cluster_client *c)
         send_hello(c);
 }
 
+/* The likely cause of a failed handshake with the master, from the socket's event and
+ * its value (a ZAP status, a ZMQ_PROTOCOL_ERROR_* or an errno). */
+static void handshake_cause(const cluster_client *c, uint16_t event, uint32_t value, char *out, size_t cap)
+{
+    int curve = c->cfg->security == CLUSTER_SECURITY_CURVE;
+    if (event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH)
+        snprintf(out, cap, "the master refused this node's key (status %u): %s/%s.pub is not the key the "
+                 "master has for node %s; copy this host's bundle again from the master's key folder", value,
+                 c->cfg->keys_dir, c->name, c->name);
+    else if (event == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL && value == ZMQ_PROTOCOL_ERROR_ZMTP_MECHANISM_MISMATCH)
+        snprintf(out, cap, "the master uses another security mode than this node's \"%s\" (%s): give master "
+                 "and nodes the same config", cluster_security_name(c->cfg->security), c->cfg->path);
+    else if (event == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL && value == EAGAIN)
+        snprintf(out, cap, "no answer within %d ms: a stopped or overloaded master, or no cavelight master at "
+                 "%s", WIRE_HANDSHAKE_MS, c->endpoint);
+    else if (curve)
+        snprintf(out, cap, "the master closed the connection in the CURVE handshake: most likely %s/master.pub "
+                 "is not this master's key (a newer --keygen on its host?); copy master.pub from the master's "
+                 "key folder", c->cfg->keys_dir);
+    else
+        snprintf(out, cap, "the master closed the connection in the handshake (%#x): a master with security "
+                 "\"curve\" (this node has \"insecure\" from %s), or no cavelight master at %s", value, c->cfg->path,
+                 c->endpoint);
+}
+
+static void handshake_failed(cluster_client *c, uint16_t event, uint32_t value)
+{
+    uint64_t skipped = 0;
+    c->st.handshakes_failed++;
+    if (!ratelog_event(&c->handshake_log, clock_now_ms(), &skipped))
+        return;
+    char cause[600];
+    handshake_cause(c, event, value, cause, sizeof cause);
+    fprintf(stderr, "cavelight-node %s: handshake with the master at %s failed (%llu so far, %llu not logged): %s\n",
+            c->name, c->endpoint, (unsigned long long)c->st.handshakes_failed, (unsigned long long)skipped, cause);
+}
+
 /* Reads one connection event; returns 1 if there was one. */
 static int connection_event(cluster_client *c)
 {
@@ -284,9 +324,15 @@ static int connection_event(cluster_client *c)
         if (zmq_msg_more(&ev))
             zmq_msg_recv(&ep, c->monitor, 0);
         uint16_t event = 0;
-        if (zmq_msg_size(&ev) >= 2)
+        uint32_t value = 0;
+        if (zmq_msg_size(&ev) >= 6) {
             memcpy(&event, zmq_msg_data(&ev), 2);
-        if (event == ZMQ_EVENT_DISCONNECTED) {
+            memcpy(&value, (const uint8_t *)zmq_msg_data(&ev) + 2, 4);
+        }
+        if (event & (ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                     ZMQ_EVENT_HANDSHAKE_FAILED_AUTH)) {
+            handshake_failed(c, event, value);
+        } else if (event == ZMQ_EVENT_DISCONNECTED) {
             c->link = LINK_DOWN;
         } else if (event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
             c->link = LINK_UP;

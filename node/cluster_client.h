@@ -55,6 +55,7 @@ typedef struct cluster_event {
 
 typedef struct cluster_client_stats {
     uint64_t frames, skipped, snapshots, swaps, malformed, resyncs, lost, reopens;
+    uint64_t handshakes_failed; /* with the master; each logged (rate-limited) with its likely cause */
     uint64_t bytes_sent, bytes_received;
 } cluster_client_stats;
 

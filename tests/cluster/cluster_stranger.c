@@ -253,7 +253,7 @@ int main(int argc, char **argv)
         s.victim = s.cfg.nodes[0].name;
     s.curve = strcmp(key, "wrong") == 0 || strcmp(key, "insider") == 0;
     if (s.curve && strcmp(attack, "master") != 0 &&
-        cluster_key_read(&s.cfg, "master", CLUSTER_KEY_PUBLIC, s.master_key, err, sizeof err) != 0) {
+        cluster_key_read(&s.cfg, NULL, "master", CLUSTER_KEY_PUBLIC, s.master_key, err, sizeof err) != 0) {
         fprintf(stderr, "cluster_stranger: %s\n", err);
         return 1;
     }
@@ -262,8 +262,8 @@ int main(int argc, char **argv)
         for (int i = 0; i < s.cfg.node_count && !own; i++)
             if (strcmp(s.cfg.nodes[i].name, s.victim) != 0)
                 own = s.cfg.nodes[i].name;
-        if (!own || cluster_key_read(&s.cfg, own, CLUSTER_KEY_PUBLIC, s.own_public, err, sizeof err) != 0 ||
-            cluster_key_read(&s.cfg, own, CLUSTER_KEY_SECRET, s.own_secret, err, sizeof err) != 0) {
+        if (!own || cluster_key_read(&s.cfg, NULL, own, CLUSTER_KEY_PUBLIC, s.own_public, err, sizeof err) != 0 ||
+            cluster_key_read(&s.cfg, NULL, own, CLUSTER_KEY_SECRET, s.own_secret, err, sizeof err) != 0) {
             fprintf(stderr, "cluster_stranger: an insider needs another node's keys: %s\n", own ? err : "none");
             return 1;
         }
