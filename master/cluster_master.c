@@ -212,6 +212,28 @@ static int decode_from(cluster_master *m, int node, int parts, zmq_msg_t *body, 
     return -1;
 }
 
+/* A node that cannot take the scene (it leaves) or a version's parameters (it asks again
+ * later): its reason, as it gave it, in the log and the statistics; out of the barrier. */
+static void on_refuse(cluster_master *m, int node, const wire_msg *msg)
+{
+    peer *p = &m->peers[node];
+    char note[96];
+    m->st.refusals++;
+    p->s.refusals++;
+    p->s.refused_what = msg->reason;
+    snprintf(p->s.refusal, sizeof p->s.refusal, "%s", msg->text);
+    p->s.state = CLUSTER_PEER_ABSENT;
+    p->in_barrier = 0;
+    if (!node_log(m, node, note, sizeof note))
+        return;
+    if (msg->reason == WIRE_REFUSE_PARAMS)
+        fprintf(stderr, "cavelight-master: node %s refused the parameters of version %llu: %s%s\n",
+                m->cfg->nodes[node].name, (unsigned long long)msg->version, msg->text, note);
+    else
+        fprintf(stderr, "cavelight-master: node %s refused the scene: %s%s\n", m->cfg->nodes[node].name, msg->text,
+                note);
+}
+
 static void on_ready(cluster_master *m, peer *p, const wire_msg *msg)
 {
     if (p->s.state != CLUSTER_PEER_LIVE || !p->in_barrier || p->ready || msg->version != m->params.version) {
@@ -257,6 +279,9 @@ static void dispatch(cluster_master *m, int node, zmq_msg_t *id, zmq_msg_t *body
         break;
     case WIRE_READY:
         on_ready(m, p, msg);
+        break;
+    case WIRE_REFUSE:
+        on_refuse(m, node, msg);
         break;
     case WIRE_BYE: {
         char note[96];
@@ -710,6 +735,8 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
     }
     if (out->desync)
         m->st.desyncs++;
+    if (out->ready > 0)
+        m->st.frames_rendered++;
     uint64_t skipped = 0;
     if (out->desync && ratelog_event(&m->desync_log, clock_now_ms(), &skipped)) {
         fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): GI checksums "
@@ -737,6 +764,49 @@ void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out
 void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out)
 {
     *out = m->peers[node].s;
+}
+
+/* Would a node take key k's value alone? params_apply() on a one-key delta of it. */
+static int key_acceptable(const params_store *from, int k)
+{
+    static params_store probe, fresh;
+    uint8_t value[PARAMS_VALUE_MAX], enc[2 + PARAMS_VALUE_MAX];
+    params_init(&probe);
+    params_init(&fresh);
+    uint64_t base = params_commit(&probe);
+    params_get(from, k, value, params_key_size(k));
+    params_set(&probe, k, value, params_key_size(k));
+    uint64_t v = params_commit(&probe);
+    size_t n = params_encode_delta(&probe, base, enc, sizeof enc);
+    return n == PARAMS_ENCODE_TOO_SMALL || params_apply(&fresh, v, enc, n) == 0;
+}
+
+int cluster_master_check_params(cluster_master *m, char *err, size_t errlen)
+{
+    static params_store fresh;
+    params_init(&fresh);
+    size_t n = params_encode_snapshot(&m->params, m->params_buf, sizeof m->params_buf);
+    if (params_apply(&fresh, m->params.version, m->params_buf, n) == 0)
+        return 0;
+    for (int k = 0; k < PARAMS_KEY_COUNT; k++) {
+        if (key_acceptable(&m->params, k))
+            continue;
+        float f[PARAMS_VALUE_MAX / 4];
+        double d = 0;
+        char values[160] = "";
+        params_get(&m->params, k, f, params_key_size(k));
+        memcpy(&d, f, sizeof d);
+        int f64 = params_key_type(k) == PARAMS_T_F64;
+        if (f64)
+            snprintf(values, sizeof values, "%g", d);
+        for (size_t i = 0; !f64 && i < params_key_size(k) / 4 && strlen(values) < sizeof values - 20; i++)
+            snprintf(values + strlen(values), sizeof values - strlen(values), "%s%g", i ? " " : "", f[i]);
+        snprintf(err, errlen, "parameter %s is %s: every node would refuse every frame (the nodes take "
+                 "finite numbers only)", params_key_name(k), values);
+        return -1;
+    }
+    snprintf(err, errlen, "the parameters would be refused by every node");
+    return -1;
 }
 
 int cluster_master_endpoint(const cluster_master *m, char *buf, size_t cap)

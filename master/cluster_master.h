@@ -11,6 +11,8 @@
  * crashed, heartbeats unanswered) is dropped at once from the socket's disconnect event.
  * Every live node hears from the master at least every heartbeat_ms (FRAME, or HEARTBEAT
  * while it waits), so nodes notice a hung master within master_ms.
+ * A node that cannot take the scene or a version's parameters says why (REFUSE): logged,
+ * counted per node with its last reason, and the node leaves the barrier.
  * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
  * Handshakes must finish within WIRE_HANDSHAKE_MS, and at most pending_max connections may
  * wait for a node's first message (conn_guard.h): a flood of unfinished handshakes cannot
@@ -50,12 +52,17 @@ typedef struct cluster_peer_stats {
     uint64_t checksum;       /* the frame's GI checksum of its last READY */
     uint64_t frames_ready;
     uint32_t joins, drops;
+    uint32_t refusals;       /* REFUSE messages: it could not take the scene or parameters */
+    uint32_t refused_what;   /* of the last one: wire_refuse_what */
+    char refusal[WIRE_TEXT_MAX + 1]; /* the last one's reason, as the node gave it */
     float timings[WIRE_TIMING_COUNT]; /* of the last READY */
     double ready_ms;         /* FRAME sent to READY received, last frame */
 } cluster_peer_stats;
 
 typedef struct cluster_master_stats {
     uint64_t frames, desyncs;
+    uint64_t frames_rendered; /* frames with at least one node READY */
+    uint64_t refusals;       /* REFUSE messages from nodes */
     uint64_t malformed, unknown_peers, stale;
     uint64_t bytes_sent, bytes_received, messages_sent, messages_received;
     uint64_t joins, drops;
@@ -98,6 +105,9 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out);
 void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out);
 void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out);
 int cluster_master_live_count(const cluster_master *m);
+/* 0 when every node would take a snapshot of the store as it is (params_apply(), the
+ * nodes' own check); else -1 with the first key they would refuse and its value in err. */
+int cluster_master_check_params(cluster_master *m, char *err, size_t errlen);
 /* The endpoint actually bound (resolves a wildcard port such as tcp://127.0.0.1:*). */
 int cluster_master_endpoint(const cluster_master *m, char *buf, size_t cap);
 

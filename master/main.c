@@ -80,6 +80,27 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
     return rc;
 }
 
+/* A session whose nodes refused it, or in which no node rendered any frame, did not show
+ * what was asked: each refusing node's last reason, and 1 for the exit status. */
+static int session_failed(const cluster_config *cfg, cluster_master *m, const cluster_master_stats *st)
+{
+    int failed = 0;
+    for (int i = 0; i < cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(m, i, &ps);
+        if (!ps.refusals)
+            continue;
+        fprintf(stderr, "cavelight-master: node %s refused the %s (%u refusals), the last: %s\n", cfg->nodes[i].name,
+                ps.refused_what == WIRE_REFUSE_PARAMS ? "parameters" : "scene", ps.refusals, ps.refusal);
+        failed = 1;
+    }
+    if (st->frames > 0 && st->frames_rendered == 0) {
+        fprintf(stderr, "cavelight-master: no node rendered any of the %llu frames\n", (unsigned long long)st->frames);
+        failed = 1;
+    }
+    return failed;
+}
+
 static void print_summary(const cluster_master_stats *st, double wall_s)
 {
     fprintf(stderr, "cavelight-master: %llu frames in %.2f s, %llu desyncs, %llu drops, %llu joins, "
@@ -206,6 +227,8 @@ static int master_run(const master_options *o)
     }
     cluster_master_stats st;
     cluster_master_stats_get(m, &st);
+    if (session_failed(&cfg, m, &st))
+        exit_code = 1;
     session_destroy(s); /* BYE: spawned nodes leave by themselves */
     launch_stop(&nodes);
     /* After the nodes are gone, every image on disk is from the last frame. */

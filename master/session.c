@@ -75,6 +75,13 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     }
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
+    /* The nodes' own check, before any node is started: a scene no node can take is
+     * refused here, not reported as a session of frames nobody rendered. */
+    char why[300];
+    if (cluster_master_check_params(s->m, why, sizeof why) != 0) {
+        snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
+        return -1;
+    }
     return 0;
 }
 
@@ -320,6 +327,8 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON_AddNumberToObject(root, "frames_rendered", (double)st.frames_rendered);
+    cJSON_AddNumberToObject(root, "refusals", (double)st.refusals);
     cJSON_AddNumberToObject(root, "unauthenticated_dropped", (double)st.unauthenticated_dropped);
     cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
     cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
@@ -335,6 +344,8 @@ int session_write_report(session *s, const char *path, double wall_s)
         cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
         cJSON_AddNumberToObject(n, "joins", ps.joins);
         cJSON_AddNumberToObject(n, "drops", ps.drops);
+        cJSON_AddNumberToObject(n, "refusals", ps.refusals);
+        cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
         char hex[20];
         snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
         cJSON_AddStringToObject(n, "last_checksum", hex);

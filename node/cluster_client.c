@@ -27,7 +27,7 @@ struct cluster_client {
     link_state link;         /* DOWN: closed, and no handshake has succeeded since */
     const char *endpoint;
     double opened;
-    int quiet;
+    int quiet, refuse_only;
     client_state state;
     int ended;               /* the master ended the session (BYE) and no new one joined */
     double lost_at;          /* when the master was lost or ended the session (ms clock) */
@@ -58,6 +58,8 @@ static int send_msg(cluster_client *c, wire_msg *msg)
 
 static void send_hello(cluster_client *c)
 {
+    if (c->refuse_only)
+        return;
     wire_msg m = {.type = WIRE_HELLO, .config_hash = c->cfg->hash, .version = c->params.version};
     /* Not yet connected (ZMQ_IMMEDIATE): the next housekeeping round tries again. */
     if (send_msg(c, &m) == 0)
@@ -179,6 +181,7 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     cluster_client *c = xcalloc(1, sizeof *c);
     c->cfg = desc->config;
     c->quiet = desc->quiet;
+    c->refuse_only = desc->refuse_only;
     snprintf(c->name, sizeof c->name, "%s", desc->name);
     params_init(&c->params);
     c->ctx = zmq_ctx_new();
@@ -261,10 +264,14 @@ static void refuse_params(cluster_client *c, const char *what, uint64_t version)
 {
     c->st.malformed++;
     uint64_t skipped = 0;
+    char why[WIRE_TEXT_MAX + 1];
+    snprintf(why, sizeof why, "%s %llu: invalid values (a number that is not finite, or a malformed encoding)",
+             what, (unsigned long long)version);
+    cluster_client_refuse(c, WIRE_REFUSE_PARAMS, version, why, 0);
     if (ratelog_event(&c->refused_log, clock_now_ms(), &skipped))
-        fprintf(stderr, "cavelight-node %s: %s %llu from the master refused (invalid values; %llu so far, "
-                "%llu not logged)\n", c->name, what, (unsigned long long)version,
-                (unsigned long long)c->refused_log.count, (unsigned long long)skipped);
+        fprintf(stderr, "cavelight-node %s: %s from the master refused, and the master told (%llu so far, "
+                "%llu not logged)\n", c->name, why, (unsigned long long)c->refused_log.count,
+                (unsigned long long)skipped);
 }
 
 /* At most one HELLO per 100 ms however many reasons arrive together. */
@@ -343,6 +350,23 @@ static int connection_event(cluster_client *c)
     zmq_msg_close(&ev);
     zmq_msg_close(&ep);
     return got;
+}
+
+int cluster_client_refuse(cluster_client *c, wire_refuse_what what, uint64_t version, const char *why,
+                          int wait_ms)
+{
+    for (double until = clock_now_ms() + wait_ms; c->link != LINK_UP && clock_now_ms() < until;) {
+        zmq_pollitem_t it = {.socket = c->monitor, .events = ZMQ_POLLIN};
+        zmq_poll(&it, c->monitor ? 1 : 0, 50);
+        while (connection_event(c))
+            ;
+    }
+    wire_msg m = {.type = WIRE_REFUSE, .reason = what, .version = version};
+    size_t n = 0;
+    for (; why[n] && n < WIRE_TEXT_MAX; n++) /* one printable line */
+        m.text[n] = why[n] >= 0x20 && why[n] < 0x7f ? why[n] : '?';
+    m.text[n] = 0;
+    return send_msg(c, &m);
 }
 
 /* Counts and logs (rate limited) a message that failed to decode, and drains the rest of

@@ -10,6 +10,22 @@
 #include "cluster_view.h"
 #include "cluster/params.h"
 
+/* A node that cannot take part (no scene, no GL context, no renderer) tells the master why,
+ * so that it is in the master's output even when the node runs on another host: it waits
+ * up to REFUSE_WAIT_MS for a connection, says REFUSE (never HELLO) and leaves. */
+enum { REFUSE_WAIT_MS = 3000 };
+
+static void refuse_session(const cluster_node_desc *d, const char *why)
+{
+    char ignored[512];
+    cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = 1,
+                              .refuse_only = 1};
+    cluster_client *client = cluster_client_create(&cd, ignored, sizeof ignored);
+    if (client)
+        cluster_client_refuse(client, WIRE_REFUSE_SCENE, 0, why, REFUSE_WAIT_MS);
+    cluster_client_destroy(client);
+}
+
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
     cluster_node_stats st = {0};
@@ -29,8 +45,10 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                                 .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold,
                                 .gi = d->gi, .keep_frames = d->keep_frames};
         view = cluster_view_create(&vd, err, errlen);
-        if (!view)
+        if (!view) {
+            refuse_session(d, err);
             return 1;
+        }
     }
     cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet};
     cluster_client *client = cluster_client_create(&cd, err, errlen);
@@ -68,6 +86,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             uint64_t checksum = params_checksum(ps);
             float timings[WIRE_TIMING_COUNT] = {0};
             if (view && cluster_view_render(view, &check, lattice, &checksum, timings, err, errlen) != 0) {
+                cluster_client_refuse(client, WIRE_REFUSE_SCENE, ev.version, err, 0);
                 rc = 1;
                 goto out;
             }

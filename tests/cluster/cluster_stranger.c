@@ -11,7 +11,8 @@
  *   badhello   the same with another config hash (each one a refusal)
  *   churn      connects and disconnects N times, sending nothing (the master's memory)
  *   master     binds --endpoint as a fake master (own CURVE key, or none) and answers any
- *              message with a SNAPSHOT of hostile parameters for --listen-ms
+ *              message with a SNAPSHOT of hostile parameters for --listen-ms (with
+ *              --nonfinite, one of them infinite: a node refuses it and says why, REFUSE)
  *   flood      holds --count plain TCP connections (from --source ADDR when given) that send
  *              only the start of a ZMTP greeting and never finish the handshake, opening a
  *              new one whenever the master closes one, for --listen-ms
@@ -44,6 +45,9 @@ typedef struct stranger {
     void *ctx;
     long attempts, replies, received;
     long closed;           /* flood: connections the master closed */
+    int nonfinite;         /* master: an infinite light intensity */
+    long refusals;         /* master: REFUSE messages from nodes */
+    char why[WIRE_TEXT_MAX + 1]; /* the last one's text */
 } stranger;
 
 static void *open_dealer(stranger *s)
@@ -125,7 +129,7 @@ static void fake_master(stranger *s)
     params_store p;
     params_init(&p);
     params_set_i32(&p, PARAMS_LPV_RESOLUTION, 100000);
-    params_set_f32(&p, params_light_key(0, PARAMS_LIGHT_INTENSITY), 1e30f);
+    params_set_f32(&p, params_light_key(0, PARAMS_LIGHT_INTENSITY), s->nonfinite ? INFINITY : 1e30f);
     params_set_i32(&p, PARAMS_LPV_STEPS, 1 << 30);
     uint64_t v = params_commit(&p) + 1000000;
     uint8_t enc[PARAMS_ENCODED_MAX];
@@ -139,8 +143,14 @@ static void fake_master(stranger *s)
         int idlen = zmq_recv(sock, id, sizeof id, ZMQ_DONTWAIT);
         if (idlen < 0)
             continue;
-        zmq_recv(sock, body, sizeof body, ZMQ_DONTWAIT);
+        int blen = zmq_recv(sock, body, sizeof body, ZMQ_DONTWAIT);
         s->received++;
+        wire_msg in;
+        if (blen > 0 && wire_decode((const uint8_t *)body, (size_t)blen, &in) == WIRE_OK && in.type == WIRE_REFUSE) {
+            s->refusals++;
+            snprintf(s->why, sizeof s->why, "%s", in.text);
+            continue;
+        }
         wire_msg m = {.type = WIRE_SNAPSHOT, .version = v, .params = enc, .params_len = n};
         uint8_t buf[WIRE_MAX_MESSAGE];
         size_t len = wire_encode(&m, buf, sizeof buf);
@@ -242,11 +252,12 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--listen-ms") == 0) s.listen_ms = atoi(v);
         else if (strcmp(a, "--endpoint-file") == 0) s.endpoint_file = v;
         else if (strcmp(a, "--source") == 0) s.source = v;
+        else if (strcmp(a, "--nonfinite") == 0) s.nonfinite = atoi(v);
     }
     char err[512];
     if (!config || !s.endpoint || !attack || cluster_config_load(config, &s.cfg, err, sizeof err) != 0) {
         fprintf(stderr, "usage: cluster_stranger --config C --endpoint EP --attack takeover|read|ready|hello|badhello|churn|master|flood "
-                "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS] [--source ADDR]\n");
+                "[--victim NAME] [--key none|wrong|insider] [--count N] [--listen-ms MS] [--source ADDR] [--nonfinite 1]\n");
         return 2;
     }
     if (!s.victim)
@@ -300,7 +311,7 @@ int main(int argc, char **argv)
         zmq_close(sock);
     }
     zmq_ctx_term(s.ctx);
-    printf("stranger %s key=%s attempts=%ld replies=%ld received=%ld closed=%ld\n", attack, key, s.attempts,
-           s.replies, s.received, s.closed);
+    printf("stranger %s key=%s attempts=%ld replies=%ld received=%ld closed=%ld refusals=%ld why=\"%s\"\n", attack,
+           key, s.attempts, s.replies, s.received, s.closed, s.refusals, s.why);
     return 0;
 }
