@@ -373,6 +373,13 @@ static void on_handshake_failed(cluster_master *m, uint16_t event)
                 (unsigned long long)m->st.handshakes_failed, (unsigned long long)skipped);
 }
 
+static int event_pending(cluster_master *m)
+{
+    int events = 0;
+    size_t len = sizeof events;
+    return zmq_getsockopt(m->monitor, ZMQ_EVENTS, &events, &len) == 0 && (events & ZMQ_POLLIN);
+}
+
 /* Socket events: [u16 event, u32 value (a descriptor, or an error)] then the endpoint. */
 static int handle_event(cluster_master *m)
 {
@@ -392,8 +399,10 @@ static int handle_event(cluster_master *m)
             on_accepted(m, (int)value);
         } else if (event == ZMQ_EVENT_DISCONNECTED) {
             conn_guard_forget(m->guard, (int)value);
-            /* What came before the close is read first: a node that said BYE has left. */
-            for (int k = 0; k < DRAIN_BEFORE_DROP && handle_one(m); k++)
+            /* What came before the close is read first: a node that said BYE has left. Up
+             * to the next event only: a new connection on the same descriptor number has
+             * its ACCEPTED event before its messages, which must not count as the old one's. */
+            for (int k = 0; k < DRAIN_BEFORE_DROP && !event_pending(m) && handle_one(m); k++)
                 ;
             drop_disconnected(m, (int)value);
         } else if (event == ZMQ_EVENT_ACCEPT_FAILED) {
