@@ -26,6 +26,25 @@ static void refuse_session(const cluster_node_desc *d, const char *why)
     cluster_client_destroy(client);
 }
 
+/* The lines about losing the master and the end of its session (rate-limited with the
+ * client's other lines about the master). */
+static void say_link(const cluster_node_desc *d, cluster_client *client, const cluster_event *ev)
+{
+    char note[96];
+    if (!cluster_client_log_link(client, note, sizeof note))
+        return;
+    if (ev->type == CLUSTER_EVENT_SHUTDOWN)
+        fprintf(stderr, "cavelight-node %s: the master ended the session%s%s\n", d->name,
+                d->exit_with_master ? "" : "; waiting for it to return", note);
+    else if (ev->lost == CLUSTER_LOST_CLOSED)
+        fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
+                "unreachable); keeping the output up, reconnecting when one answers%s\n", d->name, note);
+    else
+        fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
+                "or stopped); keeping the output up, reconnecting%s\n", d->name, d->config->master_timeout_ms,
+                note);
+}
+
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
     cluster_node_stats st = {0};
@@ -59,7 +78,6 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     int rc = 0, lost_reported = 0;
     uint64_t pending_swap = 0;
     ratelog range_log = {0};
-    char note[96];
     while (!(d->stop && *d->stop)) {
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
@@ -120,19 +138,12 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             }
             break;
         case CLUSTER_EVENT_LOST:
-            if (!lost_reported && ev.lost == CLUSTER_LOST_CLOSED && cluster_client_log_link(client, note, sizeof note))
-                fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
-                        "unreachable); keeping the output up, reconnecting when one answers%s\n", d->name, note);
-            else if (!lost_reported && ev.lost != CLUSTER_LOST_CLOSED && cluster_client_log_link(client, note, sizeof note))
-                fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
-                        "or stopped); keeping the output up, reconnecting%s\n", d->name,
-                        d->config->master_timeout_ms, note);
+            if (!lost_reported)
+                say_link(d, client, &ev);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:
-            if (cluster_client_log_link(client, note, sizeof note))
-                fprintf(stderr, "cavelight-node %s: the master ended the session%s%s\n", d->name,
-                        d->exit_with_master ? "" : "; waiting for it to return", note);
+            say_link(d, client, &ev);
             if (d->exit_with_master)
                 goto out;
             break;

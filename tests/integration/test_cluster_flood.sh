@@ -55,7 +55,7 @@ cpu0=$(cpu_ms $master)
 flood=$!; pids+=($flood)
 sleep 1.5
 most_fds=0
-kill -9 $b1
+kill -9 $b1 || { cat "$tmp/b1.log" "$tmp/master.log"; fail "node b ended before it was killed"; }
 t0=$(date +%s%N)
 node_b b2.log
 for _ in $(seq 1000); do

@@ -115,12 +115,15 @@ for key in wrong none; do
   fake=$!; pids+=($fake)
   wait_for_file "$tmp/fep" 20
   fep=$(cat "$tmp/fep")
+  t0=$(date +%s%N)
   node_pids=()
   for n in a b; do
     "$build/cavelight-node" --cluster "$tmp/c.json" --name $n --master "$fep" --render none --exit-with-master \
       2> "$tmp/fake-$key-node-$n.log" &
     node_pids+=($!); pids+=($!)
   done
+  for _ in $(seq 300); do grep -q "handshake with the master" "$tmp/fake-$key-node-a.log" && break; sleep 0.01; done
+  said=$(( ($(date +%s%N) - t0) / 1000000 ))
   wait $fake
   grep -q "received=0" "$tmp/fake-$key.log" || fail "the fake master ($key) heard from a node: $(cat "$tmp/fake-$key.log")"
   grep -q "joined" "$tmp/fake-$key-node-a.log" && fail "node a joined the fake master ($key)"
@@ -138,6 +141,7 @@ for key in wrong none; do
   [ "$(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")" = "(2, 2)" ] \
     || { cat "$tmp/after-$key.log"; fail "after the fake master ($key): joins, live: $(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")"; }
   for p in "${node_pids[@]}"; do wait $p || fail "a node failed after the fake master ($key)"; done
+  echo "fake master ($key): node a said why its handshakes fail $said ms after it started; both joined the real master $(json 'round(r["nodes_wait_ms"])' "$tmp/after-$key.json") ms after it bound"
 done
 echo "fake master: no node took its parameters; the real master got both"
 
