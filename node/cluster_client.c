@@ -299,8 +299,8 @@ static void handshake_cause(const cluster_client *c, uint16_t event, uint32_t va
                  "%s", WIRE_HANDSHAKE_MS, c->endpoint);
     else if (curve)
         snprintf(out, cap, "the master closed the connection in the CURVE handshake: most likely %s/master.pub "
-                 "is not this master's key (a newer --keygen on its host?); copy master.pub from the master's "
-                 "key folder", c->cfg->keys_dir);
+                 "is not this master's key (a newer --keygen on its host?): copy master.pub from the master's "
+                 "key folder; or the master uses another security mode (%s)", c->cfg->keys_dir, c->cfg->path);
     else
         snprintf(out, cap, "the master closed the connection in the handshake (%#x): a master with security "
                  "\"curve\" (this node has \"insecure\" from %s), or no cavelight master at %s", value, c->cfg->path,
@@ -313,7 +313,7 @@ static void handshake_failed(cluster_client *c, uint16_t event, uint32_t value)
     c->st.handshakes_failed++;
     if (!ratelog_event(&c->handshake_log, clock_now_ms(), &skipped))
         return;
-    char cause[600];
+    char cause[1024];
     handshake_cause(c, event, value, cause, sizeof cause);
     fprintf(stderr, "cavelight-node %s: handshake with the master at %s failed (%llu so far, %llu not logged): %s\n",
             c->name, c->endpoint, (unsigned long long)c->st.handshakes_failed, (unsigned long long)skipped, cause);

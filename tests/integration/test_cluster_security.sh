@@ -127,7 +127,8 @@ for key in wrong none; do
   wait $fake
   grep -q "received=0" "$tmp/fake-$key.log" || fail "the fake master ($key) heard from a node: $(cat "$tmp/fake-$key.log")"
   grep -q "joined" "$tmp/fake-$key-node-a.log" && fail "node a joined the fake master ($key)"
-  # The nodes say why the handshakes fail: another key than master.pub, or no CURVE.
+  # The nodes say why the handshakes fail: another key than master.pub, or no CURVE (a
+  # connection closed before the master's greeting was read names both).
   cause="master.pub is not this master's key"
   [ $key = none ] && cause="the master uses another security mode"
   grep -q "handshake with the master at $fep failed (.*): .*$cause" "$tmp/fake-$key-node-a.log" \
