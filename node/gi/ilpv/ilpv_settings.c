@@ -1,8 +1,7 @@
 #include "gi/ilpv/ilpv_settings.h"
 
-#include <stddef.h>
+#include <stdio.h>
 
-#include "lpv/lattice.h"
 #include "lpv/lpv_converge.h"
 
 static const char *const backend_names[] = {"auto", "cpu", "gl"};
@@ -53,4 +52,22 @@ const gi_method_settings ilpv_settings_table = {
 void ilpv_settings_get(const frame_params *p, ilpv_settings *out)
 {
     gi_settings_read(gi_method_find("ilpv"), p, out);
+}
+
+int ilpv_settings_lattice(const ilpv_settings *s, const float bounds_min[3], const float bounds_max[3],
+                          lattice_desc *out, char *err, size_t errlen)
+{
+    lattice_fit_desc fit = {
+        .bounds_min = {bounds_min[0], bounds_min[1], bounds_min[2]},
+        .bounds_max = {bounds_max[0], bounds_max[1], bounds_max[2]},
+        .max_axis_cells = s->lattice_cells > 0 ? ILPV_FITTED_AXIS_MAX : s->lattice,
+        .max_cells = s->lattice_cells > 0 ? s->lattice_cells : 0,
+        .margin_cells = -1.0f,
+    };
+    char why[160];
+    if (lattice_fit(&fit, out, why, sizeof why) != 0) {
+        snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
+        return -1;
+    }
+    return 0;
 }
