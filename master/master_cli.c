@@ -16,7 +16,7 @@ static const char *const groups[G_COUNT] = {
 };
 
 enum id {
-    O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN,
+    O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN, O_INSECURE_ANYWHERE,
     O_SPAWN_LOCAL, O_SPAWN_REMOTE, O_NODE_EXE, O_NODE_ARGS, O_WAIT_MS, O_RENDER, O_SCENE,
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET,
@@ -40,6 +40,8 @@ static const cli_option options[] = {
      "validate the config and exit, starting nothing: its keys,\nthe scene, the hosts, the CURVE keys, --input; one line\nper problem, exit 0 or 2"},
     {O_STRICT, "strict", NULL, NULL, G_CLUSTER, 0,
      "a key no part of the cluster or input config reads\n(a misspelling) is an error, not a warning"},
+    {O_INSECURE_ANYWHERE, "insecure-anywhere", NULL, NULL, G_CLUSTER, 0,
+     "let security \"insecure\" bind outside the loopback range\n(anybody who reaches the port may join or steer)"},
     {O_SPAWN_LOCAL, "spawn-local", NULL, NULL, G_NODES, 0, "start every node on this machine"},
     {O_SPAWN_REMOTE, "spawn-remote", NULL, NULL, G_NODES, 0,
      "start every node on its host through the config's launch\ncommand (ssh by default)"},
@@ -117,6 +119,7 @@ static const char *set(void *user, int id, const char *v)
     case O_ENDPOINT_FILE: o->endpoint_file = v; break;
     case O_BARRIER_MS: why = cli_int(v, 10, 600000, &o->barrier_ms); break;
     case O_KEYGEN: o->keygen = 1; break;
+    case O_INSECURE_ANYWHERE: o->insecure_anywhere = 1; break;
     case O_SPAWN_LOCAL: o->spawn_local = 1; break;
     case O_SPAWN_REMOTE: o->spawn_remote = 1; break;
     case O_NODE_EXE: o->node_exe = v; break;

@@ -14,6 +14,7 @@ enum { MASTER_MAX_SETTINGS = 96 };
 typedef struct master_options {
     const char *config;
     int spawn_local, spawn_remote, keygen, quiet;
+    int insecure_anywhere;      /* security "insecure" may bind outside the loopback range */
     const char *bind, *endpoint_file;
     int frames;                 /* 0 = until stopped */
     double dt, fps;             /* scripted seconds per frame; pacing (0 = as fast as possible) */

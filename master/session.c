@@ -82,6 +82,13 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     }
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
+    /* The nodes' own check, before any node is started: a scene no node can take is
+     * refused here, not reported as a session of frames nobody rendered. */
+    char why[300];
+    if (cluster_master_check_params(s->m, why, sizeof why) != 0) {
+        snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
+        return -1;
+    }
     return 0;
 }
 
@@ -98,7 +105,8 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->dt = d->dt;
     s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
-                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
+                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet,
+                              .insecure_anywhere = d->insecure_anywhere};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
     if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
@@ -340,6 +348,11 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON_AddNumberToObject(root, "frames_rendered", (double)st.frames_rendered);
+    cJSON_AddNumberToObject(root, "refusals", (double)st.refusals);
+    cJSON_AddNumberToObject(root, "unauthenticated_dropped", (double)st.unauthenticated_dropped);
+    cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
+    cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {
@@ -352,6 +365,8 @@ int session_write_report(session *s, const char *path, double wall_s)
         cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
         cJSON_AddNumberToObject(n, "joins", ps.joins);
         cJSON_AddNumberToObject(n, "drops", ps.drops);
+        cJSON_AddNumberToObject(n, "refusals", ps.refusals);
+        cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
         char hex[20];
         snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
         cJSON_AddStringToObject(n, "last_checksum", hex);

@@ -32,6 +32,7 @@ typedef struct session_desc {
     const char *bind;       /* NULL = the config's */
     int barrier_ms;         /* 0 = the config's */
     int quiet;              /* 1: log only errors */
+    int insecure_anywhere;  /* 1: security "insecure" may bind outside the loopback range */
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
     const char *record;     /* record the merged input there; NULL = the input config's */
