@@ -14,6 +14,8 @@
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
+#include "gi/gi_cost.h"
+#include "gi/gi_settings.h"
 #include "gi/ilpv/ilpv_budget.h"
 #include "scene/scene_load.h"
 #include "script.h"
@@ -51,6 +53,26 @@ struct session {
     double budget_ms;                   /* > 0: the budget chose lattice and steps */
     lpv_budget_choice budget;
 };
+
+/* The nodes' limits on what the GI settings cost (gi_cost.h), checked as they check them:
+ * settings they would refuse are refused here, before any node starts. */
+static int check_limits(session *s, char *err, size_t errlen)
+{
+    gi_limits lim = {.memory_mb = s->cfg->gi_memory_mb};
+    frame_params_default(&lim.base);
+    char why[256];
+    if (gi_set_config(s->cfg, &lim.base, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s", why);
+        return -1;
+    }
+    memcpy(lim.bounds_min, s->bounds_min, sizeof lim.bounds_min);
+    memcpy(lim.bounds_max, s->bounds_max, sizeof lim.bounds_max);
+    if (gi_cost_within(&lim, &s->frame, why, sizeof why))
+        return 0;
+    snprintf(err, errlen, "%s: every node would refuse it; give heavier settings in the config's \"settings\", "
+             "which sets up the wall", why);
+    return -1;
+}
 
 /* The frame every node starts from: the defaults and the scene's lights. */
 static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
@@ -95,7 +117,7 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
         return -1;
     }
-    return 0;
+    return check_limits(s, err, errlen);
 }
 
 static void input_warning(void *user, const char *line)

@@ -123,3 +123,16 @@ out=$("$build/cavelight-master" --config "$tmp/bad.json" --spawn-local --out "$t
 grep -qF "settings.vpl-cuont: 64: not a setting (did you mean vpl-count?)" <<< "$out" || fail "bad setting: $out"
 [ ! -d "$tmp/bad/logs" ] || fail "nodes were started for a refused config"
 echo "bad settings refused in one line before any node starts"
+
+# Settings the nodes' limits would refuse (node/gi/gi_cost.h: over ten times the set-up
+# work, or over limits.gi_memory_mb) are refused by the master before any node starts; set
+# up in the config, the same settings pass.
+out=$("$build/cavelight-master" --config "$tmp/c2.json" --spawn-local --out "$tmp/runaway" \
+      --lattice 128 --steps 256 2>&1) && fail "a runaway lattice and steps accepted"
+grep -qF "the ilpv settings would take" <<< "$out" && grep -qF "(at most 10): every node would refuse it" <<< "$out" \
+  || fail "runaway: $out"
+[ ! -d "$tmp/runaway/logs" ] || fail "nodes were started for runaway settings"
+SETTINGS='"rsm": 64, "lattice": 64, "steps": 16' make_config "$tmp/heavy.json" 30000 a b
+"$build/cavelight-master" --config "$tmp/heavy.json" --bind 'tcp://127.0.0.1:*' --spawn-local --render none \
+  --frames 1 --out "$tmp/heavy" --quiet 2> "$tmp/heavy.log" || { cat "$tmp/heavy.log"; fail "set-up heavy settings refused"; }
+echo "runaway settings refused before any node starts; the same set up in the config pass"

@@ -2,6 +2,9 @@
 
 #include <stdio.h>
 
+#include "gi/gi_cost.h"
+#include "lpv/ilpv.h"
+
 #include "lpv/lpv_converge.h"
 
 static const char *const backend_names[] = {"auto", "cpu", "gl"};
@@ -40,6 +43,20 @@ static const char *check(const frame_params *p)
     return NULL;
 }
 
+/* Work: every step touches every cell, and the frame's injection, merge and composition
+ * about one step's worth. */
+static void cost(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
+{
+    ilpv_settings s;
+    ilpv_settings_get(p, &s);
+    lattice_desc lat;
+    char err[256];
+    if (ilpv_settings_lattice(&s, bounds_min, bounds_max, &lat, err, sizeof err) != 0)
+        return; /* no lattice: the method is not built */
+    out->work = (double)lattice_cell_count(&lat) * (p->lpv_steps + 1);
+    out->memory_bytes = ilpv_state_bytes(&lat);
+}
+
 const gi_method_settings ilpv_settings_table = {
     .name = "ilpv",
     .summary = "incremental light propagation volumes",
@@ -47,6 +64,7 @@ const gi_method_settings ilpv_settings_table = {
     .count = (int)(sizeof rows / sizeof rows[0]),
     .struct_size = sizeof(ilpv_settings),
     .check = check,
+    .cost = cost,
 };
 
 void ilpv_settings_get(const frame_params *p, ilpv_settings *out)
