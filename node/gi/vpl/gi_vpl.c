@@ -375,7 +375,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->never_reuse = d->no_reuse;
     memcpy(v->head_to_eye, d->head_to_eye, sizeof v->head_to_eye);
     int bad = init(v, err, errlen);
-    if (!bad)
+    if (!bad && v->settings.selection == VPL_SELECT_VIEW) /* Embree, loaded only for it */
         bad = !(v->viewer = vpl_view_create(d->scene, err, errlen));
     if (!bad && v->settings.visibility != VPL_VISIBILITY_EXACT) {
         vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,

@@ -18,7 +18,7 @@ static const setting rows[] = {
     {"vpl-seed", "S", SETTING_INT, 0, 2147483647, 0, NULL, 0, 0, FIELD(seed),
      "vpl: seed of their random choice"},
     {"vpl-selection", NULL, SETTING_CHOICE, 0, 0, VPL_SELECT_FLUX, vpl_selection_names,
-     VPL_SELECT_COUNT, 0, FIELD(selection),
+     VPL_SELECT_COUNT, SETTING_REBUILD, FIELD(selection), /* view: the ray caster is built */
      "vpl: choose lights by flux, by flux and what the head\nsees (bidirectional), or on a "
      "regular pattern"},
     {"vpl-bound", NULL, SETTING_CHOICE, 0, 0, VPL_BOUND_DISK, bound_names, 2, 0, FIELD(bound),
