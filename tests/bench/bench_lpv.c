@@ -104,8 +104,10 @@ static double load_average(void)
 
 int bench_lpv(int argc, char **argv)
 {
-    int res = 64, steps = 8, threads = 0, naive_repeats = 3;
+    int res = 64, steps = 8, threads = 0, naive_repeats = 3, transport = LPV_TRANSPORT_BEAMS;
     const bench_option opts[] = {
+        BENCH_CHOICE("transport", "beams|paper", "the propagation step measured", &transport,
+                     lpv_transport_names),
         BENCH_INT("res", "N", "lattice cells per axis", &res, 2, 512),
         BENCH_INT("steps", "S", "propagation steps", &steps, 1, 1000),
         BENCH_INT("threads", "T", "worker threads (0: all cores)", &threads, 0, 256),
@@ -150,8 +152,10 @@ int bench_lpv(int argc, char **argv)
                      0, 0.6f * r, 0, r, 0.6f * r, r, r, 0.6f * r, 0, 0, 0.6f * r, 0, 0, 0.6f * r, r, r, 0.6f * r, r};
     lpv_geometry_add_triangles(&geo, &lat, walls, 12, NULL, 4, NULL);
 
-    lpv_propagate_desc pd = {.blockers = &geo, .absorption = 0.05f, .scattering = 0.02f,
-                             .pool = pool};
+    lpv_propagate_desc pd = {.transport = (lpv_transport)transport, .blockers = &geo,
+                             .absorption = 0.05f, .scattering = 0.02f, .pool = pool};
+    if (pd.transport == LPV_TRANSPORT_PAPER)
+        lpv_paper_transfer_default(); /* its precomputation is not part of a step */
     int repeats = MIN_REPEATS;
     double *times = malloc((size_t)repeats * sizeof *times);
     for (int rep = -1; rep < repeats; rep++) { /* rep -1 warms the caches up */
@@ -170,7 +174,7 @@ int bench_lpv(int argc, char **argv)
     const lpv_volume *fast = steps % 2 ? &b : &a;
     size_t cells = lattice_cell_count(&lat);
     double fast_s = median(times, repeats);
-    double flops = steps * lpv_propagate_flops(cells);
+    double flops = steps * lpv_propagate_flops(pd.transport, cells);
 
     /* The scalar reference: same steps, same settings, fewer repeats (it is slow). */
     double *naive_times = malloc((size_t)naive_repeats * sizeof *naive_times);
@@ -203,11 +207,11 @@ int bench_lpv(int argc, char **argv)
     }
     double peak = peak_gflops(pool, threads);
     double gflops = flops / fast_s * 1e-9;
-    printf("{\"bench\":\"lpv\",\"res\":%d,\"steps\":%d,\"threads\":%d,\"repeats\":%d,"
+    printf("{\"bench\":\"lpv\",\"transport\":\"%s\",\"res\":%d,\"steps\":%d,\"threads\":%d,\"repeats\":%d,"
            "\"ms_per_step\":%.4f,\"gflops\":%.3f,\"peak_gflops\":%.3f,\"fraction_of_peak\":%.4f,"
            "\"naive_ms_per_step\":%.4f,\"naive_repeats\":%d,\"speedup_vs_naive\":%.2f,"
            "\"max_rel_diff_vs_naive\":%.3g,\"loadavg_1m\":%.2f,\"checksum\":\"%016llx\"}\n",
-           res, steps, threads, repeats, 1e3 * fast_s / steps, gflops, peak, gflops / peak,
+           lpv_transport_names[transport], res, steps, threads, repeats, 1e3 * fast_s / steps, gflops, peak, gflops / peak,
            1e3 * naive_s / steps, naive_repeats, naive_s / fast_s, max_rel, load_average(),
            (unsigned long long)lpv_volume_checksum(fast));
     free(times);
