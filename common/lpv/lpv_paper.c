@@ -193,7 +193,7 @@ size_t lpv_paper_shader_body(const lpv_paper_transfer *t, char *out, size_t n)
         const int *o = lpv_transfer_offsets[j];
         const float *g = t->gamma[j];
         int w = snprintf(out + used, n - used,
-                         "    gather(here, cell, ivec3(%d, %d, %d), %d, vec4(%.9g, %.9g, %.9g, "
+                         "    gather(cell, ivec3(%d, %d, %d), %d, vec4(%.9g, %.9g, %.9g, "
                          "%.9g), %.9g, ar, ag, ab);\n",
                          o[0], o[1], o[2], j, g[0], g[1], g[2], g[3], t->outscatter[j]);
         if (w < 0 || (size_t)w >= n - used)
