@@ -20,42 +20,48 @@ typedef struct job {
     float g[LPV_NEIGHBOURS][4]; /* G_j */
 } job;
 
-/* p_j of the 8 source cells at index at (n of them in the row, n > 0), colours R, G, B,
- * into P[c][i] .. P[c][i + 7]; 0 for blocked cells and lanes past the row. */
-static ALWAYS_INLINE void factors8(const job *jb, int j, size_t at, int n, float (*P)[PW], int i)
+/* The blockers' words of the n source cells at index at (n > 0), 0 past the row. */
+static ALWAYS_INLINE vi mask_words(const job *jb, size_t at, int n)
 {
-    float *const *s = jb->src->ch;
-    const vf zero = vf_zero();
-    vf open = vf_lanes(0, n);
-    if (jb->blockers) {
-        unsigned words[8] = {0};
-        memcpy(words, jb->blockers->mask + at, (size_t)n * sizeof *words);
-        open = vf_and(open, vi_bit_clear(vi_load(words), j));
-    }
-    const float *a = jb->a[j];
-    for (int c = 0; c < 3; c++) {
-        vf p = vf_mul(vf_set1(a[0]), vf_load(s[4 * c] + at));
-        p = vf_fma(vf_set1(a[1]), vf_load(s[4 * c + 1] + at), p);
-        p = vf_fma(vf_set1(a[2]), vf_load(s[4 * c + 2] + at), p);
-        p = vf_fma(vf_set1(a[3]), vf_load(s[4 * c + 3] + at), p);
-        vf_store(&P[c][i], vf_and(vf_max(p, zero), open));
-    }
+    if (n == 8)
+        return vi_load(jb->blockers->mask + at);
+    unsigned words[8] = {0};
+    memcpy(words, jb->blockers->mask + at, (size_t)n * sizeof *words);
+    return vi_load(words);
 }
 
 /* The factor row of neighbour j for the segment at x0 of destination row (y, z), whose
- * source row (y - o_y, z - o_z) lies in the lattice. */
+ * source row (sy, sz) lies in the lattice: p_j of the source cells x0 - 8 .. x0 + XS + 7,
+ * colours R, G, B; 0 for blocked cells and cells outside the row. */
 static ALWAYS_INLINE void factor_row(const job *jb, int j, int sy, int sz, int x0, float (*P)[PW])
 {
     const int nx = jb->src->n[0], ny = jb->src->n[1];
     const size_t row = ((size_t)sz * ny + sy) * nx;
-    for (int x = x0 - 8; x < x0 + XS + 8; x += 8) {
-        int i = x - x0 + 8;
-        if (x < 0 || x >= nx) {
-            for (int c = 0; c < 3; c++)
-                vf_store(&P[c][i], vf_zero());
-            continue;
+    const vf zero = vf_zero();
+    for (int c = 0; c < 3; c++) {
+        const float *l0 = jb->src->ch[4 * c] + row, *l1 = jb->src->ch[4 * c + 1] + row;
+        const float *l2 = jb->src->ch[4 * c + 2] + row, *l3 = jb->src->ch[4 * c + 3] + row;
+        const vf a0 = vf_set1(jb->a[j][0]), a1 = vf_set1(jb->a[j][1]);
+        const vf a2 = vf_set1(jb->a[j][2]), a3 = vf_set1(jb->a[j][3]);
+        float *out = P[c];
+        for (int x = x0 - 8; x < x0 + XS + 8; x += 8) {
+            float *o = out + (x - x0 + 8);
+            int n = nx - x < 8 ? nx - x : 8;
+            if (x < 0 || n <= 0) {
+                vf_store(o, zero);
+                continue;
+            }
+            vf p = vf_mul(a0, vf_load(l0 + x));
+            p = vf_fma(a1, vf_load(l1 + x), p);
+            p = vf_fma(a2, vf_load(l2 + x), p);
+            p = vf_fma(a3, vf_load(l3 + x), p);
+            p = vf_max(p, zero);
+            if (n < 8)
+                p = vf_and(p, vf_lanes(0, n));
+            if (jb->blockers)
+                p = vf_and(p, vi_bit_clear(mask_words(jb, row + (size_t)x, n), j));
+            vf_store(o, p);
         }
-        factors8(jb, j, row + (size_t)x, nx - x < 8 ? nx - x : 8, P, i);
     }
 }
 

@@ -39,6 +39,8 @@ static inline vf vi_bit_clear(vi m, int k)
     __m256i b = _mm256_and_si256(m, _mm256_set1_epi32((int)(1u << k)));
     return _mm256_castsi256_ps(_mm256_cmpeq_epi32(b, _mm256_setzero_si256()));
 }
+static inline int vi_any(vi m) { return !_mm256_testz_si256(m, m); } /* any bit set */
+static inline vi vi_or(vi a, vi b) { return _mm256_or_si256(a, b); }
 static inline vf vf_lanes(int lo, int hi) /* all-ones lanes l with lo <= l < hi */
 {
     __m256i l = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -76,6 +78,14 @@ static inline vf vf_sel(vf m, vf a, vf b) VF_MAP(lane_on(m.v[l]) ? a.v[l] : b.v[
 static inline vi vi_load(const unsigned *p) { vi r; memcpy(r.v, p, sizeof r.v); return r; }
 static inline vi vi_zero(void) { vi r; memset(&r, 0, sizeof r); return r; }
 static inline vf vi_bit_clear(vi m, int k) VF_MAP(lane_mask(!((m.v[l] >> k) & 1u)))
+static inline vi vi_or(vi a, vi b) { for (int l = 0; l < 8; l++) a.v[l] |= b.v[l]; return a; }
+static inline int vi_any(vi m)
+{
+    unsigned any = 0;
+    for (int l = 0; l < 8; l++)
+        any |= m.v[l];
+    return any != 0;
+}
 static inline vf vf_lanes(int lo, int hi) VF_MAP(lane_mask(l >= lo && l < hi))
 static inline void vf_store_mask(float *p, vf a, vf m)
 {
