@@ -113,10 +113,13 @@ enum { EX = 0, WY = 3, WZ = 6, SS = 9, PER_HALF = 12, ARRAYS = 2 * PER_HALF };
  * of the segment at index x - x0 + 8. */
 enum { XS = 64, PW = XS + 16, RING_Z = Z_TILE + 2 };
 
+/* A split row is stored chunk by chunk: the ARRAYS vectors of 8 cells one after another
+ * (what one destination chunk reads of a row lies in a few cache lines); array a of the
+ * chunk at ring index i (a multiple of 8) starts at row + i ARRAYS + 8 a. */
 typedef struct ring {
-    _Alignas(32) float v[3][RING_Z][ARRAYS][PW]; /* source row (y mod 3, z - (z0 - 1)) */
-    _Alignas(32) unsigned mask[3][RING_Z][PW];   /* its blockers */
-    _Alignas(32) float zero[ARRAYS][PW];         /* a row outside the lattice: sends nothing */
+    _Alignas(32) float v[3][RING_Z][PW * ARRAYS]; /* source row (y mod 3, z - (z0 - 1)) */
+    _Alignas(32) unsigned mask[3][RING_Z][PW];    /* its blockers */
+    _Alignas(32) float zero[PW * ARRAYS];         /* a row outside the lattice: sends nothing */
     _Alignas(32) unsigned zero_mask[PW];
     _Alignas(32) float V[3][4][PW];              /* a destination row's V_ox */
 } ring;
@@ -139,29 +142,30 @@ static void prefetch_row(const job *jb, int sy, int sz, int x0, int c)
 static void split_row(const job *jb, ring *rg, int ry, int rz, int sy, int sz, int x0, int c)
 {
     const int nx = jb->src->n[0], ny = jb->src->n[1];
-    float (*out)[PW] = rg->v[ry][rz];
+    float *out = rg->v[ry][rz];
     unsigned *m = rg->mask[ry][rz];
     const size_t row = ((size_t)sz * ny + sy) * nx;
     for (int i = 0; i < PW; i += 8) {
         int x = x0 - 8 + i, n = nx - x < 8 ? nx - x : 8;
+        float *chunk = out + (size_t)i * ARRAYS;
         if (x < 0 || n <= 0) {
             for (int k = 0; k < ARRAYS; k++)
-                vf_store(out[k] + i, vf_zero());
+                vf_store(chunk + 8 * k, vf_zero());
             memset(m + i, 0, 8 * sizeof *m);
             continue;
         }
         split sp;
         split_cells(jb, (const float *const *)jb->src->ch, row + (size_t)x, n, c, &sp);
         for (int h = 0; h < 2; h++) {
-            float (*o)[PW] = out + h * PER_HALF;
+            float *o = chunk + 8 * h * PER_HALF;
             vf w[3][3];
             for (int a = 0; a < 3; a++)
                 axis_weights(sp.dir[h][a], w[a]);
             for (int k = 0; k < 3; k++) {
-                vf_store(o[EX + k] + i, vf_mul(w[0][k], sp.half));
-                vf_store(o[WY + k] + i, w[1][k]);
-                vf_store(o[WZ + k] + i, w[2][k]);
-                vf_store(o[SS + k] + i, sp.sh[h][k]);
+                vf_store(o + 8 * (EX + k), vf_mul(w[0][k], sp.half));
+                vf_store(o + 8 * (WY + k), w[1][k]);
+                vf_store(o + 8 * (WZ + k), w[2][k]);
+                vf_store(o + 8 * (SS + k), sp.sh[h][k]);
             }
         }
         const unsigned *words = jb->blockers ? jb->blockers->mask + row + x : NULL;
@@ -181,15 +185,15 @@ static ALWAYS_INLINE void gather_v(const float *const r[9], const unsigned *cons
             V[ox][k] = vf_zero();
     for (int oz = 0; oz < 3; oz++)
         for (int oy = 0; oy < 3; oy++) {
-            const float *row = r[oz * 3 + oy] + i;
+            const float *row = r[oz * 3 + oy] + (size_t)i * ARRAYS;
             vi words = masked ? vi_load(m[oz * 3 + oy] + i) : vi_zero();
             for (int h = 0; h < 2; h++) {
-                const float *o = row + h * PER_HALF * PW;
-                vf wyz = vf_mul(vf_load(o + (WY + oy) * PW), vf_load(o + (WZ + oz) * PW));
-                vf s0 = vf_load(o + SS * PW), s1 = vf_load(o + (SS + 1) * PW);
-                vf s2 = vf_load(o + (SS + 2) * PW);
+                const float *o = row + 8 * h * PER_HALF;
+                vf wyz = vf_mul(vf_load(o + 8 * (WY + oy)), vf_load(o + 8 * (WZ + oz)));
+                vf s0 = vf_load(o + 8 * SS), s1 = vf_load(o + 8 * (SS + 1));
+                vf s2 = vf_load(o + 8 * (SS + 2));
                 for (int ox = 0; ox < 3; ox++) {
-                    vf a = vf_mul(vf_load(o + (EX + ox) * PW), wyz);
+                    vf a = vf_mul(vf_load(o + 8 * (EX + ox)), wyz);
                     int k27 = oz * 9 + oy * 3 + ox;
                     if (masked && k27 != 13)
                         a = vf_and(a, vi_bit_clear(words, k27 < 13 ? k27 : k27 - 1));
@@ -214,7 +218,7 @@ static void dst_row(const job *jb, ring *rg, int y, int z, int z0, int z1, int x
         for (int oy = -1; oy <= 1; oy++) {
             int sy = y - oy, sz = z - oz, k = (oz + 1) * 3 + oy + 1;
             int inside = sy >= 0 && sy < ny && sz >= 0 && sz < nz && sz >= z0 - 1 && sz <= z1;
-            r[k] = inside ? &rg->v[sy % 3][sz - (z0 - 1)][0][0] : &rg->zero[0][0];
+            r[k] = inside ? rg->v[sy % 3][sz - (z0 - 1)] : rg->zero;
             m[k] = inside ? rg->mask[sy % 3][sz - (z0 - 1)] : rg->zero_mask;
         }
     for (int i = 0; i < PW; i += 8) {
