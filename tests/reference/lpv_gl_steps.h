@@ -15,6 +15,7 @@
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_paper.h"
 #include "lpv/lpv_propagate.h"
+#include "lpv/sh.h"
 
 typedef struct lpv_gl_steps {
     const gl_functions *gl;
@@ -78,6 +79,7 @@ static inline int lpv_gl_steps_init(lpv_gl_steps *s, const gl_functions *gl, con
     }
     s->prog[LPV_TRANSPORT_BEAMS] = gltools_program(gl, NULL, NULL, "propagate.comp", NULL, body,
                                                    err, errlen);
+
     if (!lpv_paper_shader_body(t ? t : lpv_paper_transfer_default(), body, sizeof body))
         return -1;
     s->prog[LPV_TRANSPORT_PAPER] = gltools_program(gl, NULL, NULL, "paper_propagate.comp", NULL,
