@@ -335,9 +335,10 @@ double lpv_propagate_flops(lpv_transport t, size_t cells)
 {
     if (t == LPV_TRANSPORT_PAPER)
         return lpv_paper_step_flops_per_cell() * (double)cells;
-    /* Per colour: the split (about 60 operations) and the 27 targets' weights and
-     * coefficients (2 multiplies, 1 add, 3 multiply-adds counted as 2, 4 accumulating
-     * adds: 13). */
-    double per_cell = 3.0 * (60.0 + LPV_TARGETS * 13.0);
+    /* Per colour: the split (about 60 operations), its axis weights (2 halves x 3 axes x 7)
+     * and x weights times the energy (6); per (o_y, o_z) and half the y-z weight (1) and per
+     * x offset the share (1 multiply) and its four coefficients (1 add, 3 multiply-adds
+     * counted as 2: 7); the three V_ox summed (8). */
+    double per_cell = 3.0 * (60.0 + 42.0 + 6.0 + 9.0 * 2.0 * (1.0 + 3.0 * 8.0) + 8.0);
     return per_cell * (double)cells;
 }
