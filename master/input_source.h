@@ -22,7 +22,9 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "base/ratelog.h"
-#include "input.h"
+#include "input_state.h"
+
+typedef struct input_source input_source;
 
 enum { INPUT_MAP_SIZE = 32 };
 /* Seconds between a device source's attempts to reach a missing device, by default. */

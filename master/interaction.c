@@ -1,5 +1,6 @@
 /* interaction: navigation, lighting and renderer-settings layouts driven by the wand. */
 #include "interaction.h"
+#include "gi/gi_settings.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -240,7 +241,7 @@ static void settings_update(interaction *ia, const input_state *in, double dt, f
         p->lambda_incr = next;
     }
     if (in->pressed & (1u << INPUT_BUTTON_C))
-        p->gi = (frame_gi)((p->gi + 1) % FRAME_GI_COUNT);
+        p->gi = (p->gi + 1) % gi_method_count();
 }
 
 uint32_t interaction_update(interaction *ia, const input_state *in, double dt, frame_params *p)
@@ -271,7 +272,7 @@ uint32_t interaction_update(interaction *ia, const input_state *in, double dt, f
     int light_count = p->light_count;
     frame_light light = p->lights[ia->desc.light];
     int steps = p->lpv_steps;
-    frame_gi gi = p->gi;
+    int gi = p->gi;
     float absorption = p->absorption, scattering = p->scattering, lambda = p->lambda_incr;
     switch (ia->layout) {
     case INTERACTION_NAVIGATION: navigation_update(ia, in, dt, p); break;

@@ -9,7 +9,7 @@
  *   lighting    C: the spotlight follows the wand like a flashlight; M/L: intensity up and
  *                  down by a factor per press; Y: hue, X: saturation (HSV, value kept).
  *   settings    M/L: propagation steps up/down; X: absorption; Y: scattering;
- *               AUX: next lambda_incr preset; C: next GI method (frame_gi, round-robin:
+ *               AUX: next lambda_incr preset; C: next GI method (the registry's order, round-robin:
  *               the paper's "switch pipeline", live on every node in the same frame).
  * CAVE space is Y up; navigation is the CAVE-to-world transform.
  *
@@ -21,7 +21,7 @@
 
 #include <stdint.h>
 #include "frame/frame_params.h"
-#include "input.h"
+#include "input_state.h"
 
 typedef enum interaction_layout {
     INTERACTION_NAVIGATION = 0,

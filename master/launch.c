@@ -27,8 +27,8 @@ static int node_argv(const master_options *o, const char *config, const char *ex
     }
     const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", out_dir},
                               {"--scene", o->scene},
-                              {"--gi", o->gi_given ? frame_gi_name(o->gi) : NULL}};
-    for (int i = 0; i < 5; i++)
+                              {"--scene-transform", o->scene_transform_text}};
+    for (size_t i = 0; i < sizeof pairs / sizeof *pairs; i++)
         if (pairs[i][1]) {
             argv[n++] = (char *)pairs[i][0];
             argv[n++] = (char *)pairs[i][1];
@@ -37,6 +37,10 @@ static int node_argv(const master_options *o, const char *config, const char *ex
         argv[n++] = "--quiet";
     if (o->keep_frames)
         argv[n++] = "--keep-frames";
+    if (o->pattern_blend)
+        argv[n++] = "--show-blend";
+    if (o->allow_outside_paths)
+        argv[n++] = "--allow-outside-paths";
     if (o->node_args) {
         snprintf(storage, cap, "%s", o->node_args);
         for (char *tok = strtok(storage, " "); tok && n < max - 1; tok = strtok(NULL, " "))

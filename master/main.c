@@ -2,10 +2,13 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
 #include "base/folder.h"
 #include "cluster_auth.h"
+#include "check.h"
 #include "cluster_master.h"
 #include "master_cli.h"
 #include "launch.h"
@@ -40,6 +43,7 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
 {
     double start = clock_now_ms();
     int rc = 0;
+    ratelog idle_log = {0}; /* nodes that come and go (churn) must not flood the output */
     while ((o->frames == 0 || session_frames(s) < o->frames) && !stop_requested) {
         cluster_frame_result r;
         session_step step = session_frame(s, &r);
@@ -57,8 +61,12 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
             rc = 1;
             break;
         }
+        uint64_t skipped = 0;
         if (step == SESSION_NO_NODES) {
-            fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", wait_ms);
+            if (ratelog_event(&idle_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one (%llu times so far, "
+                        "%llu not logged)\n", wait_ms, (unsigned long long)idle_log.count,
+                        (unsigned long long)skipped);
             if (session_wait_nodes(s, 1, wait_ms, &stop_requested) == 0) {
                 fprintf(stderr, "cavelight-master: no node came back: stopping\n");
                 rc = 1;
@@ -71,6 +79,27 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
     }
     *wall_s = (clock_now_ms() - start) / 1000.0;
     return rc;
+}
+
+/* A session whose nodes refused it, or in which no node rendered any frame, did not show
+ * what was asked: each refusing node's last reason, and 1 for the exit status. */
+static int session_failed(const cluster_config *cfg, cluster_master *m, const cluster_master_stats *st)
+{
+    int failed = 0;
+    for (int i = 0; i < cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(m, i, &ps);
+        if (!ps.refusals)
+            continue;
+        fprintf(stderr, "cavelight-master: node %s refused the %s (%u refusals), the last: %s\n", cfg->nodes[i].name,
+                ps.refused_what == WIRE_REFUSE_PARAMS ? "parameters" : "scene", ps.refusals, ps.refusal);
+        failed = 1;
+    }
+    if (st->frames > 0 && st->frames_rendered == 0) {
+        fprintf(stderr, "cavelight-master: no node rendered any of the %llu frames\n", (unsigned long long)st->frames);
+        failed = 1;
+    }
+    return failed;
 }
 
 static void print_summary(const cluster_master_stats *st, double wall_s)
@@ -114,13 +143,48 @@ static preview *open_preview(const master_options *o, const cluster_config *cfg)
 static int keygen(const cluster_config *cfg)
 {
     char err[1024];
-    if (cluster_keygen(cfg, err, sizeof err) != 0) {
+    if (cluster_keygen(cfg, stderr, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
-    fprintf(stderr, "cavelight-master: wrote master.key/.pub and one pair per node into %s; give "
-            "each host its own .key and master.pub\n", cfg->keys_dir);
     return 0;
+}
+
+/* Keys no section of the config reads: warnings, or errors with --strict. 0, or -1. */
+static int unknown_keys(const master_options *o, const cluster_config *cfg)
+{
+    for (int i = 0; i < cfg->unknown_key_count && i < CLUSTER_MAX_UNKNOWN_KEYS; i++)
+        if (o->strict || !o->quiet)
+            fprintf(stderr, "cavelight-master: %s%s\n", o->strict ? "" : "warning: ", cfg->unknown_keys[i]);
+    if (o->strict && cfg->unknown_key_count)
+        fprintf(stderr, "cavelight-master: %d unknown key%s in %s: refused (--strict)\n", cfg->unknown_key_count,
+                cfg->unknown_key_count == 1 ? "" : "s", cfg->path);
+    return o->strict && cfg->unknown_key_count ? -1 : 0;
+}
+
+/* Every connection costs a descriptor: take as many as the system allows (the hard limit)
+ * and say so, before a handshake flood can reach the usual soft limit of 1024. A hard limit
+ * under FD_LIMIT_LOW is named too. The report has the limit either way. */
+enum { FD_LIMIT_LOW = 4096 };
+static void raise_fd_limit(int quiet)
+{
+    struct rlimit r;
+    if (getrlimit(RLIMIT_NOFILE, &r) != 0)
+        return;
+    rlim_t before = r.rlim_cur;
+    if (r.rlim_cur < r.rlim_max) {
+        r.rlim_cur = r.rlim_max == RLIM_INFINITY ? 1 << 20 : r.rlim_max;
+        if (setrlimit(RLIMIT_NOFILE, &r) != 0 || getrlimit(RLIMIT_NOFILE, &r) != 0)
+            r.rlim_cur = before;
+    }
+    if (quiet)
+        return;
+    if (r.rlim_cur > before)
+        fprintf(stderr, "cavelight-master: file descriptor limit raised from %llu to %llu (the hard limit)\n",
+                (unsigned long long)before, (unsigned long long)r.rlim_cur);
+    else if (r.rlim_cur < FD_LIMIT_LOW)
+        fprintf(stderr, "cavelight-master: file descriptor limit %llu, the hard limit (LimitNOFILE= or "
+                "ulimit -Hn raise it)\n", (unsigned long long)r.rlim_cur);
 }
 
 static int master_run(const master_options *o)
@@ -132,21 +196,35 @@ static int master_run(const master_options *o)
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
+    if (unknown_keys(o, &cfg) != 0)
+        return 1;
     if (o->keygen)
         return keygen(&cfg);
+    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
+        cfg.scene_transform = o->scene_transform;
+        cfg.has_scene_transform = 1;
+        if (!o->spawn_local && !o->spawn_remote)
+            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
+                    "start every node with the same --scene-transform\n");
+    }
+    cfg.scene_outside_paths = o->allow_outside_paths;
     for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
         if (cfg.screens[i].fit_mm >= 0.05f)
             fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
                     "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
                     cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
+    static frame_params settings;
+    if (master_settings(o, &cfg, &settings, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        return 2;
+    }
     handle_signals();
+    raise_fd_limit(o->quiet);
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
-                       .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
+                       .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
-                       .print_poses = o->print_poses, .gi = o->gi,
-                       .vpl_count = o->vpl_count, .vpl_selection = o->vpl_selection,
-                       .exposure = o->exposure,
-                       .exposure_auto = o->exposure_auto};
+                       .print_poses = o->print_poses, .settings = &settings,
+                       .exposure_auto = o->exposure_auto, .strict = o->strict};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
         fprintf(stderr, "cavelight-master: %s\n", err);
@@ -175,6 +253,8 @@ static int master_run(const master_options *o)
     }
     cluster_master_stats st;
     cluster_master_stats_get(m, &st);
+    if (session_failed(&cfg, m, &st))
+        exit_code = 1;
     session_destroy(s); /* BYE: spawned nodes leave by themselves */
     launch_stop(&nodes);
     /* After the nodes are gone, every image on disk is from the last frame. */
@@ -200,6 +280,6 @@ int main(int argc, char **argv)
     switch (master_cli_parse(argc, argv, &o)) {
     case CLI_HELP: return 0;
     case CLI_ERROR: return 2;
-    default: return master_run(&o);
+    default: return o.check ? check_run(&o) : master_run(&o);
     }
 }

@@ -1,20 +1,17 @@
+/* script: the scripted head and lamp path (script.h). */
 #include "script.h"
 
 #include <math.h>
 #include <string.h>
 
-void script_init(script *s, const cluster_config *cfg, const params_store *start)
+void script_init(script *s, const cluster_config *cfg)
 {
     memset(s, 0, sizeof *s);
     memcpy(s->home, cfg->observer.home, sizeof s->home);
-    frame_params f;
-    params_to_frame(start, &f);
-    s->have_light = f.light_count > 0;
-    if (s->have_light)
-        s->light0 = f.lights[0];
 }
 
-void script_head(const script *s, double t, float m[16])
+/* The head pose at time t in CAVE space (column-major). */
+static void script_head(const script *s, double t, float m[16])
 {
     float yaw = (float)(0.3 * sin(0.6 * t));
     float c = cosf(yaw), sn = sinf(yaw);
@@ -31,26 +28,26 @@ void script_head(const script *s, double t, float m[16])
     m[15] = 1;
 }
 
-void script_apply(const script *s, double t, params_store *p)
+/* The lamp's angle on its circle: whole glides so far, then an eased glide (smoothstep:
+ * it starts and stops without a jump) in the first half of the period, then a rest. */
+static double lamp_angle(double t)
 {
-    float head[16];
-    script_head(s, t, head);
-    params_set_f64(p, PARAMS_TIME, t);
-    params_set_mat4(p, PARAMS_HEAD, head);
-    if (!s->have_light)
+    double cycles = floor(t / SCRIPT_LAMP_PERIOD_S);
+    double x = (t - cycles * SCRIPT_LAMP_PERIOD_S) / (0.5 * SCRIPT_LAMP_PERIOD_S);
+    x = x < 1.0 ? x : 1.0;
+    return SCRIPT_LAMP_ARC * (cycles + x * x * (3.0 - 2.0 * x));
+}
+
+void script_frame(const script *s, double t, frame_params *f)
+{
+    f->time = t;
+    script_head(s, t, f->head);
+    if (f->light_count < 1)
         return;
-    const frame_light *l = &s->light0;
-    float a = (float)(0.7 * t), swing = (float)(0.25 * sin(0.9 * t));
-    float pose[6] = {
-        l->position[0] + 0.3f * cosf(a), l->position[1], l->position[2] + 0.3f * sinf(a),
-        l->direction[0], l->direction[1], l->direction[2],
-    };
-    /* Swing the axis about z, keep it unit length. */
-    float dx = pose[3] * cosf(swing) - pose[4] * sinf(swing);
-    float dy = pose[3] * sinf(swing) + pose[4] * cosf(swing);
-    float len = sqrtf(dx * dx + dy * dy + pose[5] * pose[5]);
-    pose[3] = dx / len;
-    pose[4] = dy / len;
-    pose[5] /= len;
-    params_set(p, params_light_key(0, PARAMS_LIGHT_POSE), pose, sizeof pose);
+    frame_light *l = &f->lights[0];
+    double a = lamp_angle(t);
+    l->type = SCENE_LIGHT_POINT;
+    l->position[0] = s->home[0] + SCRIPT_LAMP_RADIUS_M * (float)cos(a);
+    l->position[1] = s->home[1] + SCRIPT_LAMP_RISE_M;
+    l->position[2] = s->home[2] + SCRIPT_LAMP_RADIUS_M * (float)sin(a);
 }

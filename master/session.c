@@ -10,10 +10,11 @@
 
 #include "base/clock.h"
 #include "input.h"
+#include "input_config.h"
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
-#include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "script.h"
 
 enum { MAX_SAMPLES = 100000 };
@@ -52,30 +53,49 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
                 size_t errlen)
 {
     scene sc;
-    if (scene_load(scene_path, &sc, err, errlen) != 0)
+    scene_load_desc sd;
+    cluster_config_scene_desc(s->cfg, &sd); /* as every node places it */
+    if (scene_load_with(scene_path, &sd, &sc, err, errlen) != 0)
         return -1;
-    if (sc.light_added) { /* the nodes load it too; the master says it once */
+    if (sc.warning[0]) /* the nodes load it too; the master says it once */
+        fprintf(stderr, "cavelight-master: warning: scene %s: %s\n", scene_path, sc.warning);
+    if (sc.light_added) {
         char note[400];
         scene_light_added_note(&sc, scene_path, note, sizeof note);
         fprintf(stderr, "cavelight-master: warning: %s\n", note);
     }
-    frame_params_default(&s->frame);
+    if (d->settings)
+        s->frame = *d->settings;
+    else
+        frame_params_default(&s->frame);
     frame_params_lights_from_scene(&s->frame, &sc);
     s->frame.pattern = d->pattern;
-    s->frame.gi = d->gi;
-    if (d->vpl_count > 0)
-        s->frame.vpl_count = d->vpl_count;
-    s->frame.vpl_selection = d->vpl_selection;
-    if (d->exposure > 0)
-        s->frame.exposure = d->exposure;
+    script_init(&s->script, d->config);
     if (d->exposure_auto) {
-        s->frame.exposure = exposure_from_light(&s->frame, &sc);
+        /* The lights of the first frame: the scripted path's lamp when it plays. */
+        frame_params first = s->frame;
+        if (!d->input)
+            script_frame(&s->script, 0.0, &first);
+        s->frame.exposure = exposure_from_light(&first, &sc);
         if (!d->quiet)
             fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
     }
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
+    /* The nodes' own check, before any node is started: a scene no node can take is
+     * refused here, not reported as a session of frames nobody rendered. */
+    char why[300];
+    if (cluster_master_check_params(s->m, why, sizeof why) != 0) {
+        snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
+        return -1;
+    }
     return 0;
+}
+
+static void input_warning(void *user, const char *line)
+{
+    if (!((const session_desc *)user)->quiet)
+        fprintf(stderr, "cavelight-master: warning: %s\n", line);
 }
 
 session *session_create(const session_desc *d, char *err, size_t errlen)
@@ -85,15 +105,16 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->dt = d->dt;
     s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
-                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet};
+                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet,
+                              .insecure_anywhere = d->insecure_anywhere};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
     if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
-    script_init(&s->script, d->config, cluster_master_params(s->m));
     if (d->input) {
-        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir};
+        input_desc idesc = {.path = d->input, .record_path = d->record, .out_dir = d->out_dir,
+                            .strict = d->strict, .warn = input_warning, .warn_user = (void *)d};
         memcpy(idesc.tracker_to_cave, d->config->observer.tracker_to_cave,
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))
@@ -175,6 +196,14 @@ static void print_poses(session *s, const input_state *ist)
     fflush(stdout);
 }
 
+/* The session's frame into the store: only the keys whose values changed get the new
+ * version. */
+static void publish(session *s, params_store *store)
+{
+    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
+    params_set_from_frame(store, &s->frame);
+}
+
 /* Live or recorded input through the interaction layouts into the store. Returns
  * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
 static session_step apply_input(session *s, params_store *store)
@@ -194,8 +223,7 @@ static session_step apply_input(session *s, params_store *store)
         print_poses(s, &ist);
     interaction_update(&s->ia, &ist, ist.dt, &s->frame);
     s->frame.time = ist.time;
-    s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
-    params_set_from_frame(store, &s->frame);
+    publish(s, store);
     return SESSION_FRAME_DONE;
 }
 
@@ -238,7 +266,8 @@ session_step session_frame(session *s, cluster_frame_result *result)
             return step;
     } else {
         double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
-        script_apply(&s->script, t, store);
+        script_frame(&s->script, t, &s->frame);
+        publish(s, store);
     }
     if (cluster_master_frame(s->m, result) != 0)
         return SESSION_NO_NODES;
@@ -319,6 +348,11 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON_AddNumberToObject(root, "frames_rendered", (double)st.frames_rendered);
+    cJSON_AddNumberToObject(root, "refusals", (double)st.refusals);
+    cJSON_AddNumberToObject(root, "unauthenticated_dropped", (double)st.unauthenticated_dropped);
+    cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
+    cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {
@@ -331,6 +365,8 @@ int session_write_report(session *s, const char *path, double wall_s)
         cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
         cJSON_AddNumberToObject(n, "joins", ps.joins);
         cJSON_AddNumberToObject(n, "drops", ps.drops);
+        cJSON_AddNumberToObject(n, "refusals", ps.refusals);
+        cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
         char hex[20];
         snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
         cJSON_AddStringToObject(n, "last_checksum", hex);

@@ -9,8 +9,9 @@
  *   session_write_report(s, path, wall_s);                 the JSON report (docs/cluster.md)
  *   session_destroy(s);                                    BYE to every node
  *
- * The store starts from frame_params_default() with the scene's lights, the same frame a
- * standalone node starts from. Live or recorded input (docs/input.md), its head and wand
+ * The store starts from the desc's settings (frame_params_default() and the GI and display
+ * settings of the config and the command line) with the scene's lights, the frame a
+ * standalone node with the same options starts from. Live or recorded input (docs/input.md), its head and wand
  * poses checked by pose_guard.h (a bad pose never reaches the nodes), drives the
  * interaction layouts; without it the scripted head and light path (script.h) moves at
  * desc.dt seconds per frame (or with the wall clock). No processes, no signals, no
@@ -31,6 +32,7 @@ typedef struct session_desc {
     const char *bind;       /* NULL = the config's */
     int barrier_ms;         /* 0 = the config's */
     int quiet;              /* 1: log only errors */
+    int insecure_anywhere;  /* 1: security "insecure" may bind outside the loopback range */
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
     const char *record;     /* record the merged input there; NULL = the input config's */
@@ -38,11 +40,10 @@ typedef struct session_desc {
     double dt;              /* scripted seconds per frame; <= 0 = the wall clock */
     int pattern;            /* 1: every screen shows the calibration pattern (pattern.h) */
     int print_poses;        /* 1: the head and wand poses on stdout, 4 lines a second */
-    frame_gi gi;            /* the GI method the session starts with (0 = ILPV) */
-    int vpl_count;          /* its VPLs when that is vpl (0 = FRAME_VPL_DEFAULT) */
-    vpl_selection vpl_selection; /* their selection rule (0 = by flux) */
-    float exposure;         /* > 0: the nodes' exposure; 0: the frame default (1) */
+    const frame_params *settings; /* the GI and display settings the session starts with
+                                     (master_settings()); NULL: the defaults */
     int exposure_auto;      /* 1: exposure_from_light() of the scene (frame/exposure.h) */
+    int strict;             /* 1: unknown keys in the input config are errors */
 } session_desc;
 
 typedef enum session_step {

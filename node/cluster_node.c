@@ -9,6 +9,87 @@
 #include "cluster_client.h"
 #include "cluster_view.h"
 #include "cluster/params.h"
+#include "gi/gi_settings.h"
+
+/* Whatever the master sends is range-checked once, by the renderer (gi_frame_sanitize()),
+ * never a reason to stop: the clamped fields are logged, rate-limited. */
+static void log_clamped(const cluster_node_desc *d, uint64_t version, int fixed, ratelog *log)
+{
+    uint64_t skipped = 0;
+    if (fixed && ratelog_event(log, clock_now_ms(), &skipped))
+        fprintf(stderr, "cavelight-node %s: frame %llu: %d parameters from the master out of range, "
+                "clamped (%llu frames so far, %llu not logged)\n", d->name,
+                (unsigned long long)version, fixed, (unsigned long long)log->count,
+                (unsigned long long)skipped);
+}
+
+/* FRAME v: the frame pass and every eye pass (or, without GL, the store's checksum), then
+ * READY. */
+static int render_frame(const cluster_node_desc *d, cluster_view *view, cluster_client *client,
+                        const cluster_event *ev, ratelog *range_log, cluster_node_stats *st,
+                        char *err, size_t errlen)
+{
+    double t0 = clock_now_ms();
+    const params_store *ps = cluster_client_params(client);
+    frame_params f;
+    params_to_frame(ps, &f);
+    uint64_t checksum = params_checksum(ps);
+    float timings[WIRE_TIMING_COUNT] = {0};
+    int fixed;
+    if (view) {
+        if (cluster_view_render(view, &f, &checksum, timings, &fixed, err, errlen) != 0) {
+            cluster_client_refuse(client, WIRE_REFUSE_SCENE, ev->version, err, 0);
+            return -1;
+        }
+    } else {
+        fixed = gi_frame_sanitize(&f);
+    }
+    log_clamped(d, ev->version, fixed, range_log);
+    if (d->fault_checksum_from && ev->version >= d->fault_checksum_from)
+        checksum ^= 0x5a5a5a5a5a5a5a5aull;
+    timings[WIRE_TIMING_APPLY] = (float)ev->apply_ms;
+    timings[WIRE_TIMING_TOTAL] = (float)(ev->apply_ms + clock_now_ms() - t0);
+    cluster_client_ready(client, ev->version, checksum, timings);
+    st->frames++;
+    st->last_version = ev->version;
+    st->last_checksum = checksum;
+    return 0;
+}
+
+/* A node that cannot take part (no scene, no GL context, no renderer) tells the master why,
+ * so that it is in the master's output even when the node runs on another host: it waits
+ * up to REFUSE_WAIT_MS for a connection, says REFUSE (never HELLO) and leaves. */
+enum { REFUSE_WAIT_MS = 3000 };
+
+static void refuse_session(const cluster_node_desc *d, const char *why)
+{
+    char ignored[512];
+    cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = 1,
+                              .refuse_only = 1};
+    cluster_client *client = cluster_client_create(&cd, ignored, sizeof ignored);
+    if (client)
+        cluster_client_refuse(client, WIRE_REFUSE_SCENE, 0, why, REFUSE_WAIT_MS);
+    cluster_client_destroy(client);
+}
+
+/* The lines about losing the master and the end of its session (rate-limited with the
+ * client's other lines about the master). */
+static void say_link(const cluster_node_desc *d, cluster_client *client, const cluster_event *ev)
+{
+    char note[96];
+    if (!cluster_client_log_link(client, note, sizeof note))
+        return;
+    if (ev->type == CLUSTER_EVENT_SHUTDOWN)
+        fprintf(stderr, "cavelight-node %s: the master ended the session%s%s\n", d->name,
+                d->exit_with_master ? "" : "; waiting for it to return", note);
+    else if (ev->lost == CLUSTER_LOST_CLOSED)
+        fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
+                "unreachable); keeping the output up, reconnecting when one answers%s\n", d->name, note);
+    else
+        fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
+                "or stopped); keeping the output up, reconnecting%s\n", d->name, d->config->master_timeout_ms,
+                note);
+}
 
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
@@ -24,13 +105,14 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     if (d->render == CLUSTER_RENDER_GL) {
         cluster_view_desc vd = {.config = d->config, .node = node,
                                 .output = d->output >= 0 ? (cluster_output)d->output : d->config->nodes[node].output,
-                                .out_dir = d->out_dir, .scene = d->scene, .lpv_threads = d->lpv_threads,
-                                .lattice_cells = d->lattice_cells, .rsm_size = d->rsm_size,
-                                .lpv_mode = d->lpv_mode, .converge_threshold = d->converge_threshold,
-                                .gi = d->gi, .keep_frames = d->keep_frames};
+                                .out_dir = d->out_dir, .scene = d->scene, .threads = d->threads,
+                                .keep_frames = d->keep_frames, .show_blend = d->show_blend,
+                                .quiet = d->quiet};
         view = cluster_view_create(&vd, err, errlen);
-        if (!view)
+        if (!view) {
+            refuse_session(d, err);
             return 1;
+        }
     }
     cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet};
     cluster_client *client = cluster_client_create(&cd, err, errlen);
@@ -44,44 +126,14 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     while (!(d->stop && *d->stop)) {
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
-        case CLUSTER_EVENT_FRAME: {
-            double t0 = clock_now_ms();
-            const params_store *ps = cluster_client_params(client);
-            frame_params f;
-            params_to_frame(ps, &f);
-            /* Whatever the master sends is range-checked, never a reason to stop: the
-             * renderer clamps the frame (frame_params_sanitize), the lattice is clamped here. */
-            frame_params check = f;
-            int fixed = frame_params_sanitize(&check);
-            int lattice = params_get_i32(ps, PARAMS_LPV_RESOLUTION);
-            if (lattice < 0 || lattice > PARAMS_LPV_RESOLUTION_MAX) {
-                lattice = lattice < 0 ? 0 : PARAMS_LPV_RESOLUTION_MAX;
-                fixed++;
-            }
-            uint64_t skipped = 0;
-            if (fixed && ratelog_event(&range_log, clock_now_ms(), &skipped))
-                fprintf(stderr, "cavelight-node %s: frame %llu: %d parameters from the master out of range, "
-                        "clamped (%llu frames so far, %llu not logged)\n", d->name,
-                        (unsigned long long)ev.version, fixed, (unsigned long long)range_log.count,
-                        (unsigned long long)skipped);
-            uint64_t checksum = params_checksum(ps);
-            float timings[WIRE_TIMING_COUNT] = {0};
-            if (view && cluster_view_render(view, &check, lattice, &checksum, timings, err, errlen) != 0) {
+        case CLUSTER_EVENT_FRAME:
+            if (render_frame(d, view, client, &ev, &range_log, &st, err, errlen) != 0) {
                 rc = 1;
                 goto out;
             }
-            if (d->fault_checksum_from && ev.version >= d->fault_checksum_from)
-                checksum ^= 0x5a5a5a5a5a5a5a5aull;
-            timings[WIRE_TIMING_APPLY] = (float)ev.apply_ms;
-            timings[WIRE_TIMING_TOTAL] = (float)(ev.apply_ms + clock_now_ms() - t0);
-            cluster_client_ready(client, ev.version, checksum, timings);
             pending_swap = ev.version;
-            st.frames++;
-            st.last_version = ev.version;
-            st.last_checksum = checksum;
             lost_reported = 0;
             break;
-        }
         case CLUSTER_EVENT_SWAP:
             if (ev.version != pending_swap)
                 break;
@@ -100,19 +152,12 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             }
             break;
         case CLUSTER_EVENT_LOST:
-            if (!lost_reported && !d->quiet && ev.lost == CLUSTER_LOST_CLOSED)
-                fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
-                        "unreachable); keeping the output up, reconnecting when one answers\n", d->name);
-            else if (!lost_reported && !d->quiet)
-                fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
-                        "or stopped); keeping the output up, waiting for it\n", d->name,
-                        d->config->master_timeout_ms);
+            if (!lost_reported)
+                say_link(d, client, &ev);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:
-            if (!d->quiet)
-                fprintf(stderr, "cavelight-node %s: the master ended the session%s\n", d->name,
-                        d->exit_with_master ? "" : "; waiting for it to return");
+            say_link(d, client, &ev);
             if (d->exit_with_master)
                 goto out;
             break;
@@ -149,6 +194,11 @@ int cluster_node_start(const char *config_path, cluster_node_desc *d)
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (d->has_scene_transform) {
+        cfg.scene_transform = d->scene_transform;
+        cfg.has_scene_transform = 1;
+    }
+    cfg.scene_outside_paths = d->allow_outside_paths;
     d->config = &cfg;
     d->stop = &node_stop;
     struct sigaction sa;

@@ -1,7 +1,7 @@
 /* cluster_node: the render node's cluster mode (cavelight-node --cluster FILE --name N).
  *
  * Runs the frame loop against the master: FRAME v -> params_to_frame -> frame pass once
- * and an eye pass per (screen, eye) -> READY(v, LPV checksum, timings) -> SWAP v ->
+ * and an eye pass per (screen, eye) -> READY(v, the frame's GI checksum, timings) -> SWAP v ->
  * present or write. With render "none" no GL is touched and the checksum is the
  * parameter store's (params_checksum): the stub used by the benchmark and fast tests.
  * cluster_node_run() is a library call (the benchmark runs nodes as threads);
@@ -28,14 +28,14 @@ typedef struct cluster_node_desc {
     int output;                 /* cluster_output, or -1 for the config's */
     const char *out_dir;        /* png output folder, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;          /* NULL = config scene or the built-in default */
-    int lpv_threads;            /* CPU LPV threads, 0 = all cores */
-    int lattice_cells, rsm_size;/* renderer settings, 0 = defaults */
-    int lpv_mode;               /* renderer_lpv_mode; every node must use the same */
-    int gi;                     /* frame_gi built before the first frame; the frames' gi
-                                   key (the master's) decides from then on */
-    double converge_threshold;  /* renderer_desc.converge_threshold; the same on every node */
+    int has_scene_transform;    /* --scene-transform: replaces the config's */
+    scene_transform scene_transform;
+    int allow_outside_paths;    /* --allow-outside-paths */
+    int threads;                /* CPU threads of the GI methods, 0 = all cores (the GI
+                                   method and its settings come from the master) */
     int exit_with_master;       /* 1: leave when the master ends the session */
     int keep_frames;            /* png output: also SCREEN-EYE-NNNNNN.png for every frame */
+    int show_blend;             /* the pattern tints the projectors' blend regions */
     int quiet;
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */
     volatile sig_atomic_t *stop;  /* set to leave the loop, may be NULL */

@@ -11,39 +11,33 @@
 #include "base/folder.h"
 #include "base/ratelog.h"
 #include "frame/pattern.h"
-#include "cluster_window.h"
+#include "gi/gi_settings.h"
 #include "glctx.h"
-#include "image/image.h"
 #include "base/mat4.h"
 #include "base/vec3.h"
+#include "present.h"
 #include "scene/scene.h"
-
-typedef struct eye_image {
-    int width, height;
-    uint8_t *rgb;
-} eye_image;
+#include "warp/mpcdi.h"
+#include "warp/warp_mesh.h"
 
 struct cluster_view {
     const cluster_config *cfg;
     int node;
     cluster_output output;
-    char out_dir[1024];
-    int lpv_threads, rsm_size, lattice_desc, lattice_now, lattice_refused, lpv_mode, gi;
-    double converge_threshold;
+    int threads;
+    frame_params first;  /* the config's settings on the defaults: the warm-up frame */
     scene sc;
     int scene_loaded;
-    glctx *ctx;          /* headless context, or the first window's */
+    glctx *ctx;          /* the presentation's: headless, or the first window's */
     renderer *r;
-    cluster_window *win[2];
-    cluster_stereo stereo; /* effective window stereo mode */
-    int strip_w, strip_h;  /* all of the node's screens side by side, one eye */
-    int comp_w, comp_h;
-    uint8_t *compose[2];
+    present *out;        /* viewport s * eyes + e: screen s of the node, eye e */
     float far_plane;
-    eye_image img[CLUSTER_NODE_MAX_SCREENS][CLUSTER_VIEW_MAX_EYES];
     int rendered;
-    int keep_frames;
+    int show_blend;
     uint64_t version;    /* of the last rendered frame */
+    float display_gamma; /* of the last rendered frame */
+    int pattern;
+    char refusal[256];   /* the renderer's last refusal, said once */
     ratelog eye_log;     /* eyes moved in front of a screen, screens without a projection */
 };
 
@@ -77,7 +71,7 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
     /* Eye in CAVE space: head pose times the head-to-eye offset, then along the head's
      * right axis (the pose's first column). */
     float mid[3], right[3], eye_cave[3];
-    mat4_transform_point(f->head, o->head_to_eye, mid);
+    frame_view_head_centre(f->head, o->head_to_eye, mid);
     memcpy(right, f->head, sizeof right);
     if (!(vec3_normalize(right) > 0))
         memcpy(right, (const float[3]){1, 0, 0}, sizeof right);
@@ -91,132 +85,89 @@ int cluster_view_compute(const cluster_config *cfg, int screen, int side, const 
                              distance);
 }
 
-/* Window output: one window (or one per eye) sized for the node's screens in its stereo mode. */
-static int open_windows(cluster_view *v, char *err, size_t errlen)
+/* The node's output (present.h): one viewport per screen and eye, each with its screen's
+ * projector warp, read here once. The maps are uploaded by present_create() and freed. */
+static int open_output(cluster_view *v, const cluster_view_desc *desc, char *err, size_t errlen)
 {
     const cluster_node *n = &v->cfg->nodes[v->node];
-    for (int s = 0; s < n->screen_count; s++) {
-        v->strip_w += n->screens[s].width;
-        if (n->screens[s].height > v->strip_h)
-            v->strip_h = n->screens[s].height;
+    int eyes = cluster_view_eye_count(v->cfg, v->node), count = 0, rc = 0;
+    warp_map maps[CLUSTER_NODE_MAX_SCREENS] = {0};
+    present_viewport vps[PRESENT_MAX_VIEWPORTS];
+    char names[PRESENT_MAX_VIEWPORTS][2 * CLUSTER_NAME_MAX + 8], log_name[64];
+    for (int s = 0; rc == 0 && s < n->screen_count; s++) {
+        const cluster_warp *w = &n->screens[s].warp;
+        if (w->kind == CLUSTER_WARP_MPCDI)
+            rc = mpcdi_load(w->path, w->region, &maps[s], err, errlen);
+        else if (w->kind == CLUSTER_WARP_MESH)
+            rc = warp_mesh_load(w->path, &maps[s], err, errlen);
+        for (int e = 0; rc == 0 && e < eyes; e++, count++) {
+            snprintf(names[count], sizeof names[count], "%s-%s", v->cfg->screens[n->screens[s].screen].name,
+                     cluster_view_eye_name(v->cfg, v->node, e));
+            vps[count] = (present_viewport){.name = names[count], .width = n->screens[s].width,
+                                            .height = n->screens[s].height, .eye = eyes == 2 ? e : 0,
+                                            .warp = w->kind ? &maps[s] : NULL, .to_cave = w->to_cave};
+        }
     }
-    int stereo = cluster_view_eye_count(v->cfg, v->node) == 2;
-    v->stereo = n->stereo;
-    v->comp_w = v->strip_w * (stereo && v->stereo == CLUSTER_STEREO_SIDE_BY_SIDE ? 2 : 1);
-    v->comp_h = v->strip_h * (stereo && v->stereo == CLUSTER_STEREO_TOP_BOTTOM ? 2 : 1);
+    snprintf(log_name, sizeof log_name, "cavelight-node %s", n->name);
+    static const present_output outputs[] = {[CLUSTER_OUTPUT_WINDOW] = PRESENT_WINDOW,
+                                             [CLUSTER_OUTPUT_HEADLESS] = PRESENT_HEADLESS,
+                                             [CLUSTER_OUTPUT_PNG] = PRESENT_PNG};
     char title[96];
-    snprintf(title, sizeof title, "cavelight %s%s", n->name, stereo && v->stereo == CLUSTER_STEREO_WINDOW_PER_EYE ? " left" : "");
-    cluster_window_desc wd = {.width = v->comp_w, .height = v->comp_h, .title = title, .monitor = n->monitor,
-                              .fullscreen = n->fullscreen, .want_quad = stereo && v->stereo == CLUSTER_STEREO_QUAD};
-    if (!(v->win[0] = cluster_window_create(&wd, err, errlen)))
-        return -1;
-    if (wd.want_quad && !cluster_window_quad(v->win[0])) {
-        fprintf(stderr, "cavelight-node %s: the driver offers no quad-buffered window: showing side-by-side\n",
-                n->name);
-        v->stereo = CLUSTER_STEREO_SIDE_BY_SIDE;
-        v->comp_w = 2 * v->strip_w;
+    snprintf(title, sizeof title, "cavelight %s", n->name);
+    present_desc pd = {.output = outputs[v->output], .backend = GLCTX_EGL, .fallback = 1, .log_name = log_name,
+                       .quiet = desc->quiet, .viewport_count = count, .viewports = vps,
+                       .out_dir = desc->out_dir, .keep_frames = desc->keep_frames, .title = title,
+                       .display = n->display, .stereo = n->stereo, .window = &n->window};
+    if (rc == 0)
+        v->out = present_create(&pd, err, errlen);
+    for (int s = 0; s < n->screen_count; s++)
+        warp_map_free(&maps[s]);
+    if (rc == 0 && !v->out && v->output == CLUSTER_OUTPUT_WINDOW) {
+        size_t used = strlen(err);
+        snprintf(err + used, errlen - used, "; or render without a window: --output headless or png (or the "
+                 "node's \"output\" in the config)");
     }
-    if (stereo && v->stereo == CLUSTER_STEREO_WINDOW_PER_EYE) {
-        snprintf(title, sizeof title, "cavelight %s right", n->name);
-        wd.monitor = n->monitor + 1; /* the right eye's projector, when fullscreen */
-        if (!(v->win[1] = cluster_window_create(&wd, err, errlen)))
-            return -1;
-        cluster_window_make_current(v->win[0]);
-    }
-    v->ctx = cluster_window_context(v->win[0]);
-    for (int e = 0; e < 2; e++)
-        if (!(v->compose[e] = calloc((size_t)v->comp_w * v->comp_h, 3))) {
-            snprintf(err, errlen, "cluster node %s: out of memory for the window image", n->name);
-            return -1;
-        }
-    return 0;
+    if (v->out)
+        v->ctx = present_context(v->out);
+    return v->out ? 0 : -1;
 }
 
-/* Copies one eye's images of all the node's screens, side by side, into dst at (x0, y0). */
-static void compose_strip(const cluster_view *v, int eye, uint8_t *dst, int dst_w, int x0, int y0)
+/* A renderer built for the config's settings (the master's frames may change them). */
+static int make_renderer(cluster_view *v, char *err, size_t errlen)
 {
-    const cluster_node *n = &v->cfg->nodes[v->node];
-    for (int s = 0, x = x0; s < n->screen_count; x += v->img[s][eye].width, s++) {
-        const eye_image *im = &v->img[s][eye];
-        for (int y = 0; y < im->height; y++)
-            memcpy(dst + ((size_t)(y0 + y) * dst_w + x) * 3, im->rgb + (size_t)y * im->width * 3, (size_t)im->width * 3);
-    }
-}
-
-static int present_window(cluster_view *v, char *err, size_t errlen)
-{
-    int stereo = cluster_view_eye_count(v->cfg, v->node) == 2;
-    uint8_t *a = v->compose[0], *b = v->compose[1];
-    const uint8_t *right = NULL;
-    cluster_window *second = NULL;
-    compose_strip(v, 0, a, v->comp_w, 0, 0);
-    if (stereo) {
-        switch (v->stereo) {
-        case CLUSTER_STEREO_SIDE_BY_SIDE: compose_strip(v, 1, a, v->comp_w, v->strip_w, 0); break;
-        case CLUSTER_STEREO_TOP_BOTTOM: compose_strip(v, 1, a, v->comp_w, 0, v->strip_h); break;
-        case CLUSTER_STEREO_ANAGLYPH:
-            /* Red-cyan: red from the left eye, green and blue from the right. */
-            compose_strip(v, 1, b, v->comp_w, 0, 0);
-            for (size_t i = 0; i < (size_t)v->comp_w * v->comp_h; i++) {
-                a[3 * i + 1] = b[3 * i + 1];
-                a[3 * i + 2] = b[3 * i + 2];
-            }
-            break;
-        case CLUSTER_STEREO_QUAD:
-            compose_strip(v, 1, b, v->comp_w, 0, 0);
-            right = b;
-            break;
-        case CLUSTER_STEREO_WINDOW_PER_EYE:
-            compose_strip(v, 1, b, v->comp_w, 0, 0);
-            second = v->win[1];
-            break;
-        }
-    }
-    int open = cluster_window_show(v->win[0], a, right, v->comp_w, v->comp_h);
-    if (open > 0 && second) {
-        open = cluster_window_show(second, b, NULL, v->comp_w, v->comp_h);
-        cluster_window_make_current(v->win[0]);
-    }
-    if (open < 0) {
-        snprintf(err, errlen, "cluster node %s: showing the frame failed (GL error)", v->cfg->nodes[v->node].name);
-        return -1;
-    }
-    return open ? 0 : 1;
-}
-
-static int make_renderer(cluster_view *v, int lattice, char *err, size_t errlen)
-{
-    renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .lpv_backend = RENDERER_LPV_AUTO,
-                        .rsm_size = v->rsm_size, .lattice_cells = lattice, .threads = v->lpv_threads,
-                        .lpv_mode = (renderer_lpv_mode)v->lpv_mode, .gi = (frame_gi)v->gi,
-                        .converge_threshold = v->converge_threshold};
+    renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .first = &v->first,
+                        .threads = v->threads};
+    memcpy(rd.head_to_eye, v->cfg->observer.head_to_eye, sizeof rd.head_to_eye);
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
         return -1;
     if (v->r)
         renderer_destroy(v->r);
     v->r = r;
-    v->lattice_now = lattice;
     return 0;
 }
 
-/* One untracked frame before the node says HELLO: llvmpipe compiles shaders at first use
- * (0.1 to 0.4 s for a 32x64 stereo node under load here), which would hold every screen
- * at the barrier in the node's first frame after a (re)join, or get it dropped. The
- * renderer is then built afresh, so the node starts from the same state as any other;
- * Mesa keeps the compiled code (that first frame: about 50 ms instead of 100 to 240,
+/* One untracked frame of every GI method (the config's settings) before the node says
+ * HELLO: llvmpipe compiles shaders at first use (0.1 to 0.4 s for a 32x64 stereo node
+ * under load here), which would hold every screen at the barrier in the node's first frame
+ * after a (re)join or a live switch of the method, or get it dropped. The renderer is then
+ * built afresh, so the node starts from the same state as any other; Mesa keeps the
+ * compiled code (the first frame: about 50 ms instead of 100 to 240,
  * tests/integration/cluster_lib.sh's 2-node config, ready_after_frame_ms max). */
 static int warm_up(cluster_view *v, char *err, size_t errlen)
 {
-    frame_params f;
-    frame_params_default(&f);
+    frame_params f = v->first;
     frame_params_lights_from_scene(&f, &v->sc);
     memcpy(&f.head[12], v->cfg->observer.home, sizeof v->cfg->observer.home);
-    uint64_t checksum;
-    float timings[WIRE_TIMING_COUNT];
-    if (cluster_view_render(v, &f, 0, &checksum, timings, err, errlen) != 0)
-        return -1;
-    return make_renderer(v, v->lattice_desc, err, errlen);
+    for (int m = 0; m < gi_method_count(); m++) {
+        uint64_t checksum;
+        float timings[WIRE_TIMING_COUNT];
+        int fixed;
+        f.gi = m;
+        if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
+            return -1;
+    }
+    return make_renderer(v, err, errlen);
 }
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen)
@@ -225,61 +176,20 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
     v->cfg = desc->config;
     v->node = desc->node;
     v->output = desc->output;
-    v->lpv_threads = desc->lpv_threads;
-    v->rsm_size = desc->rsm_size;
-    v->lpv_mode = desc->lpv_mode;
-    v->gi = desc->gi;
-    v->converge_threshold = desc->converge_threshold;
-    v->lattice_desc = desc->lattice_cells;
-    v->keep_frames = desc->keep_frames;
-    snprintf(v->out_dir, sizeof v->out_dir, "%s", desc->out_dir ? desc->out_dir : CLUSTER_DEFAULT_OUT);
-    const cluster_node *n = &v->cfg->nodes[v->node];
-    char why[300];
-    if (v->output == CLUSTER_OUTPUT_PNG && folder_create(v->out_dir, why, sizeof why) != 0) {
-        snprintf(err, errlen, "cluster node %s: %s", n->name, why);
+    v->threads = desc->threads;
+    v->show_blend = desc->show_blend;
+    frame_params_default(&v->first);
+    if (gi_set_config(v->cfg, &v->first, err, errlen) != 0)
         goto fail;
-    }
     const char *scene_path = desc->scene ? desc->scene : v->cfg->scene[0] ? v->cfg->scene : "default";
-    if (scene_load(scene_path, &v->sc, err, errlen) != 0)
+    scene_load_desc sd;
+    cluster_config_scene_desc(v->cfg, &sd); /* as the master and every node place it */
+    if (scene_load_with(scene_path, &sd, &v->sc, err, errlen) != 0)
         goto fail;
     v->scene_loaded = 1;
     v->far_plane = scene_far_plane(&v->sc);
-    if (v->output == CLUSTER_OUTPUT_WINDOW) {
-        /* Started over ssh or as a service, a node has no DISPLAY: the config names the
-         * display its projectors hang on. */
-        const char *display = getenv("DISPLAY");
-        if ((!display || !*display) && !getenv("WAYLAND_DISPLAY")) {
-            setenv("DISPLAY", n->display, 1);
-            fprintf(stderr, "cavelight-node %s: DISPLAY is not set: using %s (the node's \"display\" in "
-                    "the config)\n", n->name, n->display);
-        }
-        if (open_windows(v, err, errlen) != 0) {
-            size_t used = strlen(err);
-            snprintf(err + used, errlen - used, "; or render without a window: --output headless or "
-                     "png (or the node's \"output\" in the config)");
-            goto fail;
-        }
-    } else {
-        glctx_desc gd = {.backend = GLCTX_EGL};
-        v->ctx = glctx_create(&gd, err, errlen);
-        if (!v->ctx) {
-            gd.backend = GLCTX_OSMESA; /* no EGL: software fallback */
-            v->ctx = glctx_create(&gd, err, errlen);
-        }
-    }
-    if (!v->ctx || make_renderer(v, v->lattice_desc, err, errlen) != 0)
+    if (open_output(v, desc, err, errlen) != 0 || make_renderer(v, err, errlen) != 0)
         goto fail;
-    for (int s = 0; s < n->screen_count; s++)
-        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
-            eye_image *im = &v->img[s][e];
-            im->width = n->screens[s].width;
-            im->height = n->screens[s].height;
-            im->rgb = calloc((size_t)im->width * im->height, 3);
-            if (!im->rgb) {
-                snprintf(err, errlen, "cluster node %s: out of memory for images", n->name);
-                goto fail;
-            }
-        }
     if (warm_up(v, err, errlen) != 0)
         goto fail;
     return v;
@@ -292,24 +202,11 @@ void cluster_view_destroy(cluster_view *v)
 {
     if (!v)
         return;
-    if (v->win[0])
-        cluster_window_make_current(v->win[0]);
     if (v->r)
         renderer_destroy(v->r);
-    if (v->win[0]) {
-        /* The windows own the GL contexts; the second goes first (GLFW shuts down with it). */
-        cluster_window_destroy(v->win[1]);
-        cluster_window_destroy(v->win[0]);
-    } else if (v->ctx) {
-        glctx_destroy(v->ctx);
-    }
-    free(v->compose[0]);
-    free(v->compose[1]);
+    present_destroy(v->out);
     if (v->scene_loaded)
         scene_free(&v->sc);
-    for (int s = 0; s < CLUSTER_NODE_MAX_SCREENS; s++)
-        for (int e = 0; e < CLUSTER_VIEW_MAX_EYES; e++)
-            free(v->img[s][e].rgb);
     free(v);
 }
 
@@ -333,41 +230,50 @@ static void report_eye(cluster_view *v, uint64_t version, int screen, int eye, i
                 (unsigned long long)skipped);
 }
 
-int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
-                        float timings[WIRE_TIMING_COUNT], char *err, size_t errlen)
+/* A method or setting the renderer could not build (memory) keeps the current one: the
+ * checksums then tell the master if the nodes disagree. Said once per refusal. */
+static void report_refusal(cluster_view *v)
 {
-    int want = lattice_cells > 0 ? lattice_cells : v->lattice_desc;
-    if (want != v->lattice_now && want != v->lattice_refused) {
-        /* A lattice the node cannot build (memory) keeps the current one: the checksums
-         * then tell the master if the nodes disagree. */
-        char why[256];
-        if (make_renderer(v, want, why, sizeof why) != 0) {
-            fprintf(stderr, "cavelight-node %s: lattice %d refused (%s): keeping %d\n",
-                    v->cfg->nodes[v->node].name, want, why, v->lattice_now);
-            v->lattice_refused = want;
-        }
-    }
+    const char *why = renderer_last_error(v->r);
+    if (why[0] && strcmp(why, v->refusal) != 0)
+        fprintf(stderr, "cavelight-node %s: %s\n", v->cfg->nodes[v->node].name, why);
+    snprintf(v->refusal, sizeof v->refusal, "%s", why);
+}
+
+int cluster_view_render(cluster_view *v, const frame_params *f, uint64_t *checksum,
+                        float timings[WIRE_TIMING_COUNT], int *fixed, char *err, size_t errlen)
+{
     *checksum = renderer_frame_pass(v->r, f);
+    report_refusal(v);
     renderer_timings t;
     renderer_get_timings(v->r, &t);
+    *fixed = t.fixed;
     timings[WIRE_TIMING_FRAME] = (float)t.frame_host_ms;
     double eyes = 0;
     const cluster_node *n = &v->cfg->nodes[v->node];
+    int eye_count = cluster_view_eye_count(v->cfg, v->node);
     for (int s = 0; s < n->screen_count; s++)
-        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
-            eye_image *im = &v->img[s][e];
+        for (int e = 0; e < eye_count; e++) {
+            int vp = s * eye_count + e, w = n->screens[s].width, h = n->screens[s].height;
+            uint8_t *rgb = present_source(v->out, vp);
+            renderer_view view;
+            float distance = 0;
+            int placed = cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f,
+                                              w, h, v->far_plane, &view, &distance);
+            if (placed >= 0) { /* a 3d projector warp projects its surface points through this eye */
+                float cave_to_clip[16];
+                mat4_mul(view.projection, view.view, cave_to_clip);
+                mat4_mul(cave_to_clip, f->navigation, cave_to_clip);
+                present_set_view(v->out, vp, cave_to_clip);
+            }
             if (f->pattern) { /* on the screen's surface: the same for both eyes */
                 const cluster_screen *sc = &v->cfg->screens[n->screens[s].screen];
                 pattern_desc pd = {.bottom_left = sc->bottom_left, .bottom_right = sc->bottom_right,
                                    .top_left = sc->top_left, .name = sc->name, .head = f->head,
                                    .wand = f->wand};
-                pattern_draw(&pd, im->width, im->height, im->rgb);
+                pattern_draw(&pd, w, h, rgb);
                 continue;
             }
-            renderer_view view;
-            float distance = 0;
-            int placed = cluster_view_compute(v->cfg, n->screens[s].screen, eye_side(v->cfg, v->node, e), f,
-                                              im->width, im->height, v->far_plane, &view, &distance);
             if (placed != 0)
                 report_eye(v, f->version, n->screens[s].screen, e, placed, distance);
             if (placed < 0)
@@ -377,7 +283,7 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
                 snprintf(err, errlen, "cluster node %s: eye pass failed", n->name);
                 return -1;
             }
-            memcpy(im->rgb, out.rgb, (size_t)im->width * im->height * 3);
+            memcpy(rgb, out.rgb, (size_t)w * h * 3);
             renderer_timings te;
             renderer_get_timings(v->r, &te);
             eyes += te.eye_host_ms;
@@ -385,52 +291,24 @@ int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cell
     timings[WIRE_TIMING_EYES] = (float)eyes;
     v->rendered = 1;
     v->version = f->version;
-    return 0;
-}
-
-/* Write then rename: a reader never sees half a file. */
-static int write_png_atomic(const char *node, const char *path, const eye_image *im, char *err,
-                            size_t errlen)
-{
-    char tmp[1300];
-    snprintf(tmp, sizeof tmp, "%s.%s.tmp", path, node);
-    if (image_write_png(tmp, im->width, im->height, im->rgb, err, errlen) != 0)
-        return -1;
-    if (rename(tmp, path) != 0) {
-        snprintf(err, errlen, "cluster node %s: cannot rename %s to %s (%s)", node, tmp, path,
-                 strerror(errno));
-        return -1;
-    }
+    v->display_gamma = f->display_gamma;
+    v->pattern = f->pattern;
     return 0;
 }
 
 int cluster_view_present(cluster_view *v, char *err, size_t errlen)
 {
-    if (!v->rendered || v->output == CLUSTER_OUTPUT_HEADLESS)
+    if (!v->rendered)
         return 0;
-    if (v->output == CLUSTER_OUTPUT_WINDOW)
-        return present_window(v, err, errlen);
-    const cluster_node *n = &v->cfg->nodes[v->node];
-    for (int s = 0; s < n->screen_count; s++)
-        for (int e = 0; e < cluster_view_eye_count(v->cfg, v->node); e++) {
-            char base[1100], path[1200];
-            const char *screen = v->cfg->screens[n->screens[s].screen].name;
-            snprintf(base, sizeof base, "%s/%s-%s", v->out_dir, screen, cluster_view_eye_name(v->cfg, v->node, e));
-            snprintf(path, sizeof path, "%s.png", base);
-            const eye_image *im = &v->img[s][e];
-            if (write_png_atomic(n->name, path, im, err, errlen) != 0)
-                return -1;
-            snprintf(path, sizeof path, "%s-%06llu.png", base, (unsigned long long)v->version);
-            if (v->keep_frames && write_png_atomic(n->name, path, im, err, errlen) != 0)
-                return -1;
-        }
-    return 0;
+    present_frame_desc fd = {.version = v->version, .display_gamma = v->display_gamma,
+                             .show_blend = v->show_blend && v->pattern};
+    return present_frame(v->out, &fd, err, errlen);
 }
 
 const uint8_t *cluster_view_image(const cluster_view *v, int screen, int eye, int *width, int *height)
 {
-    const eye_image *im = &v->img[screen][eye];
-    *width = im->width;
-    *height = im->height;
-    return im->rgb;
+    const cluster_node_screen *ns = &v->cfg->nodes[v->node].screens[screen];
+    *width = ns->width;
+    *height = ns->height;
+    return present_source(v->out, screen * cluster_view_eye_count(v->cfg, v->node) + eye);
 }

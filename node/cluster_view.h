@@ -7,13 +7,14 @@
  * screens and eyes go from CAVE space to world space through the navigation transform.
  * While the frame asks for the calibration pattern (frame_params.pattern), every screen
  * shows it (frame/pattern.h) instead of the scene; the frame pass still runs.
- * cluster_view_present() shows the images of the last rendered frame: PNG files
- * (DIR/SCREEN-EYE.png, replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png
- * numbered by the frame's version, so that a replay can be reviewed frame by frame), a GLFW window in the node's stereo mode
- * (the node's screens side by side; stereo as side-by-side, top-bottom, red-cyan
- * anaglyph, quad-buffered when the driver offers it (else side-by-side), or one window
- * per eye), or nothing (headless). The renderer is rebuilt when the LPV resolution key changes.
- * cluster_view_create() renders one untracked frame, so shaders are compiled before a join. */
+ * cluster_view_present() shows the images of the last rendered frame through the node's
+ * presentation (present.h: one viewport per screen and eye, each through its screen's
+ * projector warp and blend from the config, read once here): PNG files (DIR/SCREEN-EYE.png,
+ * replaced atomically; with keep_frames also DIR/SCREEN-EYE-NNNNNN.png numbered by the
+ * frame's version, so that a replay can be reviewed frame by frame), windows in the node's
+ * stereo mode on its monitors, or nothing (headless). The renderer follows the
+ * frames' GI method and settings (renderer.h). cluster_view_create() renders one untracked
+ * frame with the config's settings, so shaders are compiled before a join. */
 #ifndef CAVELIGHT_CLUSTER_VIEW_H
 #define CAVELIGHT_CLUSTER_VIEW_H
 
@@ -33,23 +34,20 @@ typedef struct cluster_view_desc {
     cluster_output output;
     const char *out_dir;      /* PNG output, NULL = CLUSTER_DEFAULT_OUT */
     const char *scene;        /* NULL = config scene, "" there = "default" */
-    int lpv_threads;          /* 0 = all cores */
-    int lattice_cells;        /* 0 = renderer default (overridden by the lpv_resolution key) */
-    int rsm_size;             /* 0 = renderer default */
-    int lpv_mode;             /* renderer_lpv_mode */
-    int gi;                   /* frame_gi: renderer_desc.gi */
-    double converge_threshold;/* renderer_desc.converge_threshold */
+    int threads;              /* CPU threads of the GI methods, 0 = all cores */
     int keep_frames;          /* PNG output: also SCREEN-EYE-NNNNNN.png (frame version) */
+    int show_blend;           /* while the pattern shows: tint the blend regions (present.h) */
+    int quiet;                /* no informational lines (the window's) */
 } cluster_view_desc;
 
 enum { CLUSTER_VIEW_MAX_EYES = 2 };
 
 cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size_t errlen);
 void cluster_view_destroy(cluster_view *v);
-/* Frame pass + all eye passes. Returns 0 and the LPV checksum, or -1 with err.
- * lattice_cells: the lpv_resolution key (0 = keep the desc's). */
-int cluster_view_render(cluster_view *v, const frame_params *f, int lattice_cells, uint64_t *checksum,
-                        float timings[WIRE_TIMING_COUNT], char *err, size_t errlen);
+/* Frame pass + all eye passes of frame f as the master sent it. Returns 0, the GI checksum
+ * and how many fields the renderer clamped, or -1 with err. */
+int cluster_view_render(cluster_view *v, const frame_params *f, uint64_t *checksum,
+                        float timings[WIRE_TIMING_COUNT], int *fixed, char *err, size_t errlen);
 /* Returns 0, 1 when the window was closed (the node should leave), -1 with err. */
 int cluster_view_present(cluster_view *v, char *err, size_t errlen);
 /* The last rendered image of (node screen index, eye index), top row first. */

@@ -1,8 +1,8 @@
 /* gl_functions: the GL 4.3 core entry points the node uses, as one table.
  *
  * Every GL call goes through a gl_functions table filled from the active context
- * backend's GetProcAddress (DESIGN.md pitfalls: libOpenGL and libOSMesa in one program
- * would otherwise route direct glXxx() calls to whichever library the linker saw first).
+ * backend's GetProcAddress: libOpenGL and libOSMesa in one program would otherwise route
+ * direct glXxx() calls to whichever library the linker saw first.
  * Call as gl->Clear(...). GL_FUNCTIONS is an X-macro list: X(type, name). */
 #ifndef CAVELIGHT_GL_FUNCTIONS_H
 #define CAVELIGHT_GL_FUNCTIONS_H
@@ -16,6 +16,8 @@ typedef void (APIENTRYP cavelight_PFNGLBINDTEXTUREPROC)(GLenum target, GLuint te
 typedef void (APIENTRYP cavelight_PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint x,
     GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type, const void *pixels);
 typedef void (APIENTRYP cavelight_PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei count);
+typedef void (APIENTRYP cavelight_PFNGLDRAWELEMENTSPROC)(GLenum mode, GLsizei count, GLenum type,
+    const void *indices);
 
 #define GL_FUNCTIONS(X) \
     X(PFNGLGETSTRINGPROC, GetString) \
@@ -30,6 +32,7 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first,
     X(PFNGLREADPIXELSPROC, ReadPixels) \
     X(PFNGLREADBUFFERPROC, ReadBuffer) \
     X(PFNGLDRAWBUFFERSPROC, DrawBuffers) \
+    X(PFNGLCOLORMASKPROC, ColorMask) \
     X(PFNGLFINISHPROC, Finish) \
     X(PFNGLMEMORYBARRIERPROC, MemoryBarrier) \
     X(cavelight_PFNGLGENTEXTURESPROC, GenTextures) \
@@ -62,6 +65,7 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first,
     X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray) \
     X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer) \
     X(cavelight_PFNGLDRAWARRAYSPROC, DrawArrays) \
+    X(cavelight_PFNGLDRAWELEMENTSPROC, DrawElements) \
     X(PFNGLCREATESHADERPROC, CreateShader) \
     X(PFNGLSHADERSOURCEPROC, ShaderSource) \
     X(PFNGLCOMPILESHADERPROC, CompileShader) \

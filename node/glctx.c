@@ -22,24 +22,9 @@ const char *glctx_backend_name(glctx_backend backend)
     return (unsigned)backend < 3 ? backend_names[backend] : "?";
 }
 
-glctx *glctx_create(const glctx_desc *desc, char *err, size_t errlen)
+/* What every context must offer: 4.3 core. Ends ctx on failure. */
+static glctx *check_version(glctx *ctx, char *err, size_t errlen)
 {
-    glctx *ctx = xcalloc(1, sizeof *ctx);
-    ctx->backend = desc->backend;
-    int rc;
-    switch (desc->backend) {
-    case GLCTX_EGL: rc = glctx_egl_open(ctx, desc, err, errlen); break;
-    case GLCTX_OSMESA: rc = glctx_osmesa_open(ctx, desc, err, errlen); break;
-    case GLCTX_GLFW: rc = glctx_glfw_open(ctx, desc, err, errlen); break;
-    default:
-        snprintf(err, errlen, "GL context: unknown backend %d (use egl, osmesa or glfw)",
-                 (int)desc->backend);
-        rc = -1;
-    }
-    if (rc != 0) {
-        free(ctx);
-        return NULL;
-    }
     const char *r = (const char *)ctx->gl.GetString(GL_RENDERER);
     snprintf(ctx->renderer, sizeof ctx->renderer, "%s", r ? r : "unknown");
     GLint major = 0, minor = 0;
@@ -52,6 +37,38 @@ glctx *glctx_create(const glctx_desc *desc, char *err, size_t errlen)
         return NULL;
     }
     return ctx;
+}
+
+glctx *glctx_create(const glctx_desc *desc, char *err, size_t errlen)
+{
+    glctx *ctx = xcalloc(1, sizeof *ctx);
+    ctx->backend = desc->backend;
+    int rc;
+    switch (desc->backend) {
+    case GLCTX_EGL: rc = glctx_egl_open(ctx, desc, err, errlen); break;
+    case GLCTX_OSMESA: rc = glctx_osmesa_open(ctx, desc, err, errlen); break;
+    default:
+        snprintf(err, errlen, "GL context: glctx_create makes egl or osmesa contexts; a window's "
+                 "comes from present_create()");
+        rc = -1;
+    }
+    if (rc != 0) {
+        free(ctx);
+        return NULL;
+    }
+    return check_version(ctx, err, errlen);
+}
+
+glctx *glctx_adopt(gl_functions_loader load, const char *describe, char *err, size_t errlen)
+{
+    glctx *ctx = xcalloc(1, sizeof *ctx);
+    ctx->backend = GLCTX_GLFW;
+    snprintf(ctx->describe, sizeof ctx->describe, "%s", describe);
+    if (gl_functions_load(&ctx->gl, load, err, errlen) != 0) {
+        free(ctx);
+        return NULL;
+    }
+    return check_version(ctx, err, errlen);
 }
 
 void glctx_destroy(glctx *ctx)
@@ -72,9 +89,4 @@ int glctx_is_software(const glctx *ctx)
 {
     return strstr(ctx->renderer, "llvmpipe") || strstr(ctx->renderer, "softpipe") ||
            strstr(ctx->renderer, "swrast");
-}
-
-int glctx_swap(glctx *ctx)
-{
-    return ctx->swap ? ctx->swap(ctx) : 1;
 }

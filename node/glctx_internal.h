@@ -10,13 +10,11 @@ struct glctx {
     char describe[64];
     char renderer[128];
     void *native;                /* backend state */
-    void (*destroy)(glctx *ctx);
-    int (*swap)(glctx *ctx);
+    void (*destroy)(glctx *ctx);  /* NULL: adopted, its owner ends it */
 };
 
-/* Each fills ctx->native, describe, destroy, swap and loads ctx->gl; 0 or -1 + err. */
+/* Each fills ctx->native, describe, destroy and loads ctx->gl; 0 or -1 + err. */
 int glctx_egl_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen);
 int glctx_osmesa_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen);
-int glctx_glfw_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen);
 
 #endif

@@ -1,12 +1,31 @@
 /* OSMesa backend: Mesa's software renderer into a small client buffer. The renderer
- * draws into its own framebuffer objects, so the client buffer only anchors the context. */
+ * draws into its own framebuffer objects, so the client buffer only anchors the context.
+ * libOSMesa (and the LLVM it pulls in) is loaded when this backend is asked for
+ * (dynlib.h), so a node that uses EGL or GLFW never maps it. */
 #include <stdio.h>
 #include <stdlib.h>
 
 #include <GL/osmesa.h>
 
+#include "dynlib.h"
 #include "glctx_internal.h"
 #include "base/xalloc.h"
+
+static OSMesaContext (*create_context)(const int *attribs, OSMesaContext share);
+static GLboolean (*make_current)(OSMesaContext c, void *buffer, GLenum type, GLsizei w, GLsizei h);
+static void (*destroy_context)(OSMesaContext c);
+static OSMESAproc (*get_proc_address)(const char *name);
+
+static const dynlib_symbol osmesa_symbols[] = {
+    {"OSMesaCreateContextAttribs", &create_context},
+    {"OSMesaMakeCurrent", &make_current},
+    {"OSMesaDestroyContext", &destroy_context},
+    {"OSMesaGetProcAddress", &get_proc_address},
+};
+static const char *const osmesa_files[] = {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so", NULL};
+static const dynlib osmesa_lib = {.what = "OSMesa", .files = osmesa_files, .package = "libosmesa6",
+                                  .symbols = osmesa_symbols,
+                                  .symbol_count = sizeof osmesa_symbols / sizeof *osmesa_symbols};
 
 typedef struct osmesa_state {
     OSMesaContext context;
@@ -15,32 +34,34 @@ typedef struct osmesa_state {
 
 static gl_functions_proc osmesa_load(const char *name)
 {
-    return (gl_functions_proc)OSMesaGetProcAddress(name);
+    return (gl_functions_proc)get_proc_address(name);
 }
 
 static void osmesa_destroy(glctx *ctx)
 {
     osmesa_state *s = ctx->native;
-    OSMesaDestroyContext(s->context);
+    destroy_context(s->context);
     free(s);
 }
 
 int glctx_osmesa_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen)
 {
+    if (dynlib_load(&osmesa_lib, err, errlen) != 0)
+        return -1;
     const int attribs[] = {
         OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
         OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 3, 0,
     };
     osmesa_state *s = xcalloc(1, sizeof *s);
-    s->context = OSMesaCreateContextAttribs(attribs, NULL);
+    s->context = create_context(attribs, NULL);
     if (!s->context) {
         free(s);
         snprintf(err, errlen, "OSMesa: cannot create an OpenGL 4.3 core context "
                  "(install libosmesa6 from Mesa 20 or later)");
         return -1;
     }
-    if (!OSMesaMakeCurrent(s->context, s->buffer, GL_UNSIGNED_BYTE, 4, 4)) {
-        OSMesaDestroyContext(s->context);
+    if (!make_current(s->context, s->buffer, GL_UNSIGNED_BYTE, 4, 4)) {
+        destroy_context(s->context);
         free(s);
         snprintf(err, errlen, "OSMesa: cannot make the context current (reinstall libosmesa6)");
         return -1;

@@ -1,8 +1,10 @@
 /* gltools: the small GL toolkit every GL module of the node uses, on a gl_functions table.
  *
  * Programs from the shaders/ folder (CAVELIGHT_SHADERS, else the source tree's, else
- * ../share/cavelight/shaders beside the installed program): each stage
- * is "#version 430 core", the caller's defines, common.glsl, then the file, with a
+ * ../share/cavelight/shaders beside the installed program), a GI method's own files from
+ * its folder (node/gi/METHOD/ in the source tree, gi/METHOD/ under the shader folder when
+ * installed), named "METHOD/FILE": each stage
+ * is "#version 430 core", the caller's defines, common.glsl, then the files, with a
  * "// @BODY@" line in a compute shader replaced by generated code; a compile or link
  * failure is one line naming the file and the driver's first message. Immutable textures
  * (2D, 2D array, 3D RGBA32F with linear filtering) clamped to their edges, and the check
@@ -19,6 +21,10 @@
 GLuint gltools_program(const gl_functions *gl, const char *vert, const char *frag,
                        const char *comp, const char *defines, const char *comp_body, char *err,
                        size_t errlen);
+/* Vertex + fragment program whose fragment stage is the files frags[0..n) in that order
+ * (a GI method's snippet before shaders/shade.frag), at most 4. */
+GLuint gltools_program_parts(const gl_functions *gl, const char *vert, const char *const *frags,
+                             int frag_count, const char *defines, char *err, size_t errlen);
 GLuint gltools_texture2d(const gl_functions *gl, GLenum format, int w, int h, GLenum filter);
 /* size x size x layers, nearest filtering. */
 GLuint gltools_texture_array(const gl_functions *gl, GLenum format, int size, int layers);

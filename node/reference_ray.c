@@ -81,7 +81,7 @@ int reference_ray_trace(const reference_job *job, const float o[3], const float 
                 .dir_y = d[1], .dir_z = d[2], .tfar = tfar, .mask = 0xffffffffu},
         .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .primID = RTC_INVALID_GEOMETRY_ID},
     };
-    rtcIntersect1(job->ref->rt.scene, &ctx, rh);
+    scene_rt_intersect(&job->ref->rt, &ctx, rh);
     (*rays)++;
     return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
@@ -95,7 +95,7 @@ int reference_ray_visible(const reference_job *job, const float o[3], const floa
     struct RTCRay ray = {.org_x = o[0], .org_y = o[1], .org_z = o[2], .tnear = 0,
                          .dir_x = d[0], .dir_y = d[1], .dir_z = d[2],
                          .tfar = dist * (1.0f - 1e-4f), .mask = 0xffffffffu};
-    rtcOccluded1(job->ref->rt.scene, &ctx, &ray);
+    scene_rt_occluded(&job->ref->rt, &ctx, &ray);
     (*rays)++;
     return ray.tfar >= 0; /* Embree sets tfar to -inf on a hit */
 }

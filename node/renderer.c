@@ -10,10 +10,9 @@
 #include "base/mat4.h"
 #include "base/ratelog.h"
 #include "frame/light_view.h"
-#include "gi.h"
-#include "gi_ilpv.h"
+#include "gi/gi.h"
+#include "gi/gi_settings.h"
 #include "gltools.h"
-#include "lpv/lpv_receive.h"
 #include "renderer.h"
 #include "renderer_hud.h"
 #include "renderer_rsm.h"
@@ -39,9 +38,10 @@ struct renderer {
     GLuint empty_vao;        /* the full-screen passes' */
     int emits;               /* some surface of the scene emits light */
 
-    GLuint prog_gbuffer, prog_shade, prog_final;
+    GLuint prog_gbuffer, prog_final;
 
     renderer_rsm *rsm;       /* the lights' shadow maps and the VPL source */
+    int rsm_size;            /* its size */
 
     int eye_w, eye_h;
     GLuint gbuffer_fbo, g_position, g_normal, g_albedo, g_emissive, g_depth;
@@ -50,11 +50,12 @@ struct renderer {
     uint8_t *rgba, *rgb;
     float *linear[3];
 
-    gi *gi;                  /* the indirect-light method (gi.h) */
+    gi *gi;                  /* the indirect-light method (gi.h), with its shading program */
     uint64_t checksum;       /* its last frame's */
-    gi_desc gi_desc;         /* what it is made with, for a live switch */
-    char shade_defines[64];  /* shade.frag's, which gi_desc points to */
     renderer_desc desc;
+    int software;            /* a software GL (llvmpipe) */
+    frame_params refused;    /* the last frame whose method or RSM could not be built */
+    int have_refused;
     renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
                                 passes render */
@@ -66,7 +67,7 @@ struct renderer {
     ratelog dark_log;
     renderer_queries frame_queries, eye_queries;
     renderer_timings timings;
-    char error[256];         /* why the last eye pass failed */
+    char error[320];         /* why the last eye pass failed, or the last refusal */
 };
 
 
@@ -216,6 +217,33 @@ static void query_end(renderer *r, renderer_queries *q, int slot, int i)
 
 /* ---- create / destroy ------------------------------------------------------------- */
 
+/* The shadow maps and the GI method for frame p (sanitized); -1 with one line in err and
+ * nothing changed. */
+static int build_frame_state(renderer *r, const frame_params *p, char *err, size_t errlen)
+{
+    renderer_rsm *maps = NULL;
+    if (p->rsm_size != r->rsm_size &&
+        !(maps = renderer_rsm_create(r->gl, r->scene, p->rsm_size, err, errlen)))
+        return -1;
+    gi_desc gd = {.gl = r->gl, .scene = r->scene, .frame = p, .rsm_size = p->rsm_size,
+                  .threads = r->desc.threads, .software = r->software,
+                  .no_reuse = r->desc.no_reuse};
+    memcpy(gd.head_to_eye, r->desc.head_to_eye, sizeof gd.head_to_eye);
+    gi *g = gi_create(&gd, err, errlen);
+    if (!g) {
+        renderer_rsm_destroy(maps);
+        return -1;
+    }
+    if (maps) {
+        renderer_rsm_destroy(r->rsm);
+        r->rsm = maps;
+        r->rsm_size = p->rsm_size;
+    }
+    gi_destroy(r->gi);
+    r->gi = g;
+    return 0;
+}
+
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
 {
     if (!desc->gl || !desc->scene || desc->scene->triangle_count == 0) {
@@ -225,24 +253,20 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     renderer *r = xcalloc(1, sizeof *r);
     r->gl = desc->gl;
     r->scene = desc->scene;
-    frame_params_default(&r->frame);
-    int rsm_size = desc->rsm_size > 0 ? desc->rsm_size : RENDERER_DEFAULT_RSM_SIZE;
-    const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     r->desc = *desc;
-    r->gi_desc = (gi_desc){
-        .gl = r->gl, .scene = r->scene, .settings = &r->desc, .rsm_size = rsm_size,
-        .software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
-                                    strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast")),
-    };
-    snprintf(r->shade_defines, sizeof r->shade_defines, "#define LPV_BEHIND %.9g\n",
-             (double)LPV_RECEIVE_BEHIND);
-    r->gi_desc.shade_defines = r->shade_defines;
+    r->desc.first = NULL;
+    if (desc->first)
+        r->frame = *desc->first;
+    else
+        frame_params_default(&r->frame);
+    gi_frame_sanitize(&r->frame);
+    const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
+    r->software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
+                                  strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
     if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
-        !(r->prog_shade = gltools_program(r->gl, "fullscreen.vert", "shade.frag", NULL, r->shade_defines, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
-        !(r->rsm = renderer_rsm_create(r->gl, r->scene, rsm_size, err, errlen)) ||
-        !(r->gi = gi_create(desc->gi, &r->gi_desc, err, errlen)) ||
+        build_frame_state(r, &r->frame, err, errlen) != 0 ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
@@ -269,8 +293,8 @@ void renderer_destroy(renderer *r)
     gi_destroy(r->gi);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
-    GLuint progs[] = {r->prog_gbuffer, r->prog_shade, r->prog_final};
-    for (int i = 0; i < 3; i++)
+    GLuint progs[] = {r->prog_gbuffer, r->prog_final};
+    for (int i = 0; i < 2; i++)
         if (progs[i])
             gl->DeleteProgram(progs[i]);
     renderer_rsm_destroy(r->rsm);
@@ -290,23 +314,29 @@ void renderer_destroy(renderer *r)
 
 /* ---- frame pass ------------------------------------------------------------------- */
 
-/* A frame that asks for another GI method gets a fresh one: every node switches in the
- * same frame and starts it alike, without history. One that cannot be built (memory)
- * leaves the current method in place and says why in renderer_last_error(); the checksums
- * then show the master whether the nodes disagree. */
-static void switch_gi(renderer *r, frame_gi want)
+/* A frame that asks for another GI method, another RSM size or another setting that
+ * rebuilds its method gets them fresh: every node does so in the same frame and starts the
+ * method alike, without history. What cannot be built (memory) leaves the current state in
+ * place and says why in renderer_last_error(); the checksums then show the master whether
+ * the nodes disagree. */
+static int same_state(const frame_params *a, const frame_params *b)
 {
-    if (want == gi_active(r->gi))
+    return a->rsm_size == b->rsm_size && a->gi == b->gi && !gi_rebuild_needed(a->gi, a, b);
+}
+
+static void follow_frame(renderer *r, const frame_params *p)
+{
+    if (p->rsm_size == r->rsm_size && !gi_needs_rebuild(r->gi, p))
         return;
+    if (r->have_refused && same_state(p, &r->refused))
+        return; /* tried and failed: not again every frame */
     char err[200];
-    gi *g = gi_create(want, &r->gi_desc, err, sizeof err);
-    if (!g) {
-        snprintf(r->error, sizeof r->error, "renderer: GI method %s not built (%s); keeping %s",
-                 frame_gi_name(want), err, frame_gi_name(gi_active(r->gi)));
-        return;
-    }
-    gi_destroy(r->gi);
-    r->gi = g;
+    r->have_refused = build_frame_state(r, p, err, sizeof err) != 0;
+    r->refused = *p;
+    if (r->have_refused)
+        snprintf(r->error, sizeof r->error, "renderer: GI method %s with its settings not built "
+                 "(%s); keeping %s", gi_method_at(p->gi)->name, err,
+                 gi_method_at(gi_active(r->gi))->name);
 }
 
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
@@ -315,12 +345,13 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. Once
      * per frame; the eye passes render this copy. */
     r->frame = *params;
-    frame_params_sanitize(&r->frame);
+    r->timings.fixed = gi_frame_sanitize(&r->frame);
     r->eye_index = 0;
     const frame_params *p = &r->frame;
-    switch_gi(r, p->gi);
+    follow_frame(r, p);
     if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
-        r->timings.rsm_ms = r->timings.inject_ms = r->timings.propagate_ms = 0;
+        r->timings.rsm_ms = 0;
+        gi_stats_get(r->gi, &r->timings.gi);
         r->timings.frame_host_ms = clock_now_ms() - t0;
         return r->checksum;
     }
@@ -331,10 +362,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
     rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
     r->checksum = gi_frame(r->gi, p, &rsm);
-    gi_stats gs;
-    gi_stats_get(r->gi, &gs);
-    r->timings.inject_ms = gs.inject_ms;
-    r->timings.propagate_ms = gs.propagate_ms;
+    gi_stats_get(r->gi, &r->timings.gi);
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
     r->timings.frame_host_ms = clock_now_ms() - t0;
     return r->checksum;
@@ -407,28 +435,16 @@ void renderer_screen(renderer *r, const renderer_view *views, int n)
     gi_screen(r->gi, views, n);
 }
 
-int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
-                      renderer_image *out)
+/* Texture units of the shading program: the G-buffer, the lights' shadow maps, then the
+ * GI method's own. */
+enum { UNIT_GBUFFER = 0, UNIT_RSM_DEPTH = 4, UNIT_RSM_NORMAL = 5, UNIT_GI = 6 };
+
+static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[16],
+                         const float eye[4])
 {
     const gl_functions *gl = r->gl;
-    const frame_params *p = &r->frame;
-    if (view->width <= 0 || view->height <= 0) {
-        snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
-                 view->width, view->height);
-        return -1;
-    }
-    if (eye_targets(r, view->width, view->height))
-        return -1;
-    double t0 = clock_now_ms();
-    int w = view->width, h = view->height;
-    int slot = queries_begin_frame(r, &r->eye_queries, 3);
-    float vp[16];
-    mat4_mul(view->projection, view->view, vp);
-
-    /* G-buffer */
-    query_begin(r, &r->eye_queries, slot, Q_GBUFFER);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->gbuffer_fbo);
-    gl->Viewport(0, 0, w, h);
+    gl->Viewport(0, 0, view->width, view->height);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
@@ -437,60 +453,64 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     gl->ClearBufferfv(GL_DEPTH, 0, &one);
     gl->UseProgram(r->prog_gbuffer);
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
-    float eye[4];
-    eye_towards(view, eye);
     gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
     scene_gl_draw(r->mesh, r->prog_gbuffer);
     gl->Disable(GL_DEPTH_TEST);
-    query_end(r, &r->eye_queries, slot, Q_GBUFFER);
+}
 
-    /* Shading */
-    query_begin(r, &r->eye_queries, slot, Q_SHADE);
-    GLuint prog = r->prog_shade;
+/* Direct light and the GI method's indirect light (its program, gi.h). */
+static void shade_pass(renderer *r, const renderer_view *view, const float eye[4])
+{
+    const gl_functions *gl = r->gl;
+    const frame_params *p = &r->frame;
+    GLuint prog = gi_shade_program(r->gi);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
     gl->UseProgram(prog);
     const GLuint gtex[4] = {r->g_position, r->g_normal, r->g_albedo, r->g_emissive};
     const char *gname[4] = {"u_position", "u_normal", "u_albedo", "u_emissive"};
     for (int i = 0; i < 4; i++) {
-        gl->ActiveTexture(GL_TEXTURE0 + i);
+        gl->ActiveTexture((GLenum)(GL_TEXTURE0 + UNIT_GBUFFER + i));
         gl->BindTexture(GL_TEXTURE_2D, gtex[i]);
-        gl->Uniform1i(loc(r, prog, gname[i]), i);
+        gl->Uniform1i(loc(r, prog, gname[i]), UNIT_GBUFFER + i);
     }
-    renderer_rsm_bind_shading(r->rsm, prog, p, 4, 8);
-    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = 5, .view = view,
+    renderer_rsm_bind_shading(r->rsm, prog, p, UNIT_RSM_DEPTH, UNIT_RSM_NORMAL);
+    gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = UNIT_GI, .view = view,
                                  .width = view->width, .height = view->height, .eye = eye,
                                  .pixel_angle = 2.0f / (view->projection[5] * view->height)});
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
-    gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure > 0 ? p->exposure : 1.0f);
+    gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure);
     gl->BindVertexArray(r->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
-    query_end(r, &r->eye_queries, slot, Q_SHADE);
+}
 
-    /* Final: tone map and gamma */
-    query_begin(r, &r->eye_queries, slot, Q_FINAL);
+/* Tone map and gamma; black pixels are left out, so the lit query tells whether the view
+ * shows any light. Then the HUD, in world space with this eye's view and projection. */
+static void final_pass(renderer *r, const renderer_view *view, const float vp[16])
+{
+    const gl_functions *gl = r->gl;
+    const frame_params *p = &r->frame;
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->final_fbo);
     gl->UseProgram(r->prog_final);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, r->s_final);
     gl->Uniform1i(loc(r, r->prog_final, "u_hdr"), 0);
-    float display = p->display_gamma > 0 ? p->display_gamma : 2.2f;
-    float encoding = frame_params_e2e_gamma(p->environment) / display;
+    float encoding = frame_params_e2e_gamma(p->environment) / p->display_gamma;
     gl->Uniform1f(loc(r, r->prog_final, "u_encoding_gamma"), encoding);
-    /* final.frag leaves black pixels out; any sample written means the view shows light. */
+    const float zero[4] = {0, 0, 0, 0};
     gl->ClearBufferfv(GL_COLOR, 0, zero);
     gl->BeginQuery(GL_ANY_SAMPLES_PASSED, r->lit_query);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->BindVertexArray(0);
-    /* The HUD after tone mapping, in world space with this eye's view and projection. */
-    gi_stats gs;
-    gi_stats_get(r->gi, &gs);
-    r->timings.assign_ms = gs.assign_ms;
-    r->timings.assignments = gs.assignments;
-    renderer_hud_draw(r->hud, p, gs.lattice_cells, vp, view->eye_position, encoding);
-    query_end(r, &r->eye_queries, slot, Q_FINAL);
+    renderer_hud_draw(r->hud, p, r->timings.gi.hud_cells, vp, view->eye_position, encoding);
+}
 
+/* The final image as 8-bit RGB, top row first, and the linear images on request. */
+static void read_back(renderer *r, int want_linear, renderer_image *out)
+{
+    const gl_functions *gl = r->gl;
+    int w = r->eye_w, h = r->eye_h;
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, r->rgba);
@@ -514,29 +534,44 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
         out->indirect = r->linear[2];
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
+                      renderer_image *out)
+{
+    if (view->width <= 0 || view->height <= 0) {
+        snprintf(r->error, sizeof r->error, "renderer: eye pass needs a positive size, got %dx%d",
+                 view->width, view->height);
+        return -1;
+    }
+    if (eye_targets(r, view->width, view->height))
+        return -1;
+    double t0 = clock_now_ms();
+    int slot = queries_begin_frame(r, &r->eye_queries, 3);
+    float vp[16], eye[4];
+    mat4_mul(view->projection, view->view, vp);
+    eye_towards(view, eye);
+    query_begin(r, &r->eye_queries, slot, Q_GBUFFER);
+    gbuffer_pass(r, view, vp, eye);
+    query_end(r, &r->eye_queries, slot, Q_GBUFFER);
+    query_begin(r, &r->eye_queries, slot, Q_SHADE);
+    shade_pass(r, view, eye);
+    query_end(r, &r->eye_queries, slot, Q_SHADE);
+    query_begin(r, &r->eye_queries, slot, Q_FINAL);
+    final_pass(r, view, vp);
+    query_end(r, &r->eye_queries, slot, Q_FINAL);
+    read_back(r, want_linear, out);
+    gi_stats_get(r->gi, &r->timings.gi); /* the eye-side figures (vpl: its assignment) */
     r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
     r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
     r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
     r->timings.eye_host_ms = clock_now_ms() - t0;
-    GLenum e = gl->GetError();
+    GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
         snprintf(r->error, sizeof r->error, "renderer: GL error 0x%x in the eye pass", (unsigned)e);
         return -1;
     }
     return 0;
-}
-
-void renderer_present(renderer *r, int width, int height)
-{
-    const gl_functions *gl = r->gl;
-    if (!r->final_fbo)
-        return;
-    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->final_fbo);
-    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    gl->BlitFramebuffer(0, 0, r->eye_w, r->eye_h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                        GL_LINEAR);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 const char *renderer_last_error(const renderer *r)
@@ -549,44 +584,5 @@ void renderer_get_timings(const renderer *r, renderer_timings *out)
     *out = r->timings;
 }
 
-/* ---- the ILPV method's figures, while it is the active one ----------------------------- */
-
-static gi_ilpv *active_ilpv(const renderer *r)
-{
-    return gi_active(r->gi) == FRAME_GI_ILPV ? gi_state(r->gi) : NULL;
-}
-
 renderer_rsm *renderer_get_rsm(renderer *r) { return r->rsm; }
-frame_gi renderer_get_gi(const renderer *r) { return gi_active(r->gi); }
-
-renderer_lpv_backend renderer_get_lpv_backend(const renderer *r)
-{
-    return active_ilpv(r) ? gi_ilpv_backend(active_ilpv(r)) : RENDERER_LPV_AUTO;
-}
-
-const lattice_desc *renderer_get_lattice(const renderer *r)
-{
-    return active_ilpv(r) ? gi_ilpv_lattice(active_ilpv(r)) : NULL;
-}
-
-const lpv_volume *renderer_get_lpv(const renderer *r)
-{
-    return active_ilpv(r) ? gi_ilpv_volume(active_ilpv(r)) : NULL;
-}
-
-renderer_lpv_mode renderer_get_lpv_mode(const renderer *r)
-{
-    return active_ilpv(r) ? gi_ilpv_mode(active_ilpv(r)) : r->desc.lpv_mode;
-}
-
-void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out)
-{
-    *out = (renderer_lpv_stats){.last_residual = INFINITY};
-    if (active_ilpv(r))
-        gi_ilpv_lpv_stats(active_ilpv(r), out);
-}
-
-double renderer_measure_step_ms(renderer *r, int steps)
-{
-    return active_ilpv(r) ? gi_ilpv_measure_step_ms(active_ilpv(r), steps) : 0.0;
-}
+gi *renderer_gi(renderer *r) { return r->gi; }

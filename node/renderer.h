@@ -1,14 +1,14 @@
 /* renderer: the render node's work on the current GL context.
  *
- *   renderer_frame_pass()  once per frame, view independent: frame_params_sanitize(), the
- *                          GI method the frame asks for (gi.h; a switch builds it fresh),
- *                          the reflective shadow maps of every light view (renderer_rsm.h:
- *                          spots one, point lights six, directional one), then the method's frame
- *                          (ILPV: VPLs -> injection -> merge and propagation). Returns the
- *                          method's checksum, which the master compares across nodes. When
- *                          the method can reuse last frame's result (ILPV: unchanged inputs,
- *                          converged; lpv_converge.h) nothing is rendered and the last
- *                          checksum is returned.
+ *   renderer_frame_pass()  once per frame, view independent: gi_frame_sanitize() (the
+ *                          one clamp of what arrived), the GI method the frame asks for with
+ *                          its settings (gi.h; another method, or a setting that rebuilds it,
+ *                          builds it fresh), the reflective shadow maps of every light view
+ *                          (renderer_rsm.h: spots one, point lights six, directional one),
+ *                          then the method's frame. Returns the method's checksum, which the
+ *                          master compares across nodes. When the method can reuse last
+ *                          frame's result (ILPV: unchanged inputs, converged) nothing is
+ *                          rendered and the last checksum is returned.
  *   renderer_eye_pass()    per (screen, eye): G-buffer -> direct + the method's indirect
  *                          shading -> tone map + gamma -> HUD -> 8-bit RGB (and optional
  *                          linear floats).
@@ -20,9 +20,8 @@
 #include <stdint.h>
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
+#include "gi/gi.h"
 #include "gl_functions.h"
-#include "lpv/lattice.h"
-#include "lpv/lpv_volume.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
 
@@ -42,17 +41,21 @@ typedef struct renderer_image {
 } renderer_image;
 
 typedef struct renderer_timings {
-    double rsm_ms, inject_ms, propagate_ms;        /* frame pass (GPU or host clock) */
-    double gbuffer_ms, shade_ms, final_ms;          /* last eye pass */
+    double rsm_ms;                          /* frame pass: the RSMs (GPU clock) */
+    gi_stats gi;                            /* frame pass: the GI method's stages (host
+                                               ms), its figures */
+    double gbuffer_ms, shade_ms, final_ms;  /* last eye pass (GPU clock) */
     double frame_host_ms, eye_host_ms;
-    double assign_ms;      /* vpl: the last light assignment (gi_stats.assign_ms) */
-    size_t assignments;    /* vpl: its (VPL, cluster) pairs */
+    int fixed;                              /* fields of the last frame the renderer
+                                               clamped (gi_frame_sanitize()) */
 } renderer_timings;
 
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
-/* Takes the frame's parameters as sent (frame_params_sanitize() runs here, once). */
+/* Takes the frame's parameters as sent (gi_frame_sanitize() runs here, once). A method
+ * that cannot be built (memory) leaves the current one in place and says why in
+ * renderer_last_error(); the checksums then tell the master whether the nodes disagree. */
 uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
 /* The views of one screen (both eyes of a stereo screen), before their eye passes: the GI
  * method may prepare what they share once (vpl: one light assignment over a grid that
@@ -65,27 +68,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
 void renderer_get_timings(const renderer *r, renderer_timings *out);
 /* One line: why the last renderer_eye_pass() returned -1. */
 const char *renderer_last_error(const renderer *r);
-/* Copies the last eye pass's final image into the default framebuffer (a window),
- * scaled to width x height; for the GLFW backend before glctx_swap(). */
-void renderer_present(renderer *r, int width, int height);
 /* The last frame pass's shadow maps and the VPL source every GI method shares
  * (renderer_rsm.h); the renderer owns them. */
 struct renderer_rsm *renderer_get_rsm(renderer *r);
-/* The active GI method (renderer_desc.gi at first, then the frames' gi). */
-frame_gi renderer_get_gi(const renderer *r);
-/* While ILPV is the active method (else AUTO, NULL, NULL, 0, the desc's mode, zeros with an
- * infinite residual, 0 ms): */
-/* The resolved LPV backend (never AUTO), its lattice, and the propagated light after the
- * last frame pass (12 channels, host memory; read back from GL with the GL backend). */
-renderer_lpv_backend renderer_get_lpv_backend(const renderer *r);
-const lattice_desc *renderer_get_lattice(const renderer *r);
-const lpv_volume *renderer_get_lpv(const renderer *r);
-renderer_lpv_mode renderer_get_lpv_mode(const renderer *r);
-void renderer_get_lpv_stats(const renderer *r, renderer_lpv_stats *out);
-/* Milliseconds per propagation step on this backend and lattice (blocking on; in classic
- * mode with its addition into the sum), timed over `steps` steps after one untimed step; GL work is finished before the clock stops. It
- * overwrites the light volumes: the next frame pass starts without history and is never
- * skipped; show no eye pass before it. */
-double renderer_measure_step_ms(renderer *r, int steps);
+/* The active GI method (gi.h; its own header inspects its state: gi_ilpv.h, gi_vpl.h). */
+gi *renderer_gi(renderer *r);
 
 #endif

@@ -9,16 +9,18 @@
 #include "frame/frame_params.h"
 #include "glctx.h"
 #include "image/image.h"
-#include "lpv/lattice.h"
-#include "lpv/lpv_budget.h"
+#include "frame/exposure.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
+#include "present.h"
 #include "reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
-#include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "standalone.h"
 
 void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
@@ -26,6 +28,8 @@ void standalone_frame_params(const node_options *o, const scene *s, const render
 {
     *out = o->frame;
     frame_params_lights_from_scene(out, s);
+    if (o->exposure_auto)
+        out->exposure = exposure_from_light(out, s);
     /* No tracker: the HUD, when shown, hangs in front of the first eye. */
     if (o->have_wand)
         memcpy(out->wand + 12, o->wand, sizeof o->wand);
@@ -118,66 +122,36 @@ static int write_images(const node_options *o, int frame, const char *eye,
     return 0;
 }
 
-/* Measures every candidate lattice with this context and backend: one propagation step
- * and the LPV's other work per frame (injection, merge, upload, checksum, residual: a
- * frame with 0 steps), each the median of three tries (what a frame meets on a shared
- * machine, not its luckiest moment); then picks by lpv_budget_choose(). */
-static int choose_budget(const node_options *o, const renderer_desc *base,
-                         const frame_params *fp, lpv_budget_choice *choice, cJSON *report)
+/* --budget-ms: the ILPV's lattice and steps from this machine's measured costs
+ * (ilpv_budget.h), into fp and the report. */
+static int choose_budget(const node_options *o, const renderer_desc *base, frame_params *fp,
+                         cJSON *report)
 {
-    static const int axis[] = {16, 24, 32, 48, 64};
-    enum { N = sizeof axis / sizeof axis[0] };
-    lpv_budget_candidate cand[N];
+    lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
+    lpv_budget_choice choice;
     char err[512];
-    for (int k = 0; k < N; k++) {
-        renderer_desc rd = *base;
-        rd.lattice_cells = axis[k];
-        rd.converge_threshold = -1;
-        renderer *r = renderer_create(&rd, err, sizeof err);
-        if (!r) {
-            fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
-            return -1;
-        }
-        double step_try[3], fixed_try[3];
-        frame_params none = *fp;
-        none.lpv_steps = 0;
-        renderer_frame_pass(r, &none); /* the first frame pays for first touches */
-        for (int i = 0; i < 3; i++) {
-            step_try[i] = renderer_measure_step_ms(r, 3);
-            renderer_frame_pass(r, &none);
-            renderer_timings t;
-            renderer_get_timings(r, &t);
-            fixed_try[i] = t.inject_ms + t.propagate_ms;
-        }
-        cand[k] = (lpv_budget_candidate){
-            .axis_cells = axis[k],
-            .cells = lattice_cell_count(renderer_get_lattice(r)),
-            .step_ms = fmax(median(step_try, 3), 1e-6), /* a step is never free */
-            .fixed_ms = median(fixed_try, 3),
-        };
-        renderer_destroy(r);
+    if (ilpv_budget_measure(base, fp, cand, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+        return -1;
     }
-    int classic = o->mode == RENDERER_LPV_CLASSIC;
-    lpv_budget_desc bd = {.budget_ms = o->budget_ms, .candidates = cand, .count = N,
-                          .min_steps = classic ? 8 : 4, .max_steps = classic ? 16 : 8};
-    if (lpv_budget_choose(&bd, choice) != 0) {
+    if (ilpv_budget_apply(o->budget_ms, cand, ILPV_BUDGET_CANDIDATES, fp, &choice) != 0) {
         fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
         return -1;
     }
-    const lpv_budget_candidate *c = &cand[choice->index];
+    const lpv_budget_candidate *c = &cand[choice.index];
     printf("cavelight-node: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame%s "
            "(measured %.3g ms per step, %.3g ms per frame besides the steps)\n", o->budget_ms,
-           choice->axis_cells, choice->steps, choice->steps == 1 ? "" : "s", choice->predicted_ms,
-           choice->fits ? "" : ", over budget even at the coarsest lattice", c->step_ms,
+           choice.axis_cells, choice.steps, choice.steps == 1 ? "" : "s", choice.predicted_ms,
+           choice.fits ? "" : ", over budget even at the coarsest lattice", c->step_ms,
            c->fixed_ms);
     cJSON *jb = cJSON_AddObjectToObject(report, "budget");
     cJSON_AddNumberToObject(jb, "budget_ms", o->budget_ms);
-    cJSON_AddNumberToObject(jb, "lattice_cells", choice->axis_cells);
-    cJSON_AddNumberToObject(jb, "steps", choice->steps);
-    cJSON_AddNumberToObject(jb, "predicted_ms", choice->predicted_ms);
-    cJSON_AddBoolToObject(jb, "fits", choice->fits);
+    cJSON_AddNumberToObject(jb, "lattice_cells", choice.axis_cells);
+    cJSON_AddNumberToObject(jb, "steps", choice.steps);
+    cJSON_AddNumberToObject(jb, "predicted_ms", choice.predicted_ms);
+    cJSON_AddBoolToObject(jb, "fits", choice.fits);
     cJSON *jc = cJSON_AddArrayToObject(jb, "candidates");
-    for (int i = 0; i < N; i++) {
+    for (int i = 0; i < ILPV_BUDGET_CANDIDATES; i++) {
         cJSON *e = cJSON_CreateObject();
         cJSON_AddNumberToObject(e, "axis_cells", cand[i].axis_cells);
         cJSON_AddNumberToObject(e, "cells", (double)cand[i].cells);
@@ -188,60 +162,68 @@ static int choose_budget(const node_options *o, const renderer_desc *base,
     return 0;
 }
 
-/* Per-stage milliseconds of every frame run, for the report's medians. */
-enum { M_RSM, M_INJECT, M_PROP, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
+/* Per-stage milliseconds of every frame run, for the report's medians: the renderer's,
+ * the GI method's own (gi_stats), the eyes'. */
+enum { M_RSM, M_GI, M_FRAME, M_GBUF, M_SHADE, M_FINAL, M_EYE, M_COUNT };
 static const char *const stage_names[M_COUNT] = {
-    "rsm_ms", "inject_ms", "propagate_ms", "frame_host_ms",
-    "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms",
+    "rsm_ms", "gi_ms", "frame_host_ms", "gbuffer_ms", "shade_ms", "final_ms", "eye_host_ms",
 };
 
-/* What the run is: context, scene, GI method and, for ILPV, its lattice, for vpl its VPLs. */
+/* What the run is: context, scene, the GI method and every setting of it and of the
+ * frame, as the renderer uses them. */
 static void report_setup(cJSON *report, const node_options *o, glctx *ctx, renderer *r,
                          const scene *sc, const frame_params *fp)
 {
-    const lattice_desc *lat = renderer_get_lattice(r);
-    const char *gi = frame_gi_name(renderer_get_gi(r));
-    const char *backend = renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu";
-    if (lat)
-        printf("cavelight-node: %s, %s, scene %s (%zu triangles), lattice %dx%dx%d, LPV on %s\n",
-               glctx_describe(ctx), glctx_renderer(ctx), o->scene, sc->triangle_count, lat->n[0],
-               lat->n[1], lat->n[2], backend);
-    else
-        printf("cavelight-node: %s, %s, scene %s (%zu triangles), GI %s\n", glctx_describe(ctx),
-               glctx_renderer(ctx), o->scene, sc->triangle_count, gi);
+    frame_params sane = *fp;
+    gi_frame_sanitize(&sane);
+    int method = gi_active(renderer_gi(r));
+    const char *name = gi_method_at(method)->name;
+    printf("cavelight-node: %s, %s, scene %s (%zu triangles), GI %s\n", glctx_describe(ctx),
+           glctx_renderer(ctx), o->scene, sc->triangle_count, name);
     cJSON_AddStringToObject(report, "scene", o->scene);
     cJSON_AddStringToObject(report, "gl", glctx_describe(ctx));
     cJSON_AddStringToObject(report, "gl_renderer", glctx_renderer(ctx));
-    cJSON_AddStringToObject(report, "gi", gi);
-    if (lat) {
-        cJSON_AddStringToObject(report, "lpv_backend", backend);
-        cJSON_AddItemToObject(report, "lattice", cJSON_CreateIntArray(lat->n, 3));
-        /* The lattice follows the scene's shape: what that saves against a cube. */
-        int longest = lat->n[0] > lat->n[1] ? lat->n[0] : lat->n[1];
-        longest = longest > lat->n[2] ? longest : lat->n[2];
-        cJSON_AddNumberToObject(report, "cells", (double)lattice_cell_count(lat));
-        cJSON_AddNumberToObject(report, "cube_cells", (double)longest * longest * longest);
-        cJSON_AddStringToObject(report, "lpv_mode",
-                                renderer_get_lpv_mode(r) == RENDERER_LPV_CLASSIC ? "classic"
-                                                                                 : "incremental");
-    }
-    if (renderer_get_gi(r) == FRAME_GI_VPL) {
-        frame_params sane = *fp; /* the count the renderer uses */
-        frame_params_sanitize(&sane);
-        cJSON_AddNumberToObject(report, "vpl_count", sane.vpl_count);
-        cJSON_AddNumberToObject(report, "vpl_seed", sane.vpl_seed);
-        cJSON_AddStringToObject(report, "vpl_selection", vpl_selection_names[sane.vpl_selection]);
+    cJSON_AddStringToObject(report, "gi", name);
+    cJSON *js = cJSON_AddObjectToObject(report, "settings");
+    for (int i = 0; i < gi_option_count(); i++) {
+        const gi_option *g = gi_option_at(i);
+        if (g->method >= 0 && g->method != method)
+            continue;
+        char text[64];
+        setting_value v = gi_option_get(g, &sane);
+        setting_format(g->row, v, text, sizeof text);
+        if (g->row->kind == SETTING_CHOICE)
+            cJSON_AddStringToObject(js, g->row->name, text);
+        else
+            cJSON_AddNumberToObject(js, g->row->name, g->row->kind == SETTING_FLOAT ? v.f : v.i);
     }
     cJSON_AddNumberToObject(report, "triangles", (double)sc->triangle_count);
     cJSON_AddNumberToObject(report, "width", o->width);
     cJSON_AddNumberToObject(report, "height", o->height);
-    cJSON_AddNumberToObject(report, "rsm", o->rsm > 0 ? o->rsm : RENDERER_DEFAULT_RSM_SIZE);
-    cJSON_AddNumberToObject(report, "steps", fp->lpv_steps);
+    cJSON_AddNumberToObject(report, "rsm", sane.rsm_size);
+    cJSON_AddNumberToObject(report, "steps", sane.lpv_steps);
 }
 
-/* The eye passes of one frame: images written, stage times summed over the eyes. */
-static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes, int eye_count,
-                       int f, double eye_sum[4])
+/* The GI method's stages and figures (gi_stats) as name: value, into obj. */
+static void add_stats(cJSON *obj, const gi_stats *g)
+{
+    for (int i = 0; i < g->stage_count; i++) {
+        char key[64];
+        snprintf(key, sizeof key, "%s_ms", g->stage[i].name);
+        cJSON_AddNumberToObject(obj, key, g->stage[i].value);
+    }
+    for (int i = 0; i < g->figure_count; i++) {
+        if (isfinite(g->figure[i].value)) /* +Inf (no residual yet): JSON null */
+            cJSON_AddNumberToObject(obj, g->figure[i].name, g->figure[i].value);
+        else
+            cJSON_AddNullToObject(obj, g->figure[i].name);
+    }
+}
+
+/* The eye passes of one frame: images written, the first eye handed to the window, stage
+ * times summed over the eyes. */
+static int render_eyes(const node_options *o, renderer *r, present *out, const eye_setup *eyes,
+                       int eye_count, int f, double eye_sum[4])
 {
     renderer_view views[2];
     for (int e = 0; e < eye_count; e++)
@@ -256,6 +238,8 @@ static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes
         }
         if (o->out && write_images(o, f, eyes[e].name, &img) != 0)
             return -1;
+        if (e == 0)
+            memcpy(present_source(out, 0), img.rgb, (size_t)img.width * img.height * 3);
         renderer_timings te;
         renderer_get_timings(r, &te);
         eye_sum[0] += te.gbuffer_ms;
@@ -268,7 +252,7 @@ static int render_eyes(const node_options *o, renderer *r, const eye_setup *eyes
 
 /* Frame f: the frame pass, every eye, the window; its line on stdout and its entry in the
  * report. Returns 0, 1 when the window was closed, -1 on an error. */
-static int render_frame(const node_options *o, glctx *ctx, renderer *r, const eye_setup *eyes,
+static int render_frame(const node_options *o, present *out, renderer *r, const eye_setup *eyes,
                         int eye_count, frame_params *fp, int f, cJSON *frames,
                         double stage_ms[M_COUNT])
 {
@@ -277,45 +261,43 @@ static int render_frame(const node_options *o, glctx *ctx, renderer *r, const ey
     uint64_t checksum = renderer_frame_pass(r, fp);
     renderer_timings t;
     renderer_get_timings(r, &t);
-    renderer_lpv_stats ls;
-    renderer_get_lpv_stats(r, &ls);
     double eye_sum[4] = {0, 0, 0, 0};
-    if (render_eyes(o, r, eyes, eye_count, f, eye_sum) != 0)
+    if (render_eyes(o, r, out, eyes, eye_count, f, eye_sum) != 0)
         return -1;
-    int closed = 0;
-    if (o->gl == GLCTX_GLFW) { /* a window shows the first eye; closing it ends the run */
-        renderer_present(r, o->width, o->height);
-        closed = !glctx_swap(ctx);
+    /* A window (--gl glfw) shows the first eye; closing it ends the run. */
+    char err[512];
+    present_frame_desc pf = {.version = (uint64_t)f, .display_gamma = fp->display_gamma};
+    int closed = present_frame(out, &pf, err, sizeof err);
+    if (closed < 0) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        return -1;
     }
     char hex[17];
     snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
     cJSON *jf = cJSON_CreateObject();
     cJSON_AddNumberToObject(jf, "frame", f);
-    cJSON_AddStringToObject(jf, "lpv_checksum", hex); /* the GI method's checksum */
-    cJSON_AddBoolToObject(jf, "skipped", ls.skipped_this_frame);
-    if (isfinite(ls.last_residual)) /* +Inf before two computed frames: JSON null */
-        cJSON_AddNumberToObject(jf, "residual", ls.last_residual);
-    else
-        cJSON_AddNullToObject(jf, "residual");
-    double vals[M_COUNT] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.frame_host_ms,
+    cJSON_AddStringToObject(jf, "checksum", hex); /* the GI method's, as READY carries it */
+    add_stats(jf, &t.gi);
+    double vals[M_COUNT] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.frame_host_ms,
                             eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
     for (int m = 0; m < M_COUNT; m++) {
         cJSON_AddNumberToObject(jf, stage_names[m], vals[m]);
         stage_ms[m] = vals[m];
     }
     cJSON_AddItemToArray(frames, jf);
-    /* renderer_timings' inject and propagate are the vpl method's selection and maps. */
-    int vpl = renderer_get_gi(r) == FRAME_GI_VPL;
-    printf("frame %d: %s %s%s, frame pass %.2f ms (rsm %.2f gpu, %s %.2f, %s %.2f), "
-           "eyes %.2f ms\n", f, frame_gi_name(renderer_get_gi(r)), hex,
-           ls.skipped_this_frame ? " (skipped, converged)" : "", t.frame_host_ms, t.rsm_ms,
-           vpl ? "select" : "inject", t.inject_ms, vpl ? "shadow maps" : "propagate",
-           t.propagate_ms, eye_sum[3]);
+    char stages[256] = "";
+    for (int i = 0; i < t.gi.stage_count; i++)
+        snprintf(stages + strlen(stages), sizeof stages - strlen(stages), ", %s %.2f",
+                 t.gi.stage[i].name, t.gi.stage[i].value);
+    printf("frame %d: %s %s, frame pass %.2f ms (rsm %.2f gpu%s), eyes %.2f ms\n", f,
+           gi_method_at(gi_active(renderer_gi(r)))->name, hex, t.frame_host_ms, t.rsm_ms, stages,
+           eye_sum[3]);
     return closed;
 }
 
 /* Medians over the frames run (GPU timer results arrive a few frames late: the first
- * frames report 0 there), then report.json when --out is given. */
+ * frames report 0 there), the last frame's GI figures, then report.json when --out is
+ * given. */
 static int report_finish(const node_options *o, renderer *r, cJSON *report, double *samples,
                          int frames_run)
 {
@@ -325,11 +307,11 @@ static int report_finish(const node_options *o, renderer *r, cJSON *report, doub
         m[k] = median(samples + (size_t)k * o->frames, frames_run);
         cJSON_AddNumberToObject(med, stage_names[k], m[k]);
     }
-    renderer_lpv_stats ls;
-    renderer_get_lpv_stats(r, &ls);
-    cJSON_AddNumberToObject(report, "frames_skipped", (double)ls.frames_skipped);
+    renderer_timings t;
+    renderer_get_timings(r, &t);
+    add_stats(report, &t.gi);
     double total = m[M_FRAME] + m[M_EYE];
-    cJSON_AddNumberToObject(report, "lpv_share", total > 0 ? (m[M_INJECT] + m[M_PROP]) / total : 0);
+    cJSON_AddNumberToObject(report, "gi_share", total > 0 ? m[M_GI] / total : 0);
     if (!o->out)
         return 0;
     char path[4096];
@@ -353,34 +335,25 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
                   frame_params *fp)
 {
     char err[512];
-    glctx_desc gd = {.backend = o->gl, .width = o->width, .height = o->height,
-                     .title = "cavelight-node", .visible = o->gl == GLCTX_GLFW};
-    glctx *ctx = glctx_create(&gd, err, sizeof err);
-    if (!ctx) {
+    present_viewport vp = {.name = "window", .width = o->width, .height = o->height};
+    present_desc pd = {.output = o->gl == GLCTX_GLFW ? PRESENT_WINDOW : PRESENT_HEADLESS, .backend = o->gl,
+                       .log_name = "cavelight-node", .viewport_count = 1, .viewports = &vp,
+                       .title = "cavelight-node", .quiet = 1};
+    present *out = present_create(&pd, err, sizeof err);
+    if (!out) {
         /* The context's own message names no option: the one to try is this mode's. */
         fprintf(stderr, "cavelight-node: %s%s\n", err,
                 o->gl == GLCTX_GLFW ? "; or render without a window: --gl egl" : "");
         return 1;
     }
-    renderer_desc rd = {
-        .gl = glctx_gl(ctx), .scene = sc, .lpv_backend = o->lpv, .rsm_size = o->rsm,
-        .lattice_cells = o->lattice, .lattice_cell_budget = o->lattice_total,
-        .threads = o->threads, .vpl_point = o->vpl_point, .vpl_visibility = o->vpl_visibility,
-        .ism_size = o->ism_size, .ism_points = o->ism_points, .vpl_interleave = o->vpl_interleave,
-        .lpv_gl_tiles = o->tiles, .lpv_mode = o->mode, .converge_threshold = o->converge_threshold,
-        .gi = fp->gi,
-    };
+    glctx *ctx = present_context(out);
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = sc, .first = fp, .threads = o->threads};
     cJSON *report = cJSON_CreateObject();
     renderer *r = NULL;
     double *samples = xcalloc((size_t)o->frames * M_COUNT, sizeof *samples);
     int rc = 1, frames_run = 0;
-    lpv_budget_choice budget;
-    if (o->budget_ms > 0) {
-        if (choose_budget(o, &rd, fp, &budget, report) != 0)
-            goto out;
-        rd.lattice_cells = budget.axis_cells;
-        fp->lpv_steps = budget.steps;
-    }
+    if (o->budget_ms > 0 && choose_budget(o, &rd, fp, report) != 0)
+        goto out;
     if (!(r = renderer_create(&rd, err, sizeof err))) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         goto out;
@@ -390,7 +363,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
     int step = 0;
     for (int f = 0; f < o->frames && step == 0; f++) {
         double stage_ms[M_COUNT];
-        if ((step = render_frame(o, ctx, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
+        if ((step = render_frame(o, out, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
             goto out;
         for (int m = 0; m < M_COUNT; m++)
             samples[(size_t)m * o->frames + f] = stage_ms[m];
@@ -401,7 +374,7 @@ out:
     free(samples);
     cJSON_Delete(report);
     renderer_destroy(r);
-    glctx_destroy(ctx);
+    present_destroy(out);
     return rc;
 }
 
@@ -413,10 +386,13 @@ int standalone_run(const node_options *o)
         return 1;
     }
     scene sc;
-    if (scene_load(o->scene, &sc, err, sizeof err) != 0) {
+    scene_load_desc sd = {.allow_outside_paths = o->allow_outside_paths};
+    if (scene_load_with(o->scene, &sd, &sc, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return 1;
     }
+    if (sc.warning[0])
+        fprintf(stderr, "cavelight-node: warning: scene %s: %s\n", o->scene, sc.warning);
     if (o->camera && scene_pick_camera(&sc, o->camera, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-node: --camera: %s\n", err);
         scene_free(&sc);

@@ -15,16 +15,9 @@ typedef struct node_options {
     int standalone;
     glctx_backend gl;
     const char *scene;
-    renderer_lpv_backend lpv;
-    renderer_tiles tiles;
-    renderer_lpv_mode mode;
-    float converge_threshold; /* 0 = renderer default, negative = never skip */
-    float budget_ms;          /* > 0: choose lattice and steps (lpv_budget.h) */
-    int rsm, lattice, threads, vpl_point;
-    renderer_vpl_visibility vpl_visibility;
-    int ism_size, ism_points; /* 0 = the renderer's defaults */
-    int vpl_interleave;       /* renderer_desc.vpl_interleave */
-    int lattice_total;  /* --lattice-cells: total cells spent on the scene's shape */
+    int allow_outside_paths;     /* glTF buffers and images from outside the file's folder */
+    float budget_ms;          /* > 0: choose the ILPV's lattice and steps (ilpv_budget.h) */
+    int threads;
     int frames, width, height;
     const char *out;
     int pfm;
@@ -36,10 +29,10 @@ typedef struct node_options {
     float screen[9], eye[3];
     int stereo;
     float eye_separation;
-    /* the frame parameters: frame_params_default() with the command line's values;
-     * lights come from the scene */
+    /* the frame parameters: frame_params_default() with the command line's values (the
+     * GI method and its settings among them, gi_settings.h); lights come from the scene */
     frame_params frame;
-    int have_steps;
+    int exposure_auto;    /* --exposure auto: from the scene's light (exposure.h) */
     int have_wand;        /* HUD (docs/node.md): wand position given */
     float wand[3];
     /* --renderer reference: the path tracer (docs/reference.md) instead of GL */

@@ -5,10 +5,10 @@ set -euo pipefail
 
 CAVELIGHT_PACKAGES=(
   build-essential cmake pkg-config git
-  libcmocka-dev libcjson-dev libpng-dev zlib1g-dev
-  libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libcmocka-dev libcjson-dev libpng-dev zlib1g-dev libzip-dev libxml2-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev draco
   libzmq3-dev libusb-1.0-0-dev
-  libegl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev libglfw3-dev
+  libegl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev libglfw3-dev libxrandr-dev
   libembree-dev gnuplot-nox clang libclang-rt-14-dev iproute2 xvfb python3
 )
 

@@ -4,8 +4,12 @@
 Usage: scripts/install_nodes.py CONFIG [options]
 
 For every host in CONFIG's "nodes" it stages, then copies over ssh and installs:
-  PREFIX/bin/cavelight-node and PREFIX/share/cavelight/shaders   (unless --no-program)
+  the render node as `cmake --install BUILD --component node` lays it out under PREFIX
+  (PREFIX/bin/cavelight-node and its shaders; unless --no-program)
   the cluster config, at the node's "config" path or ETC/NAME.json
+  the config's scene when it is a file (.gltf with the buffers and images it names, or
+  .glb), at the path the node opens: as written when absolute, else in the node's working
+  folder ("workdir", or the unit's default /home/USER); a relative path is read from here
   the host's own keys (NODE.key, NODE.pub of its nodes, master.pub), never another
   host's private key, in the config's security.keys folder as seen from there
   /etc/systemd/system/cavelight-node@.service (scripts/systemd/) and one drop-in per node
@@ -25,6 +29,8 @@ Options:
 import argparse
 import json
 import os
+import struct
+import urllib.parse
 import shlex
 import shutil
 import subprocess
@@ -47,6 +53,41 @@ def keys_folder(config_path, cfg):
     stem = os.path.basename(config_path)
     stem = stem[:-5] if stem.endswith(".json") else stem
     return sec.get("keys", stem + ".keys")
+
+
+def scene_files(path):
+    """The scene file and the files it names (a .gltf's or .glb's buffers and images),
+    relative to its folder; [] for a built-in scene's name."""
+    if not path.lower().endswith((".gltf", ".glb")):
+        return []
+    try:
+        data = open(path, "rb").read()
+        if path.lower().endswith(".glb"):
+            (length,) = struct.unpack_from("<I", data, 12)
+            doc = json.loads(data[20:20 + length])
+        else:
+            doc = json.loads(data)
+    except (OSError, ValueError, struct.error) as e:
+        fail("scene %s: %s" % (path, e))
+    names = [os.path.basename(path)]
+    for item in doc.get("buffers", []) + doc.get("images", []):
+        uri = item.get("uri", "") if isinstance(item, dict) else ""
+        if uri and not uri.startswith("data:"):
+            names.append(os.path.normpath(urllib.parse.unquote(uri)))
+    for n in names:
+        if n.startswith("..") or os.path.isabs(n):
+            fail("scene %s names %s outside its folder: copy that file by hand" % (path, n))
+        if not os.path.isfile(os.path.join(os.path.dirname(path), n)):
+            fail("scene %s: %s is missing" % (path, os.path.join(os.path.dirname(path), n)))
+    return names
+
+
+def stage_program(build, d):
+    """The render node as `cmake --install --component node` lays it out, under d/prefix."""
+    r = subprocess.run(["cmake", "--install", build, "--prefix", os.path.join(d, "prefix"), "--component", "node"],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        fail("cmake --install %s --component node: %s" % (build, r.stderr.strip().splitlines()[-1:]))
 
 
 def main():
@@ -83,6 +124,9 @@ def main():
         if not os.path.isfile(os.path.join(keys_local, "master.pub")):
             fail("no keys in %s: run cavelight-master --config %s --keygen first" % (keys_local, args.config))
 
+    scene = cfg.get("scene", "")
+    scene_names = scene_files(scene) if scene else []
+    default_workdir = "/home/" + args.user
     stage = args.stage or tempfile.mkdtemp(prefix="cavelight-install-")
     template = open(os.path.join(ROOT, "scripts", "systemd", "cavelight-node@.service")).read()
     default_config = os.path.join(args.etc, os.path.basename(args.config))
@@ -94,7 +138,7 @@ def main():
         d = os.path.join(stage, host)
         os.makedirs(os.path.join(d, "dropins"), exist_ok=True)
         unit = template
-        for key, value in (("USER", args.user), ("WORKDIR", "/home/" + args.user), ("DISPLAY", ":0"),
+        for key, value in (("USER", args.user), ("WORKDIR", default_workdir), ("DISPLAY", ":0"),
                            ("XAUTHORITY", "/home/%s/.Xauthority" % args.user), ("PREFIX", args.prefix),
                            ("CONFIG", default_config)):
             unit = unit.replace("@%s@" % key, value)
@@ -102,11 +146,19 @@ def main():
         shutil.copy(args.config, os.path.join(d, "cluster.json"))
         script = ["set -e"]
         if not args.no_program:
-            shutil.copy(node_exe, os.path.join(d, "cavelight-node"))
-            shutil.copytree(os.path.join(ROOT, "shaders"), os.path.join(d, "shaders"), dirs_exist_ok=True)
-            script += ["install -D -m 755 cavelight-node %s" % shlex.quote(args.prefix + "/bin/cavelight-node"),
-                       "mkdir -p %s" % shlex.quote(args.prefix + "/share/cavelight"),
-                       "cp -r shaders %s" % shlex.quote(args.prefix + "/share/cavelight/")]
+            stage_program(args.build, d)
+            script += ["mkdir -p %s" % shlex.quote(args.prefix),
+                       "cp -R prefix/. %s/" % shlex.quote(args.prefix)]
+        if scene_names:
+            for f in scene_names:
+                staged = os.path.join(d, "scene", f)
+                os.makedirs(os.path.dirname(staged), exist_ok=True)
+                shutil.copy(os.path.join(os.path.dirname(scene), f), staged)
+            dests = sorted({os.path.dirname(scene) if os.path.isabs(scene) else
+                            os.path.normpath(os.path.join(n.get("workdir") or default_workdir, os.path.dirname(scene)))
+                            for n in nodes})
+            script += ["install -D -m 644 %s %s" % (shlex.quote("scene/" + f), shlex.quote(os.path.join(dest, f)))
+                       for dest in dests for f in scene_names]
         configs = sorted({n.get("config") or default_config for n in nodes})
         for c in configs:
             script.append("install -D -m 644 cluster.json %s" % shlex.quote(c))

@@ -100,6 +100,105 @@ static float *crop_image(const float *rgb, int w, int x, int y, int cw, int ch)
     return out;
 }
 
+/* Both images at one size, cropped when asked. 0, or -1 after one line on stderr. */
+static int load_pair(const char *const paths[2], const compare_options *opt, int *width, int *height,
+                     float *rgb[2])
+{
+    int w[2], h[2];
+    if (read_image("image", paths[0], &w[0], &h[0], &rgb[0]) != 0 ||
+        read_image("reference", paths[1], &w[1], &h[1], &rgb[1]) != 0)
+        return -1;
+    if (w[0] != w[1] || h[0] != h[1]) {
+        fprintf(stderr, "cavelight-compare: size mismatch: image %s is %dx%d but reference "
+                        "%s is %dx%d; render both at the same size\n",
+                paths[0], w[0], h[0], paths[1], w[1], h[1]);
+        return -1;
+    }
+    *width = w[0];
+    *height = h[0];
+    if (!opt->cropping)
+        return 0;
+    const int *crop = opt->crop;
+    if (crop[0] + crop[2] > *width || crop[1] + crop[3] > *height) {
+        fprintf(stderr, "cavelight-compare: --crop %d,%d,%d,%d does not fit in the "
+                        "%dx%d images\n", crop[0], crop[1], crop[2], crop[3], *width, *height);
+        return -1;
+    }
+    for (int k = 0; k < 2; k++) {
+        float *c = crop_image(rgb[k], *width, crop[0], crop[1], crop[2], crop[3]);
+        if (!c) {
+            fprintf(stderr, "cavelight-compare: out of memory cropping %s\n", paths[k]);
+            return -1;
+        }
+        free(rgb[k]);
+        rgb[k] = c;
+    }
+    *width = crop[2];
+    *height = crop[3];
+    return 0;
+}
+
+/* --mask-background: the pixels where the reference is not exactly 0 (the rasterizer
+ * writes 0 where no geometry is); NULL when the reference is all black, so that every
+ * pixel is compared and no signal is reported. *failed on out of memory. */
+static uint8_t *background_mask(const float *reference, size_t n, int *failed)
+{
+    uint8_t *mask = malloc(n);
+    if (!mask) {
+        fprintf(stderr, "cavelight-compare: out of memory for the mask\n");
+        *failed = 1;
+        return NULL;
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++)
+        kept += mask[i] = reference[i * 3] != 0 || reference[i * 3 + 1] != 0 || reference[i * 3 + 2] != 0;
+    if (kept)
+        return mask;
+    free(mask);
+    return NULL;
+}
+
+/* The metrics as one JSON line on stdout. Returns the exit code: 0, 2 (out of memory)
+ * or 3 (no signal, unless allowed). */
+static int print_metrics(const char *const paths[2], int width, int height, const image_metrics *m,
+                         int allow_no_signal)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "image", paths[0]);
+    cJSON_AddStringToObject(o, "reference", paths[1]);
+    cJSON_AddNumberToObject(o, "width", width);
+    cJSON_AddNumberToObject(o, "height", height);
+    cJSON_AddNumberToObject(o, "pixels", (double)m->pixels);
+    cJSON_AddNumberToObject(o, "nonfinite", (double)m->nonfinite);
+    cJSON_AddNumberToObject(o, "mae", m->mae);
+    cJSON_AddNumberToObject(o, "rmse_rel", m->rmse_rel);
+    cJSON_AddNumberToObject(o, "relmse", m->relmse);
+    cJSON_AddNumberToObject(o, "ssim", m->ssim);
+    cJSON_AddNumberToObject(o, "mean", m->mean);
+    cJSON_AddNumberToObject(o, "reference_mean", m->reference_mean);
+    cJSON_AddNumberToObject(o, "best_scale", m->best_scale);
+    cJSON_AddNumberToObject(o, "mae_scaled", m->mae_scaled);
+    cJSON_AddBoolToObject(o, "signal", !m->no_signal);
+    char *text = cJSON_PrintUnformatted(o);
+    int rc = 2;
+    if (text) {
+        printf("%s\n", text);
+        rc = 0;
+        if (m->no_signal && !allow_no_signal) {
+            fprintf(stderr, "cavelight-compare: no signal: reference %s is black over the %zu "
+                            "compared pixels (image mean %g), so relative RMSE and SSIM are "
+                            "undefined; give --allow-no-signal to accept\n",
+                    paths[1], m->pixels, m->mean);
+            rc = 3;
+        }
+    } else {
+        fprintf(stderr, "cavelight-compare: out of memory printing JSON\n");
+    }
+    cJSON_free(text);
+    cJSON_Delete(o);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     static const char *const groups[] = {"Options"};
@@ -126,98 +225,23 @@ int main(int argc, char **argv)
         fprintf(stderr, "cavelight-compare: give IMAGE and REFERENCE (see --help)\n");
         return 2;
     }
-    int mask_background = opt.mask_background, allow_no_signal = opt.allow_no_signal;
-    int cropping = opt.cropping, *crop = opt.crop;
-    image_metrics_desc desc = opt.desc;
-
-    int w[2], h[2];
+    int width, height, failed = 0, rc = 2;
     float *rgb[2] = {NULL, NULL};
     uint8_t *mask = NULL;
-    int rc = 2;
-    if (read_image("image", paths[0], &w[0], &h[0], &rgb[0]) != 0 ||
-        read_image("reference", paths[1], &w[1], &h[1], &rgb[1]) != 0)
+    if (load_pair(paths, &opt, &width, &height, rgb) != 0)
         goto done;
-    if (w[0] != w[1] || h[0] != h[1]) {
-        fprintf(stderr, "cavelight-compare: size mismatch: image %s is %dx%d but reference "
-                        "%s is %dx%d; render both at the same size\n",
-                paths[0], w[0], h[0], paths[1], w[1], h[1]);
+    image_metrics_desc desc = opt.desc;
+    if (opt.mask_background && !(desc.mask = mask = background_mask(rgb[1], (size_t)width * height, &failed)) &&
+        failed)
         goto done;
-    }
-    int width = w[0], height = h[0];
-    if (cropping) {
-        if (crop[0] + crop[2] > width || crop[1] + crop[3] > height) {
-            fprintf(stderr, "cavelight-compare: --crop %d,%d,%d,%d does not fit in the "
-                            "%dx%d images\n", crop[0], crop[1], crop[2], crop[3], width,
-                    height);
-            goto done;
-        }
-        for (int k = 0; k < 2; k++) {
-            float *c = crop_image(rgb[k], width, crop[0], crop[1], crop[2], crop[3]);
-            if (!c) {
-                fprintf(stderr, "cavelight-compare: out of memory cropping %s\n", paths[k]);
-                goto done;
-            }
-            free(rgb[k]);
-            rgb[k] = c;
-        }
-        width = crop[2];
-        height = crop[3];
-    }
-    size_t n = (size_t)width * height;
-    if (mask_background) {
-        /* The rasterizer writes exactly 0 where no geometry is. */
-        mask = malloc(n);
-        if (!mask) {
-            fprintf(stderr, "cavelight-compare: out of memory for the mask\n");
-            goto done;
-        }
-        const float *r = rgb[1];
-        size_t kept = 0;
-        for (size_t i = 0; i < n; i++)
-            kept += mask[i] = r[i * 3] != 0 || r[i * 3 + 1] != 0 || r[i * 3 + 2] != 0;
-        /* A black reference leaves no pixel: compare them all, which reports no signal. */
-        desc.mask = kept ? mask : NULL;
-    }
-
     image_metrics m;
     if (image_metrics_compare(rgb[0], rgb[1], width, height, &desc, &m) != 0) {
         fprintf(stderr, "cavelight-compare: no pixel to compare in %s against %s (%zu with "
                         "NaN/inf%s)\n", paths[0], paths[1], m.nonfinite,
-                mask_background ? ", the rest background" : "");
+                opt.mask_background ? ", the rest background" : "");
         goto done;
     }
-    cJSON *o = cJSON_CreateObject();
-    cJSON_AddStringToObject(o, "image", paths[0]);
-    cJSON_AddStringToObject(o, "reference", paths[1]);
-    cJSON_AddNumberToObject(o, "width", width);
-    cJSON_AddNumberToObject(o, "height", height);
-    cJSON_AddNumberToObject(o, "pixels", (double)m.pixels);
-    cJSON_AddNumberToObject(o, "nonfinite", (double)m.nonfinite);
-    cJSON_AddNumberToObject(o, "mae", m.mae);
-    cJSON_AddNumberToObject(o, "rmse_rel", m.rmse_rel);
-    cJSON_AddNumberToObject(o, "relmse", m.relmse);
-    cJSON_AddNumberToObject(o, "ssim", m.ssim);
-    cJSON_AddNumberToObject(o, "mean", m.mean);
-    cJSON_AddNumberToObject(o, "reference_mean", m.reference_mean);
-    cJSON_AddNumberToObject(o, "best_scale", m.best_scale);
-    cJSON_AddNumberToObject(o, "mae_scaled", m.mae_scaled);
-    cJSON_AddBoolToObject(o, "signal", !m.no_signal);
-    char *text = cJSON_PrintUnformatted(o);
-    if (text) {
-        printf("%s\n", text);
-        rc = 0;
-        if (m.no_signal && !allow_no_signal) {
-            fprintf(stderr, "cavelight-compare: no signal: reference %s is black over the %zu "
-                            "compared pixels (image mean %g), so relative RMSE and SSIM are "
-                            "undefined; give --allow-no-signal to accept\n",
-                    paths[1], m.pixels, m.mean);
-            rc = 3;
-        }
-    } else {
-        fprintf(stderr, "cavelight-compare: out of memory printing JSON\n");
-    }
-    cJSON_free(text);
-    cJSON_Delete(o);
+    rc = print_metrics(paths, width, height, &m, opt.allow_no_signal);
 done:
     free(rgb[0]);
     free(rgb[1]);

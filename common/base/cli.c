@@ -19,31 +19,39 @@ static const cli_option *by_id(const cli_program *p, int id, int *index)
     return NULL;
 }
 
-/* Levenshtein distance, for "did you mean". */
+/* Edit distance with a swap of two neighbours counted as one edit (optimal string
+ * alignment), for "did you mean": "cuont" is one slip from "count". */
 static int distance(const char *a, const char *b)
 {
     enum { MAX = 64 };
     int la = (int)strlen(a), lb = (int)strlen(b);
     if (la >= MAX || lb >= MAX)
         return MAX;
-    int row[MAX + 1];
+    int d[MAX + 1][MAX + 1];
+    for (int i = 0; i <= la; i++)
+        d[i][0] = i;
     for (int j = 0; j <= lb; j++)
-        row[j] = j;
-    for (int i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = i;
+        d[0][j] = j;
+    for (int i = 1; i <= la; i++)
         for (int j = 1; j <= lb; j++) {
-            int up = row[j];
-            int best = diag + (a[i - 1] != b[j - 1]);
-            if (row[j] + 1 < best)
-                best = row[j] + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best)
+                best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best)
+                best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
         }
-    }
-    return row[lb];
+    return d[la][lb];
+}
+
+static size_t common_start(const char *a, const char *b)
+{
+    size_t i = 0;
+    while (a[i] && a[i] == b[i])
+        i++;
+    return i;
 }
 
 const char *cli_nearest(const char *word, const char *const *candidates, int n)
@@ -55,7 +63,9 @@ const char *cli_nearest(const char *word, const char *const *candidates, int n)
         /* A name typed too long ("--framesx") is close. */
         if (strncmp(candidates[i], word, strlen(candidates[i])) == 0)
             d = d < 1 ? d : 1;
-        if (d < best_d) {
+        /* A tie goes to the longer common start: slips come late in a word more often
+         * ("scren" is "screens", not "scene"). */
+        if (d < best_d || (d == best_d && common_start(word, candidates[i]) > common_start(word, best))) {
             best_d = d;
             best = candidates[i];
         }
@@ -240,6 +250,14 @@ void cli_help(const cli_program *p, FILE *f)
     fprintf(f, "\nGeneral:\n  --help, -h%*sthis text\n", HELP_COLUMN - 12, "");
     if (p->epilogue)
         fprintf(f, "\n%s", p->epilogue);
+}
+
+void cli_option_from_setting(const setting *s, int id, int group, unsigned modes,
+                             cli_setting_text *text, cli_option *out)
+{
+    setting_arg(s, text->arg, sizeof text->arg);
+    setting_format(s, setting_default(s), text->def, sizeof text->def);
+    *out = (cli_option){id, s->name, text->arg, text->def, group, modes, s->help};
 }
 
 const char *cli_int(const char *s, int lo, int hi, int *out)

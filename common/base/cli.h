@@ -17,6 +17,8 @@
 
 #include <stdio.h>
 
+#include "base/setting.h"
+
 enum { CLI_MAX_OPTIONS = 128 };
 
 typedef struct cli_option {
@@ -58,6 +60,15 @@ typedef enum cli_result {
     CLI_HELP = 1,   /* --help was printed: exit 0 */
     CLI_ERROR = -1, /* one line was printed to stderr: exit 2 */
 } cli_result;
+
+/* An option row for a setting (setting.h): its name, its argument (the choices joined by
+ * '|'), its default and its help; the texts live in text, which must outlive the row. */
+typedef struct cli_setting_text {
+    char arg[160];
+    char def[32];
+} cli_setting_text;
+void cli_option_from_setting(const setting *s, int id, int group, unsigned modes,
+                             cli_setting_text *text, cli_option *out);
 
 /* Parses argv[1..]. Arguments that are not options (wherever they stand, and all after
  * "--") go to positional[0..max_positional); one more is refused. */

@@ -13,4 +13,9 @@ void mat4_mul(const float a[16], const float b[16], float out[16]);
 /* out = the affine point p transformed by m (w = 1, no division). */
 void mat4_transform_point(const float m[16], const float p[3], float out[3]);
 
+/* out = T * Rz * Ry * Rx * S: a scale, then rotations about x, y and z by deg (degrees,
+ * XYZ Euler), then a translation by t. The one rule for "translation, rotation_deg, scale"
+ * in the configs (tracker_to_cave, scene_transform). */
+void mat4_from_trs_deg(const float t[3], const float deg[3], float scale, float out[16]);
+
 #endif

@@ -7,13 +7,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json_keys.h"
+#include "base/mat4.h"
 #include "base/textfile.h"
 #include "frame/frame_view.h"
 #include "frame/screen_fit.h"
 #include "cluster/wire.h"
 
 typedef struct parse_ctx {
-    const char *path;
+    json_keys *keys; /* every member is read through it: the unknown ones are reported */
+    const char *path;       /* NULL: not a file (a command line's JSON) */
     char *err;
     size_t errlen;
     int failed;
@@ -29,7 +32,10 @@ static void fail(parse_ctx *c, const char *field, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    if (c->path)
+        snprintf(c->err, c->errlen, "cluster config %s: field %s: %s", c->path, field, msg);
+    else
+        snprintf(c->err, c->errlen, "%s: %s", field, msg);
 }
 
 static const char *const eyes_names[] = {"mono", "stereo", "left", "right"};
@@ -56,7 +62,7 @@ int cluster_stereo_parse(const char *s) { return lookup(s, stereo_names, 5); }
 static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                        char *out, size_t cap, const char *def)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (!def)
             fail(c, field, "missing (a string is required)");
@@ -78,7 +84,7 @@ static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const ch
 static double get_number(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                          double def, int required, double lo, double hi)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (required)
             fail(c, field, "missing (a number is required)");
@@ -116,7 +122,7 @@ static int get_vector(parse_ctx *c, const cJSON *v, const char *field, float *ou
 static int get_enum(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                     const char *const *names, int n, int def)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v)
         return def;
     int i = cJSON_IsString(v) ? lookup(v->valuestring, names, n) : -1;
@@ -136,25 +142,28 @@ static void identity(float m[16])
     m[0] = m[5] = m[10] = m[15] = 1;
 }
 
-/* M = T * Rz * Ry * Rx * S, column-major. */
-static void rigid_transform(const float t[3], const float deg[3], float scale, float m[16])
+/* {"translation", "rotation_deg", "scale"} at field (absent: identity). */
+static void parse_transform(parse_ctx *c, const cJSON *t, const char *field, float m[16])
 {
-    double r[3];
-    for (int i = 0; i < 3; i++)
-        r[i] = deg[i] * 3.14159265358979323846 / 180.0;
-    double cx = cos(r[0]), sx = sin(r[0]), cy = cos(r[1]), sy = sin(r[1]), cz = cos(r[2]), sz = sin(r[2]);
-    double R[3][3] = { /* R[row][col] = Rz*Ry*Rx */
-        {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-        {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-        {-sy, cy * sx, cy * cx},
-    };
     identity(m);
-    for (int col = 0; col < 3; col++)
-        for (int row = 0; row < 3; row++)
-            m[col * 4 + row] = (float)(R[row][col] * scale);
-    m[12] = t[0];
-    m[13] = t[1];
-    m[14] = t[2];
+    if (!t)
+        return;
+    char f[96];
+    if (!cJSON_IsObject(t)) {
+        fail(c, field, "must be an object with translation, rotation_deg, scale");
+        return;
+    }
+    float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
+    const cJSON *v;
+    snprintf(f, sizeof f, "%s.translation", field);
+    if ((v = json_keys_get(c->keys, t, "translation")))
+        get_vector(c, v, f, tr, 3, -1e4, 1e4);
+    snprintf(f, sizeof f, "%s.rotation_deg", field);
+    if ((v = json_keys_get(c->keys, t, "rotation_deg")))
+        get_vector(c, v, f, rot, 3, -360, 360);
+    snprintf(f, sizeof f, "%s.scale", field);
+    float scale = (float)get_number(c, t, "scale", f, 1, 0, 1e-6, 1e3);
+    mat4_from_trs_deg(tr, rot, scale, m);
 }
 
 static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
@@ -169,31 +178,106 @@ static void parse_observer(parse_ctx *c, const cJSON *o, cluster_observer *obs)
         return;
     }
     obs->eye_separation = (float)get_number(c, o, "eye_separation", "observer.eye_separation", FRAME_VIEW_EYE_SEPARATION, 0, 0, 0.2);
-    const cJSON *h = cJSON_GetObjectItemCaseSensitive(o, "head_to_eye");
+    const cJSON *h = json_keys_get(c->keys, o, "head_to_eye");
     if (h)
         get_vector(c, h, "observer.head_to_eye", obs->head_to_eye, 3, -1, 1);
-    const cJSON *home = cJSON_GetObjectItemCaseSensitive(o, "home");
+    const cJSON *home = json_keys_get(c->keys, o, "home");
     if (home)
         get_vector(c, home, "observer.home", obs->home, 3, -1e4, 1e4);
-    const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "tracker_to_cave");
-    if (t) {
-        if (!cJSON_IsObject(t)) {
-            fail(c, "observer.tracker_to_cave", "must be an object with translation, rotation_deg, scale");
+    parse_transform(c, json_keys_get(c->keys, o, "tracker_to_cave"), "observer.tracker_to_cave",
+                    obs->tracker_to_cave);
+}
+
+/* "scene_transform" (scene/scene_transform.h): checked here, once, for the file and for
+ * --scene-transform alike; every program applies it through scene_load_with(). */
+static void parse_scene_transform(parse_ctx *c, const cJSON *o, scene_transform *t)
+{
+    static const char *const keys[] = {"scale", "up", "anchor", "fit", "rotation_deg", "translation"};
+    memset(t, 0, sizeof *t);
+    if (!cJSON_IsObject(o)) {
+        fail(c, "scene_transform", "must be an object with scale, up, anchor, fit, rotation_deg, translation");
+        return;
+    }
+    for (const cJSON *e = o->child; e; e = e->next)
+        if (lookup(e->string, keys, 6) < 0) {
+            char field[96];
+            snprintf(field, sizeof field, "scene_transform.%.60s", e->string);
+            fail(c, field, "unknown (scale, up, anchor, fit, rotation_deg or translation)");
             return;
         }
-        float tr[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
-        const cJSON *v;
-        if ((v = cJSON_GetObjectItemCaseSensitive(t, "translation")))
-            get_vector(c, v, "observer.tracker_to_cave.translation", tr, 3, -1e4, 1e4);
-        if ((v = cJSON_GetObjectItemCaseSensitive(t, "rotation_deg")))
-            get_vector(c, v, "observer.tracker_to_cave.rotation_deg", rot, 3, -360, 360);
-        float scale = (float)get_number(c, t, "scale", "observer.tracker_to_cave.scale", 1, 0, 1e-6, 1e3);
-        rigid_transform(tr, rot, scale, obs->tracker_to_cave);
+    t->scale = (float)get_number(c, o, "scale", "scene_transform.scale", 0, 0, SCENE_TRANSFORM_SCALE_MIN,
+                                 SCENE_TRANSFORM_SCALE_MAX);
+    t->up = (scene_up)get_enum(c, o, "up", "scene_transform.up", scene_up_names, SCENE_UP_COUNT, SCENE_UP_Y);
+    t->anchor = (scene_anchor)get_enum(c, o, "anchor", "scene_transform.anchor", scene_anchor_names,
+                                       SCENE_ANCHOR_COUNT, SCENE_ANCHOR_AUTO);
+    const cJSON *v = json_keys_get(c->keys, o, "fit");
+    if (v && !cJSON_IsBool(v))
+        fail(c, "scene_transform.fit", "must be true or false");
+    t->fit = v && cJSON_IsTrue(v);
+    if ((v = json_keys_get(c->keys, o, "rotation_deg")))
+        get_vector(c, v, "scene_transform.rotation_deg", t->rotation_deg, 3, -360, 360);
+    if ((v = json_keys_get(c->keys, o, "translation")))
+        get_vector(c, v, "scene_transform.translation", t->translation, 3, -SCENE_TRANSFORM_TRANSLATION_MAX,
+                   SCENE_TRANSFORM_TRANSLATION_MAX);
+    if (!c->failed && t->fit &&
+        (json_keys_get(c->keys, o, "scale") || json_keys_get(c->keys, o, "anchor")))
+        fail(c, "scene_transform.fit", "chooses the scale and the anchor: give fit, or scale and anchor");
+}
+
+int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen)
+{
+    parse_ctx c = {.err = err, .errlen = errlen};
+    cJSON *root = cJSON_Parse(json);
+    if (!root) {
+        snprintf(err, errlen, "not valid JSON; give one such as '{\"up\": \"z\", \"scale\": 0.01}'");
+        return -1;
+    }
+    c.keys = json_keys_create();
+    parse_scene_transform(&c, root, out);
+    json_keys_destroy(c.keys);
+    cJSON_Delete(root);
+    return c.failed ? -1 : 0;
+}
+
+const char *cluster_scene_transform_option(const char *json, scene_transform *out)
+{
+    static char reason[400];
+    char why[300];
+    if (cluster_scene_transform_parse(json, out, why, sizeof why) == 0)
+        return NULL;
+    snprintf(reason, sizeof reason, "a scene_transform object (%s)", why);
+    return reason;
+}
+
+void cluster_config_scene_desc(const cluster_config *c, scene_load_desc *out)
+{
+    memset(out, 0, sizeof *out);
+    out->transform = c->has_scene_transform ? &c->scene_transform : NULL;
+    out->allow_outside_paths = c->scene_outside_paths;
+    memcpy(out->stage.home, c->observer.home, sizeof out->stage.home);
+    for (int i = 0; i < c->screen_count; i++) {
+        const cluster_screen *sc = &c->screens[i];
+        for (int k = 0; k < 4; k++)
+            for (int a = 0; a < 3; a++) {
+                float x = k == 0 ? sc->bottom_left[a] : k == 1 ? sc->bottom_right[a] : k == 2 ? sc->top_left[a]
+                          : sc->bottom_right[a] + sc->top_left[a] - sc->bottom_left[a];
+                out->stage.box_min[a] = i == 0 && k == 0 ? x : fminf(out->stage.box_min[a], x);
+                out->stage.box_max[a] = i == 0 && k == 0 ? x : fmaxf(out->stage.box_max[a], x);
+            }
     }
 }
 
-/* Relative key folders are relative to the config file's folder, like a scene would be
- * to its glTF. The default is NAME.keys beside the config (NAME: file name less .json). */
+/* A path the config names (key folder, warp file): relative ones are relative to the config
+ * file's folder, like a scene's files to its glTF. */
+static void beside_config(parse_ctx *c, const char *path, const char *field, char out[CLUSTER_TEXT_MAX])
+{
+    const char *slash = strrchr(c->path, '/');
+    int folder = slash && path[0] != '/' ? (int)(slash - c->path) + 1 : 0;
+    if (snprintf(out, CLUSTER_TEXT_MAX, "%.*s%s", folder, c->path, path) >= CLUSTER_TEXT_MAX)
+        fail(c, field, "the path beside the config is longer than %d characters", CLUSTER_TEXT_MAX - 1);
+}
+
+/* The default key folder is NAME.keys beside the config (NAME: file name less .json). */
 static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
 {
     if (o && !cJSON_IsObject(o)) {
@@ -211,13 +295,8 @@ static void parse_security(parse_ctx *c, const cJSON *o, cluster_config *cfg)
     char keys[CLUSTER_TEXT_MAX], def[CLUSTER_TEXT_MAX];
     snprintf(def, sizeof def, "%.*s.keys", stem, base);
     get_string(c, o, "keys", "security.keys", keys, sizeof keys, def);
-    if (c->failed)
-        return;
-    if (keys[0] == '/')
-        snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%s", keys);
-    else if (snprintf(cfg->keys_dir, sizeof cfg->keys_dir, "%.*s%s", folder, c->path, keys) >=
-             (int)sizeof cfg->keys_dir)
-        fail(c, "security.keys", "the key folder's path is longer than %d characters", CLUSTER_TEXT_MAX - 1);
+    if (!c->failed)
+        beside_config(c, keys, "security.keys", cfg->keys_dir);
 }
 
 /* Entry index of a list of named objects ("screens", "nodes"): an object whose name is
@@ -259,7 +338,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
     float *dst[3] = {scr->bottom_left, scr->bottom_right, scr->top_left};
     for (int k = 0; k < 3; k++) {
         snprintf(field, sizeof field, "screens[%d].%s", index, corner[k]);
-        const cJSON *v = cJSON_GetObjectItemCaseSensitive(s, corner[k]);
+        const cJSON *v = json_keys_get(c->keys, s, corner[k]);
         if (!v) {
             fail(c, field, "missing (three corners in CAVE space are required)");
             return;
@@ -269,7 +348,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
     }
     /* Measured corners: the nearest rectangle, within the tolerance. */
     float top_right[3];
-    const cJSON *tr = cJSON_GetObjectItemCaseSensitive(s, "top_right");
+    const cJSON *tr = json_keys_get(c->keys, s, "top_right");
     snprintf(field, sizeof field, "screens[%d].top_right", index);
     if (tr && get_vector(c, tr, field, top_right, 3, -1e4, 1e4))
         return;
@@ -293,7 +372,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
         memcpy(scr->top_left, fit.top_left, sizeof fit.top_left);
     }
     scr->overview[0] = scr->overview[1] = -1;
-    const cJSON *o = cJSON_GetObjectItemCaseSensitive(s, "overview");
+    const cJSON *o = json_keys_get(c->keys, s, "overview");
     if (o) {
         float xy[2];
         snprintf(field, sizeof field, "screens[%d].overview", index);
@@ -318,6 +397,106 @@ static int parse_resolution(parse_ctx *c, const cJSON *v, const char *field, int
     return 0;
 }
 
+/* ---- display hardware (cluster_window, cluster_warp): the keys in one place ------------- */
+
+/* One monitor: an index or an output's name. */
+static void parse_monitor(parse_ctx *c, const cJSON *v, const char *field, int *index, char *name)
+{
+    if (cJSON_IsString(v) && v->valuestring[0] && strlen(v->valuestring) <= CLUSTER_NAME_MAX)
+        snprintf(name, CLUSTER_NAME_MAX + 1, "%s", v->valuestring);
+    else if (cJSON_IsNumber(v) && v->valuedouble >= 0 && v->valuedouble <= 64 && v->valuedouble == floor(v->valuedouble))
+        *index = (int)v->valuedouble;
+    else
+        fail(c, field, "must be a monitor index 0..64 or an output's name of 1..%d characters (as xrandr "
+             "lists them, e.g. \"DP-1\")", CLUSTER_NAME_MAX);
+}
+
+/* A flag or a whole number in lo..hi ("vsync": true, false or an interval). */
+static int get_flag_or_int(parse_ctx *c, const cJSON *obj, const char *key, const char *field, int def,
+                           int lo, int hi)
+{
+    const cJSON *v = json_keys_get(c->keys, obj, key);
+    if (!v)
+        return def;
+    if (cJSON_IsBool(v))
+        return cJSON_IsTrue(v);
+    if (!cJSON_IsNumber(v) || v->valuedouble != floor(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
+        fail(c, field, "must be true, false or a whole number in %d..%d", lo, hi);
+        return def;
+    }
+    return (int)v->valuedouble;
+}
+
+void cluster_window_default(cluster_window *w)
+{
+    *w = (cluster_window){.monitor = {0, 1}, .swap_interval = 1};
+}
+
+static void parse_window(parse_ctx *c, const cJSON *n, int index, cluster_window *w)
+{
+    char field[96];
+    cluster_window_default(w);
+    const cJSON *m = json_keys_get(c->keys, n, "monitor");
+    snprintf(field, sizeof field, "nodes[%d].monitor", index);
+    if (cJSON_IsArray(m) && cJSON_GetArraySize(m) == 2) {
+        for (int e = 0; e < 2; e++)
+            parse_monitor(c, cJSON_GetArrayItem(m, e), field, &w->monitor[e], w->monitor_name[e]);
+    } else if (m) {
+        parse_monitor(c, m, field, &w->monitor[0], w->monitor_name[0]);
+        w->monitor[1] = w->monitor[0] + 1; /* the right eye's window: the next monitor */
+    }
+    const cJSON *fs = json_keys_get(c->keys, n, "fullscreen");
+    snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
+    if (fs && !cJSON_IsBool(fs))
+        fail(c, field, "must be true or false");
+    w->fullscreen = fs && cJSON_IsTrue(fs);
+    float xy[2];
+    const cJSON *v = json_keys_get(c->keys, n, "position");
+    snprintf(field, sizeof field, "nodes[%d].position", index);
+    if (v && get_vector(c, v, field, xy, 2, -65536, 65536) == 0) {
+        w->position[0] = (int)xy[0];
+        w->position[1] = (int)xy[1];
+        w->have_position = 1;
+    }
+    v = json_keys_get(c->keys, n, "size");
+    snprintf(field, sizeof field, "nodes[%d].size", index);
+    if (v)
+        parse_resolution(c, v, field, &w->size[0], &w->size[1]);
+    snprintf(field, sizeof field, "nodes[%d].vsync", index);
+    w->swap_interval = get_flag_or_int(c, n, "vsync", field, 1, 0, 8);
+    snprintf(field, sizeof field, "nodes[%d].swap_group", index);
+    w->swap_group = (int)get_number(c, n, "swap_group", field, 0, 0, 0, 1 << 20);
+    snprintf(field, sizeof field, "nodes[%d].swap_barrier", index);
+    w->swap_barrier = (int)get_number(c, n, "swap_barrier", field, 0, 0, 0, 1 << 20);
+    if (!c->failed && w->swap_barrier && !w->swap_group)
+        fail(c, field, "binds a swap group to a barrier: give swap_group too");
+}
+
+/* A screen's projector: {"mpcdi": FILE, "region": ID, "to_cave": {...}} or {"mesh": FILE}. */
+static int parse_warp(parse_ctx *c, const cJSON *w, const char *field, cluster_warp *out)
+{
+    identity(out->to_cave);
+    if (!w)
+        return 0;
+    const cJSON *mpcdi = cJSON_IsObject(w) ? json_keys_get(c->keys, w, "mpcdi") : NULL;
+    const cJSON *mesh = cJSON_IsObject(w) ? json_keys_get(c->keys, w, "mesh") : NULL;
+    if (!mpcdi == !mesh || !cJSON_IsString(mpcdi ? mpcdi : mesh) || !(mpcdi ? mpcdi : mesh)->valuestring[0]) {
+        fail(c, field, "must be {\"mpcdi\": FILE, \"region\": ID} or {\"mesh\": FILE}");
+        return -1;
+    }
+    out->kind = mpcdi ? CLUSTER_WARP_MPCDI : CLUSTER_WARP_MESH;
+    char f[128];
+    snprintf(f, sizeof f, "%s.%s", field, mpcdi ? "mpcdi" : "mesh");
+    beside_config(c, (mpcdi ? mpcdi : mesh)->valuestring, f, out->path);
+    snprintf(f, sizeof f, "%s.region", field);
+    get_string(c, w, "region", f, out->region, sizeof out->region, "");
+    snprintf(f, sizeof f, "%s.to_cave", field);
+    parse_transform(c, json_keys_get(c->keys, w, "to_cave"), f, out->to_cave);
+    if (!c->failed && mesh && (out->region[0] || json_keys_get(c->keys, w, "to_cave")))
+        fail(c, field, "region and to_cave belong to an MPCDI file, not a warp mesh");
+    return c->failed ? -1 : 0;
+}
+
 static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *cfg)
 {
     char field[96];
@@ -333,12 +512,12 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     get_string(c, n, "host", field, node->host, sizeof node->host, "localhost");
 
     int dw = 0, dh = 0;
-    const cJSON *res = cJSON_GetObjectItemCaseSensitive(n, "resolution");
+    const cJSON *res = json_keys_get(c->keys, n, "resolution");
     snprintf(field, sizeof field, "nodes[%d].resolution", index);
     if (res && parse_resolution(c, res, field, &dw, &dh))
         return;
 
-    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(n, "screens");
+    const cJSON *screens = json_keys_get(c->keys, n, "screens");
     snprintf(field, sizeof field, "nodes[%d].screens", index);
     if (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
         cJSON_GetArraySize(screens) > CLUSTER_NODE_MAX_SCREENS) {
@@ -356,11 +535,14 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         if (cJSON_IsString(e)) {
             sname = e->valuestring;
         } else if (cJSON_IsObject(e)) {
-            const cJSON *nm = cJSON_GetObjectItemCaseSensitive(e, "name");
+            const cJSON *nm = json_keys_get(c->keys, e, "name");
             sname = cJSON_IsString(nm) ? nm->valuestring : NULL;
-            const cJSON *r = cJSON_GetObjectItemCaseSensitive(e, "resolution");
+            const cJSON *r = json_keys_get(c->keys, e, "resolution");
             snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
             if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
+                return;
+            snprintf(field, sizeof field, "nodes[%d].screens[%d].warp", index, i);
+            if (parse_warp(c, json_keys_get(c->keys, e, "warp"), field, &ns->warp))
                 return;
             snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
         }
@@ -384,14 +566,7 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     node->output = (cluster_output)get_enum(c, n, "output", field, output_names, 3, CLUSTER_OUTPUT_WINDOW);
     snprintf(field, sizeof field, "nodes[%d].stereo", index);
     node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
-    snprintf(field, sizeof field, "nodes[%d].monitor", index);
-    node->monitor = (int)get_number(c, n, "monitor", field, 0, 0, 0, 64);
-    const cJSON *fs = cJSON_GetObjectItemCaseSensitive(n, "fullscreen");
-    if (fs && !cJSON_IsBool(fs)) {
-        snprintf(field, sizeof field, "nodes[%d].fullscreen", index);
-        fail(c, field, "must be true or false");
-    }
-    node->fullscreen = fs && cJSON_IsTrue(fs);
+    parse_window(c, n, index, &node->window);
     static const struct { const char *key; size_t offset; const char *def; } texts[] = {
         {"exe", offsetof(cluster_node, exe), ""},
         {"workdir", offsetof(cluster_node, workdir), ""},
@@ -404,10 +579,62 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
     }
 }
 
+/* "settings": {"NAME": value, ...}: kept as text; the programs that know the names check
+ * them (cavelight-master at start and with --check, every node when it builds its first
+ * frame), so none of them is an unknown key here. */
+static void parse_settings(parse_ctx *c, const cJSON *o, cluster_config *cfg)
+{
+    if (!o || c->failed)
+        return;
+    if (!cJSON_IsObject(o)) {
+        fail(c, "settings", "must be an object of option names and values ({\"gi\": \"vpl\", ...})");
+        return;
+    }
+    const cJSON *v;
+    cJSON_ArrayForEach(v, o)
+    {
+        json_keys_get(c->keys, o, v->string); /* its name is the master's to check */
+        char field[CLUSTER_NAME_MAX + 16];
+        snprintf(field, sizeof field, "settings.%.*s", CLUSTER_NAME_MAX, v->string);
+        if (cfg->setting_count == CLUSTER_MAX_SETTINGS) {
+            fail(c, field, "more than %d settings", (int)CLUSTER_MAX_SETTINGS);
+            return;
+        }
+        cluster_setting *st = &cfg->settings[cfg->setting_count];
+        if (strlen(v->string) > CLUSTER_NAME_MAX) {
+            fail(c, "settings", "a name longer than %d characters", (int)CLUSTER_NAME_MAX);
+            return;
+        }
+        snprintf(st->name, sizeof st->name, "%s", v->string);
+        if (cJSON_IsString(v) && strlen(v->valuestring) < sizeof st->value)
+            snprintf(st->value, sizeof st->value, "%s", v->valuestring);
+        else if (cJSON_IsNumber(v))
+            snprintf(st->value, sizeof st->value, "%.9g", v->valuedouble);
+        else {
+            fail(c, field, "must be a number or a short string, as the option takes it");
+            return;
+        }
+        cfg->setting_count++;
+    }
+}
+
+/* An unknown key: one line kept for the program to warn with (or refuse, --strict). */
+static void note_unknown(void *user, const char *field, const char *key, const char *nearest, const char *valid)
+{
+    cluster_config *cfg = user;
+    if (cfg->unknown_key_count < CLUSTER_MAX_UNKNOWN_KEYS) {
+        char words[CLUSTER_TEXT_MAX], line[CLUSTER_LINE_MAX];
+        json_keys_describe(key, nearest, valid, words, sizeof words);
+        snprintf(line, sizeof line, "cluster config %.160s: field %.100s: %.200s", cfg->path, field, words);
+        memcpy(cfg->unknown_keys[cfg->unknown_key_count], line, sizeof line);
+    }
+    cfg->unknown_key_count++;
+}
+
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
                          char *err, size_t errlen)
 {
-    parse_ctx c = {.path = path, .err = err, .errlen = errlen};
+    parse_ctx c = {.keys = json_keys_create(), .path = path, .err = err, .errlen = errlen};
     memset(cfg, 0, sizeof *cfg);
     snprintf(cfg->path, sizeof cfg->path, "%s", path);
     uint64_t h = 1469598103934665603ull;
@@ -423,6 +650,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         for (size_t i = 0; i < off && i < len; i++)
             line += text[i] == '\n';
         snprintf(err, errlen, "cluster config %s: not valid JSON near line %d: fix the syntax", path, line);
+        json_keys_destroy(c.keys);
         return -1;
     }
     if (!cJSON_IsObject(root)) {
@@ -432,8 +660,12 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
     get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
     get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
+    const cJSON *st = json_keys_get(c.keys, root, "scene_transform");
+    cfg->has_scene_transform = st != NULL;
+    if (st)
+        parse_scene_transform(&c, st, &cfg->scene_transform);
 
-    const cJSON *m = cJSON_GetObjectItemCaseSensitive(root, "master");
+    const cJSON *m = json_keys_get(c.keys, root, "master");
     if (!cJSON_IsObject(m)) {
         fail(&c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
         goto done;
@@ -445,7 +677,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     if (!c.failed && strncmp(cfg->master_connect, "tcp://", 6) && strncmp(cfg->master_connect, "ipc://", 6))
         fail(&c, "master.connect", "'%s' must start with tcp:// or ipc://", cfg->master_connect);
 
-    const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "timeouts");
+    const cJSON *t = json_keys_get(c.keys, root, "timeouts");
     if (t && !cJSON_IsObject(t))
         fail(&c, "timeouts", "must be an object");
     cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
@@ -463,10 +695,11 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 
     cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
-    parse_observer(&c, cJSON_GetObjectItemCaseSensitive(root, "observer"), &cfg->observer);
-    parse_security(&c, cJSON_GetObjectItemCaseSensitive(root, "security"), cfg);
+    parse_observer(&c, json_keys_get(c.keys, root, "observer"), &cfg->observer);
+    parse_security(&c, json_keys_get(c.keys, root, "security"), cfg);
+    parse_settings(&c, json_keys_get(c.keys, root, "settings"), cfg);
 
-    const cJSON *screens = cJSON_GetObjectItemCaseSensitive(root, "screens");
+    const cJSON *screens = json_keys_get(c.keys, root, "screens");
     if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
                       cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
         fail(&c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
@@ -476,7 +709,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         parse_screen(&c, cJSON_GetArrayItem(screens, i), i, cfg);
         cfg->screen_count = i + 1;
     }
-    const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(root, "nodes");
+    const cJSON *nodes = json_keys_get(c.keys, root, "nodes");
     if (!c.failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
                       cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
         fail(&c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);
@@ -486,7 +719,10 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         parse_node(&c, cJSON_GetArrayItem(nodes, i), i, cfg);
         cfg->node_count = i + 1;
     }
+    if (!c.failed)
+        json_keys_unknown(c.keys, root, note_unknown, cfg);
 done:
+    json_keys_destroy(c.keys);
     cJSON_Delete(root);
     return c.failed ? -1 : 0;
 }

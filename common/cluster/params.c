@@ -3,27 +3,41 @@
 #include "base/byteorder.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
-static const char *const global_names[PARAMS_LIGHT_BASE] = {
-    "head", "wand", "navigation", "time", "reset_epoch", "lpv_steps", "lambda_incr",
-    "absorption", "scattering", "lpv_resolution", "environment", "display_gamma",
-    "exposure", "hud_layout", "pattern", "gi", "vpl_count", "vpl_seed", "vpl_selection",
-    "light_count",
+/* The core keys: name, type and place in a frame_params. */
+static const struct {
+    const char *name;
+    params_type type;
+    size_t offset;
+} core[PARAMS_LIGHT_BASE] = {
+    {"head", PARAMS_T_MAT4, offsetof(frame_params, head)},
+    {"wand", PARAMS_T_MAT4, offsetof(frame_params, wand)},
+    {"navigation", PARAMS_T_MAT4, offsetof(frame_params, navigation)},
+    {"time", PARAMS_T_F64, offsetof(frame_params, time)},
+    {"reset_epoch", PARAMS_T_U32, offsetof(frame_params, reset_epoch)},
+    {"hud_layout", PARAMS_T_I32, offsetof(frame_params, hud_layout)},
+    {"pattern", PARAMS_T_I32, offsetof(frame_params, pattern)},
+    {"light_count", PARAMS_T_I32, offsetof(frame_params, light_count)},
 };
-static const params_type global_types[PARAMS_LIGHT_BASE] = {
-    PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_MAT4, PARAMS_T_F64, PARAMS_T_U32, PARAMS_T_I32,
-    PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_F32,
-    PARAMS_T_F32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_I32, PARAMS_T_U32,
-    PARAMS_T_I32, PARAMS_T_I32,
+static const struct {
+    const char *name;
+    params_type type;
+    size_t offset;
+} light_fields[PARAMS_LIGHT_FIELDS] = {
+    {"enabled", PARAMS_T_I32, offsetof(frame_light, enabled)},
+    {"pose", PARAMS_T_POSE, offsetof(frame_light, position)}, /* position, then direction */
+    {"color", PARAMS_T_VEC3, offsetof(frame_light, color)},
+    {"intensity", PARAMS_T_F32, offsetof(frame_light, intensity)},
+    {"cone", PARAMS_T_VEC2, offsetof(frame_light, outer_angle)}, /* outer, then inner */
+    {"type", PARAMS_T_I32, offsetof(frame_light, type)},
 };
-static const char *const light_names[PARAMS_LIGHT_FIELDS] = {
-    "enabled", "pose", "color", "intensity", "cone", "type",
-};
-static const params_type light_types[PARAMS_LIGHT_FIELDS] = {
-    PARAMS_T_I32, PARAMS_T_POSE, PARAMS_T_VEC3, PARAMS_T_F32, PARAMS_T_VEC2, PARAMS_T_I32,
-};
+_Static_assert(offsetof(frame_light, direction) == offsetof(frame_light, position) + 12,
+               "a light's pose key is its position and direction, in a row");
+_Static_assert(offsetof(frame_light, inner_angle) == offsetof(frame_light, outer_angle) + 4,
+               "a light's cone key is its outer and inner angle, in a row");
 
 int params_light_key(int light, int field)
 {
@@ -32,11 +46,78 @@ int params_light_key(int light, int field)
     return PARAMS_LIGHT_BASE + light * PARAMS_LIGHT_FIELDS + field;
 }
 
-params_type params_key_type(int key)
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
 {
-    if (key < PARAMS_LIGHT_BASE)
-        return global_types[key];
-    return light_types[(key - PARAMS_LIGHT_BASE) % PARAMS_LIGHT_FIELDS];
+    const uint8_t *b = data;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
+
+static void add(params_schema *s, const char *name, params_type type, size_t offset,
+                const setting *row, int slot)
+{
+    params_key *k = &s->keys[s->count++];
+    snprintf(k->name, sizeof k->name, "%s", name);
+    k->type = type;
+    k->frame_offset = offset;
+    k->setting = row;
+    k->gi_slot = slot;
+    uint32_t t = (uint32_t)type;
+    s->hash = fnv(fnv(s->hash, k->name, strlen(k->name) + 1), &t, sizeof t);
+}
+
+void params_schema_init(params_schema *s)
+{
+    memset(s, 0, sizeof *s);
+    s->hash = 1469598103934665603ull;
+    for (int k = 0; k < PARAMS_LIGHT_BASE; k++)
+        add(s, core[k].name, core[k].type, core[k].offset, NULL, -1);
+    for (int l = 0; l < FRAME_MAX_LIGHTS; l++)
+        for (int f = 0; f < PARAMS_LIGHT_FIELDS; f++) {
+            char name[PARAMS_NAME_MAX];
+            snprintf(name, sizeof name, "light%d.%s", l, light_fields[f].name);
+            add(s, name, light_fields[f].type,
+                offsetof(frame_params, lights) + (size_t)l * sizeof(frame_light) + light_fields[f].offset,
+                NULL, -1);
+        }
+    for (int i = 0; i < frame_transport_setting_count; i++)
+        params_schema_add(s, &frame_transport_settings[i], frame_transport_settings[i].offset, -1);
+    for (int i = 0; i < frame_display_setting_count; i++)
+        params_schema_add(s, &frame_display_settings[i], frame_display_settings[i].offset, -1);
+}
+
+int params_schema_find(const params_schema *s, const char *name)
+{
+    for (int k = 0; k < s->count; k++)
+        if (strcmp(s->keys[k].name, name) == 0)
+            return k;
+    return -1;
+}
+
+uint64_t params_session_hash(uint64_t config_hash, const params_schema *s)
+{
+    return fnv(fnv(1469598103934665603ull, &config_hash, 8), &s->hash, 8);
+}
+
+int params_schema_add(params_schema *s, const setting *row, size_t frame_offset, int gi_slot)
+{
+    if (s->count >= PARAMS_MAX_KEYS || params_schema_find(s, row->name) >= 0 ||
+        strlen(row->name) >= PARAMS_NAME_MAX)
+        return -1;
+    add(s, row->name, row->kind == SETTING_FLOAT ? PARAMS_T_F32 : PARAMS_T_I32, frame_offset, row,
+        gi_slot);
+    return s->count - 1;
+}
+
+static int valid_key(const params_store *s, int key)
+{
+    return key >= 0 && key < s->schema->count;
+}
+
+params_type params_key_type(const params_store *s, int key)
+{
+    return s->schema->keys[key].type;
 }
 
 /* Values are arrays of 4- or 8-byte words; the word size drives byte-order conversion. */
@@ -55,29 +136,22 @@ static size_t type_word_size(params_type t) { return t == PARAMS_T_F64 ? 8 : 4; 
 
 static int is_float_type(params_type t) { return t != PARAMS_T_I32 && t != PARAMS_T_U32; }
 
-size_t params_key_size(int key)
+size_t params_key_size(const params_store *s, int key)
 {
-    if (key < 0 || key >= PARAMS_KEY_COUNT)
+    if (!valid_key(s, key))
         return 0;
-    params_type t = params_key_type(key);
+    params_type t = params_key_type(s, key);
     return type_words(t) * type_word_size(t);
 }
 
-const char *params_key_name(int key)
+const char *params_key_name(const params_store *s, int key)
 {
-    static _Thread_local char buf[32];
-    if (key < 0 || key >= PARAMS_KEY_COUNT)
-        return "?";
-    if (key < PARAMS_LIGHT_BASE)
-        return global_names[key];
-    int l = (key - PARAMS_LIGHT_BASE) / PARAMS_LIGHT_FIELDS;
-    snprintf(buf, sizeof buf, "light%d.%s", l, light_names[(key - PARAMS_LIGHT_BASE) % PARAMS_LIGHT_FIELDS]);
-    return buf;
+    return valid_key(s, key) ? s->schema->keys[key].name : "?";
 }
 
 int params_set(params_store *s, int key, const void *value, size_t size)
 {
-    if (key < 0 || key >= PARAMS_KEY_COUNT || size != params_key_size(key))
+    if (!valid_key(s, key) || size != params_key_size(s, key))
         return -1;
     if (memcmp(s->value[key], value, size) != 0) {
         memcpy(s->value[key], value, size);
@@ -88,7 +162,7 @@ int params_set(params_store *s, int key, const void *value, size_t size)
 
 static int set_typed(params_store *s, int key, params_type t, const void *v, size_t size)
 {
-    if (key < 0 || key >= PARAMS_KEY_COUNT || params_key_type(key) != t)
+    if (!valid_key(s, key) || params_key_type(s, key) != t)
         return -1;
     return params_set(s, key, v, size);
 }
@@ -101,7 +175,7 @@ int params_set_mat4(params_store *s, int key, const float m[16]) { return set_ty
 
 int params_get(const params_store *s, int key, void *value, size_t size)
 {
-    if (key < 0 || key >= PARAMS_KEY_COUNT || size != params_key_size(key))
+    if (!valid_key(s, key) || size != params_key_size(s, key))
         return -1;
     memcpy(value, s->value[key], size);
     return 0;
@@ -128,47 +202,37 @@ float params_get_f32(const params_store *s, int key)
     return v;
 }
 
-static void set_light(params_store *s, int i, const frame_light *l)
+/* Where key k's value lives in f, or NULL (a light beyond the light count). A GI setting
+ * left unset holds its default for as long as it is read. */
+static const void *frame_value(const params_store *s, int k, const frame_params *f,
+                               setting_value *scratch)
 {
-    float pose[6] = {l->position[0], l->position[1], l->position[2],
-                     l->direction[0], l->direction[1], l->direction[2]};
-    float cone[2] = {l->outer_angle, l->inner_angle};
-    params_set_i32(s, params_light_key(i, PARAMS_LIGHT_ENABLED), l->enabled);
-    params_set(s, params_light_key(i, PARAMS_LIGHT_POSE), pose, sizeof pose);
-    params_set(s, params_light_key(i, PARAMS_LIGHT_COLOR), l->color, 12);
-    params_set_f32(s, params_light_key(i, PARAMS_LIGHT_INTENSITY), l->intensity);
-    params_set(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
-    params_set_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE), (int32_t)l->type);
+    const params_key *key = &s->schema->keys[k];
+    if (key->gi_slot >= 0) {
+        const frame_gi_setting *g = &f->gi_settings[key->gi_slot];
+        *scratch = g->set ? g->value : setting_default(key->setting);
+        return scratch;
+    }
+    if (k >= PARAMS_LIGHT_BASE && k < PARAMS_CORE_KEYS &&
+        (k - PARAMS_LIGHT_BASE) / PARAMS_LIGHT_FIELDS >= f->light_count)
+        return NULL;
+    return (const char *)f + key->frame_offset;
 }
 
 void params_set_from_frame(params_store *s, const frame_params *f)
 {
-    params_set_mat4(s, PARAMS_HEAD, f->head);
-    params_set_mat4(s, PARAMS_WAND, f->wand);
-    params_set_mat4(s, PARAMS_NAVIGATION, f->navigation);
-    params_set_f64(s, PARAMS_TIME, f->time);
-    params_set_u32(s, PARAMS_RESET_EPOCH, f->reset_epoch);
-    params_set_i32(s, PARAMS_LPV_STEPS, f->lpv_steps);
-    params_set_f32(s, PARAMS_LAMBDA_INCR, f->lambda_incr);
-    params_set_f32(s, PARAMS_ABSORPTION, f->absorption);
-    params_set_f32(s, PARAMS_SCATTERING, f->scattering);
-    params_set_i32(s, PARAMS_ENVIRONMENT, (int32_t)f->environment);
-    params_set_f32(s, PARAMS_DISPLAY_GAMMA, f->display_gamma);
-    params_set_f32(s, PARAMS_EXPOSURE, f->exposure);
-    params_set_i32(s, PARAMS_HUD_LAYOUT, f->hud_layout);
-    params_set_i32(s, PARAMS_PATTERN, f->pattern);
-    params_set_i32(s, PARAMS_GI, (int32_t)f->gi);
-    params_set_i32(s, PARAMS_VPL_COUNT, f->vpl_count);
-    params_set_u32(s, PARAMS_VPL_SEED, f->vpl_seed);
-    params_set_i32(s, PARAMS_VPL_SELECTION, (int32_t)f->vpl_selection);
-    params_set_i32(s, PARAMS_LIGHT_COUNT, f->light_count);
-    for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++)
-        set_light(s, i, &f->lights[i]);
+    for (int k = 0; k < s->schema->count; k++) {
+        setting_value scratch;
+        const void *v = frame_value(s, k, f, &scratch);
+        if (v)
+            params_set(s, k, v, params_key_size(s, k));
+    }
 }
 
-void params_init(params_store *s)
+void params_init(params_store *s, const params_schema *schema)
 {
     memset(s, 0, sizeof *s);
+    s->schema = schema;
     frame_params f;
     frame_params_default(&f);
     params_set_from_frame(s, &f);
@@ -181,7 +245,7 @@ uint64_t params_commit(params_store *s) { return ++s->version; }
 int params_changed_count(const params_store *s, uint64_t since)
 {
     int n = 0;
-    for (int k = 0; k < PARAMS_KEY_COUNT; k++)
+    for (int k = 0; k < s->schema->count; k++)
         n += s->stamp[k] > since;
     return n;
 }
@@ -214,10 +278,10 @@ static void get_word(uint8_t *v, const uint8_t *p, size_t word)
 static size_t encode(const params_store *s, int all, uint64_t since, uint8_t *buf, size_t cap)
 {
     size_t n = 0;
-    for (int k = 0; k < PARAMS_KEY_COUNT; k++) {
+    for (int k = 0; k < s->schema->count; k++) {
         if (!all && s->stamp[k] <= since)
             continue;
-        params_type t = params_key_type(k);
+        params_type t = params_key_type(s, k);
         size_t word = type_word_size(t), words = type_words(t);
         if (n + 2 + word * words > cap)
             return PARAMS_ENCODE_TOO_SMALL;
@@ -241,7 +305,7 @@ size_t params_encode_snapshot(const params_store *s, uint8_t *buf, size_t cap)
 
 int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t len)
 {
-    uint8_t seen[PARAMS_KEY_COUNT];
+    uint8_t seen[PARAMS_MAX_KEYS];
     memset(seen, 0, sizeof seen);
     /* Pass 1 validates, pass 2 applies: a bad record must not leave a half-applied delta. */
     for (int pass = 0; pass < 2; pass++) {
@@ -251,9 +315,9 @@ int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t l
                 return -1;
             int k = (int)le_get(buf + n, 2);
             n += 2;
-            if (k >= PARAMS_KEY_COUNT)
+            if (!valid_key(s, k))
                 return -1;
-            params_type t = params_key_type(k);
+            params_type t = params_key_type(s, k);
             size_t word = type_word_size(t), words = type_words(t);
             if (len - n < word * words)
                 return -1;
@@ -292,38 +356,18 @@ void params_to_frame(const params_store *s, frame_params *f)
 {
     memset(f, 0, sizeof *f);
     f->version = s->version;
-    params_get(s, PARAMS_HEAD, f->head, 64);
-    params_get(s, PARAMS_WAND, f->wand, 64);
-    params_get(s, PARAMS_NAVIGATION, f->navigation, 64);
-    params_get(s, PARAMS_TIME, &f->time, 8);
-    f->reset_epoch = params_get_u32(s, PARAMS_RESET_EPOCH);
-    f->lpv_steps = params_get_i32(s, PARAMS_LPV_STEPS);
-    f->lambda_incr = params_get_f32(s, PARAMS_LAMBDA_INCR);
-    f->absorption = params_get_f32(s, PARAMS_ABSORPTION);
-    f->scattering = params_get_f32(s, PARAMS_SCATTERING);
-    f->environment = (frame_environment)params_get_i32(s, PARAMS_ENVIRONMENT);
-    f->display_gamma = params_get_f32(s, PARAMS_DISPLAY_GAMMA);
-    f->exposure = params_get_f32(s, PARAMS_EXPOSURE);
-    f->hud_layout = params_get_i32(s, PARAMS_HUD_LAYOUT);
-    f->pattern = params_get_i32(s, PARAMS_PATTERN);
-    f->gi = (frame_gi)params_get_i32(s, PARAMS_GI);
-    f->vpl_count = params_get_i32(s, PARAMS_VPL_COUNT);
-    f->vpl_seed = params_get_u32(s, PARAMS_VPL_SEED);
-    f->vpl_selection = (vpl_selection)params_get_i32(s, PARAMS_VPL_SELECTION);
+    /* The light count first: it says which lights' keys mean something. */
     f->light_count = params_get_i32(s, PARAMS_LIGHT_COUNT);
-    for (int i = 0; i < f->light_count && i < FRAME_MAX_LIGHTS; i++) {
-        frame_light *l = &f->lights[i];
-        float pose[6] = {0}, cone[2] = {0};
-        l->enabled = params_get_i32(s, params_light_key(i, PARAMS_LIGHT_ENABLED));
-        params_get(s, params_light_key(i, PARAMS_LIGHT_POSE), pose, sizeof pose);
-        memcpy(l->position, pose, 12);
-        memcpy(l->direction, pose + 3, 12);
-        params_get(s, params_light_key(i, PARAMS_LIGHT_COLOR), l->color, 12);
-        l->intensity = params_get_f32(s, params_light_key(i, PARAMS_LIGHT_INTENSITY));
-        params_get(s, params_light_key(i, PARAMS_LIGHT_CONE), cone, sizeof cone);
-        l->outer_angle = cone[0];
-        l->inner_angle = cone[1];
-        l->type = (scene_light_type)params_get_i32(s, params_light_key(i, PARAMS_LIGHT_TYPE));
+    for (int k = 0; k < s->schema->count; k++) {
+        const params_key *key = &s->schema->keys[k];
+        size_t size = params_key_size(s, k);
+        if (key->gi_slot >= 0) {
+            f->gi_settings[key->gi_slot].set = 1;
+            memcpy(&f->gi_settings[key->gi_slot].value, s->value[k], size);
+        } else if (k < PARAMS_LIGHT_BASE || k >= PARAMS_CORE_KEYS ||
+                   (k - PARAMS_LIGHT_BASE) / PARAMS_LIGHT_FIELDS < f->light_count) {
+            memcpy((char *)f + key->frame_offset, s->value[k], size);
+        }
     }
 }
 
@@ -332,8 +376,8 @@ uint64_t params_checksum(const params_store *s)
     uint64_t h = 1469598103934665603ull;
     for (int i = 0; i < 8; i++)
         h = (h ^ ((s->version >> (8 * i)) & 0xff)) * 1099511628211ull;
-    for (int k = 0; k < PARAMS_KEY_COUNT; k++) {
-        size_t size = params_key_size(k);
+    for (int k = 0; k < s->schema->count; k++) {
+        size_t size = params_key_size(s, k);
         for (size_t i = 0; i < size; i++)
             h = (h ^ s->value[k][i]) * 1099511628211ull;
     }

@@ -1,18 +1,22 @@
 /* params: the versioned parameter store the master commits and every node mirrors.
  *
- * A fixed set of typed keys (head, wand, navigation, per-light pose/colour/intensity/cone/type,
- * LPV settings, tone mapping, history-reset epoch, time). Setting a key to a new value
- * stamps it with the version the next params_commit() creates; a delta since version b
- * carries exactly the keys stamped after b, a snapshot carries every key. Encodings are
- * little-endian records (u16 key, fixed-size value); params_apply() validates a whole
- * buffer before changing anything, so a malformed delta leaves the store untouched.
- * No allocation: the store is a plain struct the caller owns. */
+ * Keys come from a schema both sides build alike (params_schema): the core keys (head,
+ * wand, navigation, time, history-reset epoch, HUD layout, pattern, the lights' poses,
+ * colours, intensities, cones and types), every frame setting (frame_params.h: steps,
+ * lambda, medium, RSM size, tone mapping) and whatever settings a program adds (node/gi's
+ * methods), each a typed key that lives at a fixed place of frame_params. Setting a key to
+ * a new value stamps it with the version the next params_commit() creates; a delta since
+ * version b carries exactly the keys stamped after b, a snapshot carries every key.
+ * Encodings are little-endian records (u16 key, fixed-size value); params_apply()
+ * validates a whole buffer before changing anything, so a malformed delta leaves the store
+ * untouched. No allocation: the store and the schema are plain structs the caller owns. */
 #ifndef CAVELIGHT_PARAMS_H
 #define CAVELIGHT_PARAMS_H
 
 #include <stddef.h>
 #include <stdint.h>
 
+#include "base/setting.h"
 #include "frame/frame_params.h"
 
 typedef enum params_type {
@@ -26,27 +30,15 @@ typedef enum params_type {
     PARAMS_T_MAT4,  /* column-major */
 } params_type;
 
+/* The core keys, first in every schema. */
 enum {
     PARAMS_HEAD = 0,       /* mat4, tracked head pose in CAVE space */
     PARAMS_WAND,           /* mat4, wand pose in CAVE space */
     PARAMS_NAVIGATION,     /* mat4, CAVE-to-world */
     PARAMS_TIME,           /* f64, seconds */
     PARAMS_RESET_EPOCH,    /* u32, raised to drop every node's LPV history */
-    PARAMS_LPV_STEPS,      /* i32 */
-    PARAMS_LAMBDA_INCR,    /* f32 */
-    PARAMS_ABSORPTION,     /* f32 */
-    PARAMS_SCATTERING,     /* f32 */
-    PARAMS_LPV_RESOLUTION, /* i32, lattice cells along the longest axis (0 = renderer default),
-                              at most PARAMS_LPV_RESOLUTION_MAX */
-    PARAMS_ENVIRONMENT,    /* i32, frame_environment */
-    PARAMS_DISPLAY_GAMMA,  /* f32 */
-    PARAMS_EXPOSURE,       /* f32 */
     PARAMS_HUD_LAYOUT,     /* i32 */
     PARAMS_PATTERN,        /* i32, 1: the screens show the calibration pattern */
-    PARAMS_GI,             /* i32, frame_gi */
-    PARAMS_VPL_COUNT,      /* i32, VPLs of the vpl method */
-    PARAMS_VPL_SEED,       /* u32, their random numbers' seed */
-    PARAMS_VPL_SELECTION,  /* i32, vpl_selection: the rule that chooses them */
     PARAMS_LIGHT_COUNT,    /* i32, 0..FRAME_MAX_LIGHTS */
     PARAMS_LIGHT_BASE      /* first per-light key, see params_light_key() */
 };
@@ -62,32 +54,59 @@ enum {
 };
 
 enum {
-    PARAMS_KEY_COUNT = PARAMS_LIGHT_BASE + FRAME_MAX_LIGHTS * PARAMS_LIGHT_FIELDS,
+    PARAMS_CORE_KEYS = PARAMS_LIGHT_BASE + FRAME_MAX_LIGHTS * PARAMS_LIGHT_FIELDS,
+    PARAMS_MAX_KEYS = 256,
+    PARAMS_NAME_MAX = 40,
     PARAMS_VALUE_MAX = 64,  /* largest value (mat4) in bytes */
     /* Largest encoding: every key with its id. */
-    PARAMS_ENCODED_MAX = PARAMS_KEY_COUNT * (2 + PARAMS_VALUE_MAX),
+    PARAMS_ENCODED_MAX = PARAMS_MAX_KEYS * (2 + PARAMS_VALUE_MAX),
 };
 
-/* Largest lattice a node builds when the master asks: 128^3 cells of the node's volumes
- * are about 0.5 GB; a larger request is clamped to it by the node. */
-enum { PARAMS_LPV_RESOLUTION_MAX = 128 };
+typedef struct params_key {
+    char name[PARAMS_NAME_MAX];   /* "head", "light3.pose", "vpl-count" */
+    params_type type;
+    size_t frame_offset;          /* where the value lives in a frame_params */
+    const setting *setting;       /* a setting's key: its row (NULL for the core keys) */
+    int gi_slot;                  /* >= 0: a GI method's setting, in frame_params.gi_settings[] */
+} params_key;
+
+typedef struct params_schema {
+    int count;
+    params_key keys[PARAMS_MAX_KEYS];
+    uint64_t hash;                /* FNV-1a of the names and types: HELLO carries it */
+} params_schema;
+
+/* The core keys and the frame settings (frame_transport_settings[],
+ * frame_display_settings[]). */
+void params_schema_init(params_schema *s);
+/* Adds a setting's key: its value at frame_offset of a frame_params, or, gi_slot >= 0, in
+ * frame_params.gi_settings[gi_slot] (frame_offset unused). Returns the key, or -1 when the
+ * schema is full or the name taken. */
+int params_schema_add(params_schema *s, const setting *row, size_t frame_offset, int gi_slot);
+/* The key named name, or -1. */
+int params_schema_find(const params_schema *s, const char *name);
+/* What HELLO carries: the cluster config's hash and the schema's, so that a node of
+ * another build (other keys) is refused like a node of another config. */
+uint64_t params_session_hash(uint64_t config_hash, const params_schema *s);
 
 typedef struct params_store {
+    const params_schema *schema;
     uint64_t version;                          /* last committed (or applied) version */
-    uint8_t value[PARAMS_KEY_COUNT][PARAMS_VALUE_MAX];
-    uint64_t stamp[PARAMS_KEY_COUNT];          /* version in which each key last changed */
+    uint8_t value[PARAMS_MAX_KEYS][PARAMS_VALUE_MAX];
+    uint64_t stamp[PARAMS_MAX_KEYS];           /* version in which each key last changed */
 } params_store;
 
 /* Every key at frame_params_default()'s value (no lights: the master seeds them from its
- * scene), as version 0. */
-void params_init(params_store *s);
-/* Seeds every key from a frame (e.g. the scene's lights); stamps as a change. */
+ * scene; GI settings at their defaults), as version 0. The schema must outlive the store. */
+void params_init(params_store *s, const params_schema *schema);
+/* Every key from a frame (the lights of its light count; a GI setting left unset in the
+ * frame: its default); stamps what changed. */
 void params_set_from_frame(params_store *s, const frame_params *f);
 
 int params_light_key(int light, int field);
-params_type params_key_type(int key);
-size_t params_key_size(int key);
-const char *params_key_name(int key); /* "head", "light3.pose", ... */
+params_type params_key_type(const params_store *s, int key);
+size_t params_key_size(const params_store *s, int key);
+const char *params_key_name(const params_store *s, int key); /* "head", "light3.pose", ... */
 
 /* Typed setters: return 0, or -1 when key is out of range or of another type.
  * A value equal to the current one does not stamp the key. */
@@ -117,8 +136,9 @@ size_t params_encode_snapshot(const params_store *s, uint8_t *buf, size_t cap);
  * key, a truncated record, a duplicate key or a non-finite float. */
 int params_apply(params_store *s, uint64_t version, const uint8_t *buf, size_t len);
 
-/* All keys as a frame_params (version, epoch, time, poses, lights, LPV and tone mapping),
- * as stored: out-of-range values are frame_params_sanitize()'s to fix, not this. */
+/* All keys as a frame_params (version, epoch, time, poses, lights of the light count,
+ * every setting; a GI setting's slot is marked set), as stored: out-of-range values are
+ * the renderer's to fix (gi_frame_sanitize()), not this. */
 void params_to_frame(const params_store *s, frame_params *out);
 /* FNV-1a over version and every value: what a node with no renderer reports as its
  * checksum, and a cheap equality test between stores. */

@@ -23,6 +23,10 @@ float exposure_from_light(const frame_params *p, const scene *s)
     double radiance = area > 0 ? (reflected / area) * power / (PI * area) : 0;
     if (!(radiance > 0))
         return 1.0f;
-    double e = EXPOSURE_KEY / radiance;
-    return (float)(e < FRAME_MAX_EXPOSURE ? e : FRAME_MAX_EXPOSURE);
+    /* Within the exposure setting's range (frame_display_settings[]). */
+    const setting *row = &frame_display_settings[setting_find(
+        frame_display_settings, frame_display_setting_count, "exposure")];
+    setting_value v = {.f = (float)fmin(EXPOSURE_KEY / radiance, 3.0e38)};
+    setting_clamp(row, &v);
+    return v.f;
 }

@@ -15,7 +15,7 @@
 
 #define EXPOSURE_KEY 0.18
 
-/* The exposure for p's lights in s, in (0, FRAME_MAX_EXPOSURE]; 1 when nothing emits or s
+/* The exposure for p's lights in s, within the exposure setting's range; 1 when nothing emits or s
  * has no surface. */
 float exposure_from_light(const frame_params *p, const scene *s);
 

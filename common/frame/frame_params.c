@@ -1,4 +1,5 @@
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "frame/frame_params.h"
@@ -10,44 +11,58 @@ static void identity(float m[16])
     m[0] = m[5] = m[10] = m[15] = 1.0f;
 }
 
+static const char *const environment_names[] = {"dark", "dim", "office"};
+
+#define FIELD(f) offsetof(frame_params, f)
+const setting frame_transport_settings[] = {
+    /* 8 steps with lambda_incr 0.8 look like non-incremental rendering (paper, figure 2)
+     * and stay below 0.9, beyond which the temporal lag becomes noticeable (section 3.4). */
+    {"steps", "S", SETTING_INT, 0, 256, 8, NULL, 0, 0, FIELD(lpv_steps),
+     "propagation steps per frame"},
+    {"lambda", "L", SETTING_FLOAT, 0, 0.999, 0.8, NULL, 0, 0, FIELD(lambda_incr),
+     "lambda_incr: share of the last frame's light kept"},
+    {"absorption", "S", SETTING_FLOAT, 0, 1, 0, NULL, 0, 0, FIELD(absorption),
+     "participating medium: absorption per metre"},
+    {"scattering", "S", SETTING_FLOAT, 0, 1, 0, NULL, 0, 0, FIELD(scattering),
+     "participating medium: scattering per metre"},
+    /* 2048^2 texels of the four RSM targets are 256 MB per light view. */
+    {"rsm", "N", SETTING_INT, 8, 2048, 256, NULL, 0, SETTING_REBUILD, FIELD(rsm_size),
+     "reflective shadow map size"},
+};
+const int frame_transport_setting_count =
+    (int)(sizeof frame_transport_settings / sizeof frame_transport_settings[0]);
+
+const setting frame_display_settings[] = {
+    /* A CAVE's projected light lights its own room: a dim surround (paper table 3.1). */
+    {"env", NULL, SETTING_CHOICE, 0, 0, FRAME_ENV_DIM, environment_names, 3, 0,
+     FIELD(environment), "viewing environment (end-to-end gamma)"},
+    {"display-gamma", "G", SETTING_FLOAT, 0.1, 10, 2.2, NULL, 0, 0, FIELD(display_gamma),
+     "display gamma"},
+    {"exposure", "E|auto", SETTING_FLOAT, 1e-6, 1e6, 1, NULL, 0, 0, FIELD(exposure),
+     "linear scale before tone mapping; auto: the scene's\naverage lit surface at middle grey "
+     "(docs/node.md)"},
+};
+#undef FIELD
+const int frame_display_setting_count =
+    (int)(sizeof frame_display_settings / sizeof frame_display_settings[0]);
+
+/* Both tables, for what treats every frame setting alike. */
+static const struct {
+    const setting *rows;
+    const int *count;
+} tables[2] = {{frame_transport_settings, &frame_transport_setting_count},
+               {frame_display_settings, &frame_display_setting_count}};
+
 void frame_params_default(frame_params *p)
 {
     memset(p, 0, sizeof *p);
     identity(p->head);
     identity(p->wand);
     identity(p->navigation);
-    /* 8 steps with lambda_incr 0.8 look like non-incremental rendering (paper, figure 2)
-     * and stay below 0.9, beyond which the temporal lag becomes noticeable (section 3.4). */
-    p->lpv_steps = 8;
-    p->lambda_incr = 0.8f;
-    p->absorption = 0.0f;
-    p->scattering = 0.0f;
-    /* A CAVE's projected light lights its own room: a dim surround (paper table 3.1). */
-    p->environment = FRAME_ENV_DIM;
-    p->display_gamma = 2.2f;
-    p->exposure = 1.0f;
+    for (int t = 0; t < 2; t++)
+        for (int i = 0; i < *tables[t].count; i++)
+            setting_store(&tables[t].rows[i], setting_default(&tables[t].rows[i]), p);
     p->hud_layout = -1;
-    p->gi = FRAME_GI_ILPV;
-    p->vpl_count = FRAME_VPL_DEFAULT;
-    p->vpl_seed = 0;
-    p->vpl_selection = VPL_SELECT_FLUX;
-}
-
-const char *const frame_gi_names[FRAME_GI_COUNT] = {"ilpv", "none", "vpl"};
-
-const char *frame_gi_name(frame_gi gi)
-{
-    return (unsigned)gi < FRAME_GI_COUNT ? frame_gi_names[gi] : NULL;
-}
-
-int frame_gi_parse(const char *name, frame_gi *out)
-{
-    for (int i = 0; i < FRAME_GI_COUNT; i++)
-        if (strcmp(name, frame_gi_names[i]) == 0) {
-            *out = (frame_gi)i;
-            return 0;
-        }
-    return -1;
 }
 
 float frame_params_e2e_gamma(frame_environment env)
@@ -155,46 +170,18 @@ int frame_params_sanitize(frame_params *p)
     }
     for (int i = 0; i < p->light_count; i++)
         changed += sanitize_light(&p->lights[i]);
-    if (p->lpv_steps < 0 || p->lpv_steps > FRAME_MAX_LPV_STEPS) {
-        p->lpv_steps = p->lpv_steps < 0 ? 0 : FRAME_MAX_LPV_STEPS;
-        changed++;
-    }
-    changed += clamp_or(&p->lambda_incr, 0.0f, 0.999f, 0.0f, 0.999f, 0.0f);
-    changed += clamp_or(&p->absorption, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
-    changed += clamp_or(&p->scattering, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f);
     if (p->pattern != 0 && p->pattern != 1) {
         p->pattern = 0;
         changed++;
     }
-    if (p->environment != FRAME_ENV_DARK && p->environment != FRAME_ENV_DIM &&
-        p->environment != FRAME_ENV_OFFICE) {
-        p->environment = FRAME_ENV_DIM;
-        changed++;
-    }
-    if ((unsigned)p->gi >= FRAME_GI_COUNT) {
-        p->gi = FRAME_GI_ILPV;
-        changed++;
-    }
-    if ((unsigned)p->vpl_selection >= VPL_SELECT_COUNT) {
-        p->vpl_selection = VPL_SELECT_FLUX;
-        changed++;
-    }
-    if (p->vpl_count < FRAME_VPL_MIN || p->vpl_count > FRAME_VPL_MAX) {
-        p->vpl_count = p->vpl_count <= 0               ? FRAME_VPL_DEFAULT
-                       : p->vpl_count < FRAME_VPL_MIN ? FRAME_VPL_MIN
-                                                      : FRAME_VPL_MAX;
-        changed++;
-    }
-    if (!(p->display_gamma > 0.0f) || !isfinite(p->display_gamma)) {
-        p->display_gamma = 2.2f;
-        changed++;
-    }
-    if (!(p->exposure > 0.0f) || !isfinite(p->exposure)) {
-        p->exposure = 1.0f;
-        changed++;
-    } else if (p->exposure > FRAME_MAX_EXPOSURE) {
-        p->exposure = FRAME_MAX_EXPOSURE;
-        changed++;
-    }
+    for (int t = 0; t < 2; t++)
+        for (int i = 0; i < *tables[t].count; i++) {
+            const setting *row = &tables[t].rows[i];
+            setting_value v = setting_load(row, p);
+            if (setting_clamp(row, &v)) {
+                setting_store(row, v, p);
+                changed++;
+            }
+        }
     return changed;
 }

@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "gi/vpl_selection.h"
+#include "base/setting.h"
 #include "scene/scene.h"
 
 enum { FRAME_MAX_LIGHTS = 8 };
@@ -19,14 +19,6 @@ typedef enum frame_environment {
     FRAME_ENV_DIM = 1,    /* 1.25 */
     FRAME_ENV_OFFICE = 2, /* 1.125 */
 } frame_environment;
-
-/* The indirect-light (GI) method every node uses for the frame (node/gi.h). */
-typedef enum frame_gi {
-    FRAME_GI_ILPV = 0, /* incremental light propagation volumes */
-    FRAME_GI_NONE = 1, /* direct light only */
-    FRAME_GI_VPL = 2,  /* virtual point lights with a shadow map each */
-    FRAME_GI_COUNT
-} frame_gi;
 
 /* One light as the master and every node hold it; the fields mean what scene_light's do
  * (units there). */
@@ -41,6 +33,14 @@ typedef struct frame_light {
     scene_light_type type;
 } frame_light;
 
+/* The GI methods' own settings (node/gi/gi_settings.h gives each method's settings their
+ * slots and meaning): unset means the setting's default. */
+enum { FRAME_GI_SETTINGS_MAX = 48 };
+typedef struct frame_gi_setting {
+    int32_t set;
+    setting_value value;
+} frame_gi_setting;
+
 typedef struct frame_params {
     uint64_t version;       /* committed frame version (0 standalone) */
     uint32_t reset_epoch;   /* raised by the master to drop every node's LPV history */
@@ -50,60 +50,54 @@ typedef struct frame_params {
     float navigation[16];   /* CAVE-to-world transform */
     int light_count;
     frame_light lights[FRAME_MAX_LIGHTS];
+    /* The frame's settings (frame_transport_settings[], frame_display_settings[]) */
     int lpv_steps;          /* propagation steps per frame */
     float lambda_incr;      /* share of the previous frame's light kept, [0,1) */
     float absorption;       /* per-metre probabilities, [0,1] */
     float scattering;
     frame_environment environment;
-    float display_gamma;    /* 2.2 by default */
-    float exposure;         /* linear scale before tone mapping, 1 by default */
+    float display_gamma;
+    float exposure;         /* linear scale before tone mapping */
+    int rsm_size;           /* texels per side of each reflective shadow map */
+    int gi;                 /* the indirect-light method: its index in node/gi's registry
+                               (gi_settings.h); 0, the first, is ILPV */
+    /* Interaction state */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
     int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
-    frame_gi gi;            /* indirect-light method */
-    int vpl_count;          /* vpl: virtual point lights chosen per frame */
-    uint32_t vpl_seed;      /* vpl: which random numbers choose them (the same on every node) */
-    vpl_selection vpl_selection; /* vpl: the rule that chooses them (vpl_select.h) */
+    frame_gi_setting gi_settings[FRAME_GI_SETTINGS_MAX];
 } frame_params;
 
-/* vpl_count's range and default: a few hundred VPLs with a shadow map each is what a
- * software GL renders in about a second at 320x240; 4096 is the paper's upper end. */
-enum { FRAME_VPL_MIN = 64, FRAME_VPL_MAX = 4096, FRAME_VPL_DEFAULT = 256 };
+/* The frame's settings, the one place of their names, ranges and defaults (offsets into
+ * frame_params): how light travels (steps, lambda, absorption, scattering, rsm) and how
+ * it is shown (env, display-gamma, exposure). */
+extern const setting frame_transport_settings[];
+extern const int frame_transport_setting_count;
+extern const setting frame_display_settings[];
+extern const int frame_display_setting_count;
 
 /* The one set of defaults (the parameter store, the standalone node and the benchmarks
- * start from it): identity poses, no lights, 8 steps, lambda_incr 0.8, no medium, the dim
- * environment, display gamma 2.2, exposure 1, no HUD, ILPV, FRAME_VPL_DEFAULT VPLs chosen
- * by flux with seed 0. */
+ * start from it): identity poses, no lights, every frame setting at its default, GI method
+ * 0 with every GI setting unset (its default), no HUD, no pattern. */
 void frame_params_default(frame_params *p);
 /* Copies the scene's lights (at most FRAME_MAX_LIGHTS), enabled. A scene loaded without
  * lights has one already (scene_load(), scene_default_light()). */
 void frame_params_lights_from_scene(frame_params *p, const scene *s);
-/* Largest values frame_params_sanitize() lets through: beyond them float shading overflows
- * or a frame never ends. */
-#define FRAME_MAX_LPV_STEPS 256
+/* The largest intensity frame_params_sanitize() lets through: beyond it float shading
+ * overflows. */
 #define FRAME_MAX_INTENSITY 1e12f
-#define FRAME_MAX_EXPOSURE 1e6f
 
-/* Makes every field usable, in place, whatever a master, a config or a command line sent:
- * a light of an unknown type, or whose position, direction (or a zero one), colour,
- * intensity or angles are not finite, is disabled (a point light's direction means nothing:
- * a zero or non-finite one becomes -y); a non-unit direction is normalized; negative colours and intensities
- * become 0, intensities are capped at FRAME_MAX_INTENSITY; lambda_incr NaN or < 0 becomes
- * 0 (no history) and >= 1 becomes 0.999; absorption and scattering are clamped to [0,1]
- * (NaN -> 0); lpv_steps to [0, FRAME_MAX_LPV_STEPS]; light_count to [0, FRAME_MAX_LIGHTS];
- * exposure is capped at FRAME_MAX_EXPOSURE; a non-positive or non-finite exposure or
- * display gamma, an unknown environment, GI method or VPL selection rule and non-finite
- * poses or time get their defaults; vpl_count is clamped to [FRAME_VPL_MIN, FRAME_VPL_MAX] (not positive:
- * FRAME_VPL_DEFAULT).
- * Returns how many fields it changed (0 for valid parameters). This is the only place a
- * frame's values are clamped: the renderer applies it to its own copy once per frame, in
- * renderer_frame_pass(). */
+/* Makes every field but the GI method and its settings usable, in place, whatever a
+ * master, a config or a command line sent: a light of an unknown type, or whose position,
+ * direction (or a zero one), colour, intensity or angles are not finite, is disabled (a
+ * point light's direction means nothing: a zero or non-finite one becomes -y); a non-unit
+ * direction is normalized; negative colours and intensities become 0, intensities are
+ * capped at FRAME_MAX_INTENSITY; light_count is clamped to [0, FRAME_MAX_LIGHTS];
+ * non-finite poses or time get their defaults; pattern becomes 0 unless it is 1; every
+ * frame setting is clamped by its row (setting_clamp()).
+ * Returns how many fields it changed (0 for valid parameters). The GI method and its
+ * settings are node/gi's to check (gi_frame_sanitize(), which calls this): the renderer
+ * applies that to its own copy once per frame, in renderer_frame_pass(). */
 int frame_params_sanitize(frame_params *p);
-/* The methods' names, indexed by frame_gi (command lines, reports). */
-extern const char *const frame_gi_names[FRAME_GI_COUNT];
-/* "ilpv", "none", "vpl"; NULL for a value outside the enum. */
-const char *frame_gi_name(frame_gi gi);
-/* Returns 0 and the method named name, or -1. */
-int frame_gi_parse(const char *name, frame_gi *out);
 /* End-to-end gamma of the environment (paper table 3.1). */
 float frame_params_e2e_gamma(frame_environment env);
 

@@ -2,7 +2,13 @@
 
 #include <string.h>
 
+#include "base/mat4.h"
 #include "frame/offaxis.h"
+
+void frame_view_head_centre(const float head[16], const float head_to_eye[3], float out[3])
+{
+    mat4_transform_point(head, head_to_eye, out);
+}
 
 void frame_view_eye(const float head[3], const float right[3], float separation, int side,
                     float eye[3])

@@ -25,6 +25,10 @@ typedef struct frame_view {
     int width, height;
 } frame_view;
 
+/* The point between the eyes in CAVE space: the tracked head pose (column-major) times
+ * head_to_eye, the tracker sensor's offset from that point in head space (zeros: the
+ * sensor itself). The one rule for where the viewer is (the eyes, the GI's view samples). */
+void frame_view_head_centre(const float head[16], const float head_to_eye[3], float out[3]);
 /* The eye of a head at `head` with unit right axis `right`: side -1 left, +1 right,
  * 0 the head itself (mono). */
 void frame_view_eye(const float head[3], const float right[3], float separation, int side,

@@ -37,7 +37,7 @@ void hud_describe(const frame_params *p, int lattice_cells, hud *out)
         out->light_angle = l->outer_angle;
     }
     const char letters[HUD_BAR_COUNT] = {'A', 'S', 'I', 'P'};
-    float cells = (float)(lattice_cells > 0 ? lattice_cells : 32);
+    float cells = (float)(lattice_cells > 1 ? lattice_cells : 1);
     const float values[HUD_BAR_COUNT] = {clamp01(p->absorption), clamp01(p->scattering),
                                          clamp01(p->lambda_incr),
                                          clamp01((float)p->lpv_steps / cells)};

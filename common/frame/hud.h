@@ -46,7 +46,8 @@ typedef struct hud {
     float light_angle;     /* a spot's outer half angle, radians: the cone's opening */
 } hud;
 
-/* lattice_cells: cells along the lattice's longest axis (normalises the P bar). */
+/* lattice_cells: cells along the lattice's longest axis (normalises the P bar; the GI
+ * method's, gi_stats.hud_cells). */
 void hud_describe(const frame_params *p, int lattice_cells, hud *out);
 
 #define HUD_GREY 0.5f

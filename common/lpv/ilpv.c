@@ -1,18 +1,31 @@
 #include "lpv/ilpv.h"
 
 #include "base/fpmode.h"
+#include "lpv/lpv_propagate.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
-int ilpv_init(ilpv *s, const lattice_desc *lat)
+int ilpv_init(ilpv *s, const ilpv_desc *d)
 {
+    const lattice_desc *lat = d->lattice;
     memset(s, 0, sizeof *s);
-    if (!lat || !(lat->cell > 0.0f) || !isfinite(lat->cell))
+    s->blockers = d->blockers;
+    s->pool = d->pool;
+    if (d->backend)
+        s->backend = *d->backend;
+    else if (lat) {
+        ilpv_cpu *own = ilpv_cpu_create(lat, d->blockers, d->pool);
+        if (own)
+            s->backend = ilpv_cpu_backend(own);
+    }
+    if (!lat || !(lat->cell > 0.0f) || !isfinite(lat->cell) || !s->backend.state) {
+        ilpv_free(s);
         return -1;
+    }
     s->lattice = *lat;
-    lpv_volume *light[] = {&s->injected, &s->near,  &s->shell,  &s->front[0],
-                           &s->front[1], &s->sum,   &s->early,  &s->faded, &s->result};
+    lpv_volume *light[] = {&s->injected, &s->near, &s->shell, &s->early, &s->faded, &s->result};
     for (size_t i = 0; i < sizeof light / sizeof light[0]; i++)
         if (lpv_volume_init(light[i], lat->n, LPV_LIGHT_CHANNELS) != 0) {
             ilpv_free(s);
@@ -27,11 +40,13 @@ int ilpv_init(ilpv *s, const lattice_desc *lat)
 
 void ilpv_free(ilpv *s)
 {
-    lpv_volume *all[] = {&s->injected, &s->origin, &s->near, &s->shell, &s->front[0],
-                         &s->front[1], &s->sum,    &s->early, &s->faded, &s->result};
+    lpv_volume *all[] = {&s->injected, &s->origin, &s->near, &s->shell,
+                         &s->early,    &s->faded,  &s->result};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         lpv_volume_free(all[i]);
     lpv_splat_free(&s->splat);
+    if (s->backend.destroy && s->backend.state)
+        s->backend.destroy(s->backend.state);
     memset(s, 0, sizeof *s);
 }
 
@@ -122,8 +137,11 @@ static double total_energy(const lpv_volume *v)
     return e[0] + e[1] + e[2];
 }
 
-double ilpv_fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
-                 lpv_volume *faded)
+/* At a restart under rule r: faded = r.keep (shown - early), the far part of the picture
+ * shown last in this frame's power, or cleared when nothing is kept (a stale history may
+ * hold anything). Returns <faded|1>, all colours. */
+static double fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
+                   lpv_volume *faded)
 {
     if (!(r.keep > 0.0f)) {
         lpv_volume_clear(faded);
@@ -138,8 +156,10 @@ double ilpv_fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
     return energy;
 }
 
-void ilpv_compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_volume *sum,
-                  lpv_volume *early, const lpv_volume *faded, lpv_volume *result)
+/* After the frame's steps and ilpv_history_advance(): at a restart early = sum; then the
+ * history settles and result = sum + w faded (ilpv_faded_weight()). */
+static void compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_volume *sum,
+                    lpv_volume *early, const lpv_volume *faded, lpv_volume *result)
 {
     fpmode mode = fpmode_enter();
     if (r.restart) {
@@ -155,40 +175,118 @@ void ilpv_compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_vol
     fpmode_leave(mode);
 }
 
-int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc)
+/* A new chain from this frame's splat. */
+static int start_chain(ilpv *s, const ilpv_frame_desc *d)
 {
-    const lpv_propagate_desc *p = &desc->propagate;
-    uint64_t key = ilpv_injection_key(&s->injected, &s->origin, p->absorption, p->scattering);
-    ilpv_rule rule = ilpv_history_rule(&s->history, desc->lambda_incr, key, desc->emitted_energy);
+    lpv_splat_desc sd = {&s->injected, &s->origin, s->blockers, d->absorption, s->pool};
+    int rc = lpv_splat_run(&s->splat, &sd, &s->near, &s->shell);
+    s->backend.start(s->backend.state, &s->near, &s->shell);
+    return rc;
+}
+
+int ilpv_frame(ilpv *s, const ilpv_frame_desc *d)
+{
+    ilpv_backend *b = &s->backend;
+    if (d->classic) {
+        int rc = start_chain(s, d);
+        b->steps(b->state, d->steps, 0u, d->absorption, d->scattering);
+        fpmode mode = fpmode_enter();
+        lpv_volume_copy(&s->result, b->sum(b->state));
+        fpmode_leave(mode);
+        s->history = (ilpv_history){0};
+        return rc;
+    }
+    uint64_t key = ilpv_injection_key(&s->injected, &s->origin, d->absorption, d->scattering);
+    ilpv_rule rule = ilpv_history_rule(&s->history, d->lambda_incr, key, d->emitted_energy);
     double faded_energy = s->history.faded_energy;
     int rc = 0;
     if (rule.restart) {
-        faded_energy = ilpv_fade(rule, &s->result, &s->early, &s->faded);
-        lpv_splat_desc sd = {&s->injected, &s->origin, p->blockers, p->absorption, p->pool};
-        rc = lpv_splat_run(&s->splat, &sd, &s->near, &s->shell);
-        fpmode mode = fpmode_enter();
-        lpv_volume_copy(&s->front[0], &s->shell);
-        lpv_volume_copy(&s->sum, &s->near);
-        lpv_volume_add(&s->sum, &s->shell);
-        fpmode_leave(mode);
-        s->current = 0;
+        faded_energy = fade(rule, &s->result, &s->early, &s->faded);
+        rc = start_chain(s, d);
     }
-    lpv_propagate_desc pd = *p;
-    pd.accum = &s->sum;
-    unsigned first = rule.restart ? 0u : s->history.chain_steps;
-    for (int step = 0; step < desc->steps; step++) {
-        pd.step = first + (unsigned)step;
-        lpv_propagate_step(&pd, &s->front[s->current], &s->front[1 - s->current]);
-        s->current = 1 - s->current;
-    }
-    ilpv_history_advance(&s->history, rule, desc->steps, key, desc->emitted_energy,
-                         faded_energy);
-    ilpv_compose(&s->history, rule, desc->lambda_incr, &s->sum, &s->early, &s->faded,
-                 &s->result);
+    b->steps(b->state, d->steps, rule.restart ? 0u : s->history.chain_steps, d->absorption,
+             d->scattering);
+    ilpv_history_advance(&s->history, rule, d->steps, key, d->emitted_energy, faded_energy);
+    compose(&s->history, rule, d->lambda_incr, b->sum(b->state), &s->early, &s->faded,
+            &s->result);
     return rc;
 }
 
 const lpv_volume *ilpv_result(const ilpv *s)
 {
     return &s->result;
+}
+
+const lpv_volume *ilpv_sum(ilpv *s)
+{
+    return s->backend.sum(s->backend.state);
+}
+
+/* ---- the CPU backend ---------------------------------------------------------------- */
+
+struct ilpv_cpu {
+    lpv_volume front[2];     /* the chain's oldest light, ping-pong */
+    lpv_volume sum;          /* near + every age of the chain so far */
+    int current;             /* index of the front volume */
+    const lpv_blockers *blockers;
+    workpool *pool;
+};
+
+static void cpu_destroy(void *state)
+{
+    ilpv_cpu *c = state;
+    lpv_volume_free(&c->front[0]);
+    lpv_volume_free(&c->front[1]);
+    lpv_volume_free(&c->sum);
+    free(c);
+}
+
+static void cpu_start(void *state, const lpv_volume *near, const lpv_volume *shell)
+{
+    ilpv_cpu *c = state;
+    fpmode mode = fpmode_enter();
+    lpv_volume_copy(&c->front[0], shell);
+    lpv_volume_copy(&c->sum, near);
+    lpv_volume_add(&c->sum, shell);
+    fpmode_leave(mode);
+    c->current = 0;
+}
+
+static void cpu_steps(void *state, int steps, unsigned first, float absorption, float scattering)
+{
+    ilpv_cpu *c = state;
+    lpv_propagate_desc pd = {.blockers = c->blockers, .accum = &c->sum, .absorption = absorption,
+                             .scattering = scattering, .pool = c->pool};
+    for (int step = 0; step < steps; step++) {
+        pd.step = first + (unsigned)step;
+        lpv_propagate_step(&pd, &c->front[c->current], &c->front[1 - c->current]);
+        c->current = 1 - c->current;
+    }
+}
+
+static const lpv_volume *cpu_sum(void *state)
+{
+    return &((ilpv_cpu *)state)->sum;
+}
+
+ilpv_cpu *ilpv_cpu_create(const lattice_desc *lat, const lpv_blockers *blockers, workpool *pool)
+{
+    ilpv_cpu *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->blockers = blockers;
+    c->pool = pool;
+    if (lpv_volume_init(&c->front[0], lat->n, LPV_LIGHT_CHANNELS) != 0 ||
+        lpv_volume_init(&c->front[1], lat->n, LPV_LIGHT_CHANNELS) != 0 ||
+        lpv_volume_init(&c->sum, lat->n, LPV_LIGHT_CHANNELS) != 0) {
+        cpu_destroy(c);
+        return NULL;
+    }
+    return c;
+}
+
+ilpv_backend ilpv_cpu_backend(ilpv_cpu *c)
+{
+    return (ilpv_backend){.state = c, .start = cpu_start, .steps = cpu_steps, .sum = cpu_sum,
+                          .destroy = cpu_destroy};
 }

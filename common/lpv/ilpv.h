@@ -31,16 +31,26 @@
  * energy ratio misjudges its level (one of two lights changed), so nothing of it stays for
  * good. No history (faded = 0) on the first frame, after
  * ilpv_reset(), with lambda_incr = 0, and when E_prev is 0 or E_now is negative or not
- * finite. ilpv_history_rule() and ilpv_faded_weight() are that rule, once, for this core
- * and the GL path (node/gi_ilpv.c). lambda_incr's range [0,1) is the caller's
- * (frame_params_sanitize()). */
+ * finite. lambda_incr's range [0,1) is the caller's (frame_params_sanitize()).
+ *
+ * Classic mode (Kaplanyan & Dachsbacher 2010, the baseline the incremental scheme is
+ * measured against) starts a new chain from this frame's splat every frame and shows its
+ * sum after `steps` steps, no history: near + shell + T shell + ... + T^steps shell.
+ *
+ * One driver for both modes and every backend: the sequence of a frame (the rule, the
+ * fade, the splat, the chain's steps, the composition) is ilpv_frame(), once. A backend
+ * (ilpv_backend) holds the chain's front and sum where its steps run and does them: the CPU
+ * one here (ilpv_cpu_backend(), lpv_propagate.h on a workpool), the GL one in
+ * node/gi/ilpv/. The injection, splat, history and composition stay on the host, so every
+ * backend shows a result composed by the same code. */
 #ifndef CAVELIGHT_ILPV_H
 #define CAVELIGHT_ILPV_H
 
 #include <stdint.h>
 
+#include "base/workpool.h"
 #include "lpv/lattice.h"
-#include "lpv/lpv_propagate.h"
+#include "lpv/lpv_geometry.h"
 #include "lpv/lpv_splat.h"
 #include "lpv/lpv_volume.h"
 
@@ -62,28 +72,53 @@ typedef struct ilpv_rule {
     float keep;   /* at a restart, faded = keep x the last result (0: nothing kept) */
 } ilpv_rule;
 
+/* Where a chain is propagated. Every call gets the backend's own state. */
+typedef struct ilpv_backend {
+    void *state;
+    /* A new chain: front = shell, sum = near + shell. */
+    void (*start)(void *state, const lpv_volume *near, const lpv_volume *shell);
+    /* steps steps of the chain (lpv_propagate_step(), step indices first, first + 1, ...):
+     * front <- T front, sum += front. absorption, scattering: per step. */
+    void (*steps)(void *state, int steps, unsigned first, float absorption, float scattering);
+    /* The chain's sum on the host (the GL backend reads it back). */
+    const lpv_volume *(*sum)(void *state);
+    void (*destroy)(void *state); /* may be NULL: the state is the caller's */
+} ilpv_backend;
+
 typedef struct ilpv {
     lattice_desc lattice;
+    const lpv_blockers *blockers; /* the splat's (the backend has them too) */
+    workpool *pool;
     lpv_volume injected, origin; /* this frame's VPLs (lpv_inject.h) */
     lpv_volume near, shell;      /* lpv_splat.h */
-    lpv_volume front[2];         /* the chain's oldest light, ping-pong */
-    lpv_volume sum;              /* near + every age of the chain so far */
     lpv_volume early;            /* the sum after the chain's first frame */
     lpv_volume faded;            /* the light shown when the chain started */
-    lpv_volume result;           /* sum + w faded */
+    lpv_volume result;           /* sum + w faded (classic: the sum) */
     lpv_splat splat;
-    int current;                 /* index of the front volume */
     ilpv_history history;
+    ilpv_backend backend;
 } ilpv;
 
 typedef struct ilpv_frame_desc {
     int steps;                 /* propagation steps this frame, >= 0 */
     float lambda_incr;         /* [0,1): share of the earlier light kept per frame */
     double emitted_energy;     /* E of this frame's lights, from their parameters */
-    lpv_propagate_desc propagate; /* blockers, absorption, scattering, pool */
+    int classic;               /* 1: classic LPV, this frame's chain alone */
+    float absorption, scattering; /* per step (lpv_transfer_step_probability()) */
 } ilpv_frame_desc;
 
-int ilpv_init(ilpv *s, const lattice_desc *lat);
+typedef struct ilpv_desc {
+    const lattice_desc *lattice;
+    const lpv_blockers *blockers; /* what blocks light (lpv_geometry.h); NULL: nothing. The
+                                     backend must hold the same ones */
+    workpool *pool;               /* the splat's threads; NULL: the calling thread */
+    const ilpv_backend *backend;  /* where the chain runs; NULL: a CPU backend of its own
+                                     with these blockers and pool */
+} ilpv_desc;
+
+/* Returns 0, or -1 (nothing to free) for a bad lattice or no memory; the backend is then
+ * destroyed. */
+int ilpv_init(ilpv *s, const ilpv_desc *desc);
 void ilpv_free(ilpv *s);
 void ilpv_reset(ilpv *s);                 /* forget the history */
 lpv_volume *ilpv_injection(ilpv *s);      /* cleared by ilpv_begin_frame() */
@@ -92,6 +127,15 @@ void ilpv_begin_frame(ilpv *s);
 /* Returns 0, or -1 when the splat ran out of memory (the frame then shows its history). */
 int ilpv_frame(ilpv *s, const ilpv_frame_desc *desc);
 const lpv_volume *ilpv_result(const ilpv *s);
+/* The chain's sum (its backend's). */
+const lpv_volume *ilpv_sum(ilpv *s);
+
+/* The CPU backend: the chain's front and sum in host memory, propagated by
+ * lpv_propagate_step() with these blockers (NULL: none) on this pool (NULL: the calling
+ * thread). NULL when out of memory. */
+typedef struct ilpv_cpu ilpv_cpu;
+ilpv_cpu *ilpv_cpu_create(const lattice_desc *lat, const lpv_blockers *blockers, workpool *pool);
+ilpv_backend ilpv_cpu_backend(ilpv_cpu *c);
 
 /* The injection's key: what a chain depends on (the injected light and its origins, the
  * absorption and scattering per step). */
@@ -112,16 +156,7 @@ float ilpv_faded_weight(const ilpv_history *h, float lambda_incr, double sum_ene
  * lambda_incr 0 only the faded light: the next frame computes the same chain again). */
 void ilpv_history_settle(ilpv_history *h, ilpv_rule r, float lambda_incr, double sum_energy,
                          float w);
-/* At a restart under rule r: faded = r.keep (shown - early), the far part of the picture
- * shown last in this frame's power, or cleared when nothing is kept (a stale history may
- * hold anything). Returns <faded|1>, all colours. For this core and the GL path alike. */
-double ilpv_fade(ilpv_rule r, const lpv_volume *shown, const lpv_volume *early,
-                 lpv_volume *faded);
-/* After the frame's steps and ilpv_history_advance(): at a restart early = sum; then the
- * history settles and result = sum + w faded (ilpv_faded_weight()). */
-void ilpv_compose(ilpv_history *h, ilpv_rule r, float lambda_incr, const lpv_volume *sum,
-                  lpv_volume *early, const lpv_volume *faded, lpv_volume *result);
-/* The pending share of the last frame (lpv_converge_end()). */
+/* The pending share of the last frame (lpv_converge_end()); 0 in classic mode. */
 double ilpv_pending(const ilpv *s);
 
 #endif

@@ -194,7 +194,7 @@ int scene_pick_camera(scene *s, const char *which, char *err, size_t errlen)
 int scene_finish(scene *s, char *err, size_t errlen)
 {
     if (s->triangle_count == 0) {
-        snprintf(err, errlen, "scene has no triangles (add a mesh with mode TRIANGLES)");
+        snprintf(err, errlen, "scene has no triangles (add a mesh of triangles, strips or fans)");
         return -1;
     }
     for (int a = 0; a < 3; a++) {
@@ -245,21 +245,6 @@ int scene_has_emitter(const scene *s)
     return 0;
 }
 
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix);
-    if (n < m)
-        return 0;
-    for (size_t i = 0; i < m; i++) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z')
-            c = (char)(c - 'A' + 'a');
-        if (c != suffix[i])
-            return 0;
-    }
-    return 1;
-}
-
 void scene_light_aim(scene_light *l, const float target[3])
 {
     float d[3], len = 0;
@@ -292,60 +277,4 @@ float scene_min_light_distance(const scene *s)
 float scene_far_plane(const scene *s)
 {
     return 4.0f * scene_diagonal(s) + 10.0f;
-}
-
-static const struct {
-    const char *name;
-    int (*build)(scene *s, char *err, size_t errlen);
-} builtin[] = {
-    {"default", scene_default_build},
-    {"corridor", scene_corridor_build},
-    {"doorway", scene_doorway_build},
-    {"courtyard", scene_courtyard_build},
-    {"arcades", scene_arcades_build},
-    {"leak-lid", scene_leak_lid_build},
-    {"leak-panel", scene_leak_panel_build},
-    {"leak-wall", scene_leak_wall_build},
-};
-
-const char *scene_builtin_name(int i)
-{
-    return i >= 0 && i < (int)(sizeof builtin / sizeof builtin[0]) ? builtin[i].name : NULL;
-}
-
-int scene_load(const char *path, scene *out, char *err, size_t errlen)
-{
-    memset(out, 0, sizeof *out);
-    int rc, found = -1;
-    for (int i = 0; scene_builtin_name(i); i++)
-        if (strcmp(path, scene_builtin_name(i)) == 0)
-            found = i;
-    if (found >= 0) {
-        rc = builtin[found].build(out, err, errlen);
-    } else if (ends_with(path, ".gltf") || ends_with(path, ".glb")) {
-        rc = gltf_import(path, out, err, errlen);
-    } else {
-        char names[200] = "";
-        for (int i = 0; scene_builtin_name(i); i++)
-            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "",
-                     scene_builtin_name(i));
-        snprintf(err, errlen, "scene %s: unknown format (give a .gltf or .glb file, or a "
-                 "built-in scene: %s)", path, names);
-        return -1;
-    }
-    if (rc == 0) {
-        char why[200];
-        rc = scene_finish(out, why, sizeof why);
-        if (rc != 0)
-            snprintf(err, errlen, "scene %s: %s", path, why);
-    }
-    if (rc == 0 && out->light_count == 0 && !scene_has_emitter(out)) {
-        scene_light l;
-        scene_default_light(out, &l);
-        scene_add_light(out, &l);
-        out->light_added = 1;
-    }
-    if (rc != 0)
-        scene_free(out);
-    return rc;
 }

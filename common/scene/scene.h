@@ -6,11 +6,12 @@
  * glTF) and emitted radiance (emissive surfaces are surface lights). Lights are spots,
  * point lights or directional lights (glTF's KHR_lights_punctual); cameras are the file's.
  *
- * scene_load() picks the loader: a built-in scene's name (scene_builtin_name(): the chart's
- * rooms in scene_default.c, scene_corridor.c, scene_doorway.c, scene_courtyard.c,
- * scene_arcades.c and the leak tests' boxes in scene_leaks.c) builds it in code, *.gltf / *.glb go through tinygltf
- * (gltf_import.cpp). The scene owns its arrays; scene_free() releases them. The scene_add_*
- * builders are what the loaders use. */
+ * scene_load() (scene_load.c; scene_load.h places the scene too) picks the loader: a
+ * built-in scene's name (scene_builtin_name(): the chart's rooms in scene_default.c,
+ * scene_corridor.c, scene_doorway.c, scene_courtyard.c, scene_arcades.c and the leak tests'
+ * boxes in scene_leaks.c) builds it in code, *.gltf / *.glb go through tinygltf (gltf_import.cpp).
+ * The scene owns its arrays; scene_free() releases them. The scene_add_* builders are what
+ * the loaders use. */
 #ifndef CAVELIGHT_SCENE_H
 #define CAVELIGHT_SCENE_H
 
@@ -86,11 +87,14 @@ typedef struct scene {
     size_t camera_count;    /* the file's cameras, in the order the scene graph lists them */
     scene_camera *cameras;
     float bounds_min[3], bounds_max[3]; /* valid after scene_finish() */
+    char warning[512];      /* what the file asks for and the scene draws differently
+                               (materials, ignored extensions), one line; "" if nothing */
 } scene;
 
-/* A built-in scene's name or a .gltf/.glb path. Returns 0, or -1 with one line in err (and
- * *out empty). A scene with neither lights nor emissive surfaces gets scene_default_light()
- * and light_added = 1 (the caller says so to the user: scene_light_added_note()). */
+/* A built-in scene's name or a .gltf/.glb path, as modelled: scene_load_with() (scene_load.h)
+ * with no transform. Returns 0, or -1 with one line in err (and *out empty). A scene with
+ * neither lights nor emissive surfaces gets scene_default_light() and light_added = 1 (the
+ * caller says so to the user: scene_light_added_note()). */
 int scene_load(const char *path, scene *out, char *err, size_t errlen);
 /* The i-th built-in scene's name ("default", "corridor", ...), NULL past the last. */
 const char *scene_builtin_name(int i);
@@ -135,18 +139,24 @@ float scene_far_plane(const scene *s);
  * height) above the floor of the bounds) at the first free point (scene_point_is_free())
  * of 10%, 25%, 40% along the longest horizontal extent (middle, then 30% and 70% across),
  * looking along that axis, if most rays from there meet the front of a surface. Else (an
- * object seen from outside) from in front of the bounds' centre (+0.3 x the largest extent
- * up, +1.5 x towards +z), looking at the centre. Needs scene_finish(). */
+ * object seen from outside) at the bounds' centre from +0.3 x the largest extent up and
+ * +1.5 x towards +z; a flat object (its thinnest extent under a tenth of the largest) from
+ * 1.5 x along its thin axis on the side its surfaces face, 0.3 x askew. Needs
+ * scene_finish(). */
 void scene_default_view(const scene *s, float position[3], float target[3]);
 /* The camera to look through when nothing else says: the scene's own (a file's first, or
  * the one scene_pick_camera() chose), else a 60 degree perspective camera at
  * scene_default_view(). */
 void scene_default_camera(const scene *s, scene_camera *out);
-/* The light scene_load() gives a scene without lights or emitters: a white point light
- * inside the bounds, three quarters of the way up over the middle (a ceiling lamp),
- * moved to the first point of a grid over the bounds that is free (scene_point_is_free())
- * and D/16 from every surface the probes meet (D the bounds' diagonal) when that spot is
- * not; its intensity gives 2 W/m^2 on the floor of the bounds straight below. */
+/* The light scene_load() gives a scene without lights or emitters: a white point light.
+ * When the default camera (scene_default_camera()) stands in a room (free, and most probe
+ * rays meet the front of a surface), inside the bounds three quarters of the way up over
+ * the middle (a ceiling lamp), moved to the first point of a grid over the bounds that is
+ * free and D/16 from every surface the probes meet (D the bounds' diagonal) when that spot
+ * is not; its intensity gives 2 W/m^2 on the floor of the bounds straight below. Else (an
+ * object seen from outside) above the camera by a quarter of its distance to the bounds'
+ * middle and at least D/16 outside the bounds (never inside the model or in the plane of a
+ * flat one), giving 2 W/m^2 at the middle. */
 void scene_default_light(const scene *s, scene_light *out);
 /* 1 when p is outside every closed solid as far as 14 rays from p can tell: no ray's first
  * hit is the back of a surface (the side its vertex normals turn away from). *fronts (if
@@ -155,7 +165,8 @@ void scene_default_light(const scene *s, scene_light *out);
 int scene_point_is_free(const scene *s, const float p[3], int *fronts);
 /* The one line that tells a user about the added light, e.g. "scene room.gltf has no
  * lights: added a point light at (0, 2.25, 0), 10.1 W/sr, inside its bounds (add a
- * KHR_lights_punctual light to choose your own)". */
+ * KHR_lights_punctual light to choose your own)" ("outside its bounds on its camera's
+ * side" for an object). */
 void scene_light_added_note(const scene *s, const char *path, char *out, size_t n);
 
 /* Adds a copy of c to cameras. Returns its index or -1 when out of memory. */
@@ -185,7 +196,8 @@ int scene_arcades_build(scene *s, char *err, size_t errlen);
 int scene_leak_lid_build(scene *s, char *err, size_t errlen);
 int scene_leak_panel_build(scene *s, char *err, size_t errlen);
 int scene_leak_wall_build(scene *s, char *err, size_t errlen);
-/* glTF 2.0 via tinygltf (gltf_import.cpp). */
-int gltf_import(const char *path, scene *out, char *err, size_t errlen);
+/* glTF 2.0 via tinygltf (gltf_import.cpp). Buffers and images only from the file's folder
+ * or below (and data: URIs) unless allow_outside_paths. Sets out->warning. */
+int gltf_import(const char *path, int allow_outside_paths, scene *out, char *err, size_t errlen);
 
 #endif

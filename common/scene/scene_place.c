@@ -1,11 +1,13 @@
 /* scene_place: where a scene without a camera is seen from and where a scene without
- * lights gets its light (scene.h). Both go inside the bounds, away from the inside of solid
- * objects: a view or a light outside a closed room sees or lights only its outside. */
+ * lights gets its light (scene.h). A room is seen and lit from inside, away from the inside
+ * of solid objects (a view or a light outside a closed room sees or lights only its
+ * outside); an object from outside, the light on its camera's side, clear of its bounds. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "scene/scene.h"
+#include "base/vec3.h"
 
 /* 6 axes and 8 diagonals: enough to tell a room from open space and to find a surface's
  * back around a point; unit length. */
@@ -90,15 +92,17 @@ static void at(const scene *s, const float f[3], float p[3])
         p[a] = s->bounds_min[a] + f[a] * (s->bounds_max[a] - s->bounds_min[a]);
 }
 
-void scene_default_light(const scene *s, scene_light *out)
+/* A room seen from inside: a lamp inside the bounds, three quarters of the way up over the
+ * middle, or the first point of a grid over the bounds that is free and clear of every
+ * surface by D/16 (40 cm in the default room; a lamp next to a surface lights a hot spot
+ * and little else). */
+static void ceiling_lamp(const scene *s, float p[3])
 {
     static const float height[] = {0.75f, 0.5f, 0.9f, 0.25f};
     static const float across[] = {0.5f, 0.3f, 0.7f, 0.15f, 0.85f};
     enum { NH = sizeof height / sizeof height[0], NA = sizeof across / sizeof across[0] };
-    /* A lamp clear of every surface by D/16 (40 cm in the default room): one next to a
-     * surface lights a hot spot and little else. */
     double clearance = scene_diagonal(s) / 16.0, nearest;
-    float p[3], first[3];
+    float first[3];
     int found = 0;
     for (int h = 0; h < NH && !found; h++)
         for (int i = 0; i < NA * NA && !found; i++) {
@@ -108,14 +112,75 @@ void scene_default_light(const scene *s, scene_light *out)
             found = probe(s, p, NULL, &nearest) && nearest >= clearance;
         }
     if (!found) /* no free point: a closed solid everywhere, or normals that all face out */
-        memcpy(p, first, sizeof p);
+        memcpy(p, first, 3 * sizeof(float));
+}
+
+/* How far p is outside the bounds (0 inside or on them). */
+static float outside_bounds(const scene *s, const float p[3])
+{
+    float d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        float d = fmaxf(s->bounds_min[a] - p[a], p[a] - s->bounds_max[a]);
+        d2 += d > 0 ? d * d : 0;
+    }
+    return sqrtf(d2);
+}
+
+/* An object seen from outside: above the camera by a quarter of its distance to the middle
+ * of the bounds, then moved away from the middle until it is D/16 outside the bounds, so
+ * never inside the model nor in the plane of a flat one. */
+static void beside_camera(const scene *s, const scene_camera *cam, const float centre[3], float p[3])
+{
+    float d[3], clearance = scene_diagonal(s) / 16.0f;
+    vec3_sub(cam->position, centre, d);
+    memcpy(p, cam->position, 3 * sizeof(float));
+    p[1] += 0.25f * vec3_length(d);
+    vec3_sub(p, centre, d);
+    if (!(vec3_normalize(d) > 0))
+        d[0] = 0, d[1] = 1, d[2] = 0;
+    for (int i = 0; i < 64 && outside_bounds(s, p) < clearance; i++)
+        for (int a = 0; a < 3; a++)
+            p[a] += d[a] * clearance;
+}
+
+void scene_default_light(const scene *s, scene_light *out)
+{
+    scene_camera cam;
+    scene_default_camera(s, &cam);
+    float centre[3], p[3];
+    for (int a = 0; a < 3; a++)
+        centre[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
+    int fronts, room = scene_point_is_free(s, cam.position, &fronts) && 2 * fronts > PROBES;
+    if (room)
+        ceiling_lamp(s, p);
+    else
+        beside_camera(s, &cam, centre, p);
     memset(out, 0, sizeof *out);
     out->type = SCENE_LIGHT_POINT;
     memcpy(out->position, p, sizeof p);
     out->direction[1] = -1.0f;
     out->color[0] = out->color[1] = out->color[2] = 1.0f;
-    float below = fmaxf(p[1] - s->bounds_min[1], scene_min_light_distance(s));
-    out->intensity = 2.0f * below * below;
+    /* 2 W/m^2 on the floor below a room's lamp, or at the middle of an object. */
+    float d[3];
+    vec3_sub(p, centre, d);
+    float reach = room ? p[1] - s->bounds_min[1] : vec3_length(d);
+    reach = fmaxf(reach, scene_min_light_distance(s));
+    out->intensity = 2.0f * reach * reach;
+}
+
+/* The triangles' area-weighted normals summed along axis a: which side a flat model faces. */
+static double facing(const scene *s, int a)
+{
+    double sum = 0;
+    for (size_t t = 0; t < s->triangle_count; t++) {
+        const float *p = s->positions + 9 * t, *n = s->normals + 9 * t;
+        float e1[3], e2[3], c[3];
+        vec3_sub(p + 3, p, e1);
+        vec3_sub(p + 6, p, e2);
+        vec3_cross(e1, e2, c);
+        sum += (double)vec3_length(c) * (n[a] + n[3 + a] + n[6 + a]);
+    }
+    return sum;
 }
 
 void scene_default_view(const scene *s, float position[3], float target[3])
@@ -149,13 +214,21 @@ void scene_default_view(const scene *s, float position[3], float target[3])
         return;
     }
     float size = 0;
+    int thin = 0;
     for (int a = 0; a < 3; a++) {
         target[a] = 0.5f * (s->bounds_min[a] + s->bounds_max[a]);
         size = fmaxf(size, extent[a]);
+        thin = extent[a] < extent[thin] ? a : thin;
     }
-    position[0] = target[0];
-    position[1] = target[1] + 0.3f * size;
-    position[2] = target[2] + 1.5f * size;
+    memcpy(position, target, 3 * sizeof(float));
+    if (extent[thin] > 0.1f * size) {
+        position[1] += 0.3f * size;
+        position[2] += 1.5f * size;
+        return;
+    }
+    /* A flat model (a plan, a panel): from the side its surfaces face, a little askew. */
+    position[thin] += (facing(s, thin) >= 0 ? 1.5f : -1.5f) * size;
+    position[thin == 1 ? 2 : 1] += 0.3f * size;
 }
 
 void scene_default_camera(const scene *s, scene_camera *out)
@@ -172,6 +245,8 @@ void scene_light_added_note(const scene *s, const char *path, char *out, size_t 
 {
     const scene_light *l = &s->lights[0];
     snprintf(out, n, "scene %s has no lights: added a point light at (%.3g, %.3g, %.3g), "
-             "%.3g W/sr, inside its bounds (add a KHR_lights_punctual light to choose your own)",
-             path, l->position[0], l->position[1], l->position[2], l->intensity);
+             "%.3g W/sr, %s (add a KHR_lights_punctual light to choose your own)",
+             path, l->position[0], l->position[1], l->position[2], l->intensity,
+             outside_bounds(s, l->position) > 0 ? "outside its bounds on its camera's side"
+                                                : "inside its bounds");
 }

@@ -5,8 +5,10 @@
 #include "base/cli.h"
 
 /* One option of a benchmark: a whole number in [lo, hi] (value), a text (text), or one
- * of choices (its index into value). The variable's value before parsing is the default
+ * of choices (its index into value); or every GI and display setting of the node
+ * (gi_settings.h) into a frame (frame). The variable's value before parsing is the default
  * --help shows. */
+struct frame_params;
 typedef struct bench_option {
     const char *name, *arg, *help;
     int *value;
@@ -14,6 +16,7 @@ typedef struct bench_option {
     const char **text;
     const char *const *choices;
     int choice_count;
+    struct frame_params *frame;
 } bench_option;
 
 /* Parses a benchmark's options (argv[0] is its name). Returns 0, 1 when --help was
@@ -26,6 +29,7 @@ int bench_parse(const char *bench, const char *summary, const bench_option *opts
 #define BENCH_CHOICE(name_, arg_, help_, ptr, names)                                           \
     {.name = name_, .arg = arg_, .help = help_, .value = ptr, .choices = names,                 \
      .choice_count = (int)(sizeof names / sizeof *names)}
+#define BENCH_SETTINGS(frame_) {.name = "", .frame = frame_}
 #define BENCH_PARSE(bench, summary, opts, argc, argv)                                          \
     bench_parse(bench, summary, opts, (int)(sizeof opts / sizeof *opts), argc, argv)
 

@@ -35,7 +35,7 @@ enum { GOAL_LATTICE = 32, GOAL_MAX_STEPS = 4 };
 static const int goal_lattices[3] = {16, 32, 64};
 
 typedef struct sweep_row {
-    renderer_lpv_backend backend;
+    ilpv_backend_choice backend;
     int classic, lattice, n[3], steps, frames;
     float lambda;
     double propagate_ms, frame_pass_ms, eye_ms;
@@ -87,7 +87,7 @@ static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_ref
         }
         renderer_timings t;
         renderer_get_timings(r, &t);
-        prop[f - warm] = t.propagate_ms;
+        prop[f - warm] = gi_stats_value(&t.gi, "propagate", NULL);
         pass[f - warm] = t.frame_host_ms;
         eye[f - warm] = t.eye_host_ms;
     }
@@ -139,7 +139,7 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
         const sweep_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d," FMT_MS ",%.4f,%.4f,%.4f,"
                    "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d\n",
-                s->opt.scene, r->backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                s->opt.scene, r->backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                 r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
                 r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
                 r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
@@ -149,7 +149,7 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
     }
 }
 
-static const sweep_row *find_row(const sweep_row *rows, int n, renderer_lpv_backend b,
+static const sweep_row *find_row(const sweep_row *rows, int n, ilpv_backend_choice b,
                                  int lattice, int classic, int steps, float lambda)
 {
     for (int i = 0; i < n; i++)
@@ -171,14 +171,14 @@ typedef struct sweep_run {
     uint8_t *display, *self;
 } sweep_run;
 
-static int sweep_renderer(sweep_run *run, renderer_lpv_backend backend, int lattice, int mode,
+static int sweep_renderer(sweep_run *run, ilpv_backend_choice backend, int lattice, int mode,
                           const double *steps, int ns, const double *lambdas, int nlam)
 {
     acc_renderer_desc d = {.backend = backend, .lattice = lattice, .classic = mode};
-    renderer *r = acc_renderer_create(run->s, &d);
+    renderer *r = acc_renderer_create(run->s, &d, run->fp);
     if (!r)
         return 1;
-    const lattice_desc *lat = renderer_get_lattice(r);
+    const lattice_desc *lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)));
     size_t px = (size_t)run->s->opt.width * run->s->opt.height;
     int rc = 0;
     if (!mode) {
@@ -195,7 +195,7 @@ static int sweep_renderer(sweep_run *run, renderer_lpv_backend backend, int latt
             rc = run_config(run->s, r, run->fp, run->ref, run->timing, row, run->display);
             row->self_mae = mode ? NAN : acc_display_mae(run->display, run->self, px);
             fprintf(stderr, "  %s %s lattice %d steps %d lambda %.2f: %.2f ms, indirect "
-                    "relRMSE %.3f\n", backend == RENDERER_LPV_GL ? "gl" : "cpu",
+                    "relRMSE %.3f\n", backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                     mode ? "classic" : "ilpv", lattice, row->steps, row->lambda,
                     row->propagate_ms, row->indirect.rmse_rel);
         }
@@ -219,7 +219,7 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
 {
     const sweep_row *g[3];
     for (int i = 0; i < 3; i++)
-        g[i] = find_row(rows, n, RENDERER_LPV_CPU, goal_lattices[i], 0, steps, lambda);
+        g[i] = find_row(rows, n, ILPV_BACKEND_CPU, goal_lattices[i], 0, steps, lambda);
     const sweep_row *at = g[1];
     int never_worse = 1;
     for (int i = 1; i < 3; i++)
@@ -240,46 +240,72 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
     printf(",\"finer_never_worse\":%s}", never_worse ? "true" : "false");
 }
 
+/* One list option's text into out: 1..MAX_LIST numbers, each in [lo, hi]; "fit" (lattices)
+ * is ACC_FITTED. Returns the count, or 0 after one line on stderr. */
+static int list_option(const char *name, const char *text, double lo, double hi, int fit, double *out)
+{
+    int n = parse_list(text, out, MAX_LIST);
+    for (int i = 0; i < n; i++)
+        if (!(fit && out[i] == ACC_FITTED) && !(out[i] >= lo && out[i] <= hi))
+            n = -1;
+    if (n < 1)
+        fprintf(stderr, "cavelight-bench accuracy sweep: --%s %s: expected 1..%d comma-separated numbers "
+                "in %g..%g%s\n", name, text, MAX_LIST, lo, hi, fit ? " or fit" : "");
+    return n < 1 ? 0 : n;
+}
+
+/* The sweep's command line. */
+typedef struct sweep_options {
+    acc_options o;
+    double lattices[MAX_LIST], steps[MAX_LIST], lambdas[MAX_LIST], backends[2];
+    int nl, ns, nlam, nb, gl_max_lattice, timing, classic, goal;
+} sweep_options;
+
+/* 0, 1 after --help (exit 0), -1 after one line on stderr (exit 2). */
+static int sweep_parse(int argc, char **argv, sweep_options *w)
+{
+    *w = (sweep_options){.o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
+                               .ref_samples = 64},
+                         .gl_max_lattice = 32, .timing = 3, .classic = 1, .goal = 1};
+    const char *lattice_text = "16,32,64,fit", *steps_text = "1,2,4,8,16,32", *lambda_text = "0,0.5,0.8,0.9";
+    int backend_choice = 2;
+    static const char *const backend_names[] = {"cpu", "gl", "cpu,gl"};
+    const bench_option opts[] = {
+        ACC_COMMON_OPTIONS(&w->o),
+        BENCH_TEXT("lattices", "N,N,..", "cells along the longest axis; fit: a 32^3 budget fitted "
+                   "to\nthe scene's shape", &lattice_text),
+        BENCH_TEXT("steps", "S,S,..", "propagation steps per frame", &steps_text),
+        BENCH_TEXT("lambdas", "L,L,..", "lambda_incr values, each in [0, 1)", &lambda_text),
+        BENCH_CHOICE("backends", "cpu|gl|cpu,gl", "the LPV backends to sweep", &backend_choice, backend_names),
+        BENCH_INT("gl-max-lattice", "N", "the GL backend only up to this lattice", &w->gl_max_lattice, 2, 1024),
+        BENCH_INT("timing-frames", "N", "frames timed after the steady state", &w->timing, 1, 32),
+        BENCH_INT("classic", "0|1", "also the classic accumulating LPV", &w->classic, 0, 1),
+        BENCH_INT("goal", "0|1", "also issue 10's goal setting at 16, 32 and 64 cells", &w->goal, 0, 1),
+    };
+    int rc = BENCH_PARSE("accuracy sweep", "every (backend, lattice, steps, lambda_incr) of the lists "
+                         "against the path-traced reference,\n  each run to its steady state "
+                         "(scripts/chart.sh runs it)", opts, argc, argv);
+    if (rc != 0)
+        return rc;
+    w->nl = list_option("lattices", lattice_text, 2, 512, 1, w->lattices);
+    w->ns = w->nl ? list_option("steps", steps_text, 0, 1024, 0, w->steps) : 0;
+    w->nlam = w->ns ? list_option("lambdas", lambda_text, 0, 0.999, 0, w->lambdas) : 0;
+    w->backends[0] = backend_choice == 1; /* cpu, gl or both (cpu first) */
+    w->backends[1] = 1;
+    w->nb = backend_choice == 2 ? 2 : 1;
+    return w->nlam ? 0 : -1;
+}
+
 static int accuracy_sweep(int argc, char **argv)
 {
-    acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
-                     .ref_samples = 64};
-    double lattices[MAX_LIST] = {16, 32, 64, ACC_FITTED}, steps[MAX_LIST] = {1, 2, 4, 8, 16, 32},
-           lambdas[MAX_LIST] = {0, 0.5, 0.8, 0.9}, backends[2] = {0, 1};
-    int nl = 4, ns = 6, nlam = 4, nb = 2, gl_max_lattice = 32, timing = 3, classic = 1, goal = 1;
-    for (int i = 1; i < argc; i++) {
-        int bad = 0;
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (acc_parse_common(&o, argc, argv, &i, &bad)) {
-        } else if (!v) {
-            bad = 1;
-        } else if (strcmp(a, "--lattices") == 0) {
-            bad = (nl = parse_list(v, lattices, MAX_LIST)) < 1, i++;
-        } else if (strcmp(a, "--steps") == 0) {
-            bad = (ns = parse_list(v, steps, MAX_LIST)) < 1, i++;
-        } else if (strcmp(a, "--lambdas") == 0) {
-            bad = (nlam = parse_list(v, lambdas, MAX_LIST)) < 1, i++;
-        } else if (strcmp(a, "--backends") == 0) {
-            nb = 0;
-            if (strstr(v, "cpu")) backends[nb++] = 0;
-            if (strstr(v, "gl")) backends[nb++] = 1;
-            bad = nb == 0, i++;
-        } else if (strcmp(a, "--gl-max-lattice") == 0) {
-            bad = (gl_max_lattice = atoi(v)) < 2, i++;
-        } else if (strcmp(a, "--timing-frames") == 0) {
-            bad = (timing = atoi(v)) < 1 || timing > 32, i++;
-        } else if (strcmp(a, "--classic") == 0) {
-            classic = atoi(v) != 0, i++;
-        } else if (strcmp(a, "--goal") == 0) {
-            goal = atoi(v) != 0, i++;
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "bench accuracy sweep: bad or unknown option %s\n", a);
-            return 2;
-        }
-    }
+    sweep_options w;
+    int parsed = sweep_parse(argc, argv, &w);
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
+    const acc_options o = w.o;
+    const double *lattices = w.lattices, *steps = w.steps, *lambdas = w.lambdas, *backends = w.backends;
+    int nl = w.nl, ns = w.ns, nlam = w.nlam, nb = w.nb, gl_max_lattice = w.gl_max_lattice;
+    int timing = w.timing, classic = w.classic, goal = w.goal;
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)
         return 1;
@@ -297,20 +323,20 @@ static int accuracy_sweep(int argc, char **argv)
                      .display = malloc(px * 3), .self = malloc(px * 3)};
     int rc = run.rows && run.display && run.self ? 0 : 1;
     for (int b = 0; b < nb && rc == 0; b++) {
-        renderer_lpv_backend backend = backends[b] ? RENDERER_LPV_GL : RENDERER_LPV_CPU;
+        ilpv_backend_choice backend = backends[b] ? ILPV_BACKEND_GL : ILPV_BACKEND_CPU;
         for (int l = 0; l < nl && rc == 0; l++) {
             int lattice = (int)lattices[l];
             int axis = lattice == ACC_FITTED ? 32 : lattice; /* about a 32^3 cost */
-            if (backend == RENDERER_LPV_GL && axis > gl_max_lattice)
+            if (backend == ILPV_BACKEND_GL && axis > gl_max_lattice)
                 continue;
             for (int mode = 0; mode <= classic && rc == 0; mode++)
                 rc = sweep_renderer(&run, backend, lattice, mode, steps, ns, lambdas, nlam);
         }
     }
     for (int i = 0; i < 3 && rc == 0 && goal; i++)
-        if (!find_row(run.rows, run.n, RENDERER_LPV_CPU, goal_lattices[i], 0, (int)goal_steps,
+        if (!find_row(run.rows, run.n, ILPV_BACKEND_CPU, goal_lattices[i], 0, (int)goal_steps,
                       (float)goal_lambda))
-            rc = sweep_renderer(&run, RENDERER_LPV_CPU, goal_lattices[i], 0, &goal_steps, 1,
+            rc = sweep_renderer(&run, ILPV_BACKEND_CPU, goal_lattices[i], 0, &goal_steps, 1,
                                 &goal_lambda, 1);
     if (rc == 0) {
         mark_pareto(run.rows, run.n);
@@ -328,8 +354,8 @@ static int accuracy_sweep(int argc, char **argv)
     if (rc == 0) {
         /* The paper's comparison: 8 steps with lambda 0.8 against 8 plain steps, 32 cells. */
         int lat = 32;
-        const sweep_row *inc = find_row(run.rows, run.n, RENDERER_LPV_CPU, lat, 0, 8, 0.8f);
-        const sweep_row *plain = find_row(run.rows, run.n, RENDERER_LPV_CPU, lat, 0, 8, 0.0f);
+        const sweep_row *inc = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.8f);
+        const sweep_row *plain = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.0f);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
                "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
                "\"reference_seconds\":%.4g,\"reference_cached\":%s,"

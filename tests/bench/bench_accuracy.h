@@ -9,6 +9,8 @@
 #include <stdio.h>
 
 #include "frame/frame_params.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/gi_ilpv.h"
 #include "glctx.h"
 #include "image/image_metrics.h"
 #include "renderer.h"
@@ -45,6 +47,16 @@ typedef struct acc_reference {
 
 /* Parses the options every accuracy subcommand takes; returns 1 if argv[*i] was one. */
 int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad);
+/* The same options as rows of a bench_option table (bench.h), for an experiment whose
+ * command line is a table: its --help then lists them. */
+#define ACC_COMMON_OPTIONS(o)                                                                  \
+    BENCH_TEXT("scene", "NAME|FILE", "a built-in scene or a glTF file", &(o)->scene),         \
+    BENCH_TEXT("out", "DIR", "folder for the CSVs and the cached reference", &(o)->out),      \
+    BENCH_INT("width", "W", "image width", &(o)->width, 8, 16384),                            \
+    BENCH_INT("height", "H", "image height", &(o)->height, 8, 16384),                         \
+    BENCH_INT("ref-samples", "N", "paths per pixel of each of the reference's two halves",    \
+              &(o)->ref_samples, 1, 1 << 20),                                                  \
+    BENCH_INT("threads", "T", "CPU LPV threads (0: all cores)", &(o)->threads, 0, 1024)
 int acc_setup_open(acc_setup *s, const acc_options *o);
 void acc_setup_close(acc_setup *s);
 
@@ -55,19 +67,21 @@ void acc_reference_free(acc_reference *r);
 enum { ACC_FITTED = 0, ACC_FITTED_CELLS = 32 * 32 * 32 };
 
 typedef struct acc_renderer_desc {
-    renderer_lpv_backend backend;
+    ilpv_backend_choice backend;
     int lattice;            /* cells along the longest axis; ACC_FITTED: a cube's worth of
                                cells (ACC_FITTED_CELLS) spent on the scene's shape */
     int classic;            /* sum every step into an accumulation lattice (KD10) */
     int skip_converged;     /* let the renderer skip work once converged */
-    frame_gi gi;            /* the method built first (0 = ILPV) */
-    int vpl_point;          /* vpl: VPLs as points, unbounded (renderer_desc.vpl_point) */
-    renderer_vpl_visibility vpl_visibility; /* vpl: renderer_desc's, with its ISM settings */
-    int ism_size, ism_points;
-    float vpl_cut;          /* vpl: influence cut (renderer_desc.vpl_cut) */
-    int vpl_interleave;     /* vpl: renderer_desc's */
+    const char *gi;         /* the method ("ilpv" when NULL) */
+    int vpl_point;          /* vpl: VPLs as points, unbounded (vpl-bound point) */
+    const char *vpl_visibility; /* vpl: "exact" when NULL, "ism", "ism-splat" */
+    int ism_size, ism_points;   /* 0: the defaults */
+    float vpl_cut;          /* vpl: influence cut; 0: the default */
+    int vpl_interleave;     /* vpl: K x K interleaving, 0: none */
 } acc_renderer_desc;
-renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d);
+/* A renderer for d; d's settings are written into fp (the frames it renders must carry
+ * them: the frames decide the GI method and its settings). NULL after one line. */
+renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d, frame_params *fp);
 
 /* Mean absolute difference of two 8-bit images, in [0, 1]. */
 double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels);

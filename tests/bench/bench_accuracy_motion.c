@@ -25,53 +25,59 @@ typedef struct motion_options {
     float distance, speed, radius;
 } motion_options;
 
+/* A positive number from an option's text; 0 after one line on stderr. */
+static float positive(const char *name, const char *option, const char *text)
+{
+    char *end;
+    float v = strtof(text, &end);
+    if (*end || !(v > 0))
+        fprintf(stderr, "cavelight-bench accuracy %s: --%s %s: expected a positive number\n", name, option, text);
+    return *end || !(v > 0) ? 0.0f : v;
+}
+
+/* 0, 1 after --help (exit 0), -1 after one line on stderr (exit 2). */
 static int parse_motion(motion_options *m, int argc, char **argv, const char *name)
 {
     *m = (motion_options){
         .common = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                    .ref_samples = 64},
-        .lambdas = {0, 0.5, 0.8, 0.9}, .lambda_count = 4, .lattice = 32, .steps = 8,
-        .frames = 60, .classic = 1, .distance = 1.4f, .speed = 0.5f, .radius = 0.5f,
+        .lattice = 32, .steps = 8, .frames = 60, .classic = 1, .radius = 0.5f,
     };
-    for (int i = 1; i < argc; i++) {
-        int bad = 0;
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (acc_parse_common(&m->common, argc, argv, &i, &bad)) {
-        } else if (!v) {
-            bad = 1;
-        } else if (strcmp(a, "--lambdas") == 0) {
-            char *s = (char *)v, *end;
-            m->lambda_count = 0;
-            while (*s && m->lambda_count < MAX_CONFIGS) {
-                double l = strtod(s, &end);
-                bad |= end == s || l < 0 || l >= 1;
-                m->lambdas[m->lambda_count++] = l;
-                s = *end == ',' ? end + 1 : end;
-                if (end == s && *end)
-                    break;
-            }
-            i++;
-        } else if (strcmp(a, "--lattice") == 0) {
-            bad = (m->lattice = atoi(v)) < 2, i++;
-        } else if (strcmp(a, "--steps") == 0) {
-            bad = (m->steps = atoi(v)) < 1, i++;
-        } else if (strcmp(a, "--frames") == 0) {
-            bad = (m->frames = atoi(v)) < 2, i++;
-        } else if (strcmp(a, "--classic") == 0) {
-            m->classic = atoi(v) != 0, i++;
-        } else if (strcmp(a, "--distance") == 0) {
-            bad = !((m->distance = strtof(v, NULL)) > 0), i++;
-        } else if (strcmp(a, "--speed") == 0) {
-            bad = !((m->speed = strtof(v, NULL)) > 0), i++;
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "bench accuracy %s: bad or unknown option %s\n", name, a);
-            return -1;
-        }
+    const char *lambda_text = "0,0.5,0.8,0.9", *distance_text = "1.4", *speed_text = "0.5";
+    const bench_option opts[] = {
+        ACC_COMMON_OPTIONS(&m->common),
+        BENCH_TEXT("lambdas", "L,L,..", "lambda_incr values, each in [0, 1)", &lambda_text),
+        BENCH_INT("lattice", "N", "cells along the longest axis", &m->lattice, 2, 512),
+        BENCH_INT("steps", "S", "propagation steps per frame", &m->steps, 1, 1024),
+        BENCH_INT("frames", "N", "frames after the move (move) or in all (path)", &m->frames, 2, 100000),
+        BENCH_INT("classic", "0|1", "also the classic accumulating LPV", &m->classic, 0, 1),
+        BENCH_TEXT("distance", "M", "move: how far the light jumps, metres", &distance_text),
+        BENCH_TEXT("speed", "M/S", "path: the light's speed on its circle", &speed_text),
+    };
+    char bench[32];
+    snprintf(bench, sizeof bench, "accuracy %s", name);
+    int rc = BENCH_PARSE(bench, strcmp(name, "move") == 0
+                             ? "error after an abrupt light move, per lambda_incr (scripts/chart.sh runs it)"
+                             : "frame-to-frame change for a light moving smoothly (scripts/chart.sh runs it)",
+                         opts, argc, argv);
+    if (rc != 0)
+        return rc;
+    char *s = (char *)lambda_text, *end;
+    int bad = 0;
+    while (*s && m->lambda_count < MAX_CONFIGS && !bad) {
+        double l = strtod(s, &end);
+        bad = end == s || l < 0 || l >= 1 || (*end && *end != ',');
+        m->lambdas[m->lambda_count++] = l;
+        s = *end == ',' ? end + 1 : end;
     }
-    return 0;
+    if (bad || *s || m->lambda_count == 0) {
+        fprintf(stderr, "cavelight-bench accuracy %s: --lambdas %s: expected 1..%d comma-separated numbers "
+                "in [0, 1)\n", name, lambda_text, MAX_CONFIGS);
+        return -1;
+    }
+    m->distance = positive(name, "distance", distance_text);
+    m->speed = m->distance > 0 ? positive(name, "speed", speed_text) : 0;
+    return m->speed > 0 ? 0 : -1;
 }
 
 /* B: the first light moved along the longer horizontal axis of the bounds, towards the
@@ -86,15 +92,22 @@ static void moved_light(const acc_setup *s, const frame_params *a, float distanc
     b->lights[0].position[axis] += a->lights[0].position[axis] > centre ? -distance : distance;
 }
 
-/* Configuration k: the lambdas in turn, then the classic LPV; on the CPU backend. */
+/* Configuration k: the lambdas in turn, then the classic LPV; on the CPU backend. Its
+ * settings go into every frame of frames[0..n). */
 static renderer *config_renderer(acc_setup *s, const motion_options *m, int k, int *classic,
-                                 float *lambda)
+                                 float *lambda, frame_params **frames, int n)
 {
     *classic = k == m->lambda_count;
     *lambda = *classic ? 0.0f : (float)m->lambdas[k];
-    acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = m->lattice,
+    acc_renderer_desc d = {.backend = ILPV_BACKEND_CPU, .lattice = m->lattice,
                            .classic = *classic};
-    return acc_renderer_create(s, &d);
+    renderer *r = acc_renderer_create(s, &d, frames[0]);
+    for (int i = 1; i < n; i++) {
+        frames[i]->rsm_size = frames[0]->rsm_size;
+        frames[i]->gi = frames[0]->gi;
+        memcpy(frames[i]->gi_settings, frames[0]->gi_settings, sizeof frames[0]->gi_settings);
+    }
+    return r;
 }
 
 static double lattice_difference(const lpv_volume *a, const lpv_volume *b)
@@ -119,8 +132,9 @@ static double mean_of(const float *v, size_t n)
 int accuracy_move(int argc, char **argv)
 {
     motion_options m;
-    if (parse_motion(&m, argc, argv, "move") != 0)
-        return 2;
+    int parsed = parse_motion(&m, argc, argv, "move");
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
     acc_setup s;
     if (acc_setup_open(&s, &m.common) != 0)
         return 1;
@@ -144,9 +158,9 @@ int accuracy_move(int argc, char **argv)
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
         int classic;
         float lambda;
-        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda, (frame_params *[]){&a, &b}, 2);
         lpv_volume steady = {0};
-        if (!r || lpv_volume_init(&steady, renderer_get_lattice(r)->n, LPV_LIGHT_CHANNELS)) {
+        if (!r || lpv_volume_init(&steady, gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)))->n, LPV_LIGHT_CHANNELS)) {
             rc = 1;
             break;
         }
@@ -157,7 +171,7 @@ int accuracy_move(int argc, char **argv)
         b.reset_epoch = a.reset_epoch + 1;
         for (int f = 0; f < 2 * acc_warm_frames(lambda) + 2; f++)
             renderer_frame_pass(r, &b);
-        lpv_volume_copy(&steady, renderer_get_lpv(r));
+        lpv_volume_copy(&steady, gi_ilpv_volume(gi_ilpv_of(renderer_gi(r))));
         rc = renderer_eye_pass(r, &s.view, 1, &img);
         if (rc == 0) {
             memcpy(steady_indirect, img.indirect, px * 3 * sizeof(float));
@@ -174,7 +188,7 @@ int accuracy_move(int argc, char **argv)
             renderer_frame_pass(r, &b);
             if ((rc = renderer_eye_pass(r, &s.view, 1, &img)) != 0)
                 break;
-            double lat = lattice_difference(renderer_get_lpv(r), &steady);
+            double lat = lattice_difference(gi_ilpv_volume(gi_ilpv_of(renderer_gi(r))), &steady);
             double ind = steady_mean > 0
                              ? acc_linear_mae(img.indirect, steady_indirect, px) / steady_mean : 0;
             if (settle < 0 && lat < 0.05)
@@ -201,8 +215,9 @@ int accuracy_move(int argc, char **argv)
 int accuracy_path(int argc, char **argv)
 {
     motion_options m;
-    if (parse_motion(&m, argc, argv, "path") != 0)
-        return 2;
+    int parsed = parse_motion(&m, argc, argv, "path");
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
     m.common.ref_samples = 1; /* no reference needed */
     acc_setup s;
     if (acc_setup_open(&s, &m.common) != 0)
@@ -221,12 +236,12 @@ int accuracy_path(int argc, char **argv)
     for (int k = 0; k < m.lambda_count + m.classic && rc == 0; k++) {
         int classic;
         float lambda;
-        renderer *r = config_renderer(&s, &m, k, &classic, &lambda);
+        frame_params fp = s.base;
+        renderer *r = config_renderer(&s, &m, k, &classic, &lambda, (frame_params *[]){&fp}, 1);
         if (!r) {
             rc = 1;
             break;
         }
-        frame_params fp = s.base;
         fp.lpv_steps = m.steps;
         fp.lambda_incr = lambda;
         fp.reset_epoch = (uint32_t)k + 1;

@@ -24,12 +24,12 @@ enum { REPEATS = 7 };
 static int static_run(acc_setup *s, int skip, int frames, int lattice, double *total_ms,
                       long *skipped, uint8_t *rgb)
 {
-    acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = lattice,
+    acc_renderer_desc d = {.backend = ILPV_BACKEND_CPU, .lattice = lattice,
                            .skip_converged = skip};
-    renderer *r = acc_renderer_create(s, &d);
+    frame_params fp = s->base;
+    renderer *r = acc_renderer_create(s, &d, &fp);
     if (!r)
         return -1;
-    frame_params fp = s->base;
     fp.lambda_incr = 0.8f;
     *total_ms = 0;
     for (int f = 0; f < frames; f++) {
@@ -37,8 +37,8 @@ static int static_run(acc_setup *s, int skip, int frames, int lattice, double *t
         renderer_frame_pass(r, &fp);
         *total_ms += clock_now_ms() - t0;
     }
-    renderer_lpv_stats st;
-    renderer_get_lpv_stats(r, &st);
+    gi_ilpv_stats st;
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(r)), &st);
     *skipped = st.frames_skipped;
     renderer_image img;
     int rc = renderer_eye_pass(r, &s->view, 0, &img);
@@ -77,22 +77,15 @@ int accuracy_savings(int argc, char **argv)
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 1};
     int frames = 300, lattice = 32;
-    for (int i = 1; i < argc; i++) {
-        int bad = 0;
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (acc_parse_common(&o, argc, argv, &i, &bad)) {
-        } else if (v && strcmp(a, "--frames") == 0) {
-            bad = (frames = atoi(v)) < 2, i++;
-        } else if (v && strcmp(a, "--lattice") == 0) {
-            bad = (lattice = atoi(v)) < 2, i++;
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "bench accuracy savings: bad or unknown option %s\n", a);
-            return 2;
-        }
-    }
+    const bench_option opts[] = {
+        ACC_COMMON_OPTIONS(&o),
+        BENCH_INT("frames", "N", "frames of the static scene", &frames, 2, 100000),
+        BENCH_INT("lattice", "N", "cells along the longest axis", &lattice, 2, 512),
+    };
+    int parsed = BENCH_PARSE("accuracy savings", "what skipping converged frames and a fitted lattice save "
+                             "(scripts/chart.sh runs it)", opts, argc, argv);
+    if (parsed)
+        return parsed > 0 ? 0 : 2;
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)
         return 1;
@@ -106,13 +99,14 @@ int accuracy_savings(int argc, char **argv)
              static_run(&s, 0, frames, lattice, &ms_all, &skipped_off, without);
 
     /* Fitted against cubic lattice, the CPU core alone. */
-    acc_renderer_desc d = {.backend = RENDERER_LPV_CPU, .lattice = lattice};
-    renderer *r = rc == 0 ? acc_renderer_create(&s, &d) : NULL;
+    acc_renderer_desc d = {.backend = ILPV_BACKEND_CPU, .lattice = lattice};
+    frame_params fp = s.base;
+    renderer *r = rc == 0 ? acc_renderer_create(&s, &d, &fp) : NULL;
     workpool *pool = workpool_create(o.threads);
     if (!r || !pool)
         rc = 1;
     if (rc == 0) {
-        const int *fit = renderer_get_lattice(r)->n;
+        const int *fit = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)))->n;
         int longest = fit[0] > fit[1] ? fit[0] : fit[1];
         longest = fit[2] > longest ? fit[2] : longest;
         const int cube[3] = {longest, longest, longest};

@@ -45,7 +45,7 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
         fprintf(stderr, "bench accuracy: %s\n", err);
         return -1;
     }
-    glctx_desc gd = {.backend = GLCTX_EGL, .width = o->width, .height = o->height};
+    glctx_desc gd = {.backend = GLCTX_EGL};
     s->ctx = glctx_create(&gd, err, sizeof err);
     if (!s->ctx) {
         fprintf(stderr, "bench accuracy: %s\n", err);
@@ -214,20 +214,42 @@ void acc_reference_free(acc_reference *r)
     memset(r, 0, sizeof *r);
 }
 
-renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d)
+/* d's settings into fp, every one checked. */
+static const char *settings(const acc_renderer_desc *d, frame_params *fp)
+{
+    const char *backends[] = {"auto", "cpu", "gl"};
+    const struct { const char *name, *text; double number; } set[] = {
+        {"gi", d->gi ? d->gi : "ilpv", 0},
+        {"lpv", backends[d->backend], 0},
+        {"lpv-mode", d->classic ? "classic" : "incremental", 0},
+        {"lattice", NULL, d->lattice == ACC_FITTED ? 32 : d->lattice},
+        {"lattice-cells", NULL, d->lattice == ACC_FITTED ? ACC_FITTED_CELLS : 0},
+        {"vpl-bound", d->vpl_point ? "point" : "disk", 0},
+        {"vpl-visibility", d->vpl_visibility ? d->vpl_visibility : "exact", 0},
+        {"ism-size", NULL, d->ism_size ? d->ism_size : 32},
+        {"ism-points", NULL, d->ism_points ? d->ism_points : 1024},
+        {"vpl-cut", NULL, d->vpl_cut == 0 ? 1.0 : d->vpl_cut},
+        {"vpl-interleave", NULL, d->vpl_interleave},
+    };
+    for (size_t i = 0; i < sizeof set / sizeof set[0]; i++) {
+        const char *why = set[i].text ? gi_set(fp, set[i].name, set[i].text)
+                                      : gi_set_number(fp, set[i].name, set[i].number);
+        if (why)
+            return why;
+    }
+    return NULL;
+}
+
+renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d, frame_params *fp)
 {
     char err[512];
-    renderer_desc rd = {
-        .gl = glctx_gl(s->ctx), .scene = &s->sc, .lpv_backend = d->backend,
-        .lattice_cells = d->lattice,
-        .lattice_cell_budget = d->lattice == ACC_FITTED ? ACC_FITTED_CELLS : 0,
-        .threads = s->opt.threads,
-        .lpv_mode = d->classic ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL,
-        .converge_threshold = d->skip_converged ? 0.0f : -1.0f,
-        .gi = d->gi, .vpl_point = d->vpl_point, .vpl_cut = d->vpl_cut,
-        .vpl_visibility = d->vpl_visibility, .ism_size = d->ism_size,
-        .ism_points = d->ism_points, .vpl_interleave = d->vpl_interleave,
-    };
+    const char *why = settings(d, fp);
+    if (why) {
+        fprintf(stderr, "bench accuracy: %s\n", why);
+        return NULL;
+    }
+    renderer_desc rd = {.gl = glctx_gl(s->ctx), .scene = &s->sc, .first = fp,
+                        .threads = s->opt.threads, .no_reuse = !d->skip_converged};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)
         fprintf(stderr, "bench accuracy: %s\n", err);

@@ -36,7 +36,7 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
 #include "seed_stats.h"
-#include "vpl_ism.h"
+#include "gi/vpl/vpl_settings.h"
 
 enum { MAX_COUNTS = 8, MAX_LIST = 4, TIMED = 3 };
 
@@ -91,8 +91,8 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_refe
         }
         renderer_timings rt;
         renderer_get_timings(r, &rt);
-        sel[f] = rt.inject_ms;
-        sh[f] = rt.propagate_ms;
+        sel[f] = gi_stats_value(&rt.gi, "select", NULL);
+        sh[f] = gi_stats_value(&rt.gi, "shadow", NULL);
         eye[f] = rt.eye_host_ms;
         frame[f] = rt.frame_host_ms + rt.eye_host_ms;
     }
@@ -131,11 +131,24 @@ static const char *json_number(double x, char buf[32])
     return buf;
 }
 
+/* settings (a renderer's, acc_renderer_create()) with count VPLs chosen by rule with seed. */
+static frame_params vpl_frame(const frame_params *settings, int count, int seed,
+                              vpl_selection rule)
+{
+    frame_params fp = *settings;
+    gi_set_number(&fp, "vpl-count", count);
+    gi_set_number(&fp, "vpl-seed", seed);
+    gi_set(&fp, "vpl-selection", vpl_selection_names[rule]);
+    return fp;
+}
+
 /* One count of VPLs with r[0] (the disk bound) and, when given, r[1] (points) and r[2] (no
- * cut): one CSV row and one JSON line. disk and point are scratch images. */
-static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3], int count,
-                   int seeds, const vpl_timing *none, float *disk, float *point, FILE *f,
-                   const acc_renderer_desc *rd, vpl_selection rule)
+ * cut), each with its settings: one CSV row and one JSON line. disk and point are scratch
+ * images. */
+static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
+                   const frame_params settings[3], int count, int seeds, const vpl_timing *none,
+                   float *disk, float *point, FILE *f, const acc_renderer_desc *rd,
+                   vpl_selection rule)
 {
     size_t n = (size_t)s->opt.width * s->opt.height * 3;
     memset(disk, 0, n * sizeof *disk);
@@ -154,15 +167,13 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     mean_ref /= (double)(covered ? covered : 1);
     int rc = acc && one[0] && one[1] && one[2] ? 0 : -1;
     for (int seed = 0; seed < k && rc == 0; seed++) {
-        frame_params fp = s->base;
-        fp.gi = FRAME_GI_VPL;
-        fp.vpl_count = count;
-        fp.vpl_seed = (uint32_t)seed;
-        fp.vpl_selection = rule;
+        frame_params fp[3];
+        for (int i = 0; i < 3; i++)
+            fp[i] = vpl_frame(&settings[i], count, seed, rule);
         image_metrics m, unused;
         vpl_timing t, tp;
-        if (run(s, r[0], &fp, ref, one[0], &m, &t) ||
-            (r[1] && run(s, r[1], &fp, ref, one[1], &unused, &tp))) {
+        if (run(s, r[0], &fp[0], ref, one[0], &m, &t) ||
+            (r[1] && run(s, r[1], &fp[1], ref, one[1], &unused, &tp))) {
             rc = -1;
             break;
         }
@@ -174,7 +185,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
         if (seed == 0 && r[2]) {
             image_metrics mu;
             vpl_timing tu;
-            if (run(s, r[2], &fp, ref, one[2], &mu, &tu) != 0) {
+            if (run(s, r[2], &fp[2], ref, one[2], &mu, &tu) != 0) {
                 rc = -1;
                 break;
             }
@@ -218,9 +229,9 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     free(acc);
     for (int i = 0; i < 3; i++)
         free(one[i]);
-    const char *vis = vpl_visibility_names[rd->vpl_visibility];
+    const char *vis = rd->vpl_visibility;
     char j[11][32];
-    int ism = rd->vpl_visibility != RENDERER_VPL_EXACT;
+    int ism = strcmp(rd->vpl_visibility, "exact") != 0;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
     fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d,"
             "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s\n",
@@ -255,9 +266,10 @@ int accuracy_vpl(int argc, char **argv)
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 64};
     int counts[MAX_COUNTS] = {64, 256, 1024}, nc = 3, seeds = 2;
-    int vis[3] = {RENDERER_VPL_EXACT}, nv = 1;
-    int sizes[MAX_LIST] = {RENDERER_DEFAULT_ISM_SIZE}, ns = 1;
-    int points[MAX_LIST] = {RENDERER_DEFAULT_ISM_POINTS}, np = 1;
+    static const char *const visibility_names[3] = {"exact", "ism", "ism-splat"};
+    int vis[3] = {VPL_VISIBILITY_EXACT}, nv = 1;
+    int sizes[MAX_LIST] = {32}, ns = 1;
+    int points[MAX_LIST] = {1024}, np = 1;
     int blocks[MAX_LIST] = {0}, ni = 1;
     int rules[VPL_SELECT_COUNT] = {VPL_SELECT_FLUX}, nr = 1;
     for (int i = 1; i < argc; i++) {
@@ -267,31 +279,31 @@ int accuracy_vpl(int argc, char **argv)
         } else if (v && strcmp(a, "--counts") == 0) {
             nc = 0;
             for (const char *c = v; *c && nc < MAX_COUNTS; c += strcspn(c, ","), c += *c == ',')
-                bad |= (counts[nc++] = atoi(c)) < FRAME_VPL_MIN || counts[nc - 1] > FRAME_VPL_MAX;
+                bad |= (counts[nc++] = atoi(c)) < VPL_COUNT_MIN || counts[nc - 1] > VPL_COUNT_MAX;
             bad |= nc == 0, i++;
         } else if (v && strcmp(a, "--seeds") == 0) {
             bad = (seeds = atoi(v)) < 1, i++;
         } else if (v && strcmp(a, "--visibility") == 0) {
-            bad = !(nv = name_list(v, vpl_visibility_names, 3, vis)), i++;
+            bad = !(nv = name_list(v, visibility_names, 3, vis)), i++;
         } else if (v && strcmp(a, "--selection") == 0) {
             bad = !(nr = name_list(v, vpl_selection_names, VPL_SELECT_COUNT, rules)), i++;
         } else if (v && strcmp(a, "--ism-sizes") == 0) {
-            bad = !(ns = int_list(v, RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, sizes)), i++;
+            bad = !(ns = int_list(v, VPL_ISM_SIZE_MIN, VPL_ISM_SIZE_MAX, sizes)), i++;
             for (int k = 0; k < ns; k++)
                 bad |= (sizes[k] & (sizes[k] - 1)) != 0;
         } else if (v && strcmp(a, "--interleave") == 0) {
-            bad = !(ni = int_list(v, 0, RENDERER_VPL_INTERLEAVE_MAX, blocks)), i++;
+            bad = !(ni = int_list(v, 0, VPL_INTERLEAVE_MAX, blocks)), i++;
         } else if (v && strcmp(a, "--ism-points") == 0) {
-            bad = !(np = int_list(v, RENDERER_ISM_POINTS_MIN, RENDERER_ISM_POINTS_MAX, points)), i++;
+            bad = !(np = int_list(v, VPL_ISM_POINTS_MIN, VPL_ISM_POINTS_MAX, points)), i++;
         } else {
             bad = 1;
         }
         if (bad) {
             fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
                     "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
-                    "--ism-points %d..%d, --interleave 0..%d, --selection flux,view,regular)\n", a, FRAME_VPL_MIN, FRAME_VPL_MAX,
-                    RENDERER_ISM_SIZE_MIN, RENDERER_ISM_SIZE_MAX, RENDERER_ISM_POINTS_MIN,
-                    RENDERER_ISM_POINTS_MAX, RENDERER_VPL_INTERLEAVE_MAX);
+                    "--ism-points %d..%d, --interleave 0..%d, --selection flux,view,regular)\n", a, VPL_COUNT_MIN, VPL_COUNT_MAX,
+                    VPL_ISM_SIZE_MIN, VPL_ISM_SIZE_MAX, VPL_ISM_POINTS_MIN,
+                    VPL_ISM_POINTS_MAX, VPL_INTERLEAVE_MAX);
             return 2;
         }
     }
@@ -305,7 +317,8 @@ int accuracy_vpl(int argc, char **argv)
     }
     size_t n = (size_t)o.width * o.height * 3;
     float *disk = calloc(n, sizeof *disk), *point = calloc(n, sizeof *point);
-    renderer *none_r = acc_renderer_create(&s, &(acc_renderer_desc){.gi = FRAME_GI_NONE});
+    frame_params fp = s.base;
+    renderer *none_r = acc_renderer_create(&s, &(acc_renderer_desc){.gi = "none"}, &fp);
     FILE *f = acc_open_csv(&s, "vpl",
         "scene,vpl_count,seeds,select_ms,shadow_ms,gather_ms,gi_ms,frame_ms,"
         "rmse_rel_indirect,ssim_indirect,best_scale_indirect,rmse_rel_seed_mean,"
@@ -314,33 +327,33 @@ int accuracy_vpl(int argc, char **argv)
         "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias,selection");
     int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
-    frame_params fp = s.base;
-    fp.gi = FRAME_GI_NONE;
     vpl_timing none;
     if (rc == 0)
         rc = run(&s, none_r, &fp, &ref, NULL, NULL, &none);
     for (int c = 0; c < nr * nv * ns * np * ni && rc == 0; c++) {
         vpl_selection rule = (vpl_selection)rules[c / (nv * ns * np * ni)];
-        acc_renderer_desc rd = {.gi = FRAME_GI_VPL,
-                                .vpl_visibility = vis[c / (ns * np * ni) % nv],
+        acc_renderer_desc rd = {.gi = "vpl",
+                                .vpl_visibility = visibility_names[vis[c / (ns * np * ni) % nv]],
                                 .ism_size = sizes[c / (np * ni) % ns],
                                 .ism_points = points[c / ni % np],
                                 .vpl_interleave = blocks[c % ni]};
-        int exact = rd.vpl_visibility == RENDERER_VPL_EXACT;
+        int exact = strcmp(rd.vpl_visibility, "exact") == 0;
         if (exact && c / ni % (ns * np) != 0)
             continue; /* the ISM settings do not change exact maps */
         int bias = exact && rd.vpl_interleave == 0 && rule == VPL_SELECT_FLUX;
-        renderer *r[3] = {acc_renderer_create(&s, &rd), NULL, NULL};
+        frame_params settings[3] = {s.base, s.base, s.base};
+        renderer *r[3] = {acc_renderer_create(&s, &rd, &settings[0]), NULL, NULL};
         if (bias) {
             acc_renderer_desc as_points = rd, uncut = rd;
             as_points.vpl_point = 1;
             uncut.vpl_cut = -1;
-            r[1] = acc_renderer_create(&s, &as_points);
-            r[2] = acc_renderer_create(&s, &uncut);
+            r[1] = acc_renderer_create(&s, &as_points, &settings[1]);
+            r[2] = acc_renderer_create(&s, &uncut, &settings[2]);
         }
         rc = r[0] && ((r[1] && r[2]) || !bias) ? 0 : 1;
         for (int k = 0; k < nc && rc == 0; k++)
-            rc = measure(&s, &ref, r, counts[k], seeds, &none, disk, point, f, &rd, rule);
+            rc = measure(&s, &ref, r, settings, counts[k], seeds, &none, disk, point, f, &rd,
+                         rule);
         for (int i = 0; i < 3; i++)
             if (r[i])
                 renderer_destroy(r[i]);

@@ -11,26 +11,24 @@
  * imperfect maps' time) and interleaved sampling (its gather and blur are in gather_ms).
  * GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
- * two frames are warm-up and not counted. `--scene bunny` is the Stanford bunny from
- * ../shared/scenes/bunny beside the source tree; it is skipped with a message if absent. */
+ * two frames are warm-up and not counted. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "bench.h"
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
-#include "lpv/lattice.h"
 #include "glctx.h"
+#include "present.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
 #include "renderer.h"
 #include "scene/scene.h"
-#include "vpl_ism.h"
+#include "gi/gi_settings.h"
 
-enum { WARMUP = 2, PASSES = 8 };
+enum { WARMUP = 2, PASSES = 8, GI_STAGES = 4 };
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -38,59 +36,33 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* <source>/../shared/scenes/bunny/bunny.gltf, the source folder found from this file. */
-static void bunny_path(char *out, size_t n)
-{
-    const char *file = __FILE__, *cut = strstr(file, "/tests/bench/");
-    int len = cut ? (int)(cut - file) : 1;
-    snprintf(out, n, "%.*s/../shared/scenes/bunny/bunny.gltf", len, cut ? file : ".");
-}
-
 int bench_frame(int argc, char **argv)
 {
     const char *scene_arg = "default";
-    int width = 320, height = 240, frames = 10, rsm = RENDERER_DEFAULT_RSM_SIZE;
-    int lattice = LATTICE_DEFAULT_AXIS_CELLS, gl_index = GLCTX_EGL;
-    int lpv = RENDERER_LPV_AUTO, tiles = RENDERER_TILES_AUTO, gi_index = FRAME_GI_ILPV;
-    int vpl_count = FRAME_VPL_DEFAULT, vpl_lights = RENDERER_VPL_CLUSTERED;
-    int visibility = RENDERER_VPL_EXACT, interleave = 0;
+    int width = 320, height = 240, frames = 10, gl_index = GLCTX_EGL;
     static const char *const gl_names[] = {"egl", "osmesa", "glfw"};
-    static const char *const lpv_names[] = {"auto", "cpu", "gl"};
-    static const char *const tiles_names[] = {"auto", "on", "off"};
-    static const char *const lights_names[] = {"clustered", "tiled", "all"};
+    frame_params fp;
+    frame_params_default(&fp);
     const bench_option opts[] = {
-        BENCH_TEXT("scene", "default|bunny|FILE", "scene (bunny: ../shared/scenes/bunny)", &scene_arg),
+        BENCH_TEXT("scene", "NAME|FILE", "a built-in scene or a glTF file", &scene_arg),
         BENCH_INT("width", "W", "image width", &width, 1, 16384),
         BENCH_INT("height", "H", "image height", &height, 1, 16384),
         BENCH_INT("frames", "N", "frames (the first ones warm up)", &frames, WARMUP + 1, 1000000),
-        BENCH_INT("rsm", "N", "reflective shadow map size", &rsm, 8, 4096),
-        BENCH_INT("lattice", "N", "LPV cells along the longest axis", &lattice, 2, 512),
         BENCH_CHOICE("gl", "egl|osmesa|glfw", "GL context", &gl_index, gl_names),
-        BENCH_CHOICE("lpv", "auto|cpu|gl", "where the LPV runs", &lpv, lpv_names),
-        BENCH_CHOICE("tiles", "auto|on|off", "GL propagation tiles", &tiles, tiles_names),
-        BENCH_CHOICE("gi", "ilpv|none|vpl", "indirect-light method", &gi_index, frame_gi_names),
-        BENCH_INT("vpl-count", "N", "vpl: lights per frame", &vpl_count, FRAME_VPL_MIN, FRAME_VPL_MAX),
-        BENCH_CHOICE("vpl-lights", "clustered|tiled|all", "vpl: light assignment of the gather",
-                     &vpl_lights, lights_names),
-        BENCH_CHOICE("vpl-visibility", "exact|ism|ism-splat", "vpl: shadow test of the VPLs",
-                     &visibility, vpl_visibility_names),
-        BENCH_INT("vpl-interleave", "K", "vpl: interleaved sampling in K x K blocks (0: off)",
-                  &interleave, 0, RENDERER_VPL_INTERLEAVE_MAX),
+        BENCH_SETTINGS(&fp),
     };
     int pr = BENCH_PARSE("frame", "frame and eye passes of the renderer", opts, argc, argv);
     if (pr)
         return pr > 0 ? 0 : 2;
-    const char *gl_name = gl_names[gl_index];
-    frame_gi gi = (frame_gi)gi_index;
-    char path[4096], err[512];
-    snprintf(path, sizeof path, "%s", scene_arg);
-    if (strcmp(scene_arg, "bunny") == 0) {
-        bunny_path(path, sizeof path);
-        if (access(path, R_OK) != 0) {
-            printf("{\"bench\":\"frame\",\"scene\":\"bunny\",\"skipped\":\"%s not found\"}\n", path);
-            return 0;
-        }
+    const char *why = gi_check(&fp);
+    if (why) {
+        fprintf(stderr, "bench frame: %s\n", why);
+        return 2;
     }
+    const char *gl_name = gl_names[gl_index];
+    int vpl = fp.gi == gi_method_find("vpl");
+    char err[512];
+    const char *path = scene_arg;
     glctx_backend backend;
     if (glctx_parse_backend(gl_name, &backend) != 0) {
         fprintf(stderr, "bench frame: --gl egl|osmesa|glfw\n");
@@ -101,38 +73,35 @@ int bench_frame(int argc, char **argv)
         fprintf(stderr, "bench frame: %s\n", err);
         return 1;
     }
-    glctx_desc gd = {.backend = backend, .width = width, .height = height};
-    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    /* glfw: the context of a window, as a node's window output makes it (present.h). */
+    present_viewport pv = {.name = "bench", .width = width, .height = height};
+    present_desc pd = {.output = backend == GLCTX_GLFW ? PRESENT_WINDOW : PRESENT_HEADLESS, .backend = backend,
+                       .log_name = "bench frame", .quiet = 1, .viewport_count = 1, .viewports = &pv};
+    present *out = present_create(&pd, err, sizeof err);
+    glctx *ctx = out ? present_context(out) : NULL;
     if (!ctx) {
         fprintf(stderr, "bench frame: %s\n", err);
         scene_free(&sc);
         return 1;
     }
-    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .lpv_backend = lpv,
-                        .rsm_size = rsm, .lattice_cells = lattice, .lpv_gl_tiles = tiles,
-                        .converge_threshold = -1, .gi = gi, /* static frames: measure the work, never skip */
-                        .vpl_lights = (renderer_vpl_lights)vpl_lights,
-                        .vpl_visibility = (renderer_vpl_visibility)visibility,
-                        .vpl_interleave = interleave};
+    frame_params_lights_from_scene(&fp, &sc);
+    /* Static frames: measure the work, never skip it. */
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &sc, .first = &fp, .no_reuse = 1};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r) {
         fprintf(stderr, "bench frame: %s\n", err);
-        glctx_destroy(ctx);
+        present_destroy(out);
         scene_free(&sc);
         return 1;
     }
-    frame_params fp;
-    frame_params_default(&fp);
-    frame_params_lights_from_scene(&fp, &sc);
-    fp.gi = gi;
-    fp.vpl_count = vpl_count;
     renderer_view v;
     scene_camera cam;
     scene_default_camera(&sc, &cam);
     frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);
 
     int n = frames - WARMUP;
-    double *s = calloc((size_t)n * (PASSES + 1), sizeof *s);
+    double *s = calloc((size_t)n * (PASSES + 1 + GI_STAGES), sizeof *s);
+    gi_stats stages = {0}; /* the method's stage names */
     if (!s) {
         fprintf(stderr, "bench frame: out of memory\n");
         return 1;
@@ -148,10 +117,13 @@ int bench_frame(int argc, char **argv)
         renderer_get_timings(r, &t);
         if (f < WARMUP)
             continue;
-        assign[f - WARMUP] = t.assign_ms;
-        pairs[0] = t.assignments;
-        double vals[PASSES] = {t.rsm_ms, t.inject_ms, t.propagate_ms, t.gbuffer_ms,
-                               t.shade_ms, t.final_ms, t.frame_host_ms, t.eye_host_ms};
+        assign[f - WARMUP] = gi_stats_value(&t.gi, "assign_ms", NULL);
+        pairs[0] = (size_t)gi_stats_value(&t.gi, "assignments", NULL);
+        stages = t.gi;
+        for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
+            s[(size_t)(PASSES + 1 + k) * n + (f - WARMUP)] = t.gi.stage[k].value;
+        double vals[PASSES] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.gbuffer_ms, t.shade_ms,
+                               t.final_ms, t.frame_host_ms, t.eye_host_ms, 0};
         for (int p = 0; p < PASSES; p++)
             s[(size_t)p * n + (f - WARMUP)] = vals[p];
     }
@@ -166,7 +138,7 @@ int bench_frame(int argc, char **argv)
         frame_view_eye(cam.position, right, FRAME_VIEW_EYE_SEPARATION, 2 * e - 1, eye);
         frame_view_scene_camera(&cam, eye, scene_far_plane(&sc), width, height, &pair[e]);
     }
-    for (int f = 0; f < frames && rc == 0 && gi == FRAME_GI_VPL; f++) {
+    for (int f = 0; f < frames && rc == 0 && vpl; f++) {
         renderer_frame_pass(r, &fp);
         for (int enclosed = 0; enclosed < 2 && rc == 0; enclosed++) {
             if (enclosed)
@@ -179,8 +151,8 @@ int bench_frame(int argc, char **argv)
                 renderer_timings t;
                 renderer_get_timings(r, &t);
                 if (e == 0 || !enclosed) { /* enclosed: the screen's one assignment */
-                    ms += t.assign_ms;
-                    count += t.assignments;
+                    ms += gi_stats_value(&t.gi, "assign_ms", NULL);
+                    count += (size_t)gi_stats_value(&t.gi, "assignments", NULL);
                 }
             }
             if (f >= WARMUP) {
@@ -192,8 +164,8 @@ int bench_frame(int argc, char **argv)
     /* vpl: the same frames without indirect light: the eye pass less the gather. */
     double *base = s + (size_t)PASSES * n;
     frame_params direct_only = fp;
-    direct_only.gi = FRAME_GI_NONE;
-    for (int f = 0; f < frames && rc == 0 && gi == FRAME_GI_VPL; f++) {
+    direct_only.gi = gi_method_find("none");
+    for (int f = 0; f < frames && rc == 0 && vpl; f++) {
         renderer_frame_pass(r, &direct_only);
         renderer_image img;
         rc = renderer_eye_pass(r, &v, 0, &img);
@@ -202,50 +174,48 @@ int bench_frame(int argc, char **argv)
         if (f >= WARMUP)
             base[f - WARMUP] = t.eye_host_ms;
     }
-    static const char *lpv_passes[PASSES] = {"rsm_ms", "inject_ms", "propagate_ms", "gbuffer_ms",
-                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
-    static const char *vpl_passes[PASSES] = {"rsm_ms", "select_ms", "shadow_ms", "gbuffer_ms",
-                                             "shade_ms", "final_ms", "frame_host_ms", "eye_host_ms"};
-    const char *const *names = gi == FRAME_GI_VPL ? vpl_passes : lpv_passes;
-    double med[PASSES + 1];
-    for (int p = 0; p <= PASSES; p++) {
+    static const char *passes[PASSES] = {"rsm_ms", "gi_ms", "gbuffer_ms", "shade_ms",
+                                         "final_ms", "frame_host_ms", "eye_host_ms", NULL};
+    double med[PASSES + 1 + GI_STAGES];
+    for (int p = 0; p < PASSES + 1 + GI_STAGES; p++) {
         qsort(s + (size_t)p * n, (size_t)n, sizeof *s, cmp_double);
         med[p] = n % 2 ? s[(size_t)p * n + n / 2]
                        : 0.5 * (s[(size_t)p * n + n / 2 - 1] + s[(size_t)p * n + n / 2]);
     }
-    const lattice_desc *lat = renderer_get_lattice(r);
     if (rc == 0) {
         printf("{\"bench\":\"frame\",\"scene\":\"%s\",\"triangles\":%zu,\"gl\":\"%s\","
-               "\"renderer\":\"%s\",\"gi\":\"%s\",\"width\":%d,\"height\":%d,\"rsm\":%d,"
-               "\"frames\":%d",
+               "\"renderer\":\"%s\",\"gi\":\"%s\",\"width\":%d,\"height\":%d,\"frames\":%d",
                scene_arg, sc.triangle_count, glctx_describe(ctx), glctx_renderer(ctx),
-               frame_gi_name(gi), width, height, rsm, n);
-        if (lat)
-            printf(",\"lpv\":\"%s\",\"lattice\":[%d,%d,%d],\"steps\":%d",
-                   renderer_get_lpv_backend(r) == RENDERER_LPV_GL ? "gl" : "cpu", lat->n[0],
-                   lat->n[1], lat->n[2], fp.lpv_steps);
-        if (gi == FRAME_GI_VPL)
-            printf(",\"vpl_count\":%d,\"vpl_lights\":\"%s\",\"vpl_visibility\":\"%s\","
-                   "\"vpl_interleave\":%d", fp.vpl_count, lights_names[vpl_lights],
-                   vpl_visibility_names[visibility], interleave);
-        for (int p = 0; p < PASSES; p++)
-            printf(",\"%s\":%.3f", names[p], med[p]);
+               gi_method_at(fp.gi)->name, width, height, n);
+        for (int i = 0; i < gi_option_count(); i++) { /* the settings of the frame's method */
+            const gi_option *o = gi_option_at(i);
+            char text[64];
+            if (o->method < 0 || o->method == fp.gi)
+                printf(",\"%s\":\"%s\"", o->row->name, gi_get_text(&fp, o->row->name, text, sizeof text));
+        }
+        for (int i = 0; i < stages.figure_count; i++) /* what the method reports of itself */
+            if (strcmp(stages.figure[i].name, "assign_ms") && strcmp(stages.figure[i].name, "assignments"))
+                printf(",\"%s\":%.6g", stages.figure[i].name, stages.figure[i].value);
+        for (int p = 0; p < PASSES - 1; p++)
+            printf(",\"%s\":%.3f", passes[p], med[p]);
+        for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
+            printf(",\"%s_ms\":%.3f", stages.stage[k].name, med[PASSES + 1 + k]);
         double am[3];
         for (int k = 0; k < 3; k++) {
             qsort(assign + (size_t)k * n, (size_t)n, sizeof *assign, cmp_double);
             am[k] = n % 2 ? assign[(size_t)k * n + n / 2]
                           : 0.5 * (assign[(size_t)k * n + n / 2 - 1] + assign[(size_t)k * n + n / 2]);
         }
-        double total = med[6] + med[7], gather = med[7] - med[PASSES] - am[0];
-        if (gi == FRAME_GI_VPL)
+        double total = med[5] + med[6], gather = med[6] - med[PASSES] - am[0];
+        if (vpl)
             printf(",\"eye_direct_only_ms\":%.3f,\"assign_ms\":%.3f,\"gather_ms\":%.3f,"
                    "\"assignments\":%zu,\"stereo_assign_per_eye_ms\":%.3f,"
                    "\"stereo_assign_enclosed_ms\":%.3f,\"stereo_assignments_per_eye\":%zu,"
                    "\"stereo_assignments_enclosed\":%zu,\"enclosed_fewer\":%.3f",
                    med[PASSES], am[0], gather, pairs[0], am[1], am[2], pairs[1], pairs[2],
                    pairs[1] ? 1.0 - (double)pairs[2] / (double)pairs[1] : 0.0);
-        /* The method's work: injection and propagation, or selection, shadows, gather. */
-        double work = med[1] + med[2] + (gi == FRAME_GI_VPL ? am[0] + gather : 0.0);
+        /* The method's work: its frame-pass stages, and vpl's gather. */
+        double work = med[1] + (vpl ? am[0] + gather : 0.0);
         printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
     } else {
         fprintf(stderr, "bench frame: %s\n", renderer_last_error(r));
@@ -253,7 +223,7 @@ int bench_frame(int argc, char **argv)
     free(s);
     free(assign);
     renderer_destroy(r);
-    glctx_destroy(ctx);
+    present_destroy(out);
     scene_free(&sc);
     return rc ? 1 : 0;
 }

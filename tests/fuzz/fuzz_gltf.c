@@ -52,6 +52,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (size_t m = 0; m < s.material_count; m++)
             if (s.materials[m].base_color_texture >= (int)s.texture_count)
                 abort();
+        if (strchr(s.warning, '\n'))
+            abort(); /* a warning is one line */
         scene_free(&s);
     } else if (!err[0] || strchr(err, '\n')) {
         abort(); /* a refusal is one line */

@@ -20,8 +20,11 @@ static void apply(uint64_t version, const uint8_t *params, size_t len)
 {
     static uint8_t enc[PARAMS_ENCODED_MAX];
     static params_store fresh, seeded, copy;
-    params_init(&fresh);
-    params_init(&seeded);
+    static params_schema schema; /* the core keys and the frame settings */
+    if (!schema.count)
+        params_schema_init(&schema);
+    params_init(&fresh, &schema);
+    params_init(&seeded, &schema);
     params_commit(&seeded);
     int ok = params_apply(&fresh, version, params, len) == 0;
     if (ok != (params_apply(&seeded, version, params, len) == 0))
@@ -29,7 +32,7 @@ static void apply(uint64_t version, const uint8_t *params, size_t len)
     if (!ok)
         return;
     size_t n = params_encode_snapshot(&fresh, enc, sizeof enc);
-    params_init(&copy);
+    params_init(&copy, &schema);
     if (n == 0 || params_apply(&copy, fresh.version, enc, n) != 0 ||
         params_checksum(&copy) != params_checksum(&fresh))
         abort();

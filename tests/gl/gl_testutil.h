@@ -8,6 +8,9 @@
 #include <string.h>
 
 #include "frame/frame_params.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/gi_ilpv.h"
+#include "gi/vpl/vpl_settings.h"
 #include "glctx.h"
 #include "frame/offaxis.h"
 #include "renderer.h"
@@ -17,12 +20,36 @@ typedef struct gltest {
     glctx *ctx;
     scene scene;
     renderer *r;
-    frame_params params;
+    frame_params params; /* the frame the renderer is built for: tests render copies */
 } gltest;
 
-/* Small sizes: llvmpipe is slow. Returns 0 or prints why and returns -1. */
-static inline int gltest_open_tiles(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
-                                    int threads, renderer_tiles tiles)
+/* A setting of p by its option name (gi_settings.h), which a test knows to be valid. */
+static inline void gltest_set(frame_params *p, const char *name, const char *value)
+{
+    const char *why = gi_set(p, name, value);
+    if (why) {
+        fprintf(stderr, "test: --%s %s: %s\n", name, value, why);
+        abort();
+    }
+}
+
+static inline void gltest_setn(frame_params *p, const char *name, double value)
+{
+    char text[32];
+    snprintf(text, sizeof text, "%.9g", value);
+    gltest_set(p, name, text);
+}
+
+/* A choice setting (an ILPV backend, a vpl visibility, ...) by its index. */
+static inline void gltest_seti(frame_params *p, const char *name, int index)
+{
+    gi_option_put(gi_option_find(name), (setting_value){.i = index}, p);
+}
+
+/* The default room's frame with small sizes (llvmpipe is slow): a 64 RSM, a 20-cell
+ * lattice on the given LPV backend and tiles. Returns 0 or prints why and returns -1. */
+static inline int gltest_open_tiles(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,
+                                    int threads, ilpv_tiles tiles)
 {
     char err[512];
     memset(t, 0, sizeof *t);
@@ -32,22 +59,25 @@ static inline int gltest_open_tiles(gltest *t, glctx_backend backend, renderer_l
         fprintf(stderr, "%s\n", err);
         return -1;
     }
-    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .lpv_backend = lpv,
-                        .rsm_size = 64, .lattice_cells = 20, .threads = threads,
-                        .lpv_gl_tiles = tiles};
+    frame_params_default(&t->params);
+    frame_params_lights_from_scene(&t->params, &t->scene);
+    gltest_setn(&t->params, "rsm", 64);
+    gltest_setn(&t->params, "lattice", 20);
+    gltest_seti(&t->params, "lpv", lpv);
+    gltest_seti(&t->params, "gl-tiles", tiles);
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .first = &t->params,
+                        .threads = threads};
     if (!(t->r = renderer_create(&rd, err, sizeof err))) {
         fprintf(stderr, "%s\n", err);
         return -1;
     }
-    frame_params_default(&t->params);
-    frame_params_lights_from_scene(&t->params, &t->scene);
     return 0;
 }
 
-static inline int gltest_open(gltest *t, glctx_backend backend, renderer_lpv_backend lpv,
+static inline int gltest_open(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,
                               int threads)
 {
-    return gltest_open_tiles(t, backend, lpv, threads, RENDERER_TILES_AUTO);
+    return gltest_open_tiles(t, backend, lpv, threads, ILPV_TILES_AUTO);
 }
 
 static inline void gltest_close(gltest *t)

@@ -13,6 +13,8 @@
 #include <zmq.h>
 #include <cmocka.h>
 
+#include "gi/gi_settings.h"
+
 #include "cluster_client.h"
 
 static const char *config_json =
@@ -83,11 +85,13 @@ static void test_client_against_fake_master(void **state)
     wire_msg hello;
     assert_int_equal(expect_from_node(c, WIRE_HELLO, 3000, &hello), 0);
     assert_string_equal(hello.name, "n");
-    assert_int_equal(hello.config_hash, cfg.hash);
+    static params_schema schema;
+    gi_params_schema(&schema);
+    assert_int_equal(hello.config_hash, params_session_hash(cfg.hash, &schema));
 
     /* Hostile input: nothing of it may produce an event or change the store. */
-    params_store master;
-    params_init(&master);
+    static params_store master;
+    params_init(&master, &schema);
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3f, 1.7f, 0, 1};
     params_set_mat4(&master, PARAMS_HEAD, head);
     params_commit(&master);

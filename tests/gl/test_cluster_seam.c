@@ -13,6 +13,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "gi/gi_settings.h"
+
 #include "cluster_view.h"
 #include "cluster/params.h"
 
@@ -44,7 +46,8 @@ static void check_seams(cluster_view *v, const frame_params *f)
     char err[512];
     uint64_t checksum;
     float timings[WIRE_TIMING_COUNT] = {0};
-    if (cluster_view_render(v, f, 0, &checksum, timings, err, sizeof err) != 0)
+    int fixed;
+    if (cluster_view_render(v, f, &checksum, timings, &fixed, err, sizeof err) != 0)
         fail_msg("%s", err);
     for (int eye = 0; eye < 2; eye++) {
         int wl, hl, wr, hr, wf, hf;
@@ -74,25 +77,28 @@ static void test_seams_agree(void **state)
     static cluster_config cfg;
     char err[512];
     assert_int_equal(cluster_config_parse(config_json, strlen(config_json), "seam.json", &cfg, err, sizeof err), 0);
-    cluster_view_desc vd = {.config = &cfg, .node = 0, .output = CLUSTER_OUTPUT_HEADLESS, .lpv_threads = 2,
-                            .lattice_cells = 20, .rsm_size = 128};
+    cluster_view_desc vd = {.config = &cfg, .node = 0, .output = CLUSTER_OUTPUT_HEADLESS, .threads = 2};
     cluster_view *v = cluster_view_create(&vd, err, sizeof err);
     if (!v)
         fail_msg("%s", err);
-    params_store ps;
-    params_init(&ps);
+    static params_schema schema;
+    static params_store ps;
+    gi_params_schema(&schema);
+    params_init(&ps, &schema);
     frame_params f;
     params_to_frame(&ps, &f);
+    assert_null(gi_set(&f, "lattice", "20"));
+    assert_null(gi_set(&f, "rsm", "128"));
+    assert_null(gi_set(&f, "vpl-count", "64"));
     /* Head off-centre and turned: the seams are seen at an angle. */
     float head[16] = {0.955f, 0, 0.296f, 0, 0, 1, 0, 0, -0.296f, 0, 0.955f, 0, 0.4f, 1.6f, 0.3f, 1};
     memcpy(f.head, head, sizeof head);
     f.light_count = 1;
     f.lights[0] = (frame_light){.enabled = 1, .position = {0.5f, 2.8f, -0.5f}, .direction = {-0.3f, -0.95f, 0},
                                 .color = {1, 1, 1}, .intensity = 20, .outer_angle = 0.8f, .inner_angle = 0.6f};
-    for (int gi = 0; gi < 2; gi++) {
-        f.gi = gi ? FRAME_GI_VPL : FRAME_GI_ILPV;
-        f.vpl_count = 64;
-        print_message("%s:\n", frame_gi_names[f.gi]);
+    for (int k = 0; k < 2; k++) {
+        f.gi = k ? gi_method_find("vpl") : gi_method_find("ilpv");
+        print_message("%s:\n", gi_method_at(f.gi)->name);
         check_seams(v, &f);
     }
     cluster_view_destroy(v);
@@ -103,8 +109,10 @@ static void test_view_maths(void **state)
     static cluster_config cfg;
     char err[512];
     assert_int_equal(cluster_config_parse(config_json, strlen(config_json), "seam.json", &cfg, err, sizeof err), 0);
-    params_store ps;
-    params_init(&ps);
+    static params_schema schema;
+    static params_store ps;
+    gi_params_schema(&schema);
+    params_init(&ps, &schema);
     frame_params f;
     params_to_frame(&ps, &f);
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1.7f, 0, 1};

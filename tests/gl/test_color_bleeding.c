@@ -20,7 +20,7 @@ static void test_floor_beside_red_wall_is_redder(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     renderer_view v;
     /* From above, the whole floor in view. */
     const float eye[3] = {0.0f, 2.9f, 0.0f}, target[3] = {0.0f, 0.0f, 0.0f};

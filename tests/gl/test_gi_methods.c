@@ -1,12 +1,15 @@
-/* The GI methods behind node/gi.h on llvmpipe: "none" renders the same direct light as
+/* The GI methods behind node/gi/gi.h on llvmpipe: "none" renders the same direct light as
  * ILPV and no indirect light at all, with a constant checksum; a frame that asks for
  * another method switches the renderer in that frame, and switching back to ILPV starts
- * it afresh: the same light, bit for bit, as a new renderer's first frames. */
+ * it afresh: the same light, bit for bit, as a new renderer's first frames; every method
+ * of the registry renders; a setting that rebuilds a method does so, the others do not. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+
+#include <math.h>
 
 #include "gl/gl_testutil.h"
 
@@ -43,16 +46,15 @@ static void test_none_is_direct_only(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float d_ilpv[W * H * 3], i_ilpv[W * H * 3], d_none[W * H * 3], i_none[W * H * 3];
     frame(&t, &t.params, d_ilpv, i_ilpv);
-    assert_int_equal(renderer_get_gi(t.r), FRAME_GI_ILPV);
+    assert_int_equal(gi_active(renderer_gi(t.r)), gi_method_find("ilpv"));
     frame_params p = t.params;
-    p.gi = FRAME_GI_NONE;
+    p.gi = gi_method_find("none");
     uint64_t c1 = frame(&t, &p, d_none, i_none);
-    assert_int_equal(renderer_get_gi(t.r), FRAME_GI_NONE);
-    assert_null(renderer_get_lattice(t.r));
-    assert_null(renderer_get_lpv(t.r));
+    assert_int_equal(gi_active(renderer_gi(t.r)), gi_method_find("none"));
+    assert_null(gi_ilpv_of(renderer_gi(t.r)));
     printf("indirect light: ILPV %.4g, none %.4g (sum over the image)\n", sum(i_ilpv), sum(i_none));
     assert_true(sum(i_ilpv) > 0);
     for (int i = 0; i < W * H * 3; i++)
@@ -67,20 +69,20 @@ static void test_switch_back_starts_afresh(void **state)
 {
     (void)state;
     gltest a, b;
-    assert_int_equal(gltest_open(&a, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&a, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float d[W * H * 3], ia[W * H * 3], ib[W * H * 3];
     frame_params p = a.params;
     for (int f = 0; f < 3; f++) /* history builds up */
         frame(&a, &p, d, ia);
-    p.gi = FRAME_GI_NONE;
+    p.gi = gi_method_find("none");
     frame(&a, &p, d, ia);
-    p.gi = FRAME_GI_ILPV;
+    p.gi = gi_method_find("ilpv");
     uint64_t after[2];
     for (int f = 0; f < 2; f++)
         after[f] = frame(&a, &p, d, ia);
-    assert_int_equal(renderer_get_gi(a.r), FRAME_GI_ILPV);
+    assert_int_equal(gi_active(renderer_gi(a.r)), gi_method_find("ilpv"));
 
-    assert_int_equal(gltest_open(&b, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&b, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     for (int f = 0; f < 2; f++) {
         uint64_t fresh = frame(&b, &p, d, ib);
         printf("frame %d after switching back: %016llx, fresh renderer: %016llx\n", f,
@@ -100,17 +102,76 @@ static void test_created_with_none(void **state)
     memset(&t, 0, sizeof t);
     assert_non_null(t.ctx = glctx_create(&(glctx_desc){.backend = GLCTX_EGL}, err, sizeof err));
     assert_int_equal(scene_load("default", &t.scene, err, sizeof err), 0);
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .rsm_size = 64,
-                        .lattice_cells = 20, .gi = FRAME_GI_NONE};
-    assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
-    assert_int_equal(renderer_get_gi(t.r), FRAME_GI_NONE);
     frame_params_default(&t.params);
     frame_params_lights_from_scene(&t.params, &t.scene);
+    gltest_setn(&t.params, "rsm", 64);
+    gltest_setn(&t.params, "lattice", 20);
+    frame_params first = t.params;
+    gltest_set(&first, "gi", "none");
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .first = &first};
+    assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
+    assert_int_equal(gi_active(renderer_gi(t.r)), gi_method_find("none"));
     /* The frames' gi decides: a default frame asks for ILPV. */
     static float d[W * H * 3], i[W * H * 3];
     frame(&t, &t.params, d, i);
-    assert_int_equal(renderer_get_gi(t.r), FRAME_GI_ILPV);
-    assert_non_null(renderer_get_lattice(t.r));
+    assert_int_equal(gi_active(renderer_gi(t.r)), gi_method_find("ilpv"));
+    assert_non_null(gi_ilpv_lattice(gi_ilpv_of(renderer_gi(t.r))));
+    gltest_close(&t);
+}
+
+/* Every method of the registry renders the room, live-switched in turn on one renderer,
+ * with a checksum that repeats for a static frame; what it adds to the direct light is
+ * finite and, but for "none", some light. */
+static void test_every_registry_method(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
+    static float d[W * H * 3], i[W * H * 3];
+    for (int m = 0; m < gi_method_count(); m++) {
+        frame_params p = t.params;
+        p.gi = m;
+        gltest_setn(&p, "vpl-count", 64);
+        uint64_t first = frame(&t, &p, d, i);
+        assert_int_equal(gi_active(renderer_gi(t.r)), m);
+        double light = sum(i);
+        printf("%s: checksum %016llx, indirect %.4g\n", gi_method_at(m)->name,
+               (unsigned long long)first, light);
+        assert_true(isfinite(light));
+        assert_true(strcmp(gi_method_at(m)->name, "none") == 0 ? light == 0 : light > 0);
+        p.lambda_incr = 0; /* no history: the same frame again gives the same checksum */
+        uint64_t a = frame(&t, &p, d, i), b = frame(&t, &p, d, i);
+        assert_true(a == b);
+    }
+    gltest_close(&t);
+}
+
+/* A setting that rebuilds its method (the lattice) builds it fresh in that frame; one that
+ * does not (vpl's count) keeps the method and takes effect. */
+static void test_rebuild_settings(void **state)
+{
+    (void)state;
+    gltest t;
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
+    static float d[W * H * 3], i[W * H * 3];
+    frame_params p = t.params;
+    frame(&t, &p, d, i);
+    assert_int_equal(gi_ilpv_lattice(gi_ilpv_of(renderer_gi(t.r)))->n[0], 20);
+    gltest_setn(&p, "lattice", 12);
+    frame(&t, &p, d, i);
+    int longest = 0;
+    for (int a = 0; a < 3; a++) {
+        int n = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(t.r)))->n[a];
+        longest = n > longest ? n : longest;
+    }
+    assert_int_equal(longest, 12);
+    gltest_set(&p, "gi", "vpl");
+    gltest_setn(&p, "vpl-count", 64);
+    uint64_t c64 = frame(&t, &p, d, i);
+    const gi *before = renderer_gi(t.r);
+    gltest_setn(&p, "vpl-count", 128);
+    uint64_t c128 = frame(&t, &p, d, i);
+    assert_true(renderer_gi(t.r) == before && c128 != c64);
     gltest_close(&t);
 }
 
@@ -120,6 +181,8 @@ int main(void)
         cmocka_unit_test(test_none_is_direct_only),
         cmocka_unit_test(test_switch_back_starts_afresh),
         cmocka_unit_test(test_created_with_none),
+        cmocka_unit_test(test_every_registry_method),
+        cmocka_unit_test(test_rebuild_settings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

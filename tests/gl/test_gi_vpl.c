@@ -25,9 +25,9 @@ static void view(renderer_view *v)
 static frame_params vpl_params(const gltest *t, int n, uint32_t seed)
 {
     frame_params p = t->params;
-    p.gi = FRAME_GI_VPL;
-    p.vpl_count = n;
-    p.vpl_seed = seed;
+    gltest_set(&p, "gi", "vpl");
+    gltest_setn(&p, "vpl-count", n);
+    gltest_setn(&p, "vpl-seed", seed);
     return p;
 }
 
@@ -68,15 +68,20 @@ static double rel_rmse(const float *a, const float *b)
 static void test_lights_and_is_deterministic(void **state)
 {
     (void)state;
-    gltest a, b;
-    assert_int_equal(gltest_open(&a, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
-    assert_int_equal(gltest_open(&b, GLCTX_EGL, RENDERER_LPV_CPU, 2), 0);
+    gltest a;
+    assert_int_equal(gltest_open(&a, GLCTX_EGL, ILPV_BACKEND_CPU, 1), 0);
+    /* A second renderer with 2 threads on the same context (a renderer's GL objects live
+     * in the context it was made on). */
+    char err[256];
+    gltest b = a;
+    renderer_desc rd = {.gl = glctx_gl(a.ctx), .scene = &a.scene, .first = &a.params, .threads = 2};
+    assert_non_null(b.r = renderer_create(&rd, err, sizeof err));
     static float d_ilpv[PIXELS], i_ilpv[PIXELS], d[PIXELS], ia[PIXELS], ib[PIXELS];
     static uint8_t rgb_a[W * H * 3], rgb_b[W * H * 3];
     frame(&a, &a.params, d_ilpv, i_ilpv, NULL);
     frame_params p = vpl_params(&a, 64, 0);
     uint64_t ca = frame(&a, &p, d, ia, rgb_a);
-    assert_int_equal(renderer_get_gi(a.r), FRAME_GI_VPL);
+    assert_int_equal(gi_active(renderer_gi(a.r)), gi_method_find("vpl"));
     assert_memory_equal(d, d_ilpv, sizeof d); /* the direct light is not the method's */
     printf("mean indirect radiance: ILPV %.4g, vpl (64) %.4g\n", mean(i_ilpv), mean(ia));
     assert_true(mean(ia) > 0);
@@ -93,21 +98,21 @@ static void test_lights_and_is_deterministic(void **state)
     assert_memory_equal(ia, ib, sizeof ia);
     renderer_timings t;
     renderer_get_timings(a.r, &t);
-    assert_true(t.inject_ms == 0 && t.propagate_ms == 0);
+    assert_true(gi_stats_total_ms(&t.gi) == 0);
 
     /* Another seed, a moved light: other VPLs. */
     frame_params q = vpl_params(&a, 64, 1);
     assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
     renderer_get_timings(a.r, &t);
-    assert_true(t.propagate_ms > 0); /* computed: the shadow maps took time */
+    assert_true(gi_stats_value(&t.gi, "shadow", NULL) > 0); /* computed: the shadow maps took time */
     q = p;
     q.lights[0].position[0] += 0.05f;
     assert_true(frame(&a, &q, NULL, ib, NULL) != ca);
+    renderer_destroy(b.r);
     gltest_close(&a);
-    gltest_close(&b);
     /* And 7 threads (one context at a time: each renderer draws on the current one). */
     gltest c;
-    assert_int_equal(gltest_open(&c, GLCTX_EGL, RENDERER_LPV_CPU, 7), 0);
+    assert_int_equal(gltest_open(&c, GLCTX_EGL, ILPV_BACKEND_CPU, 7), 0);
     assert_true(frame(&c, &p, NULL, ib, rgb_b) == ca);
     assert_memory_equal(ia, ib, sizeof ia);
     assert_memory_equal(rgb_a, rgb_b, sizeof rgb_a);
@@ -122,7 +127,7 @@ static void test_light_types(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float img[PIXELS];
     frame_params p = vpl_params(&t, 64, 0);
     frame(&t, &p, NULL, img, NULL);
@@ -150,7 +155,7 @@ static void test_error_falls_with_n(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float target[PIXELS], img[PIXELS];
     for (uint32_t s = 0; s < 4; s++) {
         frame_params p = vpl_params(&t, 1024, 100 + s);
@@ -191,7 +196,7 @@ static void test_moving_light_is_smooth(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float final_prev[PIXELS], ind_prev[PIXELS], ind_other[PIXELS], ind[PIXELS];
     frame_params p = vpl_params(&t, 64, 0), other = vpl_params(&t, 64, 1);
     frame(&t, &other, NULL, ind_other, NULL);
@@ -231,22 +236,21 @@ static void test_selection_rules(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 3), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 3), 0);
     char err[256];
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .rsm_size = 64,
-                        .gi = FRAME_GI_VPL, .threads = 1};
+    frame_params p = vpl_params(&t, 64, 0);
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .first = &p, .threads = 1};
     renderer *other = renderer_create(&rd, err, sizeof err);
     assert_non_null(other);
-    frame_params p = vpl_params(&t, 64, 0);
     const float head[3] = {1.3f, 1.6f, 1.9f};
     memcpy(p.head + 12, head, sizeof head);
     uint64_t sum[VPL_SELECT_COUNT];
     for (int rule = 0; rule < VPL_SELECT_COUNT; rule++) {
-        p.vpl_selection = (vpl_selection)rule;
+        gltest_seti(&p, "vpl-selection", rule);
         sum[rule] = renderer_frame_pass(t.r, &p);
         renderer_timings tm;
         renderer_get_timings(t.r, &tm);
-        assert_true(tm.inject_ms > 0); /* a new rule chooses anew */
+        assert_true(gi_stats_value(&tm.gi, "select", NULL) > 0); /* a new rule chooses anew */
         assert_true(renderer_frame_pass(other, &p) == sum[rule]);
         renderer_view v;
         view(&v);
@@ -260,18 +264,18 @@ static void test_selection_rules(void **state)
         q.time = 0.5;
         assert_true(renderer_frame_pass(t.r, &q) == sum[rule]);
         renderer_get_timings(t.r, &tm);
-        assert_true(tm.inject_ms == 0);
+        assert_true(gi_stats_value(&tm.gi, "select", NULL) == 0);
         q.head[12] -= 0.5f; /* the head moves */
         uint64_t moved = renderer_frame_pass(t.r, &q);
         renderer_get_timings(t.r, &tm);
         if (rule == VPL_SELECT_VIEW)
-            assert_true(moved != sum[rule] && tm.inject_ms > 0);
+            assert_true(moved != sum[rule] && gi_stats_value(&tm.gi, "select", NULL) > 0);
         else
-            assert_true(moved == sum[rule] && tm.inject_ms == 0);
+            assert_true(moved == sum[rule] && gi_stats_value(&tm.gi, "select", NULL) == 0);
     }
     assert_true(sum[VPL_SELECT_VIEW] != sum[VPL_SELECT_FLUX]);
     assert_true(sum[VPL_SELECT_REGULAR] != sum[VPL_SELECT_FLUX]);
-    p.vpl_selection = VPL_SELECT_FLUX; /* back: the same VPLs as before the switches */
+    gltest_seti(&p, "vpl-selection", VPL_SELECT_FLUX); /* back: the same VPLs as before the switches */
     assert_true(renderer_frame_pass(t.r, &p) == sum[VPL_SELECT_FLUX]);
     renderer_destroy(other);
     gltest_close(&t);
@@ -279,15 +283,16 @@ static void test_selection_rules(void **state)
 
 /* Eye images of one frame from a renderer with the given light assignment; with
  * `enclosed`, both eyes are announced as one screen first. */
-static void stereo_indirect(gltest *t, renderer_vpl_lights lights, int enclosed,
+static void stereo_indirect(gltest *t, vpl_lights lights, int enclosed,
                             const frame_params *p, float *out, size_t *assignments)
 {
     char err[256];
-    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
-                        .gi = FRAME_GI_VPL, .vpl_lights = lights};
+    frame_params q = *p;
+    gltest_seti(&q, "vpl-lights", lights);
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .first = &q};
     renderer *r = renderer_create(&rd, err, sizeof err);
     assert_non_null(r);
-    renderer_frame_pass(r, p);
+    renderer_frame_pass(r, &q);
     const float bl[3] = {-2, 0, -2}, br[3] = {2, 0, -2}, tl[3] = {-2, 3, -2};
     const float head[3] = {0.3f, 1.6f, 1.5f}, right[3] = {1, 0, 0};
     renderer_view eyes[2];
@@ -306,7 +311,7 @@ static void stereo_indirect(gltest *t, renderer_vpl_lights lights, int enclosed,
         renderer_timings tm;
         renderer_get_timings(r, &tm);
         if (e == 0 || !enclosed)
-            *assignments += tm.assignments;
+            *assignments += (size_t)gi_stats_value(&tm.gi, "assignments", NULL);
     }
     renderer_destroy(r);
 }
@@ -318,16 +323,16 @@ static void test_clustered_equals_brute_force(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     static float all[2 * PIXELS], img[2 * PIXELS];
     frame_params p = vpl_params(&t, 128, 0);
     size_t none, per_eye = 0, enclosed = 0, tiled;
-    stereo_indirect(&t, RENDERER_VPL_ALL, 0, &p, all, &none);
+    stereo_indirect(&t, VPL_LIGHTS_ALL, 0, &p, all, &none);
     assert_true(none == 0);
     assert_true(mean(all) > 0);
-    const struct { renderer_vpl_lights lights; int enclosed; size_t *count; } runs[3] = {
-        {RENDERER_VPL_CLUSTERED, 0, &per_eye}, {RENDERER_VPL_CLUSTERED, 1, &enclosed},
-        {RENDERER_VPL_TILED, 0, &tiled}};
+    const struct { vpl_lights lights; int enclosed; size_t *count; } runs[3] = {
+        {VPL_LIGHTS_CLUSTERED, 0, &per_eye}, {VPL_LIGHTS_CLUSTERED, 1, &enclosed},
+        {VPL_LIGHTS_TILED, 0, &tiled}};
     for (int k = 0; k < 3; k++) {
         stereo_indirect(&t, runs[k].lights, runs[k].enclosed, &p, img, runs[k].count);
         double worst = 0;

@@ -13,7 +13,7 @@ enum { W = 96, H = 72 };
 static uint8_t *render(glctx_backend backend, uint64_t *checksum)
 {
     gltest t;
-    assert_int_equal(gltest_open(&t, backend, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, backend, ILPV_BACKEND_CPU, 0), 0);
     renderer_view v;
     gltest_look_at(&v, t.scene.camera.position, t.scene.camera.target, t.scene.camera.yfov, W, H);
     renderer_image img;

@@ -10,7 +10,9 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "cluster/cluster_config.h"
 #include "gl/gl_testutil.h"
+#include "image/image.h"
 #include "reference.h"
 
 enum { W = 128, H = 96 };
@@ -18,20 +20,24 @@ enum { W = 128, H = 96 };
 /* ---- a small glTF writer: meshes of quads, one material each, nodes with matrices ---- */
 
 typedef struct mesh_out {
-    float *pos, *nrm;
+    float *pos, *nrm, *uv;
     int vertices;
     float color[3];
 } mesh_out;
 
+/* Two triangles, the quad's uvs running 0..1 from its first corner. */
 static void add_quad(mesh_out *m, const float c[4][3], const float n[3])
 {
     static const int corner[6] = {0, 1, 2, 0, 2, 3};
+    static const float uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     m->pos = realloc(m->pos, (size_t)(m->vertices + 6) * 3 * sizeof(float));
     m->nrm = realloc(m->nrm, (size_t)(m->vertices + 6) * 3 * sizeof(float));
-    assert_true(m->pos && m->nrm);
+    m->uv = realloc(m->uv, (size_t)(m->vertices + 6) * 2 * sizeof(float));
+    assert_true(m->pos && m->nrm && m->uv);
     for (int k = 0; k < 6; k++) {
         memcpy(m->pos + 3 * (m->vertices + k), c[corner[k]], 3 * sizeof(float));
         memcpy(m->nrm + 3 * (m->vertices + k), n, 3 * sizeof(float));
+        memcpy(m->uv + 2 * (m->vertices + k), uv[corner[k]], 2 * sizeof(float));
     }
     m->vertices += 6;
 }
@@ -98,6 +104,7 @@ typedef struct gltf_out {
     int camera;               /* 1: a camera named "Main" on node "CamNode" */
     int orthographic;         /* the camera is orthographic, 2.4 x 1.8 m */
     float camera_matrix[16];
+    const char *texture;      /* a PNG beside the file for mesh 0's material, or NULL */
 } gltf_out;
 
 /* Writes path (.gltf) and path.bin. */
@@ -107,13 +114,14 @@ static void write_gltf(const char *path, gltf_out *g)
     snprintf(bin, sizeof bin, "%s.bin", path);
     FILE *fb = fopen(bin, "wb");
     assert_non_null(fb);
-    size_t offset[3][2], total = 0;
+    size_t offset[3][3], length[3][3], total = 0;
     for (int i = 0; i < g->meshes; i++)
-        for (int a = 0; a < 2; a++) {
-            size_t bytes = (size_t)g->mesh[i].vertices * 3 * sizeof(float);
+        for (int a = 0; a < 3; a++) {
+            const float *data = a == 0 ? g->mesh[i].pos : a == 1 ? g->mesh[i].nrm : g->mesh[i].uv;
+            length[i][a] = (size_t)g->mesh[i].vertices * (a == 2 ? 2 : 3) * sizeof(float);
             offset[i][a] = total;
-            assert_int_equal(fwrite(a ? g->mesh[i].nrm : g->mesh[i].pos, 1, bytes, fb), bytes);
-            total += bytes;
+            assert_int_equal(fwrite(data, 1, length[i][a], fb), length[i][a]);
+            total += length[i][a];
         }
     fclose(fb);
     const char *slash = strrchr(bin, '/');
@@ -147,26 +155,30 @@ static void write_gltf(const char *path, gltf_out *g)
                    "{\"KHR_lights_punctual\":{\"lights\":[%s]}}", g->light);
     fprintf(f, ",\"meshes\":[");
     for (int i = 0; i < g->meshes; i++)
-        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d},"
-                   "\"material\":%d}]}", i ? "," : "", 2 * i, 2 * i + 1, i);
+        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d},"
+                   "\"material\":%d}]}", i ? "," : "", 3 * i, 3 * i + 1, 3 * i + 2, i);
     fprintf(f, "],\"materials\":[");
     for (int i = 0; i < g->meshes; i++)
         fprintf(f, "%s{\"pbrMetallicRoughness\":{\"baseColorFactor\":[%g,%g,%g,1],"
-                   "\"metallicFactor\":0,\"roughnessFactor\":0.8}}", i ? "," : "",
-                g->mesh[i].color[0], g->mesh[i].color[1], g->mesh[i].color[2]);
+                   "\"metallicFactor\":0,\"roughnessFactor\":0.8%s}}", i ? "," : "",
+                g->mesh[i].color[0], g->mesh[i].color[1], g->mesh[i].color[2],
+                i == 0 && g->texture ? ",\"baseColorTexture\":{\"index\":0}" : "");
+    if (g->texture)
+        fprintf(f, "],\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"%s\"}", g->texture);
     fprintf(f, "],\"accessors\":[");
-    for (int i = 0; i < 2 * g->meshes; i++)
-        fprintf(f, "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\"}",
-                i ? "," : "", i, g->mesh[i / 2].vertices);
+    for (int i = 0; i < 3 * g->meshes; i++)
+        fprintf(f, "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"%s\"}",
+                i ? "," : "", i, g->mesh[i / 3].vertices, i % 3 == 2 ? "VEC2" : "VEC3");
     fprintf(f, "],\"bufferViews\":[");
-    for (int i = 0; i < 2 * g->meshes; i++)
+    for (int i = 0; i < 3 * g->meshes; i++)
         fprintf(f, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", i ? "," : "",
-                offset[i / 2][i % 2], (size_t)g->mesh[i / 2].vertices * 3 * sizeof(float));
+                offset[i / 3][i % 3], length[i / 3][i % 3]);
     fprintf(f, "],\"buffers\":[{\"byteLength\":%zu,\"uri\":\"%s\"}]}\n", total, slash + 1);
     fclose(f);
     for (int i = 0; i < g->meshes; i++) {
         free(g->mesh[i].pos);
         free(g->mesh[i].nrm);
+        free(g->mesh[i].uv);
     }
 }
 
@@ -216,13 +228,16 @@ static void render(const scene *s, const frame_params *p, rendered *out)
     char err[512];
     glctx_desc gd = {.backend = GLCTX_EGL};
     assert_non_null(t.ctx = glctx_create(&gd, err, sizeof err));
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 256, .lattice_cells = 16};
+    frame_params q = *p;
+    gltest_setn(&q, "rsm", 256);
+    gltest_setn(&q, "lattice", 16);
+    gltest_set(&q, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = s, .first = &q};
     assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     renderer_view v;
     assert_int_equal(frame_view_scene_camera(&s->camera, s->camera.position, scene_far_plane(s),
                                              W, H, &v), 0);
-    renderer_frame_pass(t.r, p);
+    renderer_frame_pass(t.r, &q);
     renderer_image img;
     assert_int_equal(renderer_eye_pass(t.r, &v, 1, &img), 0);
     size_t bytes = (size_t)W * H * 3 * sizeof(float);
@@ -428,13 +443,161 @@ static void test_closed_room_without_lights(void **state)
     scene_free(&s);
 }
 
+/* Neither lights nor a camera, as CAD and scan exports often come. Sets up the default
+ * view (the file has no camera) and checks the added light is outside the bounds: for an
+ * object it stands on the camera's side, never inside the model or in a flat one's plane. */
+static void default_view_and_light(scene *s)
+{
+    assert_true(s->light_added);
+    assert_false(s->camera.valid);
+    scene_camera view = {.valid = 1, .yfov = 1.0f};
+    scene_default_view(s, view.position, view.target);
+    s->camera = view;
+    int outside_view = 0, outside_light = 0;
+    for (int a = 0; a < 3; a++) {
+        outside_view |= view.position[a] < s->bounds_min[a] || view.position[a] > s->bounds_max[a];
+        outside_light |= s->lights[0].position[a] < s->bounds_min[a] - scene_diagonal(s) / 16 ||
+                         s->lights[0].position[a] > s->bounds_max[a] + scene_diagonal(s) / 16;
+    }
+    assert_true(outside_view && outside_light);
+}
+
+/* A flat model (one single-sided 2 x 2 m panel facing +y): seen from the side it faces and
+ * lit from there. The former automatic light sat in its plane and left it black. */
+static void test_flat_model(void **state)
+{
+    (void)state;
+    gltf_out g;
+    memset(&g, 0, sizeof g);
+    const float c[4][3] = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    add_quad(&g.mesh[0], c, (const float[3]){0, 1, 0});
+    memcpy(g.mesh[0].color, (const float[3]){0.7f, 0.7f, 0.7f}, sizeof g.mesh[0].color);
+    g.meshes = 1;
+    write_gltf(TMP "flat.gltf", &g);
+    scene s;
+    frame_params p;
+    load(TMP "flat.gltf", &s, &p);
+    default_view_and_light(&s);
+    assert_true(s.camera.position[1] > 1 && s.lights[0].position[1] > 1);
+    rendered r;
+    render(&s, &p, &r);
+    assert_true(r.lit);
+    double lit = compare(&r, "flat panel without lights or camera");
+    assert_true(lit > 0.2);
+    assert_true(r.kept > 0.5 && r.rel < 0.005 && r.rel_all < 0.02);
+    scene_free(&s);
+}
+
+/* A closed, textured 1 m box (faces out), no lights or camera: seen from outside, lit. */
+static void test_textured_box(void **state)
+{
+    (void)state;
+    const uint8_t rgb[4 * 3] = {200, 40, 40, 40, 200, 40, 40, 40, 200, 220, 220, 220};
+    char err[256];
+    assert_int_equal(image_write_png(TMP "box.png", 2, 2, rgb, err, sizeof err), 0);
+    gltf_out g;
+    memset(&g, 0, sizeof g);
+    add_box(&g.mesh[0], (const float[3]){-0.5f, -0.5f, -0.5f}, (const float[3]){0.5f, 0.5f, 0.5f}, 0, 0);
+    memcpy(g.mesh[0].color, (const float[3]){1, 1, 1}, sizeof g.mesh[0].color);
+    g.meshes = 1;
+    g.texture = "test_gltf_scenes_box.png";
+    write_gltf(TMP "box.gltf", &g);
+    scene s;
+    frame_params p;
+    load(TMP "box.gltf", &s, &p);
+    assert_int_equal(s.texture_count, 1);
+    default_view_and_light(&s);
+    rendered r;
+    render(&s, &p, &r);
+    assert_true(r.lit);
+    double lit = compare(&r, "textured box without lights or camera");
+    assert_true(lit > 0.1);
+    assert_true(r.kept > 0.5 && r.rel < 0.005 && r.rel_all < 0.02);
+    scene_free(&s);
+}
+
+/* The share of pixels the front wall of a 3 m CAVE shows lit, seen from the head. */
+static double front_wall_lit(const scene *s, const frame_params *p)
+{
+    char err[512];
+    glctx_desc gd = {.backend = GLCTX_EGL};
+    glctx *ctx = glctx_create(&gd, err, sizeof err);
+    assert_non_null(ctx);
+    frame_params q = *p;
+    gltest_setn(&q, "rsm", 128);
+    gltest_setn(&q, "lattice", 16);
+    gltest_set(&q, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .first = &q};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    assert_non_null(r);
+    renderer_view v;
+    const float bl[3] = {-1.5f, 0, -1.5f}, br[3] = {1.5f, 0, -1.5f}, tl[3] = {-1.5f, 3, -1.5f};
+    assert_true(frame_view_screen(bl, br, tl, (const float[3]){0, 1.7f, 0}, scene_far_plane(s), W, H,
+                                  &v, NULL) >= 0);
+    renderer_frame_pass(r, &q);
+    renderer_image img;
+    assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
+    size_t lit = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        lit += img.direct[3 * i] + img.direct[3 * i + 1] + img.direct[3 * i + 2] > 0;
+    renderer_destroy(r);
+    glctx_destroy(ctx);
+    return (double)lit / ((double)W * H);
+}
+
+/* A site exported Z up in centimetres, 100 m from its origin: a 10 x 10 m ground with a
+ * 1 m block and a lamp 3 m up. As modelled the CAVE's front wall shows nothing; with the
+ * config's scene_transform {"up": "z", "scale": 0.01} (no camera: the ground's middle on
+ * the CAVE's floor) it shows the lit ground and block. */
+static void test_placed_in_cave(void **state)
+{
+    (void)state;
+    gltf_out g;
+    memset(&g, 0, sizeof g);
+    const float ground[4][3] = {{10000, 5000, 0}, {11000, 5000, 0}, {11000, 6000, 0}, {10000, 6000, 0}};
+    add_quad(&g.mesh[0], ground, (const float[3]){0, 0, 1});
+    add_box(&g.mesh[1], (const float[3]){10450, 5200, 0}, (const float[3]){10550, 5300, 100}, 0, 0);
+    memcpy(g.mesh[0].color, (const float[3]){0.6f, 0.6f, 0.6f}, sizeof g.mesh[0].color);
+    memcpy(g.mesh[1].color, (const float[3]){0.8f, 0.4f, 0.2f}, sizeof g.mesh[1].color);
+    g.meshes = 2;
+    g.light = "{\"type\":\"point\",\"intensity\":40000}";
+    node_matrix((const float[3]){10500, 5500, 300}, (const float[3]){0, 0, -1}, g.light_matrix);
+    write_gltf(TMP "site.gltf", &g);
+    const char *json =
+        "{\"master\": {\"bind\": \"tcp://*:1\", \"connect\": \"tcp://h:1\"},"
+        " \"scene_transform\": {\"up\": \"z\", \"scale\": 0.01}, \"observer\": {\"home\": [0, 1.7, 0]},"
+        " \"screens\": [{\"name\": \"front\", \"bottom_left\": [-1.5,0,-1.5], \"bottom_right\": [1.5,0,-1.5],"
+        " \"top_left\": [-1.5,3,-1.5]}], \"nodes\": [{\"name\": \"a\", \"screens\": [\"front\"], \"resolution\": [4,4]}]}";
+    static cluster_config cfg;
+    char err[512];
+    assert_int_equal(cluster_config_parse(json, strlen(json), "cave.json", &cfg, err, sizeof err), 0);
+    double share[2];
+    for (int placed = 0; placed < 2; placed++) {
+        scene_load_desc d;
+        cluster_config_scene_desc(&cfg, &d);
+        if (!placed)
+            d.transform = NULL;
+        scene s;
+        assert_int_equal(scene_load_with(TMP "site.gltf", &d, &s, err, sizeof err), 0);
+        frame_params p;
+        frame_params_default(&p);
+        frame_params_lights_from_scene(&p, &s);
+        share[placed] = front_wall_lit(&s, &p);
+        scene_free(&s);
+    }
+    printf("site Z up in cm, 100 m away: front wall %.0f%% lit as modelled, %.0f%% placed\n",
+           100 * share[0], 100 * share[1]);
+    assert_true(share[0] == 0);
+    assert_true(share[1] > 0.3);
+}
+
 /* A view whose lights are all off receives no light: the eye pass says so (img.lit) and
  * prints one warning, not one per frame; lit again, it says so too. */
 static void test_view_without_light(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     renderer_view v;
     gltest_look_at(&v, t.scene.camera.position, t.scene.camera.target, t.scene.camera.yfov, 64, 48);
     /* The default room's emissive panel is out of this view's sight only if we look away:
@@ -443,8 +606,8 @@ static void test_view_without_light(void **state)
         memset(t.scene.materials[m].emissive, 0, sizeof t.scene.materials[m].emissive);
     renderer_destroy(t.r);
     char err[256];
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 64, .lattice_cells = 16};
+    gltest_setn(&t.params, "lattice", 16);
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .first = &t.params};
     assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     renderer_image img;
     for (int f = 0; f < 3; f++) {
@@ -463,6 +626,9 @@ int main(void)
         cmocka_unit_test(test_orthographic_camera),
         cmocka_unit_test(test_directional_courtyard),
         cmocka_unit_test(test_closed_room_without_lights),
+        cmocka_unit_test(test_flat_model),
+        cmocka_unit_test(test_textured_box),
+        cmocka_unit_test(test_placed_in_cave),
         cmocka_unit_test(test_view_without_light),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -99,7 +99,7 @@ static window_stats hud_pixels(const renderer_view *v, const uint8_t *shown, con
 /* Context, one frame pass, and the wand 0.42 m in front of the head. */
 static void setup(gltest *t, frame_params *p)
 {
-    assert_int_equal(gltest_open(t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     *p = t->params;
     p->lpv_steps = 4;
     p->lambda_incr = 0;

@@ -1,5 +1,5 @@
 /* Units of the frame pass (docs/node.md): the injection's energy <L|1> is exactly the flux
- * the VPLs carry (renderer_lpv_stats.injected_energy), so it can be checked against closed
+ * the VPLs carry (gi_ilpv_stats.injected_energy), so it can be checked against closed
  * forms.
  *   - a spot straight down onto the floor: the floor reflects albedo * I * integral of
  *     the cone factor over solid angle (the RSM's per-texel solid angles must add up);
@@ -25,8 +25,8 @@ static void lattice_energy_after_injection(gltest *t, double e[3])
 {
     t->params.lpv_steps = 0;
     renderer_frame_pass(t->r, &t->params);
-    renderer_lpv_stats st;
-    renderer_get_lpv_stats(t->r, &st);
+    gi_ilpv_stats st;
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(t->r)), &st);
     memcpy(e, st.injected_energy, sizeof st.injected_energy);
 }
 
@@ -34,7 +34,7 @@ static void test_spot_flux_on_floor(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     /* The emissive panel must not count: measure it alone and subtract. */
     double panel[3], both[3];
     t.params.lights[0].enabled = 0;
@@ -60,7 +60,7 @@ static void test_surface_light_flux(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     t.params.light_count = 0;
     double e[3];
     lattice_energy_after_injection(&t, e);
@@ -97,19 +97,21 @@ static void code_scene_energy(scene *s, const frame_light *l, int rsm, double e[
     glctx_desc gd = {.backend = GLCTX_EGL};
     glctx *ctx = glctx_create(&gd, err, sizeof err);
     assert_non_null(ctx);
-    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = rsm, .lattice_cells = 16};
-    renderer *r = renderer_create(&rd, err, sizeof err);
-    assert_non_null(r);
     frame_params p;
     frame_params_default(&p);
     p.light_count = 1;
     p.lights[0] = *l;
     p.lpv_steps = 0;
     p.lambda_incr = 0.0f;
+    gltest_setn(&p, "rsm", rsm);
+    gltest_setn(&p, "lattice", 16);
+    gltest_set(&p, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .first = &p};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    assert_non_null(r);
     renderer_frame_pass(r, &p);
-    renderer_lpv_stats st; /* the injection's energy (the lattice holds the splat's near field too) */
-    renderer_get_lpv_stats(r, &st);
+    gi_ilpv_stats st; /* the injection's energy (the lattice holds the splat's near field too) */
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(r)), &st);
     memcpy(e, st.injected_energy, sizeof st.injected_energy);
     lpv_vpl *v;
     size_t n = renderer_rsm_vpls(renderer_get_rsm(r), &v);

@@ -11,18 +11,21 @@
 static lattice_desc open_corridor(glctx *ctx, const scene *s, int axis_cells, long budget)
 {
     char err[512];
-    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 64, .lattice_cells = axis_cells,
-                        .lattice_cell_budget = budget, .threads = 2};
-    renderer *r = renderer_create(&rd, err, sizeof err);
-    assert_non_null(r);
-    lattice_desc lat = *renderer_get_lattice(r);
     frame_params p;
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, s);
+    gltest_setn(&p, "rsm", 64);
+    gltest_set(&p, "lpv", "cpu");
+    if (axis_cells > 0)
+        gltest_setn(&p, "lattice", axis_cells);
+    gltest_setn(&p, "lattice-cells", (double)budget);
+    renderer_desc rd = {.gl = glctx_gl(ctx), .scene = s, .first = &p, .threads = 2};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    assert_non_null(r);
+    lattice_desc lat = *gi_ilpv_lattice(gi_ilpv_of(renderer_gi(r)));
     renderer_frame_pass(r, &p);
     double e[3];
-    lpv_volume_energy(renderer_get_lpv(r), e);
+    lpv_volume_energy(gi_ilpv_volume(gi_ilpv_of(renderer_gi(r))), e);
     assert_true(e[0] > 0 && e[1] > 0 && e[2] > 0); /* light got into the lattice */
     renderer_destroy(r);
     return lat;

@@ -23,16 +23,16 @@ static void run_frames(gltest *t, int frames, uint64_t *checksum)
 }
 
 /* Both variants of the shader: plain image loads and shared-memory tiles. */
-static void gl_matches_cpu(renderer_tiles tiles)
+static void gl_matches_cpu(ilpv_tiles tiles)
 {
     gltest cpu, gpu;
     uint64_t c_cpu, c_gpu;
-    assert_int_equal(gltest_open(&cpu, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&cpu, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     run_frames(&cpu, 4, &c_cpu);
-    assert_int_equal(gltest_open_tiles(&gpu, GLCTX_EGL, RENDERER_LPV_GL, 0, tiles), 0);
-    assert_int_equal(renderer_get_lpv_backend(gpu.r), RENDERER_LPV_GL);
+    assert_int_equal(gltest_open_tiles(&gpu, GLCTX_EGL, ILPV_BACKEND_GL, 0, tiles), 0);
+    assert_int_equal(gi_ilpv_backend(gi_ilpv_of(renderer_gi(gpu.r))), ILPV_BACKEND_GL);
     run_frames(&gpu, 4, &c_gpu);
-    const lpv_volume *a = renderer_get_lpv(cpu.r), *b = renderer_get_lpv(gpu.r);
+    const lpv_volume *a = gi_ilpv_volume(gi_ilpv_of(renderer_gi(cpu.r))), *b = gi_ilpv_volume(gi_ilpv_of(renderer_gi(gpu.r)));
     assert_int_equal(a->cells, b->cells);
     assert_int_equal(lpv_volume_count_nonfinite(b), 0);
     double worst = 0;
@@ -59,13 +59,13 @@ static void gl_matches_cpu(renderer_tiles tiles)
 static void test_gl_images_match_cpu(void **state)
 {
     (void)state;
-    gl_matches_cpu(RENDERER_TILES_OFF);
+    gl_matches_cpu(ILPV_TILES_OFF);
 }
 
 static void test_gl_tiles_match_cpu(void **state)
 {
     (void)state;
-    gl_matches_cpu(RENDERER_TILES_ON);
+    gl_matches_cpu(ILPV_TILES_ON);
 }
 
 static void test_cpu_bit_identical_across_threads(void **state)
@@ -73,12 +73,12 @@ static void test_cpu_bit_identical_across_threads(void **state)
     (void)state;
     gltest one, two;
     uint64_t c1, c2;
-    assert_int_equal(gltest_open(&one, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    assert_int_equal(gltest_open(&one, GLCTX_EGL, ILPV_BACKEND_CPU, 1), 0);
     run_frames(&one, 3, &c1);
-    assert_int_equal(gltest_open(&two, GLCTX_EGL, RENDERER_LPV_CPU, 2), 0);
+    assert_int_equal(gltest_open(&two, GLCTX_EGL, ILPV_BACKEND_CPU, 2), 0);
     run_frames(&two, 3, &c2);
     assert_true(c1 == c2);
-    assert_true(c1 == lpv_volume_checksum(renderer_get_lpv(one.r)));
+    assert_true(c1 == lpv_volume_checksum(gi_ilpv_volume(gi_ilpv_of(renderer_gi(one.r)))));
     gltest_close(&two);
     gltest_close(&one);
 }

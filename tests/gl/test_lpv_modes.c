@@ -17,7 +17,7 @@
 
 enum { W = 64, H = 48 };
 
-static void open_with(gltest *t, renderer_lpv_backend backend, renderer_lpv_mode mode,
+static void open_with(gltest *t, ilpv_backend_choice backend, ilpv_mode mode,
                       double threshold)
 {
     char err[512];
@@ -26,23 +26,27 @@ static void open_with(gltest *t, renderer_lpv_backend backend, renderer_lpv_mode
     t->ctx = glctx_create(&gd, err, sizeof err);
     assert_non_null(t->ctx);
     assert_int_equal(scene_load("default", &t->scene, err, sizeof err), 0);
-    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .lpv_backend = backend,
-                        .rsm_size = 64, .lattice_cells = 20, .lpv_gl_tiles = RENDERER_TILES_OFF,
-                        .lpv_mode = mode, .converge_threshold = threshold};
+    frame_params_default(&t->params);
+    frame_params_lights_from_scene(&t->params, &t->scene);
+    gltest_setn(&t->params, "rsm", 64);
+    gltest_setn(&t->params, "lattice", 20);
+    gltest_seti(&t->params, "lpv", backend);
+    gltest_set(&t->params, "gl-tiles", "off");
+    gltest_seti(&t->params, "lpv-mode", mode);
+    gltest_setn(&t->params, "converge-threshold", threshold);
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .first = &t->params};
     t->r = renderer_create(&rd, err, sizeof err);
     if (!t->r)
         fprintf(stderr, "%s\n", err);
     assert_non_null(t->r);
-    frame_params_default(&t->params);
-    frame_params_lights_from_scene(&t->params, &t->scene);
 }
 
 static void classic_gl_matches_cpu(int steps)
 {
     gltest cpu, gpu;
-    open_with(&cpu, RENDERER_LPV_CPU, RENDERER_LPV_CLASSIC, -1);
-    open_with(&gpu, RENDERER_LPV_GL, RENDERER_LPV_CLASSIC, -1);
-    assert_int_equal(renderer_get_lpv_mode(gpu.r), RENDERER_LPV_CLASSIC);
+    open_with(&cpu, ILPV_BACKEND_CPU, ILPV_MODE_CLASSIC, -1);
+    open_with(&gpu, ILPV_BACKEND_GL, ILPV_MODE_CLASSIC, -1);
+    assert_int_equal(gi_ilpv_mode(gi_ilpv_of(renderer_gi(gpu.r))), ILPV_MODE_CLASSIC);
     gltest *both[2] = {&cpu, &gpu};
     for (int k = 0; k < 2; k++) {
         both[k]->params.lambda_incr = 0.8f; /* ignored by classic */
@@ -55,7 +59,7 @@ static void classic_gl_matches_cpu(int steps)
             renderer_frame_pass(both[k]->r, &both[k]->params);
         }
     }
-    const lpv_volume *a = renderer_get_lpv(cpu.r), *b = renderer_get_lpv(gpu.r);
+    const lpv_volume *a = gi_ilpv_volume(gi_ilpv_of(renderer_gi(cpu.r))), *b = gi_ilpv_volume(gi_ilpv_of(renderer_gi(gpu.r)));
     assert_int_equal(lpv_volume_count_nonfinite(b), 0);
     double worst = 0, ea[3], eb[3];
     for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
@@ -96,13 +100,13 @@ static void test_classic_sums_steps(void **state)
 {
     (void)state;
     gltest inc, cla;
-    open_with(&inc, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, -1);
-    open_with(&cla, RENDERER_LPV_CPU, RENDERER_LPV_CLASSIC, -1);
+    open_with(&inc, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, -1);
+    open_with(&cla, ILPV_BACKEND_CPU, ILPV_MODE_CLASSIC, -1);
     inc.params.lpv_steps = cla.params.lpv_steps = 8;
     inc.params.lambda_incr = 0;
     renderer_frame_pass(inc.r, &inc.params);
     renderer_frame_pass(cla.r, &cla.params);
-    const lpv_volume *vi = renderer_get_lpv(inc.r), *vc = renderer_get_lpv(cla.r);
+    const lpv_volume *vi = gi_ilpv_volume(gi_ilpv_of(renderer_gi(inc.r))), *vc = gi_ilpv_volume(gi_ilpv_of(renderer_gi(cla.r)));
     double ei[3], ec[3];
     lpv_volume_energy(vi, ei);
     lpv_volume_energy(vc, ec);
@@ -123,8 +127,8 @@ static int run(gltest *t, int frames, uint64_t *checksum, float *final)
     int skipped = 0;
     for (int f = 0; f < frames; f++) {
         *checksum = renderer_frame_pass(t->r, &t->params);
-        renderer_lpv_stats s;
-        renderer_get_lpv_stats(t->r, &s);
+        gi_ilpv_stats s;
+        gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(t->r)), &s);
         skipped += s.skipped_this_frame;
         renderer_image img;
         assert_int_equal(renderer_eye_pass(t->r, &v, 1, &img), 0);
@@ -149,13 +153,13 @@ static void test_static_lambda0_skips_exactly(void **state)
     (void)state;
     static float img_skip[3 * W * H], img_full[3 * W * H];
     gltest s, n;
-    open_with(&s, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, 0);
-    open_with(&n, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, -1);
+    open_with(&s, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, 0);
+    open_with(&n, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, -1);
     s.params.lambda_incr = n.params.lambda_incr = 0;
     uint64_t cs, cn;
     assert_int_equal(run(&s, 2, &cs, NULL), 0); /* the second one measures residual 0 */
-    renderer_lpv_stats st;
-    renderer_get_lpv_stats(s.r, &st);
+    gi_ilpv_stats st;
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(s.r)), &st);
     assert_true(st.last_residual == 0.0);
     assert_int_equal(run(&s, 3, &cs, img_skip), 3);
     assert_int_equal(run(&n, 5, &cn, img_full), 0);
@@ -163,7 +167,7 @@ static void test_static_lambda0_skips_exactly(void **state)
     assert_memory_equal(img_skip, img_full, sizeof img_skip);
     renderer_timings t;
     renderer_get_timings(s.r, &t);
-    assert_true(t.rsm_ms == 0 && t.inject_ms == 0 && t.propagate_ms == 0);
+    assert_true(t.rsm_ms == 0 && gi_stats_total_ms(&t.gi) == 0);
 
     /* A moved light is computed on that very frame, in lockstep with the other run. */
     s.params.lights[0].position[0] += 0.3f;
@@ -173,9 +177,9 @@ static void test_static_lambda0_skips_exactly(void **state)
     assert_true(cs == cn);
     assert_memory_equal(img_skip, img_full, sizeof img_skip);
     renderer_get_timings(s.r, &t);
-    assert_true(t.propagate_ms > 0);
+    assert_true(gi_stats_value(&t.gi, "propagate", NULL) > 0);
     assert_int_equal(run(&s, 3, &cs, NULL), 2); /* converged again: skipping resumes */
-    renderer_get_lpv_stats(s.r, &st);
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(s.r)), &st);
     assert_int_equal(st.frames_skipped, 5);
     gltest_close(&n);
     gltest_close(&s);
@@ -186,16 +190,16 @@ static void test_lambda09_converges_then_skips(void **state)
     (void)state;
     static float img_skip[3 * W * H], img_full[3 * W * H];
     gltest s, n;
-    open_with(&s, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, 0);
-    open_with(&n, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, -1);
+    open_with(&s, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, 0);
+    open_with(&n, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, -1);
     s.params.lambda_incr = n.params.lambda_incr = 0.9f;
     s.params.lpv_steps = n.params.lpv_steps = 2;
     int first_skip = -1;
     uint64_t cs, cn;
     for (int f = 0; f < 200 && first_skip < 0; f++) {
         renderer_frame_pass(s.r, &s.params);
-        renderer_lpv_stats st;
-        renderer_get_lpv_stats(s.r, &st);
+        gi_ilpv_stats st;
+        gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(s.r)), &st);
         if (st.skipped_this_frame)
             first_skip = f;
     }
@@ -212,18 +216,20 @@ static void test_lambda09_converges_then_skips(void **state)
     gltest_close(&s);
 }
 
-/* A NaN lambda_incr is sanitized to 0 before the skip rule sees it: a valid, constant
- * input whose result converges at once, so frames 3 to 5 skip. A changing input never does. */
+/* A NaN absorption is sanitized to its default (0) before the skip rule sees it: with
+ * lambda_incr 0 a valid, constant input whose result converges at once, so frames 3 to 5
+ * skip. A changing input never does. */
 static void test_nan_is_sanitized_and_changing_input_never_skips(void **state)
 {
     (void)state;
     gltest t;
-    open_with(&t, RENDERER_LPV_CPU, RENDERER_LPV_INCREMENTAL, 0);
-    t.params.lambda_incr = NAN;
+    open_with(&t, ILPV_BACKEND_CPU, ILPV_MODE_INCREMENTAL, 0);
+    t.params.lambda_incr = 0;
+    t.params.absorption = NAN;
     uint64_t c;
     assert_int_equal(run(&t, 5, &c, NULL), 3);
-    renderer_lpv_stats st;
-    renderer_get_lpv_stats(t.r, &st);
+    gi_ilpv_stats st;
+    gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(t.r)), &st);
     assert_true(st.last_residual == 0.0);
     t.params.lambda_incr = 0;
     for (int f = 0; f < 5; f++) { /* a tiny change every frame */
@@ -240,15 +246,15 @@ static void test_measure_then_render(void **state)
 {
     (void)state;
     for (int combo = 0; combo < 4; combo++) {
-        renderer_lpv_backend backend = combo & 1 ? RENDERER_LPV_GL : RENDERER_LPV_CPU;
-        renderer_lpv_mode mode = combo & 2 ? RENDERER_LPV_CLASSIC : RENDERER_LPV_INCREMENTAL;
+        ilpv_backend_choice backend = combo & 1 ? ILPV_BACKEND_GL : ILPV_BACKEND_CPU;
+        ilpv_mode mode = combo & 2 ? ILPV_MODE_CLASSIC : ILPV_MODE_INCREMENTAL;
         gltest a, b;
         open_with(&a, backend, mode, 0);
         open_with(&b, backend, mode, 0);
         a.params.lambda_incr = b.params.lambda_incr = 0.8f;
         uint64_t ca, cb;
         run(&a, 4, &ca, NULL);
-        double ms = renderer_measure_step_ms(a.r, 2);
+        double ms = gi_ilpv_measure_step_ms(gi_ilpv_of(renderer_gi(a.r)), 2);
         printf("backend %d, mode %d: %.3g ms per step\n", backend, mode, ms);
         assert_true(ms > 0);
         assert_int_equal(run(&a, 1, &ca, NULL), 0);
@@ -257,7 +263,7 @@ static void test_measure_then_render(void **state)
 
         a.params.lambda_incr = 0; /* the same result as the last frame, the first after reset */
         assert_int_equal(run(&a, 4, &ca, NULL), 3);
-        renderer_measure_step_ms(a.r, 1);
+        gi_ilpv_measure_step_ms(gi_ilpv_of(renderer_gi(a.r)), 1);
         assert_int_equal(run(&a, 2, &cb, NULL), 0);
         assert_true(ca == cb);
         assert_int_equal(run(&a, 1, &cb, NULL), 1);
@@ -271,7 +277,7 @@ static void test_gl_backend_skips(void **state)
     (void)state;
     for (int mode = 0; mode < 2; mode++) {
         gltest t;
-        open_with(&t, RENDERER_LPV_GL, (renderer_lpv_mode)mode, 0);
+        open_with(&t, ILPV_BACKEND_GL, (ilpv_mode)mode, 0);
         t.params.lambda_incr = 0;
         uint64_t c2, c5;
         assert_int_equal(run(&t, 2, &c2, NULL), 0);

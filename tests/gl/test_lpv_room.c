@@ -85,13 +85,16 @@ static void test_faces_against_the_reference(void **state)
         glctx_desc gd = {.backend = GLCTX_EGL};
         glctx *ctx = glctx_create(&gd, err, sizeof err);
         assert_non_null(ctx);
-        renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &s, .lpv_backend = RENDERER_LPV_CPU,
-                            .rsm_size = 128, .lattice_cells = sizes[k], .threads = 2,
-                            .converge_threshold = -1};
+        frame_params q = p;
+        gltest_setn(&q, "rsm", 128);
+        gltest_setn(&q, "lattice", sizes[k]);
+        gltest_set(&q, "lpv", "cpu");
+        renderer_desc rd = {.gl = glctx_gl(ctx), .scene = &s, .first = &q, .threads = 2,
+                            .no_reuse = 1};
         renderer *r = renderer_create(&rd, err, sizeof err);
         assert_non_null(r);
         for (int f = 0; f < FRAMES * (sizes[k] / 16); f++)
-            renderer_frame_pass(r, &p);
+            renderer_frame_pass(r, &q);
         printf("stage (c) %d cells: lpv / reference per face (reference noise)\n", sizes[k]);
         double log_sum = 0;
         for (int f = 0; f < 6; f++) {

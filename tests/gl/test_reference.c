@@ -87,7 +87,7 @@ static void test_direct_matches_rasterizer(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     char err[256];
     reference *ref = reference_create(&t.scene, 0, err, sizeof err);
     assert_non_null(ref);
@@ -135,14 +135,16 @@ static void test_texture_matches_rasterizer(void **state)
     assert_true(scene_add_triangle(&t.scene, p1, NULL, uv1, 0) >= 0);
     assert_true(scene_add_triangle(&t.scene, p2, NULL, uv2, 0) >= 0);
     assert_int_equal(scene_finish(&t.scene, err, sizeof err), 0);
-    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = 64, .lattice_cells = 8};
-    assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     frame_params_default(&t.params);
     t.params.light_count = 1;
     t.params.lights[0] = (frame_light){.enabled = 1, .position = {0.3f, 3, 0.2f},
                                        .direction = {0, -1, 0}, .color = {1, 1, 1},
                                        .intensity = 20, .outer_angle = 1.2f, .inner_angle = 1.0f};
+    gltest_setn(&t.params, "rsm", 64);
+    gltest_setn(&t.params, "lattice", 8);
+    gltest_set(&t.params, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(t.ctx), .scene = &t.scene, .first = &t.params};
+    assert_non_null(t.r = renderer_create(&rd, err, sizeof err));
     reference *ref = reference_create(&t.scene, 0, err, sizeof err);
     assert_non_null(ref);
     renderer_view v;

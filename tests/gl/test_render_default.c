@@ -14,7 +14,7 @@ static void test_not_black_not_saturated(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     renderer_view v;
     gltest_look_at(&v, t.scene.camera.position, t.scene.camera.target, t.scene.camera.yfov, W, H);
     renderer_image img;
@@ -45,7 +45,7 @@ static void test_spot_disc_where_projected(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 0), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
     const float hit[3] = {-1.0f, 0.0f, -0.2f};
     frame_light *l = &t.params.lights[0];
     l->position[0] = hit[0];

@@ -1,5 +1,5 @@
 /* The vpl method's cost reductions on llvmpipe, default room: imperfect shadow maps
- * (node/vpl_ism.h) and interleaved sampling (node/vpl_interleave.h).
+ * (node/gi/vpl/vpl_ism.h) and interleaved sampling (node/gi/vpl/vpl_interleave.h).
  *
  * The module alone: one VPL in the middle of the room, facing up, with 64 points in a
  * 16 x 16 map: the points leave most texels of the hemisphere's disk empty, and pull-push
@@ -21,7 +21,7 @@
 #include "base/vec3.h"
 #include "gl/gl_testutil.h"
 #include "gltools.h"
-#include "vpl_ism.h"
+#include "gi/vpl/vpl_ism.h"
 
 enum { W = 64, H = 48, PIXELS = W * H * 3, SIZE = 16, POINTS = 64, K = 4 };
 
@@ -121,12 +121,16 @@ static double rel_rmse(const float *a, const float *b)
     return sqrt(e / PIXELS) / (m / PIXELS);
 }
 
-static uint64_t render(gltest *t, renderer *r, float *indirect)
+/* A renderer and its frame: 256 VPLs with this visibility and interleaving. */
+typedef struct made {
+    renderer *r;
+    frame_params p;
+} made;
+
+static uint64_t render(made *m, float *indirect)
 {
-    frame_params p = t->params;
-    p.gi = FRAME_GI_VPL;
-    p.vpl_count = 256;
-    uint64_t checksum = renderer_frame_pass(r, &p);
+    renderer *r = m->r;
+    uint64_t checksum = renderer_frame_pass(r, &m->p);
     renderer_view v;
     const float eye[3] = {1.3f, 1.6f, 1.9f}, target[3] = {-0.5f, 0.9f, -1.2f};
     gltest_look_at(&v, eye, target, 1.15f, W, H);
@@ -136,47 +140,52 @@ static uint64_t render(gltest *t, renderer *r, float *indirect)
     return checksum;
 }
 
-static renderer *make(gltest *t, renderer_vpl_visibility vis, int block)
+static made make(gltest *t, vpl_visibility vis, int block)
 {
     char err[512];
-    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .rsm_size = 64,
-                        .lpv_backend = RENDERER_LPV_CPU, .gi = FRAME_GI_VPL,
-                        .vpl_visibility = vis, .vpl_interleave = block,
-                        .converge_threshold = -1};
-    renderer *r = renderer_create(&rd, err, sizeof err);
-    if (!r)
+    made m = {.p = t->params};
+    gltest_set(&m.p, "gi", "vpl");
+    gltest_setn(&m.p, "vpl-count", 256);
+    gltest_seti(&m.p, "vpl-visibility", vis);
+    gltest_setn(&m.p, "vpl-interleave", block);
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .first = &m.p,
+                        .no_reuse = 1};
+    m.r = renderer_create(&rd, err, sizeof err);
+    if (!m.r)
         fprintf(stderr, "%s\n", err);
-    assert_non_null(r);
-    return r;
+    assert_non_null(m.r);
+    return m;
 }
 
 static void test_against_exact_and_deterministic(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 1), 0);
     static float exact[PIXELS], ism[PIXELS], again[PIXELS];
-    renderer *r = make(&t, RENDERER_VPL_EXACT, 0);
-    uint64_t c_exact = render(&t, r, exact);
-    renderer_destroy(r);
-    const renderer_vpl_visibility kinds[2] = {RENDERER_VPL_ISM, RENDERER_VPL_ISM_SPLAT};
+    made r = make(&t, VPL_VISIBILITY_EXACT, 0);
+    uint64_t c_exact = render(&r, exact);
+    renderer_destroy(r.r);
+    const vpl_visibility kinds[2] = {VPL_VISIBILITY_ISM, VPL_VISIBILITY_ISM_SPLAT};
     /* Measured at 64 x 48, 256 VPLs, 32 x 32 maps of 1024 points: 0.14 (pull-push) and
      * 0.19 (splats); the bound leaves room for another driver's rounding. */
     const double bound = 0.3;
     for (int k = 0; k < 2; k++) {
         r = make(&t, kinds[k], 0);
-        uint64_t c = render(&t, r, ism);
+        uint64_t c = render(&r, ism);
         double e = rel_rmse(ism, exact);
-        printf("%s: indirect relRMSE against exact maps %.3f\n", vpl_visibility_names[kinds[k]], e);
+        char name[32];
+        printf("%s: indirect relRMSE against exact maps %.3f\n",
+               gi_get_text(&r.p, "vpl-visibility", name, sizeof name), e);
         assert_true(c == c_exact); /* the VPLs are the same; only their maps differ */
         assert_true(e < bound);
-        assert_true(render(&t, r, again) == c);
+        assert_true(render(&r, again) == c);
         assert_memory_equal(ism, again, sizeof ism);
-        renderer_destroy(r);
+        renderer_destroy(r.r);
         r = make(&t, kinds[k], 0);
-        render(&t, r, again);
+        render(&r, again);
         assert_memory_equal(ism, again, sizeof ism);
-        renderer_destroy(r);
+        renderer_destroy(r.r);
     }
     gltest_close(&t);
 }
@@ -191,15 +200,15 @@ static void test_interleaved(void **state)
 {
     (void)state;
     gltest t;
-    assert_int_equal(gltest_open(&t, GLCTX_EGL, RENDERER_LPV_CPU, 1), 0);
+    assert_int_equal(gltest_open(&t, GLCTX_EGL, ILPV_BACKEND_CPU, 1), 0);
     static float plain[PIXELS], one[PIXELS], a[PIXELS], b[PIXELS];
-    renderer *r = make(&t, RENDERER_VPL_EXACT, 0);
-    render(&t, r, plain);
-    renderer_destroy(r);
+    made r = make(&t, VPL_VISIBILITY_EXACT, 0);
+    render(&r, plain);
+    renderer_destroy(r.r);
 
-    r = make(&t, RENDERER_VPL_EXACT, 1); /* 1 x 1 blocks: the same sums, through the two passes */
-    render(&t, r, one);
-    renderer_destroy(r);
+    r = make(&t, VPL_VISIBILITY_EXACT, 1); /* 1 x 1 blocks: the same sums, through the two passes */
+    render(&r, one);
+    renderer_destroy(r.r);
     double worst = 0, mean = 0;
     for (int i = 0; i < PIXELS; i++) {
         worst = fmax(worst, fabs((double)one[i] - plain[i]));
@@ -208,11 +217,11 @@ static void test_interleaved(void **state)
     printf("1 x 1 blocks: largest difference %.3g of a mean %.3g\n", worst, mean);
     assert_true(worst <= 1e-5 * mean);
 
-    r = make(&t, RENDERER_VPL_EXACT, K);
-    render(&t, r, a);
-    render(&t, r, b);
+    r = make(&t, VPL_VISIBILITY_EXACT, K);
+    render(&r, a);
+    render(&r, b);
     assert_memory_equal(a, b, sizeof a); /* a static scene: the same frame */
-    renderer_destroy(r);
+    renderer_destroy(r.r);
 
     /* Depth edges: horizontal neighbours whose primary rays (cast here) meet surfaces more
      * than 20% apart in distance. At those pixels, the blurred image's error against the

@@ -31,21 +31,30 @@ typedef struct room {
     double ref_mean, ref_noise; /* covered mean; the averaged reference's RMS noise / mean */
 } room;
 
+/* The room's frame with VPLs gathered as disks or points (vpl-bound) and this seed. */
+static frame_params vpl_frame(const room *m, int point, uint32_t seed)
+{
+    frame_params p = m->params;
+    gltest_set(&p, "vpl-bound", point ? "point" : "disk");
+    gltest_set(&p, "vpl-visibility", "exact");
+    gltest_setn(&p, "vpl-seed", seed);
+    return p;
+}
+
 static renderer *vpl_renderer(room *m, int point)
 {
     char err[512];
-    renderer_desc rd = {.gl = glctx_gl(m->ctx), .scene = &m->sc, .gi = FRAME_GI_VPL,
-                        .vpl_point = point, .vpl_visibility = RENDERER_VPL_EXACT};
+    frame_params p = vpl_frame(m, point, 0);
+    renderer_desc rd = {.gl = glctx_gl(m->ctx), .scene = &m->sc, .first = &p};
     renderer *r = renderer_create(&rd, err, sizeof err);
     if (!r)
         fprintf(stderr, "%s\n", err);
     return r;
 }
 
-static void indirect(renderer *r, room *m, uint32_t seed, float *out)
+static void indirect(renderer *r, room *m, int point, uint32_t seed, float *out)
 {
-    frame_params p = m->params;
-    p.vpl_seed = seed;
+    frame_params p = vpl_frame(m, point, seed);
     renderer_frame_pass(r, &p);
     renderer_image img;
     assert_int_equal(renderer_eye_pass(r, &m->view, 1, &img), 0);
@@ -69,7 +78,7 @@ static void test_exact_matches_reference(void **state)
     (void)state;
     room m = {0};
     char err[512];
-    glctx_desc gd = {.backend = GLCTX_EGL, .width = W, .height = H};
+    glctx_desc gd = {.backend = GLCTX_EGL};
     assert_non_null(m.ctx = glctx_create(&gd, err, sizeof err));
     assert_int_equal(scene_load("default", &m.sc, err, sizeof err), 0);
     scene_camera cam;
@@ -78,8 +87,8 @@ static void test_exact_matches_reference(void **state)
                                              &m.view), 0);
     frame_params_default(&m.params);
     frame_params_lights_from_scene(&m.params, &m.sc);
-    m.params.gi = FRAME_GI_VPL;
-    m.params.vpl_count = VPLS;
+    gltest_set(&m.params, "gi", "vpl");
+    gltest_setn(&m.params, "vpl-count", VPLS);
 
     reference *pt = reference_create(&m.sc, 0, err, sizeof err);
     assert_non_null(pt);
@@ -107,8 +116,8 @@ static void test_exact_matches_reference(void **state)
     seed_sums diff = {diff_sum, diff_sq};
     double rel = 0, rel_off = 0; /* mean relRMSE over the seeds: disk, and level x1.25 */
     for (uint32_t s = 0; s < SEEDS; s++) {
-        indirect(disk, &m, s, d);
-        indirect(point, &m, s, p);
+        indirect(disk, &m, 0, s, d);
+        indirect(point, &m, 1, s, p);
         rel += error(&m, d, 1.0f) / SEEDS;
         rel_off += error(&m, d, 1.25f) / SEEDS;
         seed_add(&diff, p, d, N);

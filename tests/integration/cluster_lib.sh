@@ -27,6 +27,7 @@ make_config() {
  "security": {"mode": "${CLUSTER_SECURITY:-insecure}"},
  "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100,${master_ms} "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
  "observer": {"eye_separation": 0.064, "home": [0, 1.7, 0]},
+ "settings": {${SETTINGS-\"lattice\": 16, \"rsm\": 64}},
  "screens": [
   {"name": "front-l", "bottom_left": [-1.5,0,-1.5], "bottom_right": [0,0,-1.5], "top_left": [-1.5,3,-1.5], "overview": [32, 0]},
   {"name": "front-r", "bottom_left": [0,0,-1.5], "bottom_right": [1.5,0,-1.5], "top_left": [0,3,-1.5], "overview": [64, 0]},
@@ -46,5 +47,6 @@ wait_for_file() {
   fail "$1 did not appear within $2 s"
 }
 
-# Renderer settings that keep a 2-core machine responsive with several nodes.
-small_render="--threads 1 --lattice 16 --rsm 64"
+# Node options that keep a 2-core machine responsive with several nodes (the configs'
+# "settings" keep the lattice and the RSM small, make_config).
+small_render="--threads 1"

@@ -8,10 +8,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 make_config "$tmp/c3.json" 20000 a b c
 { echo "cavelight-input 1"; for i in $(seq 0 70); do echo "poll $i 0.0333"; done; } > "$tmp/static.rec"
-run() { # REPORT EXTRA_NODE_ARGS
+run() { # REPORT EXTRA_MASTER_ARGS
   "$build/cavelight-master" --config "$tmp/c3.json" --bind 'tcp://127.0.0.1:*' --spawn-local \
     --frames 60 --wait-ms 120000 --input "$tmp/static.rec" --output headless --report "$1" \
-    --node-args "$small_render $2" --quiet 2> "$tmp/master.log" || { cat "$tmp/master.log"; fail "master failed ($2)"; }
+    --node-args "$small_render" $2 --quiet 2> "$tmp/master.log" || { cat "$tmp/master.log"; fail "master failed ($2)"; }
   [ "$(json 'r["desyncs"]' "$1")" = 0 ] || fail "desync between nodes ($2)"
   [ "$(json 'min(n["frames_ready"] for n in r["per_node"])' "$1")" = 60 ] || fail "a node missed frames ($2)"
   [ "$(json 'len(set(n["last_checksum"] for n in r["per_node"]))' "$1")" = 1 ] || fail "checksums differ ($2)"

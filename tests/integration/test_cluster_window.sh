@@ -41,3 +41,36 @@ grep -q "DISPLAY is not set: using $(cat "$tmp/display") (the node's \"display\"
   || { cat "$tmp/nodisplay.log"; fail "the node did not say which display it took"; }
 [ "$(json 'r["per_node"][0]["frames_ready"]' "$tmp/nodisplay-r.json")" = 4 ] || { cat "$tmp/nodisplay.log"; fail "no DISPLAY: not 4 frames"; }
 echo "window without DISPLAY: the config's display $(cat "$tmp/display"), 4 frames"
+
+# The display keys on llvmpipe, where the hardware paths fall back: a monitor by a name that
+# is not connected (fullscreen asked: stays windowed), vsync off, an NVIDIA swap group and
+# barrier (Mesa has no GLX_NV_swap_group: not joined, the software barrier releases the
+# frames), quad-buffered stereo (side-by-side, the window widened); the second node's two
+# windows (window per eye) at a position and size. Both project through their MPCDI warp
+# and blend (the shipped powerwall-blend example).
+root=$(cd "$here/../.." && pwd)
+python3 - "$root/configs/clusters/powerwall-blend-local.json" "$tmp/keys.json" <<'PY'
+import json, os, sys
+c = json.load(open(sys.argv[1]))
+for n in c["nodes"]:
+    n["screens"][0]["warp"]["mpcdi"] = os.path.join(os.path.dirname(sys.argv[1]), "powerwall-blend.mpcdi")
+    n["output"] = "window"
+c["nodes"][0].update({"monitor": "DP-9", "fullscreen": True, "vsync": False, "swap_group": 1, "swap_barrier": 1})
+c["nodes"][1].update({"stereo": "window-per-eye", "position": [10, 20], "size": [200, 100]})
+json.dump(c, open(sys.argv[2], "w"))
+PY
+xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 640x480x24" "$build/cavelight-master" --config "$tmp/keys.json" \
+  --bind 'tcp://127.0.0.1:*' --spawn-local --frames 4 --report "$tmp/keys-r.json" 2> "$tmp/keys.log" \
+  || { cat "$tmp/keys.log"; fail "display keys: cluster failed"; }
+for line in "left: monitor 'DP-9' not found (connected: .*): staying windowed" \
+            "left: swap group 1: not joined: the GLX driver has no GLX_NV_swap_group .*; frames are released by the software barrier alone" \
+            "left: the driver offers no quad-buffered window: showing side-by-side" \
+            "left: window 320x150 at .*, vsync off (swap interval 0)" \
+            "right: window 200x100 at (10, 20).*, vsync on (swap interval 1)" \
+            "right: window 200x100 at (210, 20).*, vsync on (swap interval 1)"; do
+  grep -q "cavelight-node $line" "$tmp/keys.log" || { cat "$tmp/keys.log"; fail "display keys: no line '$line'"; }
+done
+for n in 0 1; do
+  [ "$(json "r[\"per_node\"][$n][\"frames_ready\"]" "$tmp/keys-r.json")" = 4 ] || { cat "$tmp/keys.log"; fail "display keys: node $n not 4 frames"; }
+done
+grep "swap group" "$tmp/keys.log" | sed 's/^/display keys: /'

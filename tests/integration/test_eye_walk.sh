@@ -36,7 +36,7 @@ frames=$(grep -c '^poll' "$tmp/walk.txt")
 start=$(date +%s)
 "$build/cavelight-master" --config "$root/configs/clusters/cave5-local.json" --bind 'tcp://127.0.0.1:*' \
     --spawn-local --input "$tmp/walk.txt" --output headless --report "$tmp/r.json" --out "$tmp/out" \
-    --node-args "--threads 1 --lattice 8 --rsm 32" --quiet 2> "$tmp/master.log" \
+    --lattice 8 --rsm 32 --node-args "--threads 1" --quiet 2> "$tmp/master.log" \
     || { tail -30 "$tmp/master.log"; fail "the master failed"; }
 [ "$(json 'r["frames"]' "$tmp/r.json")" = "$frames" ] || fail "not $frames frames: $(json 'r["frames"]' "$tmp/r.json")"
 [ "$(json 'r["drops"]' "$tmp/r.json")" = 0 ] || { cat "$tmp/master.log"; fail "a node was dropped"; }

@@ -3,7 +3,9 @@
 # camera is the view (its aspect ratio sets the image height), --camera NAME|INDEX picks
 # another and names the ones there are when it does not exist; a closed room without lights
 # gets one light inside it and one warning; a view that receives no light says so once, not
-# once per frame; the reference renders the same file from the same camera.
+# once per frame; the reference renders the same file from the same camera; buffers outside
+# the file's folder are refused unless allowed; --scene-transform and the config's
+# scene_transform place a model every node shows alike.
 set -euo pipefail
 build=$1
 node="$build/cavelight-node"
@@ -68,6 +70,28 @@ cams = [("CamNode", "Main", [0.5, 1.6, 1.8], [0, 0, 0, 1]),
 write("cams.gltf", [lamp], cams)
 write("dark.gltf")
 write("off.gltf", [({"type": "point", "intensity": 0}, [0.4, 2.3, 0.3])], cams[:1])
+
+# A site exported Z up in centimetres, 100 m from its origin: a 10 x 10 m ground, a 1 m
+# block, a lamp 3 m up; its buffer in site.bin, and a copy one folder down that reaches up
+# for it.
+ground = [10000, 5000, 0, 11000, 5000, 0, 11000, 6000, 0, 10000, 5000, 0, 11000, 6000, 0, 10000, 6000, 0]
+block, _ = box([10450, 5200, 0], [10550, 5300, 100], False)
+pos = ground + block
+data = struct.pack('<%df' % len(pos), *pos)
+open("%s/site.bin" % out, "wb").write(data)
+site = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"translation": [10500, 5500, 300],
+                                "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 40000}]}},
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(pos) // 3, "type": "VEC3"}],
+        "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+        "buffers": [{"byteLength": len(data), "uri": "site.bin"}]}
+json.dump(site, open("%s/site.gltf" % out, "w"))
+site["buffers"][0]["uri"] = "../site.bin"
+import os
+os.mkdir("%s/sub" % out)
+json.dump(site, open("%s/sub/site.gltf" % out, "w"))
 EOF
 
 small=(--width 64 --rsm 64 --lattice 8)
@@ -142,7 +166,7 @@ cat > "$out/c2.json" <<'JSON'
 JSON
 for scene in cams dark; do
     "$master" --config "$out/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --scene "$out/$scene.gltf" \
-        --frames 4 --report "$out/$scene.json" --node-args "--threads 1 --lattice 16 --rsm 64" \
+        --frames 4 --report "$out/$scene.json" --lattice 16 --rsm 64 --node-args "--threads 1" \
         --quiet 2> "$out/$scene-master.log" || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene failed"; }
     python3 - "$out/$scene.json" <<'PY' || { cat "$out/$scene-master.log" >&2; fail "cluster on $scene: desync"; }
 import json, sys
@@ -154,4 +178,40 @@ done
 [ "$(grep -c "has no lights" "$out/cams-master.log")" -eq 0 ] || fail "the lit file got a 'has no lights' line"
 [ "$(grep -c "has no lights: added a point light" "$out/dark-master.log")" -eq 1 ] \
     || { cat "$out/dark-master.log" >&2; fail "not exactly one 'has no lights' line from the cluster"; }
-echo "glTF CLI: cameras, --camera, default light, the no-light warnings and a 2-node cluster ok"
+
+# Buffers only from the scene file's folder or below, unless allowed: one line naming the
+# uri, never what is there.
+if "$node" --standalone --scene "$out/sub/site.gltf" --width 32 > /dev/null 2> "$out/err"; then
+    fail "a buffer outside the scene's folder was read"
+fi
+[ "$(wc -l < "$out/err")" -eq 1 ] && grep -q 'buffers\[0\].uri "../site.bin" is outside the scene file.s folder' "$out/err" \
+    || { cat "$out/err" >&2; fail "no one-line refusal naming the uri"; }
+run outside --scene "$out/sub/site.gltf" --allow-outside-paths
+
+# Placement: as modelled the site is nowhere near the CAVE and the nodes say their views
+# receive no light; placed by the master's --scene-transform (which the nodes it starts get
+# too) or by the config's scene_transform, every view shows it lit, all nodes alike.
+sed 's/"security"/"scene_transform": {"up": "z", "scale": 0.01}, "security"/' "$out/c2.json" > "$out/c2-placed.json"
+for how in none option config; do
+    cfg="$out/c2.json" args=()
+    [ $how = option ] && args=(--scene-transform '{"up": "z", "scale": 0.01}')
+    [ $how = config ] && cfg="$out/c2-placed.json"
+    "$master" --config "$cfg" --bind 'tcp://127.0.0.1:*' --spawn-local --scene "$out/site.gltf" "${args[@]}" \
+        --frames 2 --out "$out/site-$how" --report "$out/site-$how.json" \
+        --lattice 16 --rsm 64 --node-args "--threads 1" 2> "$out/site-$how.log" \
+        || { cat "$out/site-$how.log" >&2; fail "cluster on the site ($how) failed"; }
+    python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['frames'] == 2 and r['desyncs'] == 0, r" \
+        "$out/site-$how.json" || fail "site ($how): desync"
+done
+grep -q "receives no light" "$out/site-none.log" || { cat "$out/site-none.log" >&2; fail "the site as modelled lit the walls"; }
+for how in option config; do
+    grep -q "receives no light" "$out/site-$how.log" && { cat "$out/site-$how.log" >&2; fail "the placed site ($how) left a view dark"; }
+done
+# A bad transform is refused in one line naming the field, before any node starts.
+if "$master" --config "$out/c2.json" --spawn-local --out "$out/bad" --scene-transform '{"up": "x"}' 2> "$out/err"; then
+    fail "--scene-transform with up x was accepted"
+fi
+[ "$(wc -l < "$out/err")" -eq 1 ] && grep -q "scene_transform.up: must be one of: y, z" "$out/err" \
+    || { cat "$out/err" >&2; fail "no one-line refusal naming scene_transform.up"; }
+[ ! -e "$out/bad" ] || fail "nodes were started for a refused transform"
+echo "glTF CLI: cameras, --camera, default light, the no-light warnings, outside paths, placement and 2-node clusters ok"

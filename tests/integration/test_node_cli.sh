@@ -17,11 +17,11 @@ for gl in egl osmesa; do
         [ -s "$png" ] || fail "$png missing"
         head -c 8 "$png" | od -An -tx1 | grep -q "89 50 4e 47" || fail "$png is not a PNG"
     done
-    grep -q '"lpv_checksum"' "$dir/report.json" || fail "$gl report has no checksums"
-    grep -q '"lpv_share"' "$dir/report.json" || fail "$gl report has no LPV share"
+    grep -q '"checksum"' "$dir/report.json" || fail "$gl report has no checksums"
+    grep -q '"gi_share"' "$dir/report.json" || fail "$gl report has no GI share"
 done
 # Both backends are llvmpipe here: the CPU LPV is bit-identical, so are the checksums.
-cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/osmesa/report.json") \
+cmp <(grep '"checksum"' "$out/egl/report.json") <(grep '"checksum"' "$out/osmesa/report.json") \
     || fail "EGL and OSMesa LPV checksums differ"
 
 # A GLFW window on a virtual X display, where xvfb-run exists: same LPV as EGL.
@@ -29,7 +29,7 @@ if command -v xvfb-run > /dev/null; then
     xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 640x480x24" "$node" --standalone --gl glfw --frames 2 \
         --width 320 --height 240 --out "$out/glfw" > /dev/null || fail "--gl glfw exited non-zero"
     [ -s "$out/glfw/frame0001_mono.png" ] || fail "GLFW run wrote no PNG"
-    cmp <(grep lpv_checksum "$out/egl/report.json") <(grep lpv_checksum "$out/glfw/report.json") \
+    cmp <(grep '"checksum"' "$out/egl/report.json") <(grep '"checksum"' "$out/glfw/report.json") \
         || fail "EGL and GLFW LPV checksums differ"
 else
     echo "xvfb-run not installed: GLFW window check skipped"
@@ -62,8 +62,8 @@ json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)"
 "$node" "${small[@]}" --frames 4 --steps 2 --lambda 0 --out "$out/skip" > /dev/null \
     || fail "static run failed"
 [ "$(json "$out/skip/report.json" "r['cells'] < r['cube_cells'], r['frames_skipped'], \
-    [f['skipped'] for f in r['frames']], len(set(f['lpv_checksum'] for f in r['frames']))")" \
-    = "True 2 [False, False, True, True] 1" ] || fail "skip fields in report.json wrong"
+    [f['skipped'] for f in r['frames']], len(set(f['checksum'] for f in r['frames']))")" \
+    = "True 2 [0, 0, 1, 1] 1" ] || fail "skip fields in report.json wrong"
 "$node" "${small[@]}" --frames 4 --steps 2 --lambda 0 --converge-threshold -1 \
     --out "$out/noskip" > /dev/null || fail "--converge-threshold -1 failed"
 [ "$(json "$out/noskip/report.json" "r['frames_skipped']")" = 0 ] || fail "skipped with -1"
@@ -71,20 +71,21 @@ cmp "$out/skip/frame0003_mono.png" "$out/noskip/frame0003_mono.png" \
     || fail "a skipped frame looks different"
 "$node" "${small[@]}" --lpv-mode classic --steps 6 --out "$out/classic" > /dev/null \
     || fail "--lpv-mode classic failed"
-[ "$(json "$out/classic/report.json" "r['lpv_mode']")" = "classic" ] \
+[ "$(json "$out/classic/report.json" "r['settings']['lpv-mode']")" = "classic" ] \
     || fail "classic report wrong"
 "$node" --standalone --frames 1 --width 96 --height 72 --rsm 64 --budget-ms 15 \
     --out "$out/budget" > "$out/budget.log" || fail "--budget-ms failed"
 grep -q "budget 15 ms: lattice [0-9]*, [0-9]* steps\?, predicted" "$out/budget.log" \
     || fail "--budget-ms printed no choice"
-[ "$(json "$out/budget/report.json" "r['budget']['lattice_cells'] == max(r['lattice']) and \
-    r['budget']['steps'] == r['steps'] and r['budget']['predicted_ms'] > 0")" = True ] \
+[ "$(json "$out/budget/report.json" "r['budget']['lattice_cells'] == max(r['lattice_x'], \
+    r['lattice_y'], r['lattice_z']) and r['budget']['steps'] == r['steps'] and \
+    r['budget']['predicted_ms'] > 0")" = True ] \
     || fail "budget choice not applied or not reported"
 # --lattice-cells spends a total on the scene's shape: the corridor gets long thin counts.
 "$node" --standalone --scene corridor --frames 1 --width 64 --height 48 --rsm 64 \
     --lattice-cells 4096 --out "$out/cells" > /dev/null || fail "--lattice-cells failed"
 [ "$(json "$out/cells/report.json" "r['cells'] <= 4096 and r['cells'] > 3000 and \
-    r['lattice'][0] > 3 * r['lattice'][1]")" = True ] || fail "--lattice-cells not applied"
+    r['lattice_x'] > 3 * r['lattice_y']")" = True ] || fail "--lattice-cells not applied"
 
 # ILPV's output is pinned: the default room's first four frames at default settings,
 # checksums captured with this command (on Mesa llvmpipe; another GL renders the RSMs with
@@ -94,19 +95,20 @@ grep -q "budget 15 ms: lattice [0-9]*, [0-9]* steps\?, predicted" "$out/budget.l
 # of the emitter's own layer; a change here must be one too. --gi ilpv is the default.
 "$node" --standalone --frames 4 --gi ilpv --out "$out/pinned" > "$out/pinned.log" || fail "pinned run failed"
 if [ "$(json "$out/pinned/report.json" "'llvmpipe' in r['gl_renderer']")" = True ]; then
-  [ "$(json "$out/pinned/report.json" "' '.join(f['lpv_checksum'] for f in r['frames'])")" = \
+  [ "$(json "$out/pinned/report.json" "' '.join(f['checksum'] for f in r['frames'])")" = \
     "6dce2be1551914a0 9e4155415cb14e6e 3c19365f3c463356 6dce7a55a196c48d" ] \
     || { cat "$out/pinned.log"; fail "ILPV checksums changed"; }
 fi
 [ "$(json "$out/pinned/report.json" "r['gi']")" = ilpv ] || fail "report does not name the GI method"
 "$node" --standalone --gi none --width 96 --height 72 --pfm --out "$out/none" > /dev/null || fail "--gi none failed"
-[ "$(json "$out/none/report.json" "r['gi'] == 'none' and 'lattice' not in r")" = True ] || fail "--gi none report"
+[ "$(json "$out/none/report.json" "r['gi'] == 'none' and 'cells' not in r and 'lattice' not in r['settings']")" = True ] \
+    || fail "--gi none report"
 # vpl end to end: the report names it and its count, the indirect image is lit.
 "$node" --standalone --gi vpl --vpl-count 64 --width 64 --height 48 --rsm 64 --frames 2 --pfm \
     --out "$out/vpl" > /dev/null || fail "--gi vpl failed"
-[ "$(json "$out/vpl/report.json" "r['gi'] == 'vpl' and r['vpl_count'] == 64 and 'lattice' not in r")" = True ] \
+[ "$(json "$out/vpl/report.json" "r['gi'] == 'vpl' and r['settings']['vpl-count'] == 64 and 'cells' not in r")" = True ] \
     || fail "--gi vpl report"
-[ "$(json "$out/vpl/report.json" "r['frames'][0]['lpv_checksum'] == r['frames'][1]['lpv_checksum']")" = True ] \
+[ "$(json "$out/vpl/report.json" "r['frames'][0]['checksum'] == r['frames'][1]['checksum']")" = True ] \
     || fail "--gi vpl: a static scene changed its VPLs"
 "$build/cavelight-compare" "$out/vpl/frame0001_mono_indirect.pfm" "$out/vpl/frame0001_mono_indirect.pfm" \
     --mask-background > "$out/vpl.json" || fail "--gi vpl: no indirect light"
@@ -150,8 +152,8 @@ one_line_error "--budget-ms" "$node" --standalone --budget-ms 10 --lattice-cells
 one_line_error "--gi" "$node" --standalone --gi vpl2
 one_line_error "needs --gi ilpv" "$node" --standalone --gi none --budget-ms 10
 one_line_error "--vpl-count" "$node" --standalone --gi vpl --vpl-count 10
-# Frame values outside frame_params_sanitize()'s ranges are refused, not changed.
-one_line_error "--lambda 1.5 is outside" "$node" --standalone --lambda 1.5
+# Values outside a setting's range are refused naming the option and the range.
+one_line_error "--lambda 1.5: expected a number in \[0, 0.999\]" "$node" --standalone --lambda 1.5
 one_line_error "--exposure" "$node" --standalone --exposure 0
-one_line_error "--steps 300" "$node" --standalone --steps 300
+one_line_error "--steps 300: expected a whole number in 0..256" "$node" --standalone --steps 300
 echo "node CLI: all checks passed"

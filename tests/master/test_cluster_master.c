@@ -17,7 +17,18 @@
 #include <zmq.h>
 #include <cmocka.h>
 
+#include "gi/gi_settings.h"
+
 #include "cluster_master.h"
+
+/* What a node of this build says in HELLO for cfg (params_session_hash()). */
+static uint64_t hello_hash(const cluster_config *cfg)
+{
+    static params_schema schema;
+    if (!schema.count)
+        gi_params_schema(&schema);
+    return params_session_hash(cfg->hash, &schema);
+}
 
 static const char *config_json =
     "{\"master\": {\"bind\": \"tcp://127.0.0.1:*\", \"connect\": \"tcp://127.0.0.1:1\"},"
@@ -36,6 +47,7 @@ typedef struct fake_node {
     const char *name;
     uint64_t checksum;          /* reported in READY */
     volatile int silent;        /* 1: receive but never answer */
+    volatile int refuse;        /* 1: answer a FRAME with REFUSE(params) instead of READY */
     volatile int rejoin;        /* set: send HELLO again, then clear */
     volatile int stop;
     uint64_t config_hash;
@@ -96,7 +108,11 @@ static void *fake_node_main(void *arg)
             n->byes++;
             n->last_bye = m.reason;
         }
-        if (m.type == WIRE_FRAME && !n->silent) {
+        if (m.type == WIRE_FRAME && n->refuse) {
+            wire_msg r = {.type = WIRE_REFUSE, .reason = WIRE_REFUSE_PARAMS, .version = m.version};
+            snprintf(r.text, sizeof r.text, "frame %llu: invalid values", (unsigned long long)m.version);
+            send_wire(s, &r, n->name);
+        } else if (m.type == WIRE_FRAME && !n->silent) {
             n->frames++;
             wire_msg r = {.type = WIRE_READY, .version = m.version, .checksum = n->checksum,
                           .timings = {0.1f, 1, 2, 3}};
@@ -112,7 +128,7 @@ static void start_node(fake_node *n, const char *name, uint64_t checksum)
     memset(n, 0, sizeof *n);
     n->name = name;
     n->checksum = checksum;
-    n->config_hash = cfg.hash;
+    n->config_hash = hello_hash(&cfg);
     pthread_create(&n->thread, NULL, fake_node_main, n);
 }
 
@@ -219,12 +235,44 @@ static void test_drop_after_timeout_and_rejoin(void **state)
     stop_node(&b);
 }
 
+/* A node that refuses a frame's parameters leaves the barrier at once (no timeout), its
+ * reason is kept, and a frame nobody rendered is not counted as rendered. */
+static void test_refusal_leaves_the_barrier(void **state)
+{
+    fake_node c;
+    start_node(&c, "c", 1);
+    while (c.snapshots == 0)
+        cluster_master_wait_nodes(master, 3, 20);
+    cluster_master_stats before, after;
+    cluster_master_stats_get(master, &before);
+    c.refuse = 1;
+    cluster_frame_result r;
+    assert_int_equal(cluster_master_frame(master, &r), 0);
+    assert_int_equal(r.live, 1);
+    assert_int_equal(r.ready, 0);
+    assert_int_equal(r.dropped, 0);
+    assert_true(r.barrier_ms < 250); /* the barrier timeout is 300 */
+    cluster_master_stats_get(master, &after);
+    assert_int_equal(after.refusals, before.refusals + 1);
+    assert_int_equal(after.frames_rendered, before.frames_rendered);
+    assert_int_equal(after.frames, before.frames + 1);
+    cluster_peer_stats ps;
+    cluster_master_peer_stats(master, 2, &ps);
+    assert_int_equal(ps.refusals, 1);
+    assert_int_equal(ps.refused_what, WIRE_REFUSE_PARAMS);
+    char want[64];
+    snprintf(want, sizeof want, "frame %llu: invalid values", (unsigned long long)r.version);
+    assert_string_equal(ps.refusal, want);
+    assert_int_equal(cluster_master_live_count(master), 0);
+    stop_node(&c);
+}
+
 static void test_config_mismatch_refused(void **state)
 {
     fake_node c;
     memset(&c, 0, sizeof c);
     c.name = "c";
-    c.config_hash = cfg.hash ^ 1;
+    c.config_hash = hello_hash(&cfg) ^ 1;
     pthread_create(&c.thread, NULL, fake_node_main, &c);
     for (int i = 0; i < 100 && c.byes == 0; i++)
         cluster_master_wait_nodes(master, 3, 10);
@@ -355,7 +403,7 @@ static void test_shutdown_answers_hello_with_bye(void **state)
     assert_non_null(m);
     assert_int_equal(cluster_master_endpoint(m, ep, sizeof ep), 0);
     void *a = open_dealer_to(ep, "a"), *b = open_dealer_to(ep, "b");
-    wire_msg hello = {.type = WIRE_HELLO, .config_hash = cfg.hash};
+    wire_msg hello = {.type = WIRE_HELLO, .config_hash = hello_hash(&cfg)};
     send_wire(a, &hello, "a");
     send_wire(b, &hello, "b");
     assert_int_equal(cluster_master_wait_nodes(m, 2, 3000), 2);
@@ -385,6 +433,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_barrier_epoch_and_desync),
         cmocka_unit_test(test_drop_after_timeout_and_rejoin),
+        cmocka_unit_test(test_refusal_leaves_the_barrier),
         cmocka_unit_test(test_config_mismatch_refused),
         cmocka_unit_test(test_garbage_is_dropped_and_counted),
         cmocka_unit_test(test_shutdown_answers_hello_with_bye),

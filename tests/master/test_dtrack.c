@@ -19,6 +19,7 @@
 #include "base/ratelog.h"
 #include "cluster/cluster_config.h"
 #include "input.h"
+#include "input_config.h"
 #include "input_dtrack.h"
 
 static char *load(const char *name, size_t *len)

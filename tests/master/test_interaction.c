@@ -8,13 +8,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "gi/gi_settings.h"
 #include "interaction.h"
 
 #define PI_F 3.14159265f
 
 static const float I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
-static void params_init(frame_params *p)
+static void test_frame_init(frame_params *p)
 {
     memset(p, 0, sizeof *p);
     for (int i = 0; i < 16; i += 5)
@@ -71,7 +72,7 @@ static void test_fly_along_wand(void **state)
     interaction ia;
     interaction_init(&ia, &(interaction_desc){0});
     frame_params p;
-    params_init(&p);
+    test_frame_init(&p);
     /* wand 0.4 m in front of the head horizontally, 0.5 m lower: the height must not count */
     input_state s = state_at((float[]){0, 1.2f, -0.4f}, 0.0f);
     s.buttons = 1u << INPUT_BUTTON_C;
@@ -106,7 +107,7 @@ static void test_turn_by_dragging(void **state)
     interaction ia;
     interaction_init(&ia, &(interaction_desc){0});
     frame_params p;
-    params_init(&p);
+    test_frame_init(&p);
     input_state s = state_at((float[]){0.3f, 1.2f, -0.4f}, 0.2f);
     s.head.position[0] = 0.5f;
     s.head.position[2] = -0.25f;
@@ -145,7 +146,7 @@ static void test_flashlight_pose(void **state)
     interaction ia;
     interaction_init(&ia, &(interaction_desc){.first_layout = INTERACTION_LIGHTING});
     frame_params p;
-    params_init(&p);
+    test_frame_init(&p);
     /* CAVE turned 90 degrees left and moved to (10, 0, -3) in the world */
     float nav[16] = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 10, 0, -3, 1};
     memcpy(p.navigation, nav, sizeof nav);
@@ -201,7 +202,7 @@ static void test_hue_saturation(void **state)
     interaction ia;
     interaction_init(&ia, &(interaction_desc){.first_layout = INTERACTION_LIGHTING});
     frame_params p;
-    params_init(&p);                                   /* red light: h 0, s 1 */
+    test_frame_init(&p);                                   /* red light: h 0, s 1 */
     input_state s = state_at((float[]){0.2f, 1.1f, -0.5f}, 0.0f);
     interaction_update(&ia, &s, 0.0, &p);
     /* inside the dead zone nothing moves */
@@ -241,7 +242,7 @@ static void test_settings(void **state)
     interaction_init(&ia, &(interaction_desc){.first_layout = INTERACTION_SETTINGS,
                                               .steps_max = 10});
     frame_params p;
-    params_init(&p);
+    test_frame_init(&p);
     input_state s = state_at((float[]){0.2f, 1.1f, -0.5f}, 0.0f);
     interaction_update(&ia, &s, 0.0, &p);
     assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_M), INTERACTION_CHANGED_STEPS);
@@ -258,13 +259,13 @@ static void test_settings(void **state)
         assert_float_equal(p.lambda_incr, expect[i], 0);
     }
     /* C switches the GI method round-robin: ILPV, none, vpl, ILPV */
-    assert_int_equal(p.gi, FRAME_GI_ILPV);
+    assert_int_equal(p.gi, gi_method_find("ilpv"));
     assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_C), INTERACTION_CHANGED_GI);
-    assert_int_equal(p.gi, FRAME_GI_NONE);
+    assert_int_equal(p.gi, gi_method_find("none"));
     press(&ia, &s, &p, INPUT_BUTTON_C);
-    assert_int_equal(p.gi, FRAME_GI_VPL);
+    assert_int_equal(p.gi, gi_method_find("vpl"));
     press(&ia, &s, &p, INPUT_BUTTON_C);
-    assert_int_equal(p.gi, FRAME_GI_ILPV);
+    assert_int_equal(p.gi, gi_method_find("ilpv"));
     /* axes: X absorption, Y scattering, clamped to [0, 1] */
     s.axes[INPUT_AXIS_X] = 1.0f;
     s.axes[INPUT_AXIS_Y] = -1.0f;
@@ -284,7 +285,7 @@ static void test_round_robin_and_change_only(void **state)
     interaction ia;
     interaction_init(&ia, &(interaction_desc){0});
     frame_params p;
-    params_init(&p);
+    test_frame_init(&p);
     p.hud_layout = -1;
     input_state s = state_at((float[]){0.2f, 1.1f, -0.5f}, 0.0f);
     uint32_t c = interaction_update(&ia, &s, 0.0, &p);

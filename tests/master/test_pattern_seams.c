@@ -226,7 +226,7 @@ static void test_master_pattern_meets_at_every_seam(void **state)
     assert_non_null(mkdtemp(out));
     assert_int_equal(cluster_config_load(config, &cfg, err, sizeof err), 0);
     snprintf(cmd, sizeof cmd, "%s/cavelight-master --config %s --spawn-local --output png --pattern "
-             "--bind 'tcp://127.0.0.1:*' --out %s --node-args '--threads 1 --lattice 8 --rsm 32' --quiet",
+             "--bind 'tcp://127.0.0.1:*' --out %s --lattice 8 --rsm 32 --node-args '--threads 1' --quiet",
              CAVELIGHT_BINARY_DIR, config, out);
     assert_int_equal(system(cmd), 0);
     static screen_image img[CLUSTER_MAX_SCREENS];

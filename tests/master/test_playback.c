@@ -14,6 +14,7 @@
 
 #include "frame/frame_params.h"
 #include "input.h"
+#include "input_config.h"
 #include "input_playback.h"
 #include "input_source.h"
 #include "interaction.h"

@@ -54,7 +54,7 @@ static int run_master(const char *extra, const char *env, char *log, size_t n)
     char cmd[4096], path[300];
     snprintf(path, sizeof path, "%s/master.log", dir);
     snprintf(cmd, sizeof cmd, "%s %s/cavelight-master --config %s --spawn-local --bind 'tcp://127.0.0.1:*' "
-             "--frames 3 --out %s --node-args '--threads 1 --lattice 8 --rsm 32' %s 2> %s",
+             "--frames 3 --out %s --lattice 8 --rsm 32 --node-args '--threads 1' %s 2> %s",
              env, CAVELIGHT_BINARY_DIR, config, dir, extra, path);
     int rc = system(cmd);
     FILE *f = fopen(path, "r");

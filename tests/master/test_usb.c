@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "input.h"
+#include "input_config.h"
 #include "input_usb.h"
 
 /* A typical gamepad report: byte 0 report id, byte 1 buttons, bytes 2-3 u8 sticks,

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "input.h"
+#include "input_config.h"
 #include "input_vrpn.h"
 
 static void be32(uint8_t *p, uint32_t v)

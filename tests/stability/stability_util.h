@@ -10,6 +10,8 @@
 
 #include "base/vec3.h"
 #include "frame/frame_params.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/gi_ilpv.h"
 #include "glctx.h"
 #include "lpv/ilpv.h"
 #include "lpv/lattice.h"
@@ -23,10 +25,21 @@
 typedef struct stab_gl {
     glctx *ctx;
     renderer *r;
+    frame_params settings; /* the RSM size, lattice and LPV backend it was built for */
 } stab_gl;
 
+/* p with the renderer's RSM size, GI method and settings (stab_open_rsm()), so that a
+ * frame does not ask for another. */
+static inline void stab_settings(const stab_gl *g, frame_params *p)
+{
+    p->rsm_size = g->settings.rsm_size;
+    p->gi = g->settings.gi;
+    memcpy(p->gi_settings, g->settings.gi_settings, sizeof p->gi_settings);
+}
+
 /* A renderer on the CPU LPV backend for a finished scene the caller owns, with this RSM
- * size and lattice (0: the renderer's defaults). Returns 0 or prints why and returns -1. */
+ * size and lattice (0: the defaults). Frames given to it take stab_settings(). Returns 0
+ * or prints why and returns -1. */
 static inline int stab_open_rsm(stab_gl *g, const scene *s, int lattice_cells, int rsm_size)
 {
     char err[512];
@@ -36,13 +49,26 @@ static inline int stab_open_rsm(stab_gl *g, const scene *s, int lattice_cells, i
         fprintf(stderr, "%s\n", err);
         return -1;
     }
-    renderer_desc rd = {.gl = glctx_gl(g->ctx), .scene = s, .lpv_backend = RENDERER_LPV_CPU,
-                        .rsm_size = rsm_size, .lattice_cells = lattice_cells, .threads = 2};
+    frame_params_default(&g->settings);
+    if (rsm_size > 0)
+        g->settings.rsm_size = rsm_size;
+    if (lattice_cells > 0)
+        gi_set_number(&g->settings, "lattice", lattice_cells);
+    gi_set(&g->settings, "lpv", "cpu");
+    renderer_desc rd = {.gl = glctx_gl(g->ctx), .scene = s, .first = &g->settings, .threads = 2};
     if (!(g->r = renderer_create(&rd, err, sizeof err))) {
         fprintf(stderr, "%s\n", err);
         return -1;
     }
     return 0;
+}
+
+/* A frame pass of p with the renderer's settings. */
+static inline uint64_t stab_frame_pass(stab_gl *g, const frame_params *p)
+{
+    frame_params f = *p;
+    stab_settings(g, &f);
+    return renderer_frame_pass(g->r, &f);
 }
 
 /* The same with a small RSM (64) for llvmpipe. */
@@ -184,7 +210,7 @@ static inline int stab_cpu_open(stab_cpu *c, int cells)
     memcpy(fit.bounds_max, s->bounds_max, sizeof fit.bounds_max);
     if (lattice_fit(&fit, &c->lattice, err, sizeof err) != 0 ||
         lpv_blockers_init(&c->blockers, c->lattice.n) != 0 ||
-        ilpv_init(&c->ilpv, &c->lattice) != 0)
+        ilpv_init(&c->ilpv, &(ilpv_desc){.lattice = &c->lattice, .blockers = &c->blockers}) != 0)
         return -1;
     lpv_geometry_add_triangles(&c->blockers, &c->lattice, s->positions, 3 * s->triangle_count,
                                NULL, s->triangle_count, NULL);
@@ -210,12 +236,7 @@ static inline void stab_cpu_frame(stab_cpu *c, float lambda, int steps, double e
     ilpv_begin_frame(&c->ilpv);
     lpv_inject_vpls(ilpv_injection(&c->ilpv), ilpv_origin(&c->ilpv), &c->lattice, c->vpls,
                     c->vpl_count, NULL);
-    ilpv_frame_desc fd = {
-        .steps = steps,
-        .lambda_incr = lambda,
-        .emitted_energy = emitted,
-        .propagate = {.blockers = &c->blockers},
-    };
+    ilpv_frame_desc fd = {.steps = steps, .lambda_incr = lambda, .emitted_energy = emitted};
     ilpv_frame(&c->ilpv, &fd);
 }
 

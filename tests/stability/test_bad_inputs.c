@@ -105,7 +105,7 @@ static void test_bad_frame_params(void **state)
     assert_non_null(steady);
     /* The valid steady image: lambda 0.8 converges to float precision in ~80 frames. */
     for (int f = 0; f < STEADY_FRAMES; f++)
-        renderer_frame_pass(g.r, &valid);
+        stab_frame_pass(&g, &valid);
     assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
     memcpy(steady, img.final, n * sizeof *steady);
     double mean = stab_mean(steady, W, H);
@@ -114,14 +114,14 @@ static void test_bad_frame_params(void **state)
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         frame_params p = valid;
         cases[c].apply(&p);
-        renderer_frame_pass(g.r, &p);
-        size_t lpv_bad = lpv_volume_count_nonfinite(renderer_get_lpv(g.r));
+        stab_frame_pass(&g, &p);
+        size_t lpv_bad = lpv_volume_count_nonfinite(gi_ilpv_volume(gi_ilpv_of(renderer_gi(g.r))));
         int rc = renderer_eye_pass(g.r, &v, 1, &img);
         size_t img_bad = rc == 0 ? stab_image_nonfinite(&img) : 0;
         /* Recovery without a reset: what the bad frame left in the history decays at
          * rate lambda (0.8^20 = 1.2%). */
         for (int f = 0; f < RECOVER_FRAMES; f++)
-            renderer_frame_pass(g.r, &valid);
+            stab_frame_pass(&g, &valid);
         assert_int_equal(renderer_eye_pass(g.r, &v, 1, &img), 0);
         double diff = mean_abs_diff(img.final, steady, n) / mean;
         printf("%-28s eye pass %s, non-finite: LPV %zu, image %zu; after %d valid frames "

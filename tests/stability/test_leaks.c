@@ -81,7 +81,7 @@ static void leak_render(leak_view *lv)
     stab_gl g;
     assert_int_equal(stab_open_rsm(&g, &lv->s, 0, 0), 0);
     for (int f = 0; f < FRAMES; f++)
-        renderer_frame_pass(g.r, &lv->p);
+        stab_frame_pass(&g, &lv->p);
     renderer_image img;
     assert_int_equal(renderer_eye_pass(g.r, &lv->v, 1, &img), 0);
     assert_int_equal(stab_image_nonfinite(&img), 0);

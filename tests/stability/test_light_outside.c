@@ -63,7 +63,7 @@ static void test_spots_outside_and_on_the_edge(void **state)
     build_scene(&s);
     stab_gl g;
     assert_int_equal(stab_open(&g, &s, 16), 0);
-    const lattice_desc *lat = renderer_get_lattice(g.r);
+    const lattice_desc *lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(g.r)));
     float lmax[3];
     for (int a = 0; a < 3; a++)
         lmax[a] = lat->origin[a] + lat->n[a] * lat->cell;
@@ -100,8 +100,8 @@ static void test_spots_outside_and_on_the_edge(void **state)
         l->intensity = 2.0f * r2; /* about 2 W/m^2 at T whatever the distance */
         p.reset_epoch = (uint32_t)c + 1;
         for (int f = 0; f < FRAMES; f++)
-            renderer_frame_pass(g.r, &p);
-        const lpv_volume *lpv = renderer_get_lpv(g.r);
+            stab_frame_pass(&g, &p);
+        const lpv_volume *lpv = gi_ilpv_volume(gi_ilpv_of(renderer_gi(g.r)));
         size_t bad = lpv_volume_count_nonfinite(lpv);
         double energy = stab_energy(lpv) / 3.0 / stab_spot_energy(l);
         renderer_image img;
@@ -129,7 +129,7 @@ static void test_spots_outside_and_on_the_edge(void **state)
             hi = fmax(hi, lit);
         }
     }
-    double chord = stab_mean_chord_cells(&s, renderer_get_lattice(g.r)->cell);
+    double chord = stab_mean_chord_cells(&s, gi_ilpv_lattice(gi_ilpv_of(renderer_gi(g.r)))->cell);
     printf("largest lattice energy / emitted %.4f (mean chord %.3f cells); lit at T / model "
            "%.3f .. %.3f\n", worst_energy, chord, lo, hi);
     assert_true(worst_energy <= 0.75 * chord);

@@ -68,7 +68,7 @@ static smoothness run(stab_gl *g, const scene *s, float lambda, float speed, flo
         /* along -x, towards the red wall, keeping the spot's direction */
         p.lights[0].position[0] = x0 - step * (float)(moving > 0 ? moving : 0);
         p.time = f / 60.0;
-        renderer_frame_pass(g->r, &p);
+        stab_frame_pass(g, &p);
         renderer_image img;
         assert_int_equal(renderer_eye_pass(g->r, &v, 1, &img), 0);
         assert_int_equal(stab_image_nonfinite(&img), 0);

@@ -69,7 +69,7 @@ static void render_scaled(float s, scaled_render *out)
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &sc);
     for (int f = 0; f < FRAMES; f++)
-        renderer_frame_pass(g.r, &p);
+        stab_frame_pass(&g, &p);
     renderer_view v;
     stab_view(&v, sc.camera.position, sc.camera.target, sc.camera.yfov, W, H, 0.05f * s,
               50.0f * s);
@@ -85,10 +85,10 @@ static void render_scaled(float s, scaled_render *out)
     memcpy(out->direct, img.direct, n * sizeof(float));
     memcpy(out->indirect, img.indirect, n * sizeof(float));
     memcpy(out->rgb, img.rgb, n);
-    out->nonfinite = stab_image_nonfinite(&img) + lpv_volume_count_nonfinite(renderer_get_lpv(g.r));
-    out->lpv_energy = stab_energy(renderer_get_lpv(g.r));
-    out->cell = renderer_get_lattice(g.r)->cell;
-    memcpy(out->n, renderer_get_lattice(g.r)->n, sizeof out->n);
+    out->nonfinite = stab_image_nonfinite(&img) + lpv_volume_count_nonfinite(gi_ilpv_volume(gi_ilpv_of(renderer_gi(g.r))));
+    out->lpv_energy = stab_energy(gi_ilpv_volume(gi_ilpv_of(renderer_gi(g.r))));
+    out->cell = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(g.r)))->cell;
+    memcpy(out->n, gi_ilpv_lattice(gi_ilpv_of(renderer_gi(g.r)))->n, sizeof out->n);
     stab_close(&g);
     scene_free(&sc);
 }

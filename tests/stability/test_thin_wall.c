@@ -91,12 +91,12 @@ static double cpu_leak(const scene *s, const lattice_desc *lat, int blocking, fl
     size_t n = stab_floor_vpls(&s->lights[0], -2.0f * S, -0.5f * WALL * S, -2.0f * S, 2.0f * S, GRID,
                                0.75f, vpls);
     ilpv il;
-    assert_int_equal(ilpv_init(&il, lat), 0);
+    assert_int_equal(ilpv_init(&il, &(ilpv_desc){.lattice = lat, .blockers = blocking ? &geo : NULL}),
+                     0);
     for (int f = 0; f < FRAMES; f++) {
         ilpv_begin_frame(&il);
         lpv_inject_vpls(ilpv_injection(&il), ilpv_origin(&il), lat, vpls, n, NULL);
-        ilpv_frame_desc fd = {.steps = STEPS, .lambda_incr = 0.8f, .emitted_energy = 1.0,
-                              .propagate = {.blockers = blocking ? &geo : NULL}};
+        ilpv_frame_desc fd = {.steps = STEPS, .lambda_incr = 0.8f, .emitted_energy = 1.0};
         ilpv_frame(&il, &fd);
     }
     double leak = dark_over_lit(ilpv_result(&il), lat);
@@ -120,9 +120,9 @@ static void measure(float S, leak *out)
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &s);
     for (int f = 0; f < FRAMES; f++)
-        renderer_frame_pass(g.r, &p);
-    const lattice_desc *lat = renderer_get_lattice(g.r);
-    double lattice_leak = dark_over_lit(renderer_get_lpv(g.r), lat);
+        stab_frame_pass(&g, &p);
+    const lattice_desc *lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(g.r)));
+    double lattice_leak = dark_over_lit(gi_ilpv_volume(gi_ilpv_of(renderer_gi(g.r))), lat);
 
     /* Mirror views of each half's floor and far wall, from a corner near the ceiling. */
     double indirect[2], direct_max[2] = {0, 0}, direct_mean[2];

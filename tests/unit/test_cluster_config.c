@@ -32,9 +32,10 @@ static float dist(const float *a, const float *b)
 static void test_shipped_configs(void **state)
 {
     static const char *const names[] = {"desktop", "desktop-local", "powerwall-2x2",
-                                        "powerwall-2x2-local", "cave5", "cave5-local"};
-    static const int nodes[] = {1, 1, 4, 4, 10, 10};
-    for (int i = 0; i < 6; i++) {
+                                        "powerwall-2x2-local", "cave5", "cave5-local",
+                                        "powerwall-blend-local"};
+    static const int nodes[] = {1, 1, 4, 4, 10, 10, 2};
+    for (int i = 0; i < 7; i++) {
         load_shipped(names[i]);
         assert_int_equal(cfg.node_count, nodes[i]);
         assert_int_equal(cfg.nodes[0].eyes, i < 2 ? CLUSTER_EYES_MONO : CLUSTER_EYES_STEREO);
@@ -42,6 +43,8 @@ static void test_shipped_configs(void **state)
             assert_non_null(strstr(cfg.master_connect, "127.0.0.1"));
         else /* the defaults: nodes call a hung master lost well under a second */
             assert_true(cfg.master_timeout_ms > cfg.heartbeat_ms && cfg.master_timeout_ms < 1000);
+        if (cfg.unknown_key_count) /* every key of a shipped config is read somewhere */
+            fail_msg("%s", cfg.unknown_keys[0]);
     }
     /* The CAVE: 10 half walls of 1.5 x 3 m (walls) or 3 x 1.5 m (floor and ceiling). */
     load_shipped("cave5-local");
@@ -132,6 +135,120 @@ static void test_bad_configs(void **state)
                  "nodes[0].exe");
     expect_error(NODES("{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4], \"display\": [0]}"),
                  "nodes[0].display");
+}
+
+/* Parses json (which must load) and returns its unknown-key lines joined by '|'. */
+static const char *unknown_lines(const char *json)
+{
+    static char lines[4096];
+    char err[512] = "";
+    if (cluster_config_parse(json, strlen(json), "keys.json", &cfg, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    lines[0] = '\0';
+    for (int i = 0; i < cfg.unknown_key_count && i < CLUSTER_MAX_UNKNOWN_KEYS; i++) {
+        assert_null(strchr(cfg.unknown_keys[i], '\n'));
+        snprintf(lines + strlen(lines), sizeof lines - strlen(lines), "%s|", cfg.unknown_keys[i]);
+    }
+    return lines;
+}
+
+/* A key no section reads is kept as one line naming the file, the field and the nearest
+ * valid key of that section; the config still loads (the program warns, or refuses with
+ * --strict). Keys are matched per section: "resolution" is valid on a node, not on a
+ * screen. */
+static void test_unknown_keys(void **state)
+{
+    char buf[2048];
+    const char *node = "{\"name\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4]";
+    snprintf(buf, sizeof buf, "%s \"nodes\": [%s}]}", good_head, node);
+    assert_string_equal(unknown_lines(buf), "");
+    assert_int_equal(cfg.unknown_key_count, 0);
+
+    snprintf(buf, sizeof buf, "%s \"nodes\": [%s, \"resolutoin\": [8,8]}]}", good_head, node);
+    assert_string_equal(unknown_lines(buf), "cluster config keys.json: field nodes[0].resolutoin: unknown key "
+                        "\"resolutoin\" (did you mean \"resolution\"?)|");
+    assert_int_equal(cfg.nodes[0].screens[0].width, 4); /* nothing else changed */
+
+    snprintf(buf, sizeof buf, "%s \"nodes\": [{\"name\": \"a\", \"scren\": 1, \"screens\": [\"s\"], "
+             "\"resolution\": [4,4]}]}", good_head);
+    assert_non_null(strstr(unknown_lines(buf), "field nodes[0].scren: unknown key \"scren\" (did you mean \"screens\"?)"));
+
+    /* Nested sections, several at once, and a key with nothing near it. */
+    snprintf(buf, sizeof buf, "{\"master\": {\"bind\": \"tcp://*:5570\", \"connect\": \"tcp://h:5570\", "
+             "\"conect\": 1}, \"observer\": {\"tracker_to_cave\": {\"scael\": 2}}, \"screens\": "
+             "[{\"name\": \"s\", \"bottom_left\": [0,0,0], \"bottom_right\": [1,0,0], \"top_left\": [0,1,0], "
+             "\"resolution\": [4,4]}], \"zzzzzz\": 0, \"nodes\": [%s}]}", node);
+    const char *l = unknown_lines(buf);
+    assert_int_equal(cfg.unknown_key_count, 4);
+    assert_non_null(strstr(l, "field master.conect: unknown key \"conect\" (did you mean \"connect\"?)"));
+    assert_non_null(strstr(l, "field observer.tracker_to_cave.scael: unknown key \"scael\" (did you mean \"scale\"?)"));
+    assert_non_null(strstr(l, "field screens[0].resolution: unknown key \"resolution\" (keys here: name, "));
+    assert_non_null(strstr(l, "field zzzzzz: unknown key \"zzzzzz\" (keys here: name, scene, launch, scene_transform, master"));
+}
+
+/* The display keys: a node's window (monitor by index or name, placement, vsync, swap group)
+ * and a screen's projector warp, whose file is found beside the config. */
+static void test_display_keys(void **state)
+{
+    char buf[2048], err[512] = "";
+#define NODE(x) (snprintf(buf, sizeof buf, "%s \"nodes\": [{\"name\": \"a\", \"screens\": [\"s\"], " \
+                          "\"resolution\": [4,4]%s}]}", good_head, x), buf)
+    const char *plain = NODE("");
+    assert_int_equal(cluster_config_parse(plain, strlen(plain), "cfg/ok.json", &cfg, err, sizeof err), 0);
+    const cluster_window *w = &cfg.nodes[0].window;
+    assert_int_equal(w->monitor[0], 0);
+    assert_int_equal(w->monitor[1], 1);
+    assert_string_equal(w->monitor_name[0], "");
+    assert_int_equal(w->swap_interval, 1); /* vsync on unless said otherwise */
+    assert_int_equal(w->have_position, 0);
+    assert_int_equal(w->swap_group, 0);
+    assert_int_equal(cfg.nodes[0].screens[0].warp.kind, CLUSTER_WARP_NONE);
+    const char *full = NODE(", \"monitor\": [\"DP-1\", 3], \"fullscreen\": true, \"position\": [1920, -10], "
+                            "\"size\": [800, 600], \"vsync\": 2, \"swap_group\": 1, \"swap_barrier\": 1");
+    assert_int_equal(cluster_config_parse(full, strlen(full), "cfg/ok.json", &cfg, err, sizeof err), 0);
+    assert_string_equal(w->monitor_name[0], "DP-1");
+    assert_int_equal(w->monitor[1], 3);
+    assert_int_equal(w->fullscreen, 1);
+    assert_int_equal(w->position[0], 1920);
+    assert_int_equal(w->position[1], -10);
+    assert_int_equal(w->have_position, 1);
+    assert_int_equal(w->size[0], 800);
+    assert_int_equal(w->swap_interval, 2);
+    assert_int_equal(w->swap_group, 1);
+    assert_int_equal(w->swap_barrier, 1);
+    const char *off = NODE(", \"monitor\": 2, \"vsync\": false");
+    assert_int_equal(cluster_config_parse(off, strlen(off), "ok.json", &cfg, err, sizeof err), 0);
+    assert_int_equal(w->monitor[0], 2);
+    assert_int_equal(w->monitor[1], 3); /* window-per-eye: the right eye on the next monitor */
+    assert_int_equal(w->swap_interval, 0);
+    expect_error(NODE(", \"monitor\": -1"), "nodes[0].monitor");
+    expect_error(NODE(", \"monitor\": [0]"), "nodes[0].monitor");
+    expect_error(NODE(", \"vsync\": \"yes\""), "nodes[0].vsync");
+    expect_error(NODE(", \"position\": [1]"), "nodes[0].position");
+    expect_error(NODE(", \"size\": [0, 10]"), "nodes[0].size");
+    expect_error(NODE(", \"swap_barrier\": 1"), "nodes[0].swap_barrier"); /* a barrier binds a group */
+#undef NODE
+#define WARP(x) (snprintf(buf, sizeof buf, "%s \"nodes\": [{\"name\": \"a\", \"screens\": [{\"name\": \"s\", " \
+                          "\"resolution\": [4,4], \"warp\": %s}]}]}", good_head, x), buf)
+    const char *mpcdi = WARP("{\"mpcdi\": \"wall.mpcdi\", \"region\": \"p1\", "
+                             "\"to_cave\": {\"translation\": [0, 0, -1.5]}}");
+    assert_int_equal(cluster_config_parse(mpcdi, strlen(mpcdi), "cfg/ok.json", &cfg, err, sizeof err), 0);
+    const cluster_warp *wp = &cfg.nodes[0].screens[0].warp;
+    assert_int_equal(wp->kind, CLUSTER_WARP_MPCDI);
+    assert_string_equal(wp->path, "cfg/wall.mpcdi"); /* beside the config */
+    assert_string_equal(wp->region, "p1");
+    assert_float_equal(wp->to_cave[14], -1.5f, 1e-6);
+    const char *mesh = WARP("{\"mesh\": \"/etc/cave/left.warp\"}");
+    assert_int_equal(cluster_config_parse(mesh, strlen(mesh), "cfg/ok.json", &cfg, err, sizeof err), 0);
+    assert_int_equal(wp->kind, CLUSTER_WARP_MESH);
+    assert_string_equal(wp->path, "/etc/cave/left.warp");
+    assert_float_equal(wp->to_cave[0], 1.0f, 0);
+    expect_error(WARP("\"wall.mpcdi\""), "nodes[0].screens[0].warp");
+    expect_error(WARP("{\"mpcdi\": \"a\", \"mesh\": \"b\"}"), "nodes[0].screens[0].warp");
+    expect_error(WARP("{\"mesh\": \"b\", \"region\": \"p1\"}"), "nodes[0].screens[0].warp");
+    expect_error(WARP("{\"mpcdi\": \"a\", \"region\": 3}"), "nodes[0].screens[0].warp.region");
+    expect_error(WARP("{\"mpcdi\": \"a\", \"to_cave\": {\"scale\": 0}}"), "nodes[0].screens[0].warp.to_cave.scale");
+#undef WARP
 }
 
 static void test_missing_file(void **state)
@@ -266,6 +383,8 @@ int main(void)
         cmocka_unit_test(test_measured_corners),
         cmocka_unit_test(test_shipped_configs),
         cmocka_unit_test(test_bad_configs),
+        cmocka_unit_test(test_unknown_keys),
+        cmocka_unit_test(test_display_keys),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_tracker_transform),
     };

@@ -104,6 +104,17 @@ static void test_light_types(void **state)
     assert_false(p.lights[1].enabled);
 }
 
+/* The frame setting named name (frame_params.h's tables). */
+static const setting *row(const char *name)
+{
+    int k = setting_find(frame_transport_settings, frame_transport_setting_count, name);
+    if (k >= 0)
+        return &frame_transport_settings[k];
+    k = setting_find(frame_display_settings, frame_display_setting_count, name);
+    assert_true(k >= 0);
+    return &frame_display_settings[k];
+}
+
 static void test_globals_repaired(void **state)
 {
     (void)state;
@@ -119,18 +130,16 @@ static void test_globals_repaired(void **state)
     p.environment = (frame_environment)99;
     p.display_gamma = 0.0f;
     p.exposure = NAN;
-    p.vpl_selection = (vpl_selection)VPL_SELECT_COUNT;
-    assert_int_equal(frame_params_sanitize(&p), 12);
+    assert_int_equal(frame_params_sanitize(&p), 11);
     assert_memory_equal(p.head, d.head, sizeof p.head);
     assert_memory_equal(p.navigation, d.navigation, sizeof p.navigation);
     assert_true(p.time == 0.0);
     assert_int_equal(p.light_count, FRAME_MAX_LIGHTS);
-    assert_int_equal(p.lpv_steps, FRAME_MAX_LPV_STEPS);
-    assert_true(p.lambda_incr == 0.0f);
+    assert_int_equal(p.lpv_steps, (int)row("steps")->max);
+    assert_true(p.lambda_incr == 0.8f); /* NaN: the default */
     assert_true(p.absorption == 1.0f && p.scattering == 0.0f);
     assert_int_equal(p.environment, FRAME_ENV_DIM);
     assert_true(p.display_gamma == 2.2f && p.exposure == 1.0f);
-    assert_int_equal(p.vpl_selection, VPL_SELECT_FLUX);
 
     p = d;
     p.light_count = -3;
@@ -141,7 +150,7 @@ static void test_globals_repaired(void **state)
     assert_int_equal(p.light_count, 0);
     assert_int_equal(p.lpv_steps, 0);
     assert_true(p.lambda_incr == 0.999f);
-    assert_true(p.exposure == FRAME_MAX_EXPOSURE);
+    assert_true(p.exposure == (float)row("exposure")->max);
     p.lambda_incr = INFINITY;
     p.exposure = -INFINITY;
     assert_int_equal(frame_params_sanitize(&p), 2);

@@ -168,7 +168,7 @@ static void test_refusals(void **state)
          .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"area\"}") CAMERAS},
         {"extensions.KHR_lights_punctual.lights[0].intensity -1.000000 invalid (0 to 1e12)",
          .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"directional\",\"intensity\":-1}") CAMERAS},
-        {"extensions.KHR_lights_punctual.lights[0].color has 2 values, expected 3",
+        {"extensions.KHR_lights_punctual.lights[0].color: must be an array of 3 numbers, not an array of 2",
          .nodes = LIT_NODES, .extra = LIGHTS("{\"type\":\"point\",\"color\":[1,1]}") CAMERAS},
         {"extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle 2.000000 invalid (0 < outer <= pi/2)",
          .nodes = LIT_NODES,

@@ -70,10 +70,10 @@ static void test_bars_and_anchor(void **state)
     assert_float_equal(h.bars[2].color[0], HUD_GREY, 0); /* not incremental */
     assert_float_equal(h.bars[3].value, 0.5f, 0);       /* 8 steps / 16 cells */
     p.lambda_incr = 0.8f;
-    hud_describe(&p, 0, &h);                            /* 0 = 32 cells */
+    hud_describe(&p, 32, &h);
     assert_float_equal(h.bars[2].value, 0.8f, 1e-6);
     assert_float_equal(h.bars[2].color[0], HUD_WHITE, 0);
-    assert_float_equal(h.bars[3].value, 0.25f, 0);
+    assert_float_equal(h.bars[3].value, 0.25f, 0);       /* 8 steps / 32 cells */
     assert_float_equal(h.wand_world[12], 5.0f, 0);
     assert_float_equal(h.wand_world[13], 1.2f, 0);
 }

@@ -1,6 +1,7 @@
-/* Classic LPV (lpv_classic.h): 0 steps give the splat alone (near + shell); S steps give
- * near + the sum of T^s shell for s = 0..S, computed here with the scalar reference; the
- * result has the same bits for any thread count and from frame to frame. */
+/* Classic LPV (the ILPV driver's classic mode, ilpv.h): 0 steps give the splat alone
+ * (near + shell); S steps give near + the sum of T^s shell for s = 0..S, computed here with
+ * the scalar reference; the result has the same bits for any thread count and from frame to
+ * frame. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -11,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lpv/lpv_classic.h"
+#include "lpv/ilpv.h"
 #include "lpv/lpv_inject.h"
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
@@ -39,6 +40,20 @@ static void open_setup(setup *s)
     lpv_geometry_add_triangles(&s->blockers, &s->lat, wall, 4, idx, 2, NULL);
 }
 
+/* A classic frame of the setup's injection, `steps` steps with these per-step
+ * probabilities. */
+static const lpv_volume *classic_frame(ilpv *c, const setup *s, int steps, float absorption,
+                                       float scattering)
+{
+    lpv_volume_copy(ilpv_injection(c), &s->injected);
+    lpv_volume_copy(ilpv_origin(c), &s->origin);
+    assert_int_equal(ilpv_frame(c, &(ilpv_frame_desc){.steps = steps, .classic = 1,
+                                                      .absorption = absorption,
+                                                      .scattering = scattering}),
+                     0);
+    return ilpv_result(c);
+}
+
 static void close_setup(setup *s)
 {
     lpv_volume_free(&s->injected);
@@ -51,18 +66,17 @@ static void test_zero_steps_is_the_splat(void **state)
     (void)state;
     setup s;
     open_setup(&s);
-    lpv_classic c;
-    assert_int_equal(lpv_classic_init(&c, &s.lat), 0);
-    lpv_propagate_desc pd = {.blockers = &s.blockers};
-    assert_int_equal(lpv_classic_frame(&c, &s.injected, &s.origin, 0, &pd), 0);
+    ilpv c;
+    assert_int_equal(ilpv_init(&c, &(ilpv_desc){.lattice = &s.lat, .blockers = &s.blockers}), 0);
+    const lpv_volume *result = classic_frame(&c, &s, 0, 0.0f, 0.0f);
     lpv_volume expect;
     assert_int_equal(lpv_volume_init(&expect, s.lat.n, LPV_LIGHT_CHANNELS), 0);
     lpv_volume_copy(&expect, &c.near);
     lpv_volume_add(&expect, &c.shell);
-    assert_true(lpv_volume_checksum(lpv_classic_result(&c)) == lpv_volume_checksum(&expect));
+    assert_true(lpv_volume_checksum(result) == lpv_volume_checksum(&expect));
     assert_true(testutil_energy(&c.shell) > 0.0);
     lpv_volume_free(&expect);
-    lpv_classic_free(&c);
+    ilpv_free(&c);
     close_setup(&s);
 }
 
@@ -71,13 +85,13 @@ static void test_sum_matches_reference_steps(void **state)
     (void)state;
     setup s;
     open_setup(&s);
-    lpv_classic c;
-    assert_int_equal(lpv_classic_init(&c, &s.lat), 0);
+    ilpv c;
+    assert_int_equal(ilpv_init(&c, &(ilpv_desc){.lattice = &s.lat, .blockers = &s.blockers}), 0);
     const int steps = 9;
     lpv_propagate_desc pd = {.blockers = &s.blockers, .absorption = 0.05f, .scattering = 0.2f};
-    assert_int_equal(lpv_classic_frame(&c, &s.injected, &s.origin, steps, &pd), 0);
+    const lpv_volume *result = classic_frame(&c, &s, steps, pd.absorption, pd.scattering);
     /* The same sum with the scalar reference, in double. */
-    size_t n = c.accum.cells * LPV_LIGHT_CHANNELS;
+    size_t n = result->cells * LPV_LIGHT_CHANNELS;
     double *sum = calloc(n, sizeof *sum);
     lpv_volume a, b;
     assert_int_equal(lpv_volume_init(&a, s.lat.n, LPV_LIGHT_CHANNELS), 0);
@@ -85,23 +99,23 @@ static void test_sum_matches_reference_steps(void **state)
     lpv_volume_copy(&a, &c.shell);
     for (int step = 0; step <= steps; step++) {
         for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
-            for (size_t i = 0; i < c.accum.cells; i++)
-                sum[k * c.accum.cells + i] += a.ch[k][i] + (step == 0 ? c.near.ch[k][i] : 0.0f);
+            for (size_t i = 0; i < result->cells; i++)
+                sum[k * result->cells + i] += a.ch[k][i] + (step == 0 ? c.near.ch[k][i] : 0.0f);
         pd.step = (unsigned)step;
         lpv_reference_step(&pd, &a, &b);
         lpv_volume_copy(&a, &b);
     }
     double peak = 0, diff = 0;
     for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
-        for (size_t i = 0; i < c.accum.cells; i++) {
-            peak = fmax(peak, fabs(sum[k * c.accum.cells + i]));
-            diff = fmax(diff, fabs(sum[k * c.accum.cells + i] - c.accum.ch[k][i]));
+        for (size_t i = 0; i < result->cells; i++) {
+            peak = fmax(peak, fabs(sum[k * result->cells + i]));
+            diff = fmax(diff, fabs(sum[k * result->cells + i] - result->ch[k][i]));
         }
     assert_true(peak > 0 && diff <= 1e-5 * peak);
     free(sum);
     lpv_volume_free(&a);
     lpv_volume_free(&b);
-    lpv_classic_free(&c);
+    ilpv_free(&c);
     close_setup(&s);
 }
 
@@ -113,18 +127,16 @@ static void test_bit_identical_for_threads_and_frames(void **state)
     uint64_t sums[4];
     const int threads[3] = {1, 2, 3};
     for (int t = 0; t < 3; t++) {
-        lpv_classic c;
-        assert_int_equal(lpv_classic_init(&c, &s.lat), 0);
         workpool *pool = workpool_create(threads[t]);
-        lpv_propagate_desc pd = {.blockers = &s.blockers, .pool = pool};
-        assert_int_equal(lpv_classic_frame(&c, &s.injected, &s.origin, 6, &pd), 0);
-        sums[t] = lpv_volume_checksum(lpv_classic_result(&c));
-        if (t == 0) { /* the next frame from the same injection: the same bits */
-            assert_int_equal(lpv_classic_frame(&c, &s.injected, &s.origin, 6, &pd), 0);
-            sums[3] = lpv_volume_checksum(lpv_classic_result(&c));
-        }
+        ilpv c;
+        assert_int_equal(ilpv_init(&c, &(ilpv_desc){.lattice = &s.lat, .blockers = &s.blockers,
+                                                    .pool = pool}),
+                         0);
+        sums[t] = lpv_volume_checksum(classic_frame(&c, &s, 6, 0.0f, 0.0f));
+        if (t == 0) /* the next frame from the same injection: the same bits */
+            sums[3] = lpv_volume_checksum(classic_frame(&c, &s, 6, 0.0f, 0.0f));
+        ilpv_free(&c);
         workpool_destroy(pool);
-        lpv_classic_free(&c);
     }
     assert_true(sums[0] == sums[1] && sums[0] == sums[2] && sums[0] == sums[3]);
     close_setup(&s);

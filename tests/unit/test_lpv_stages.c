@@ -19,7 +19,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lpv/lpv_classic.h"
+#include "lpv/ilpv.h"
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_inject.h"
 #include "lpv/lpv_receive.h"
@@ -39,7 +39,7 @@ typedef struct stage {
     lattice_desc lat;
     lpv_blockers blockers;
     lpv_volume injected, origin;
-    lpv_classic field;
+    ilpv field;                  /* classic mode: the steady field */
     workpool *pool;
     lpv_vpl vpl;
 } stage;
@@ -53,9 +53,11 @@ static void stage_open(stage *s, int n, const float at[3])
     assert_int_equal(lpv_blockers_init(&s->blockers, s->lat.n), 0);
     assert_int_equal(lpv_volume_init(&s->injected, s->lat.n, LPV_LIGHT_CHANNELS), 0);
     assert_int_equal(lpv_volume_init(&s->origin, s->lat.n, LPV_GEOMETRY_CHANNELS), 0);
-    assert_int_equal(lpv_classic_init(&s->field, &s->lat), 0);
     s->pool = workpool_create(2);
     assert_non_null(s->pool);
+    assert_int_equal(ilpv_init(&s->field, &(ilpv_desc){.lattice = &s->lat, .blockers = &s->blockers,
+                                                       .pool = s->pool}),
+                     0);
     for (int a = 0; a < 3; a++)
         s->vpl.position[a] = at[a];
     s->vpl.normal[2] = 1.0f;
@@ -65,7 +67,7 @@ static void stage_open(stage *s, int n, const float at[3])
 
 static void stage_close(stage *s)
 {
-    lpv_classic_free(&s->field);
+    ilpv_free(&s->field);
     lpv_volume_free(&s->injected);
     lpv_volume_free(&s->origin);
     lpv_blockers_free(&s->blockers);
@@ -78,9 +80,10 @@ static const lpv_volume *stage_field(stage *s, int steps)
     lpv_volume_clear(&s->injected);
     lpv_volume_clear(&s->origin);
     lpv_inject_vpls(&s->injected, &s->origin, &s->lat, &s->vpl, 1, NULL);
-    lpv_propagate_desc pd = {.blockers = &s->blockers, .pool = s->pool};
-    assert_int_equal(lpv_classic_frame(&s->field, &s->injected, &s->origin, steps, &pd), 0);
-    return lpv_classic_result(&s->field);
+    lpv_volume_copy(ilpv_injection(&s->field), &s->injected);
+    lpv_volume_copy(ilpv_origin(&s->field), &s->origin);
+    assert_int_equal(ilpv_frame(&s->field, &(ilpv_frame_desc){.steps = steps, .classic = 1}), 0);
+    return ilpv_result(&s->field);
 }
 
 static double receive(const lpv_volume *field, const lattice_desc *lat, const double p[3],

@@ -8,6 +8,26 @@
 #include <cmocka.h>
 
 #include "cluster/params.h"
+#include "gi/gi_settings.h"
+#include "gi/vpl/vpl_settings.h"
+
+/* Every program's schema: the core keys and every GI and display setting. */
+static params_schema schema;
+
+/* f with every GI setting resolved (set, at its value or default), so that frames that
+ * mean the same compare equal byte for byte. */
+static void resolve(frame_params *f)
+{
+    for (int i = 0; i < gi_option_count(); i++)
+        gi_option_put(gi_option_at(i), gi_option_get(gi_option_at(i), f), f);
+}
+
+static int key(const char *name)
+{
+    int k = params_schema_find(&schema, name);
+    assert_true(k >= 0);
+    return k;
+}
 
 static void head_at(float m[16], float x, float y, float z)
 {
@@ -21,8 +41,8 @@ static void head_at(float m[16], float x, float y, float z)
 static void test_fresh_stores_agree(void **state)
 {
     params_store a, b;
-    params_init(&a);
-    params_init(&b);
+    params_init(&a, &schema);
+    params_init(&b, &schema);
     assert_int_equal(a.version, 0);
     assert_int_equal(params_changed_count(&a, 0), 0);
     assert_int_equal(params_checksum(&a), params_checksum(&b));
@@ -30,14 +50,15 @@ static void test_fresh_stores_agree(void **state)
     frame_params f, d;
     params_to_frame(&a, &f);
     frame_params_default(&d);
+    resolve(&d);
     assert_memory_equal(&f, &d, sizeof f);
 }
 
 static void test_delta_carries_only_changes(void **state)
 {
     params_store m, n;
-    params_init(&m);
-    params_init(&n);
+    params_init(&m, &schema);
+    params_init(&n, &schema);
     float head[16];
     head_at(head, 0.1f, 1.7f, 0.2f);
     assert_int_equal(params_set_mat4(&m, PARAMS_HEAD, head), 0);
@@ -71,7 +92,7 @@ static void test_delta_carries_only_changes(void **state)
 static void test_snapshot_joins_late(void **state)
 {
     params_store m, late;
-    params_init(&m);
+    params_init(&m, &schema);
     params_set_i32(&m, PARAMS_LIGHT_COUNT, 1);
     for (int v = 1; v <= 50; v++) {
         float head[16];
@@ -82,13 +103,13 @@ static void test_snapshot_joins_late(void **state)
         params_commit(&m);
     }
     /* A late store gets everything, whatever it held before. */
-    params_init(&late);
-    params_set_i32(&late, PARAMS_LPV_STEPS, 99);
+    params_init(&late, &schema);
+    params_set_i32(&late, key("steps"), 99);
     uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_snapshot(&m, buf, sizeof buf);
     size_t expect = 0;
-    for (int k = 0; k < PARAMS_KEY_COUNT; k++)
-        expect += 2 + params_key_size(k);
+    for (int k = 0; k < schema.count; k++)
+        expect += 2 + params_key_size(&m, k);
     assert_int_equal(len, expect);
     assert_true(len <= PARAMS_ENCODED_MAX);
     assert_int_equal(params_apply(&late, m.version, buf, len), 0);
@@ -105,7 +126,7 @@ static void test_snapshot_joins_late(void **state)
 static void test_small_buffer_reported(void **state)
 {
     params_store m;
-    params_init(&m);
+    params_init(&m, &schema);
     uint8_t buf[100];
     assert_int_equal(params_encode_snapshot(&m, buf, sizeof buf), PARAMS_ENCODE_TOO_SMALL);
 }
@@ -113,12 +134,12 @@ static void test_small_buffer_reported(void **state)
 static void test_bad_deltas_leave_store_unchanged(void **state)
 {
     params_store m, n;
-    params_init(&m);
-    params_init(&n);
+    params_init(&m, &schema);
+    params_init(&n, &schema);
     float head[16];
     head_at(head, 1, 2, 3);
     params_set_mat4(&m, PARAMS_HEAD, head);
-    params_set_f32(&m, PARAMS_EXPOSURE, 2.0f);
+    params_set_f32(&m, key("exposure"), 2.0f);
     params_commit(&m);
     uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_delta(&m, 0, buf, sizeof buf);
@@ -129,7 +150,7 @@ static void test_bad_deltas_leave_store_unchanged(void **state)
         int rc = params_apply(&n, 1, buf, cut);
         if (cut == 2 + 64) {
             assert_int_equal(rc, 0); /* just the head record */
-            params_init(&n);
+            params_init(&n, &schema);
         } else {
             assert_int_equal(rc, -1);
         }
@@ -141,13 +162,13 @@ static void test_bad_deltas_leave_store_unchanged(void **state)
     /* Duplicate key. */
     uint8_t dup[12];
     float e = 3.0f;
-    dup[0] = PARAMS_EXPOSURE;
-    dup[1] = 0;
+    dup[0] = (uint8_t)key("exposure");
+    dup[1] = (uint8_t)(key("exposure") >> 8);
     memcpy(dup + 2, &e, 4);
     memcpy(dup + 6, dup, 6);
     assert_int_equal(params_apply(&n, 1, dup, 12), -1);
     assert_int_equal(params_apply(&n, 1, dup, 6), 0);
-    assert_float_equal(params_get_f32(&n, PARAMS_EXPOSURE), 3.0f, 0);
+    assert_float_equal(params_get_f32(&n, key("exposure")), 3.0f, 0);
     /* Non-finite float. */
     float nan = NAN;
     memcpy(dup + 2, &nan, 4);
@@ -158,13 +179,14 @@ static void test_bad_deltas_leave_store_unchanged(void **state)
 static void test_typed_setters(void **state)
 {
     params_store s;
-    params_init(&s);
+    params_init(&s, &schema);
     assert_int_equal(params_set_f32(&s, PARAMS_HEAD, 1.0f), -1);
-    assert_int_equal(params_set_i32(&s, PARAMS_KEY_COUNT, 1), -1);
+    assert_int_equal(params_set_i32(&s, schema.count, 1), -1);
+    assert_int_equal(params_set_f32(&s, key("vpl-count"), 1.0f), -1); /* an int key */
     assert_int_equal(params_light_key(FRAME_MAX_LIGHTS, 0), -1);
-    assert_string_equal(params_key_name(params_light_key(3, PARAMS_LIGHT_POSE)), "light3.pose");
-    assert_string_equal(params_key_name(params_light_key(2, PARAMS_LIGHT_TYPE)), "light2.type");
-    assert_string_equal(params_key_name(PARAMS_VPL_SELECTION), "vpl_selection");
+    assert_string_equal(params_key_name(&s, params_light_key(3, PARAMS_LIGHT_POSE)), "light3.pose");
+    assert_string_equal(params_key_name(&s, params_light_key(2, PARAMS_LIGHT_TYPE)), "light2.type");
+    assert_string_equal(params_key_name(&s, key("vpl-selection")), "vpl-selection");
     assert_int_equal(params_changed_count(&s, 0), 0);
 
     frame_params f;
@@ -174,13 +196,51 @@ static void test_typed_setters(void **state)
     f.lights[1].position[0] = 4;
     f.lights[1].type = SCENE_LIGHT_DIRECTIONAL;
     f.lambda_incr = 0.5f;
-    f.vpl_selection = VPL_SELECT_REGULAR;
+    assert_null(gi_set(&f, "vpl-selection", "regular"));
+    assert_null(gi_set(&f, "gi", "vpl"));
     params_set_from_frame(&s, &f);
     params_commit(&s);
     frame_params g;
     params_to_frame(&s, &g);
     f.version = 1;
     assert_memory_equal(&f, &g, sizeof f);
+}
+
+/* A frame's unset GI setting travels as its default; a set one as its value, in the
+ * frame's slot on the other side. */
+static void test_gi_settings_travel(void **state)
+{
+    params_store m, n;
+    params_init(&m, &schema);
+    params_init(&n, &schema);
+    frame_params f;
+    frame_params_default(&f);
+    assert_null(gi_set(&f, "vpl-interleave", "4"));
+    params_set_from_frame(&m, &f);
+    params_commit(&m);
+    uint8_t buf[PARAMS_ENCODED_MAX];
+    size_t len = params_encode_delta(&m, 0, buf, sizeof buf);
+    assert_int_equal(len, 2 + 4); /* only the changed setting */
+    assert_int_equal(params_apply(&n, 1, buf, len), 0);
+    frame_params g;
+    params_to_frame(&n, &g);
+    const gi_option *o = gi_option_find("vpl-interleave");
+    assert_true(gi_option_is_set(o, &g));
+    assert_int_equal(gi_option_get(o, &g).i, 4);
+    assert_int_equal(gi_option_get(gi_option_find("vpl-count"), &g).i, VPL_COUNT_DEFAULT);
+}
+
+/* Another build's keys: the hello hash differs for the same config. */
+static void test_session_hash_covers_the_schema(void **state)
+{
+    params_schema core;
+    params_schema_init(&core);
+    assert_true(core.hash != schema.hash);
+    assert_true(params_session_hash(7, &core) != params_session_hash(7, &schema));
+    assert_true(params_session_hash(7, &schema) != params_session_hash(8, &schema));
+    assert_true(params_session_hash(7, &schema) == params_session_hash(7, &schema));
+    /* A name taken twice is refused. */
+    assert_int_equal(params_schema_add(&core, &frame_transport_settings[0], 0, -1), -1);
 }
 
 int main(void)
@@ -192,6 +252,9 @@ int main(void)
         cmocka_unit_test(test_small_buffer_reported),
         cmocka_unit_test(test_bad_deltas_leave_store_unchanged),
         cmocka_unit_test(test_typed_setters),
+        cmocka_unit_test(test_gi_settings_travel),
+        cmocka_unit_test(test_session_hash_covers_the_schema),
     };
+    gi_params_schema(&schema);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,6 +18,7 @@ static size_t sample(int type, uint8_t *buf, size_t cap, const uint8_t *params, 
                   .config_hash = 0x1122334455667788ull, .checksum = 0xdeadbeefcafef00dull,
                   .timings = {0.5f, 1.5f, 2.5f, 3.5f}, .reason = 7, .params = params, .params_len = plen};
     strcpy(m.name, "n01");
+    strcpy(m.text, "scene x.gltf: no such file");
     return wire_encode(&m, buf, cap);
 }
 
@@ -51,8 +52,8 @@ static const struct { int type; const char *hex; } golden[] = {
          "43564c54010007000c000000c91c79d9036e30312a00000000000000"},
 };
 /* A protocol 1 FRAME carrying a delta: head pose, time, lambda_incr and light 0's colour,
- * in key order. Light 0's colour is key 0x12 there since PARAMS_PATTERN (the calibration
- * pattern) came before the per-light keys; protocol 2's gi key moves it to 0x13. */
+ * in key order. The keys of lambda_incr (6) and light 0's colour (0x12) have moved since
+ * (protocol 5 numbers keys by a schema: the core keys, the lights, then the settings). */
 static const char *golden_frame_delta =
     "43564c5401000300740000007cee990f02000000000000000100000000000000"
     "6000000000000000803f000000000000000000000000000000000000803f0000"
@@ -84,13 +85,16 @@ static void test_encoding_unchanged(void **state)
         wire_msg m;
         assert_int_equal(wire_decode(got, n, &m), WIRE_OK);
     }
+    static params_schema schema;
     static params_store s;
-    params_init(&s);
+    params_schema_init(&schema);
+    params_init(&s, &schema);
     params_commit(&s);
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.25f, 1.7f, -0.5f, 1};
+    int lambda = params_schema_find(&schema, "lambda"), color_key = params_light_key(0, PARAMS_LIGHT_COLOR);
     params_set_mat4(&s, PARAMS_HEAD, head);
     params_set_f64(&s, PARAMS_TIME, 1.0 / 30);
-    params_set_f32(&s, PARAMS_LAMBDA_INCR, 0.625f);
+    params_set_f32(&s, lambda, 0.625f);
     const float color[3] = {0.5f, 0.25f, 1};
     params_set(&s, params_light_key(0, PARAMS_LIGHT_COLOR), color, sizeof color);
     uint64_t v = params_commit(&s);
@@ -103,12 +107,15 @@ static void test_encoding_unchanged(void **state)
     assert_memory_equal(got, want, 4);
     assert_int_equal(got[4] | got[5] << 8, WIRE_PROTOCOL);
     assert_memory_equal(got + 6, want + 6, 6);
-    /* Every byte of the payload but light 0's key, which moved up by protocol 2's gi key
-     * protocol 3's vpl_count and vpl_seed and protocol 4's vpl_selection. */
-    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 14 - WIRE_HEADER_SIZE);
-    assert_int_equal(got[n - 14] | got[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR));
-    assert_int_equal(want[n - 14] | want[n - 13] << 8, params_light_key(0, PARAMS_LIGHT_COLOR) - 4);
-    assert_memory_equal(got + n - 12, want + n - 12, 12);
+    /* The same records, in key order: versions, head and time (keys 0 and 3) alike; then
+     * protocol 1 had lambda (6) before the colour (0x12), protocol 5 the colour first. */
+    assert_memory_equal(got + WIRE_HEADER_SIZE, want + WIRE_HEADER_SIZE, n - 20 - WIRE_HEADER_SIZE);
+    assert_int_equal(want[n - 20] | want[n - 19] << 8, 6);
+    assert_int_equal(want[n - 14] | want[n - 13] << 8, 0x12);
+    assert_int_equal(got[n - 20] | got[n - 19] << 8, color_key);
+    assert_memory_equal(got + n - 18, want + n - 12, 12);
+    assert_int_equal(got[n - 6] | got[n - 5] << 8, lambda);
+    assert_memory_equal(got + n - 4, want + n - 18, 4);
 }
 
 static void test_round_trip_every_type(void **state)
@@ -149,6 +156,12 @@ static void test_round_trip_every_type(void **state)
         case WIRE_HEARTBEAT:
             assert_string_equal(m.name, "n01");
             break;
+        case WIRE_REFUSE:
+            assert_string_equal(m.name, "n01");
+            assert_int_equal(m.reason, 7);
+            assert_int_equal(m.version, 42);
+            assert_string_equal(m.text, "scene x.gltf: no such file");
+            break;
         }
     }
 }
@@ -184,6 +197,26 @@ static void test_oversized_and_bad_fields(void **state)
     assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
     m.type = (wire_type)99;
     assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
+    /* REFUSE's text: printable only (no forged log lines), at most WIRE_TEXT_MAX. */
+    wire_msg r = {.type = WIRE_REFUSE, .reason = WIRE_REFUSE_SCENE};
+    strcpy(r.name, "n01");
+    strcpy(r.text, "line\ncavelight-master: forged");
+    assert_int_equal(wire_encode(&r, buf, sizeof buf), 0);
+    memset(r.text, 'x', WIRE_TEXT_MAX);
+    r.text[WIRE_TEXT_MAX] = 0;
+    size_t rl = wire_encode(&r, buf, sizeof buf);
+    assert_true(rl > 0);
+    buf[rl - 1] = '\n'; /* a control character on the wire, CRC put right: refused */
+    uint32_t rcrc;
+    {
+        static uint8_t tmp[WIRE_MAX_MESSAGE];
+        memcpy(tmp, buf, 12);
+        memcpy(tmp + 12, buf + WIRE_HEADER_SIZE, rl - WIRE_HEADER_SIZE);
+        rcrc = wire_crc32(tmp, 12 + rl - WIRE_HEADER_SIZE);
+    }
+    memcpy(buf + 12, &rcrc, 4);
+    wire_msg rd;
+    assert_int_equal(wire_decode(buf, rl, &rd), WIRE_E_PAYLOAD);
 
     /* A header claiming a huge payload is refused before anything is read. */
     size_t len = sample(WIRE_SWAP, buf, sizeof buf, NULL, 0);
@@ -220,7 +253,7 @@ static void test_random_garbage_never_decodes(void **state)
             memcpy(buf, &magic, 4);
             buf[4] = WIRE_PROTOCOL;
             buf[5] = 0;
-            buf[6] = (uint8_t)(1 + rand() % 7);
+            buf[6] = (uint8_t)(1 + rand() % (WIRE_TYPE_END - 1));
             buf[7] = 0;
             memcpy(buf + 8, &payload, 4);
         }

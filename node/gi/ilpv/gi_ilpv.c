@@ -1,0 +1,354 @@
+/* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the source every light type feeds
+ * (renderer_rsm_vpls(), in texel order, so the injection is deterministic) are injected
+ * on the host, then the ILPV driver (lpv/ilpv.h) runs the frame on the CPU or GL backend.
+ *
+ * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
+ * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
+ * Phi/pi and the lattice holds radiant intensity (W/sr) per cell, whose energy <L|1> is
+ * Phi. The shading divides by the cell area to get radiance (docs/node.md).
+ *
+ * A frame whose inputs are unchanged and whose result has converged is skipped
+ * (lpv_converge.h); the residual is computed on the host from the result the checksum is
+ * taken of, so every node decides alike. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/clock.h"
+#include "base/workpool.h"
+#include "base/xalloc.h"
+#include "frame/light_view.h"
+#include "gi/ilpv/gi_ilpv.h"
+#include "gi/ilpv/ilpv_gl.h"
+#include "gltools.h"
+#include "lpv/ilpv.h"
+#include "lpv/lpv_converge.h"
+#include "lpv/lpv_geometry.h"
+#include "lpv/lpv_inject.h"
+#include "lpv/lpv_receive.h"
+#include "lpv/lpv_transfer.h"
+#include "vpl/vpl_source.h"
+
+struct gi_ilpv {
+    const gl_functions *gl;
+    const scene *scene;
+    ilpv_settings settings;  /* backend resolved */
+    lattice_desc lattice;
+    lpv_blockers blockers;   /* built once from the scene (lpv_geometry.h) */
+    ilpv driver;             /* the frame's sequence, on its backend */
+    lpv_converge converge;
+    uint64_t checksum;       /* of the last computed result */
+    workpool *pool;
+    lpv_vpl *vpls;           /* what the LPV injects: RSM VPLs (flux / pi) and emitters */
+    size_t vpl_capacity;
+    lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
+    size_t emitter_count;
+    double emitter_energy;
+    float *scratch;          /* 4 floats per cell, one colour at a time */
+    GLuint shown[3];         /* the result, what the shading samples */
+    uint32_t reset_epoch;
+    int frames;
+    double inject_ms, propagate_ms; /* the last frame's stages */
+};
+
+static const double PI = 3.14159265358979323846;
+
+/* One VPL per emissive triangle (paper 3.3.5, vpl/vpl_source.h), flux pi * L_e * area
+ * passed as L_e * area (see the units above). */
+static int build_emitters(gi_ilpv *r)
+{
+    size_t n = vpl_emitters(r->scene, NULL);
+    vpl_emitter *e = n ? malloc(n * sizeof *e) : NULL;
+    r->emitters = n ? malloc(n * sizeof *r->emitters) : NULL;
+    if (n && (!e || !r->emitters)) {
+        free(e);
+        return -1;
+    }
+    vpl_emitters(r->scene, e);
+    r->emitter_count = n;
+    r->emitter_energy = 0;
+    for (size_t i = 0; i < n; i++) {
+        lpv_vpl *v = &r->emitters[i];
+        for (int k = 0; k < 3; k++) {
+            v->position[k] = e[i].position[k];
+            v->normal[k] = e[i].normal[k];
+            v->flux[k] = e[i].radiance[k] * e[i].area;
+        }
+        r->emitter_energy +=
+            PI * e[i].area * (e[i].radiance[0] + e[i].radiance[1] + e[i].radiance[2]) / 3.0;
+    }
+    free(e);
+    return 0;
+}
+
+static int fit_lattice(gi_ilpv *r, char *err, size_t errlen)
+{
+    const scene *s = r->scene;
+    int budget = r->settings.lattice_cells;
+    lattice_fit_desc fit = {
+        .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
+        .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
+        .max_axis_cells = budget > 0 ? ILPV_FITTED_AXIS_MAX : r->settings.lattice,
+        .max_cells = budget > 0 ? budget : 0,
+        .margin_cells = -1.0f,
+    };
+    char why[160];
+    if (lattice_fit(&fit, &r->lattice, why, sizeof why) != 0) {
+        snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
+        return -1;
+    }
+    return 0;
+}
+
+/* The backend the settings ask for, with the blockers and pool the method owns. */
+static int make_driver(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
+{
+    ilpv_backend b;
+    if (r->settings.backend == ILPV_BACKEND_GL) {
+        int tiles = r->settings.gl_tiles == ILPV_TILES_AUTO ? !d->software
+                                                            : r->settings.gl_tiles == ILPV_TILES_ON;
+        ilpv_gl *g = ilpv_gl_create(r->gl, &r->lattice, &r->blockers, tiles, err, errlen);
+        if (!g)
+            return -1;
+        b = ilpv_gl_backend(g);
+    } else {
+        ilpv_cpu *c = ilpv_cpu_create(&r->lattice, &r->blockers, r->pool);
+        if (!c)
+            goto oom;
+        b = ilpv_cpu_backend(c);
+    }
+    ilpv_desc id = {.lattice = &r->lattice, .blockers = &r->blockers, .pool = r->pool, .backend = &b};
+    if (ilpv_init(&r->driver, &id) != 0)
+        goto oom;
+    return 0;
+oom:
+    snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d lattice", r->lattice.n[0],
+             r->lattice.n[1], r->lattice.n[2]);
+    return -1;
+}
+
+static int init(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
+{
+    const scene *s = r->scene;
+    if (r->settings.backend == ILPV_BACKEND_AUTO)
+        r->settings.backend = d->software ? ILPV_BACKEND_CPU : ILPV_BACKEND_GL;
+    if (fit_lattice(r, err, errlen) != 0)
+        return -1;
+    double threshold = d->no_reuse ? -1.0 : r->settings.converge_threshold;
+    /* Static scene: the blockers are built once, here. */
+    if (lpv_blockers_init(&r->blockers, r->lattice.n) != 0 || build_emitters(r) != 0 ||
+        lpv_converge_init(&r->converge, r->lattice.n, threshold) != 0 ||
+        !(r->pool = workpool_create(d->threads)) ||
+        !(r->scratch = malloc(lattice_cell_count(&r->lattice) * 4 * sizeof(float)))) {
+        snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d lattice",
+                 r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
+        return -1;
+    }
+    lpv_geometry_add_triangles(&r->blockers, &r->lattice, s->positions, 3 * s->triangle_count,
+                               NULL, s->triangle_count, NULL);
+    if (make_driver(r, d, err, errlen) != 0)
+        return -1;
+    for (int c = 0; c < 3; c++)
+        r->shown[c] = gltools_texture3d(r->gl, r->lattice.n);
+    return 0;
+}
+
+static void release(gi_ilpv *r)
+{
+    for (int c = 0; c < 3; c++)
+        if (r->shown[c])
+            r->gl->DeleteTextures(1, &r->shown[c]);
+    if (r->driver.injected.cells)
+        ilpv_free(&r->driver);
+    if (r->pool)
+        workpool_destroy(r->pool);
+    if (r->converge.previous.cells)
+        lpv_converge_free(&r->converge);
+    lpv_blockers_free(&r->blockers);
+    free(r->emitters);
+    free(r->vpls);
+    free(r->scratch);
+}
+
+/* The shared VPL source (renderer_rsm_vpls()) as the lattice wants it, Phi / pi (the units
+ * above), then the emitters. NULL when out of memory (the frame injects nothing). */
+static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
+{
+    lpv_vpl *source;
+    size_t n = renderer_rsm_vpls(rsm->maps, &source), need = n + r->emitter_count;
+    if (need > r->vpl_capacity) {
+        lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
+        if (!v) {
+            *count = 0;
+            return NULL;
+        }
+        r->vpls = v;
+        r->vpl_capacity = need;
+    }
+    for (size_t i = 0; i < n; i++) {
+        r->vpls[i] = source[i];
+        for (int k = 0; k < 3; k++)
+            r->vpls[i].flux[k] = source[i].flux[k] * (float)(1.0 / PI);
+    }
+    if (r->emitter_count) /* a scene without emitters has no emitter array */
+        memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
+    *count = need;
+    return r->vpls;
+}
+
+/* Emitted energy for the incremental merge, from the lights' parameters (paper 3.4). */
+static double emitted_energy(const gi_ilpv *r, const frame_params *p)
+{
+    double e = r->emitter_energy;
+    for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
+        e += light_power(&p->lights[i], r->scene);
+    return e;
+}
+
+static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
+{
+    gi_ilpv *r = state;
+    if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
+        ilpv_reset(&r->driver);
+        r->reset_epoch = p->reset_epoch;
+    }
+    double t0 = clock_now_ms();
+    size_t count;
+    const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
+    ilpv_begin_frame(&r->driver);
+    lpv_inject_vpls(ilpv_injection(&r->driver), ilpv_origin(&r->driver), &r->lattice, vpls,
+                    count, NULL);
+    double t1 = clock_now_ms();
+    ilpv_frame(&r->driver, &(ilpv_frame_desc){
+        .steps = p->lpv_steps, .lambda_incr = p->lambda_incr,
+        .emitted_energy = emitted_energy(r, p), .classic = r->settings.mode == ILPV_MODE_CLASSIC,
+        .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
+        .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell)});
+    const lpv_volume *result = ilpv_result(&r->driver);
+    r->checksum = lpv_volume_checksum(result);
+    ilpv_gl_upload(r->gl, result, r->shown, r->scratch);
+    lpv_converge_end(&r->converge, result, ilpv_pending(&r->driver), r->pool);
+    r->inject_ms = t1 - t0;
+    r->propagate_ms = clock_now_ms() - t1;
+    r->frames++;
+    return r->checksum;
+}
+
+static int reuse(void *state, const frame_params *p)
+{
+    gi_ilpv *r = state;
+    int same = lpv_converge_begin(&r->converge, p);
+    if (same)
+        r->inject_ms = r->propagate_ms = 0;
+    return same;
+}
+
+gi_ilpv *gi_ilpv_of(gi *g)
+{
+    return g && gi_active(g) == gi_method_find("ilpv") ? gi_state(g) : NULL;
+}
+
+const lpv_volume *gi_ilpv_volume(const gi_ilpv *r) { return ilpv_result(&r->driver); }
+ilpv_mode gi_ilpv_mode(const gi_ilpv *r) { return r->settings.mode; }
+ilpv_backend_choice gi_ilpv_backend(const gi_ilpv *r) { return r->settings.backend; }
+const lattice_desc *gi_ilpv_lattice(const gi_ilpv *r) { return &r->lattice; }
+
+void gi_ilpv_stats_get(const gi_ilpv *r, gi_ilpv_stats *out)
+{
+    out->frames_skipped = r->converge.frames_skipped;
+    out->last_residual = r->converge.residual;
+    out->skipped_this_frame = r->converge.skipped;
+    lpv_volume_energy(&r->driver.injected, out->injected_energy);
+}
+
+double gi_ilpv_measure_step_ms(gi_ilpv *r, int steps)
+{
+    ilpv_backend *b = &r->driver.backend;
+    b->steps(b->state, 1, 0u, 0.0f, 0.0f);
+    r->gl->Finish();
+    double t0 = clock_now_ms();
+    b->steps(b->state, steps, 1u, 0.0f, 0.0f);
+    r->gl->Finish();
+    double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
+    ilpv_reset(&r->driver);
+    lpv_converge_forget(&r->converge);
+    return ms;
+}
+
+/* ---- the method --------------------------------------------------------------------- */
+
+static void *create(const gi_desc *d, char *err, size_t errlen)
+{
+    gi_ilpv *r = xcalloc(1, sizeof *r);
+    r->gl = d->gl;
+    r->scene = d->scene;
+    ilpv_settings_get(d->frame, &r->settings);
+    if (init(r, d, err, errlen) != 0) {
+        release(r);
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+static void destroy(void *state)
+{
+    release(state);
+    free(state);
+}
+
+static void eye_bind(void *state, const gi_eye *e)
+{
+    const gi_ilpv *r = state;
+    const gl_functions *gl = r->gl;
+    GLuint prog = e->program;
+    const char *lname[3] = {"u_lpv_r", "u_lpv_g", "u_lpv_b"};
+    for (int c = 0; c < 3; c++) {
+        gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + c));
+        gl->BindTexture(GL_TEXTURE_3D, r->shown[c]);
+        gl->Uniform1i(gl->GetUniformLocation(prog, lname[c]), e->first_unit + c);
+    }
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_lpv_enabled"), r->frames > 0);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_lpv_origin"), 1, r->lattice.origin);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_lpv_cell"), r->lattice.cell);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_lpv_behind"), LPV_RECEIVE_BEHIND);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_lpv_size"), r->lattice.n[0], r->lattice.n[1],
+                  r->lattice.n[2]);
+}
+
+/* Stages: injection, propagation; figures: the fitted lattice against the cube of its
+ * longest axis, the backend, and the convergence (residual +Inf before two computed
+ * frames). */
+static void stats(const void *state, gi_stats *out)
+{
+    const gi_ilpv *r = state;
+    out->stage_count = 2;
+    out->stage[0] = (gi_stat){"inject", r->inject_ms};
+    out->stage[1] = (gi_stat){"propagate", r->propagate_ms};
+    const int *n = r->lattice.n;
+    int longest = n[0] > n[1] ? (n[0] > n[2] ? n[0] : n[2]) : (n[1] > n[2] ? n[1] : n[2]);
+    out->hud_cells = longest;
+    const gi_stat figures[] = {
+        {"lattice_x", n[0]}, {"lattice_y", n[1]}, {"lattice_z", n[2]},
+        {"cells", (double)lattice_cell_count(&r->lattice)},
+        {"cube_cells", (double)longest * longest * longest},
+        {"gl_backend", r->settings.backend == ILPV_BACKEND_GL},
+        {"skipped", r->converge.skipped},
+        {"frames_skipped", (double)r->converge.frames_skipped},
+        {"residual", r->converge.residual},
+    };
+    out->figure_count = (int)(sizeof figures / sizeof figures[0]);
+    memcpy(out->figure, figures, sizeof figures);
+}
+
+const gi_method gi_ilpv_method = {
+    .name = "ilpv",
+    .shade = {"ilpv/ilpv_shade.glsl"},
+    .create = create,
+    .destroy = destroy,
+    .reuse = reuse,
+    .frame = frame,
+    .eye_bind = eye_bind,
+    .stats = stats,
+};

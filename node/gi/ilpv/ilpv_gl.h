@@ -1,0 +1,31 @@
+/* ilpv_gl: the ILPV's GL compute backend (ilpv.h's ilpv_backend): the chain's front and sum
+ * as 3D textures (one per colour, four SH coefficients each), one step per dispatch of
+ * propagate.comp (the CPU step's rule, lpv_propagate.h), sums by accumulate.comp. The
+ * splat comes from the host; the sum goes back to the host for the driver's composition.
+ * Also the two host <-> texture copies the method's shading needs. Not here: the frame's
+ * sequence (ilpv.c), the injection, the shading. */
+#ifndef CAVELIGHT_ILPV_GL_H
+#define CAVELIGHT_ILPV_GL_H
+
+#include <stddef.h>
+
+#include "gl_functions.h"
+#include "lpv/ilpv.h"
+#include "lpv/lattice.h"
+#include "lpv/lpv_geometry.h"
+
+typedef struct ilpv_gl ilpv_gl;
+
+/* tiles: the shared-memory variant of the step (fast on a GPU, slow on llvmpipe). NULL
+ * with one line in err. */
+ilpv_gl *ilpv_gl_create(const gl_functions *gl, const lattice_desc *lat,
+                        const lpv_blockers *blockers, int tiles, char *err, size_t errlen);
+/* As a backend; ilpv_free() destroys it. */
+ilpv_backend ilpv_gl_backend(ilpv_gl *g);
+
+/* A host volume (12 channels) into three RGBA32F 3D textures of its size, and back;
+ * scratch holds 4 floats per cell. */
+void ilpv_gl_upload(const gl_functions *gl, const lpv_volume *v, const GLuint tex[3], float *scratch);
+void ilpv_gl_download(const gl_functions *gl, const GLuint tex[3], lpv_volume *v, float *scratch);
+
+#endif

@@ -1,0 +1,56 @@
+#include "gi/ilpv/ilpv_settings.h"
+
+#include <stddef.h>
+
+#include "lpv/lattice.h"
+#include "lpv/lpv_converge.h"
+
+static const char *const backend_names[] = {"auto", "cpu", "gl"};
+static const char *const tiles_names[] = {"auto", "on", "off"};
+static const char *const mode_names[] = {"incremental", "classic"};
+
+#define FIELD(f) offsetof(ilpv_settings, f)
+static const setting rows[] = {
+    {"lattice", "N", SETTING_INT, 2, ILPV_LATTICE_MAX, LATTICE_DEFAULT_AXIS_CELLS, NULL, 0,
+     SETTING_REBUILD, FIELD(lattice), "ilpv: LPV cells along the scene's longest axis"},
+    {"lattice-cells", "N", SETTING_INT, 0, ILPV_LATTICE_CELLS_MAX, 0, NULL, 0, SETTING_REBUILD,
+     FIELD(lattice_cells),
+     "ilpv: instead of --lattice: N cells in all, fitted to the\n"
+     "scene's shape (finer cells in a long, thin scene); 0: off"},
+    {"lpv", NULL, SETTING_CHOICE, 0, 0, ILPV_BACKEND_AUTO, backend_names, 3, SETTING_REBUILD,
+     FIELD(backend), "ilpv: where the LPV runs (auto: CPU on llvmpipe, GL on a\nGPU; "
+     "every node must resolve it alike)"},
+    {"gl-tiles", NULL, SETTING_CHOICE, 0, 0, ILPV_TILES_AUTO, tiles_names, 3, SETTING_REBUILD,
+     FIELD(gl_tiles), "ilpv: GL propagation through shared-memory tiles"},
+    {"lpv-mode", NULL, SETTING_CHOICE, 0, 0, ILPV_MODE_INCREMENTAL, mode_names, 2,
+     SETTING_REBUILD, FIELD(mode), "ilpv: ILPV, or classic LPV accumulation"},
+    {"converge-threshold", "R", SETTING_FLOAT, -1, 1, LPV_CONVERGE_DEFAULT_THRESHOLD, NULL, 0,
+     SETTING_REBUILD, FIELD(converge_threshold),
+     "ilpv: skip the frame pass once the LPV residual is below R\nand nothing changed "
+     "(negative = never)"},
+};
+#undef FIELD
+
+/* --lattice and --lattice-cells say the same thing two ways. */
+static const char *check(const frame_params *p)
+{
+    const gi_option *a = gi_option_find("lattice"), *b = gi_option_find("lattice-cells");
+    if (gi_option_is_set(a, p) && gi_option_is_set(b, p) && gi_option_get(b, p).i > 0)
+        return "give --lattice (cells along the longest axis) or --lattice-cells (cells in "
+               "all), not both";
+    return NULL;
+}
+
+const gi_method_settings ilpv_settings_table = {
+    .name = "ilpv",
+    .summary = "incremental light propagation volumes",
+    .rows = rows,
+    .count = (int)(sizeof rows / sizeof rows[0]),
+    .struct_size = sizeof(ilpv_settings),
+    .check = check,
+};
+
+void ilpv_settings_get(const frame_params *p, ilpv_settings *out)
+{
+    gi_settings_read(gi_method_find("ilpv"), p, out);
+}

@@ -1,0 +1,10 @@
+/* gi_none: the GI method "none": direct light only, no indirect term. Its checksum is a
+ * constant (it has no view-independent state to disagree about). */
+#ifndef CAVELIGHT_GI_NONE_H
+#define CAVELIGHT_GI_NONE_H
+
+#include "gi/gi_method.h"
+
+extern const gi_method gi_none_method;
+
+#endif

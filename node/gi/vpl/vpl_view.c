@@ -1,0 +1,84 @@
+#include "gi/vpl/vpl_view.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "base/mat4.h"
+#include "base/xalloc.h"
+#include "scene_rt.h"
+
+struct vpl_view {
+    scene_rt rt;
+    float direction[3 * VPL_VIEW_SAMPLES];
+    float sample[6 * VPL_VIEW_SAMPLES];
+};
+
+static double radical_inverse(unsigned i, unsigned base)
+{
+    double inv = 1.0 / base, f = inv, r = 0;
+    for (; i > 0; i /= base, f *= inv)
+        r += f * (i % base);
+    return r;
+}
+
+vpl_view *vpl_view_create(const scene *s, char *err, size_t errlen)
+{
+    vpl_view *v = xcalloc(1, sizeof *v);
+    char why[256];
+    if (scene_rt_build(&v->rt, s, 1, why, sizeof why) != 0) {
+        snprintf(err, errlen, "renderer: vpl view samples: %s", why);
+        free(v);
+        return NULL;
+    }
+    /* Halton points (bases 2, 3) mapped to the sphere uniformly in solid angle. */
+    for (int i = 0; i < VPL_VIEW_SAMPLES; i++) {
+        double z = 1.0 - 2.0 * radical_inverse((unsigned)i + 1, 2);
+        double phi = 6.283185307179586 * radical_inverse((unsigned)i + 1, 3);
+        double r = sqrt(fmax(0.0, 1.0 - z * z));
+        float *d = v->direction + 3 * i;
+        d[0] = (float)(r * cos(phi));
+        d[1] = (float)(r * sin(phi));
+        d[2] = (float)z;
+    }
+    return v;
+}
+
+void vpl_view_destroy(vpl_view *v)
+{
+    if (!v)
+        return;
+    scene_rt_release(&v->rt);
+    free(v);
+}
+
+int vpl_view_samples(vpl_view *v, const float viewer[3], const float **samples)
+{
+    int n = 0;
+    for (int i = 0; i < VPL_VIEW_SAMPLES; i++) {
+        const float *d = v->direction + 3 * i;
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        struct RTCRayHit rh = {
+            .ray = {.org_x = viewer[0], .org_y = viewer[1], .org_z = viewer[2], .tnear = 0,
+                    .dir_x = d[0], .dir_y = d[1], .dir_z = d[2], .tfar = INFINITY,
+                    .mask = 0xffffffffu},
+            .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .primID = RTC_INVALID_GEOMETRY_ID},
+        };
+        scene_rt_intersect(&v->rt, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            continue;
+        float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+        float len = sqrtf(ng[0] * ng[0] + ng[1] * ng[1] + ng[2] * ng[2]);
+        if (!(len > 0))
+            continue;
+        float side = ng[0] * d[0] + ng[1] * d[1] + ng[2] * d[2] > 0 ? -1.0f : 1.0f;
+        float *s = v->sample + 6 * n++;
+        for (int k = 0; k < 3; k++) {
+            s[k] = viewer[k] + rh.ray.tfar * d[k];
+            s[3 + k] = side * ng[k] / len;
+        }
+    }
+    *samples = v->sample;
+    return n;
+}
