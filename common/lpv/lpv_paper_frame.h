@@ -14,8 +14,8 @@
  * lambda_incr = 0 every frame is the thesis's plain (classic) LPV: S steps of the fresh
  * injection. lambda_incr's range [0, 1) is the caller's (frame_params_sanitize()).
  * lpv_paper_merge_factors() and lpv_paper_history_advance() are the rule, once, for this
- * core and a GL path (which runs the merge with shaders/accumulate.comp and the steps with
- * shaders/paper_propagate.comp). Deterministic: the same bits for any thread count. */
+ * core and a GL path (which runs the merge with node/gi/ilpv/accumulate.comp and the steps
+ * with shaders/paper_propagate.comp). Deterministic: the same bits for any thread count. */
 #ifndef CAVELIGHT_LPV_PAPER_FRAME_H
 #define CAVELIGHT_LPV_PAPER_FRAME_H
 

@@ -1,7 +1,8 @@
 /* lpv_gl_steps: the LPV's GL compute shaders run directly, without the renderer, for the
  * GL tests and cavelight-bench lpv --backend gl: volumes to and from three RGBA32F 3D
  * textures (one per colour, 4 SH coefficients each), the blockers as one R32UI word per
- * cell, one propagation step of either transport, and shaders/accumulate.comp's
+ * cell, one propagation step of either transport (node/gi/ilpv/propagate.comp,
+ * shaders/paper_propagate.comp), and node/gi/ilpv/accumulate.comp's
  * dst = a dst + b src (the paper merge). The GL side of what lpv_propagate_step() and
  * lpv_paper_merge_run() do on the CPU; header only, a GL context must be current. */
 #ifndef CAVELIGHT_LPV_GL_STEPS_H
@@ -77,14 +78,14 @@ static inline int lpv_gl_steps_init(lpv_gl_steps *s, const gl_functions *gl, con
                                  "    gather(here, cell, ivec3(%d, %d, %d), %d, ar, ag, ab);\n",
                                  o[0], o[1], o[2], k);
     }
-    s->prog[LPV_TRANSPORT_BEAMS] = gltools_program(gl, NULL, NULL, "propagate.comp", NULL, body,
+    s->prog[LPV_TRANSPORT_BEAMS] = gltools_program(gl, NULL, NULL, "ilpv/propagate.comp", NULL, body,
                                                    err, errlen);
 
     if (!lpv_paper_shader_body(t ? t : lpv_paper_transfer_default(), body, sizeof body))
         return -1;
     s->prog[LPV_TRANSPORT_PAPER] = gltools_program(gl, NULL, NULL, "paper_propagate.comp", NULL,
                                                    body, err, errlen);
-    s->prog_accumulate = gltools_program(gl, NULL, NULL, "accumulate.comp", NULL, NULL, err,
+    s->prog_accumulate = gltools_program(gl, NULL, NULL, "ilpv/accumulate.comp", NULL, NULL, err,
                                          errlen);
     if (!s->staging || !s->prog[0] || !s->prog[1] || !s->prog_accumulate)
         return -1;
@@ -173,7 +174,7 @@ static inline void lpv_gl_step(lpv_gl_steps *s, const lpv_propagate_desc *desc,
     lpv_gl_dispatch(s);
 }
 
-/* dst = a dst + b src (shaders/accumulate.comp): the paper merge with dst the history. */
+/* dst = a dst + b src (ilpv/accumulate.comp): the paper merge with dst the history. */
 static inline void lpv_gl_combine(lpv_gl_steps *s, const GLuint dst[3], float a,
                                   const GLuint src[3], float b)
 {

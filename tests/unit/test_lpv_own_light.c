@@ -1,6 +1,6 @@
 /* A lit surface must not receive its own light (docs/lpv.md, "The floor"): VPLs on a disk
- * of a closed 4 x 3 x 4 m box's floor, the classic LPV run until the light has left (4 steps
- * per cell of the longest axis), read by lpv_receive on a grid of points of each face,
+ * of a closed 4 x 3 x 4 m box's floor, the classic LPV (ilpv.h, classic) run until the light
+ * has left (4 steps per cell of the longest axis), read by lpv_receive on a grid of points of each face,
  * against the closed form: a plane does not light itself, so the floor's one-bounce light
  * from its own VPLs is 0, and every other face gets sum_i Phi_i / pi cos_i cos / r^2 (a
  * convex room, no occlusion). At 16, 32 and 64 cells. */
@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "lpv/lattice.h"
-#include "lpv/lpv_classic.h"
+#include "lpv/ilpv.h"
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_inject.h"
 #include "lpv/lpv_receive.h"
@@ -99,34 +99,32 @@ static void test_the_lit_floor_does_not_light_itself(void **state)
         lattice_desc lat;
         assert_int_equal(lattice_fit(&fd, &lat, err, sizeof err), 0);
         lpv_blockers b;
-        lpv_volume inj, org;
-        lpv_classic c;
+        ilpv c;
         assert_int_equal(lpv_blockers_init(&b, lat.n), 0);
-        assert_int_equal(lpv_volume_init(&inj, lat.n, LPV_LIGHT_CHANNELS), 0);
-        assert_int_equal(lpv_volume_init(&org, lat.n, LPV_GEOMETRY_CHANNELS), 0);
-        assert_int_equal(lpv_classic_init(&c, &lat), 0);
         lpv_geometry_add_triangles(&b, &lat, s.positions, 3 * s.triangle_count, NULL,
                                    s.triangle_count, NULL);
-        lpv_inject_vpls(&inj, &org, &lat, d.vpls, d.count, NULL);
-        lpv_propagate_desc pd = {.blockers = &b, .pool = pool};
+        assert_int_equal(ilpv_init(&c, &(ilpv_desc){.lattice = &lat, .blockers = &b,
+                                                    .pool = pool}), 0);
         double floor_lpv[2];
         for (int steps = 0; steps < 2; steps++) { /* the splat alone, then the whole field */
-            assert_int_equal(lpv_classic_frame(&c, &inj, &org, steps ? 4 * sizes[k] : 0, &pd), 0);
+            ilpv_begin_frame(&c);
+            lpv_inject_vpls(ilpv_injection(&c), ilpv_origin(&c), &lat, d.vpls, d.count, NULL);
+            ilpv_frame_desc frame = {.steps = steps ? 4 * sizes[k] : 0, .classic = 1,
+                                     .emitted_energy = 1.0};
+            assert_int_equal(ilpv_frame(&c, &frame), 0);
             double truth;
-            face_means(lpv_classic_result(&c), &lat, &d, 2, &floor_lpv[steps], &truth);
+            face_means(ilpv_result(&c), &lat, &d, 2, &floor_lpv[steps], &truth);
             assert_true(truth == 0.0);
         }
         double ceiling, ceiling_truth;
-        face_means(lpv_classic_result(&c), &lat, &d, 3, &ceiling, &ceiling_truth);
+        face_means(ilpv_result(&c), &lat, &d, 3, &ceiling, &ceiling_truth);
         printf("%d cells: the floor reads %.3g of its own light after the splat, %.3g with "
                "every age (%.4f of the ceiling's closed form %.4g; the ceiling reads %.3f of it)\n",
                sizes[k], floor_lpv[0], floor_lpv[1], floor_lpv[1] / ceiling_truth, ceiling_truth,
                ceiling / ceiling_truth);
         assert_true(floor_lpv[0] == 0.0); /* nothing of the splat in the floor's own layer */
         assert_true(floor_lpv[1] < 0.04 * ceiling_truth);
-        lpv_classic_free(&c);
-        lpv_volume_free(&inj);
-        lpv_volume_free(&org);
+        ilpv_free(&c);
         lpv_blockers_free(&b);
     }
     workpool_destroy(pool);
