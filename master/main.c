@@ -187,32 +187,42 @@ static void raise_fd_limit(int quiet)
                 "ulimit -Hn raise it)\n", (unsigned long long)r.rlim_cur);
 }
 
+/* The config with the command line's placement applied, and what was fitted said. Returns
+ * 0, or -1 after one line. */
+static int load_config(const master_options *o, cluster_config *cfg)
+{
+    char err[1024];
+    if (cluster_config_load(o->config, cfg, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        return -1;
+    }
+    if (unknown_keys(o, cfg) != 0)
+        return -1;
+    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
+        cfg->scene_transform = o->scene_transform;
+        cfg->has_scene_transform = 1;
+        if (!o->spawn_local && !o->spawn_remote && !o->keygen)
+            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
+                    "start every node with the same --scene-transform\n");
+    }
+    cfg->scene_outside_paths = o->allow_outside_paths;
+    for (int i = 0; i < cfg->screen_count && !o->quiet; i++)
+        if (cfg->screens[i].fit_mm >= 0.05f)
+            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
+                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg->screens[i].name,
+                    cfg->screens[i].fit_mm, cfg->corner_tolerance_mm);
+    return 0;
+}
+
 static int master_run(const master_options *o)
 {
     static cluster_config cfg;
     static launch_set nodes;
     char err[1024];
-    if (cluster_config_load(o->config, &cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "cavelight-master: %s\n", err);
-        return 1;
-    }
-    if (unknown_keys(o, &cfg) != 0)
+    if (load_config(o, &cfg) != 0)
         return 1;
     if (o->keygen)
         return keygen(&cfg);
-    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
-        cfg.scene_transform = o->scene_transform;
-        cfg.has_scene_transform = 1;
-        if (!o->spawn_local && !o->spawn_remote)
-            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
-                    "start every node with the same --scene-transform\n");
-    }
-    cfg.scene_outside_paths = o->allow_outside_paths;
-    for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
-        if (cfg.screens[i].fit_mm >= 0.05f)
-            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
-                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
-                    cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     static frame_params settings;
     if (master_settings(o, &cfg, &settings, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
@@ -243,8 +253,12 @@ static int master_run(const master_options *o)
     if (!o->quiet)
         fprintf(stderr, "cavelight-master: %d nodes live, running %s%d frames\n", live,
                 o->frames ? "" : "until stopped, ", o->frames);
-    double wall_s;
-    int exit_code = run_frames(s, o, &nodes, pv, wait_ms, &wall_s);
+    double wall_s = 0;
+    int exit_code = 1;
+    if (o->budget_ms > 0 && session_choose_budget(s, o->budget_ms, &stop_requested, err, sizeof err) != 0)
+        fprintf(stderr, "cavelight-master: %s\n", err);
+    else
+        exit_code = run_frames(s, o, &nodes, pv, wait_ms, &wall_s);
     if (o->report && folder_create_for(o->report, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: report: %s\n", err);
         exit_code = 1;

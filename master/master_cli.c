@@ -5,6 +5,7 @@
 
 #include "cluster/cluster_config.h"
 #include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 
 enum group { G_CLUSTER, G_NODES, G_GI, G_DISPLAY, G_FRAMES, G_OUTPUT, G_INPUT, G_CALIBRATION, G_COUNT };
 
@@ -22,7 +23,7 @@ enum id {
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET,
     O_INPUT, O_RECORD,
     O_PATTERN, O_PATTERN_BLEND, O_PRINT_POSES,
-    O_CHECK, O_STRICT,
+    O_CHECK, O_STRICT, O_BUDGET,
     O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
@@ -57,6 +58,8 @@ static const cli_option options[] = {
      "where the scene stands in the CAVE, e.g. '{\"up\": \"z\",\n\"scale\": 0.01}' or '{\"fit\": true}' (docs/cluster.md)"},
     {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
      "glTF buffers and images from outside the scene file's\nfolder too"},
+    {O_BUDGET, "budget-ms", "MS", NULL, G_GI, 0,
+     "ilpv: choose --lattice and --steps so that the frame pass\ntakes about MS ms on the slowest node (measured on every\nnode before the session's frames)"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -159,6 +162,7 @@ static const char *set(void *user, int id, const char *v)
     case O_PRINT_POSES: o->print_poses = 1; break;
     case O_CHECK: o->check = 1; break;
     case O_STRICT: o->strict = 1; break;
+    case O_BUDGET: why = cli_float(v, 1e-3f, 1e6f, &o->budget_ms); break;
     case O_SETTING: break;
     }
     return why;
@@ -223,6 +227,14 @@ int master_settings(const master_options *o, const cluster_config *cfg, frame_pa
     for (int i = 0; i < o->setting_count; i++)
         gi_set(out, o->setting_name[i], o->setting_value[i]); /* checked when parsed */
     const char *why = gi_check(out);
+    if (!why && o->budget_ms > 0) {
+        int lattice_given = 0;
+        for (int i = 0; i < o->setting_count; i++)
+            lattice_given |= strcmp(o->setting_name[i], "lattice") == 0 ||
+                             strcmp(o->setting_name[i], "lattice-cells") == 0 ||
+                             strcmp(o->setting_name[i], "steps") == 0;
+        why = ilpv_budget_check(out, lattice_given);
+    }
     if (why) {
         snprintf(err, errlen, "%s", why);
         return -1;

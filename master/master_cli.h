@@ -31,6 +31,7 @@ typedef struct master_options {
     int setting_count;
     const char *setting_name[MASTER_MAX_SETTINGS], *setting_value[MASTER_MAX_SETTINGS];
     int exposure_auto;          /* --exposure auto */
+    float budget_ms;            /* > 0: --budget-ms, every node measured (session.h) */
     int check;                  /* --check: validate the config and exit (check.h) */
     int strict;                 /* unknown keys in the cluster or input config are errors */
     const char *scene_transform_text; /* --scene-transform JSON, passed on to spawned nodes */

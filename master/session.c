@@ -14,6 +14,9 @@
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
+#include "gi/gi_cost.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 #include "scene/scene_load.h"
 #include "script.h"
 
@@ -46,7 +49,30 @@ struct session {
     int frames;
     uint64_t last_version;
     run_stats rs;
+    float bounds_min[3], bounds_max[3]; /* the scene's */
+    double budget_ms;                   /* > 0: the budget chose lattice and steps */
+    lpv_budget_choice budget;
 };
+
+/* The nodes' limits on what the GI settings cost (gi_cost.h), checked as they check them:
+ * settings they would refuse are refused here, before any node starts. */
+static int check_limits(session *s, char *err, size_t errlen)
+{
+    gi_limits lim = {.memory_mb = s->cfg->gi_memory_mb};
+    frame_params_default(&lim.base);
+    char why[256];
+    if (gi_set_config(s->cfg, &lim.base, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s", why);
+        return -1;
+    }
+    memcpy(lim.bounds_min, s->bounds_min, sizeof lim.bounds_min);
+    memcpy(lim.bounds_max, s->bounds_max, sizeof lim.bounds_max);
+    if (gi_cost_within(&lim, &s->frame, why, sizeof why))
+        return 0;
+    snprintf(err, errlen, "%s: every node would refuse it; give heavier settings in the config's \"settings\", "
+             "which sets up the wall", why);
+    return -1;
+}
 
 /* The frame every node starts from: the defaults and the scene's lights. */
 static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
@@ -80,6 +106,8 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         if (!d->quiet)
             fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
     }
+    memcpy(s->bounds_min, sc.bounds_min, sizeof s->bounds_min);
+    memcpy(s->bounds_max, sc.bounds_max, sizeof s->bounds_max);
     scene_free(&sc);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     /* The nodes' own check, before any node is started: a scene no node can take is
@@ -89,7 +117,7 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
         return -1;
     }
-    return 0;
+    return check_limits(s, err, errlen);
 }
 
 static void input_warning(void *user, const char *line)
@@ -277,6 +305,64 @@ session_step session_frame(session *s, cluster_frame_result *result)
     return SESSION_FRAME_DONE;
 }
 
+/* One measuring frame of the budget plan on every live node: the slowest frame pass of the
+ * nodes that were READY in time, or -1 when none was. */
+static double budget_frame(session *s, const frame_params *f)
+{
+    params_store *store = cluster_master_params(s->m);
+    frame_params g = *f;
+    g.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH);
+    params_set_from_frame(store, &g);
+    cluster_frame_result r;
+    if (cluster_master_frame(s->m, &r) != 0)
+        return -1;
+    double slowest = -1;
+    for (int i = 0; i < s->cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(s->m, i, &ps);
+        if (ps.state == CLUSTER_PEER_LIVE && ps.version == r.version)
+            slowest = fmax(slowest, ps.timings[WIRE_TIMING_FRAME]);
+    }
+    return slowest;
+}
+
+int session_choose_budget(session *s, double budget_ms, volatile sig_atomic_t *stop, char *err, size_t errlen)
+{
+    ilpv_budget_plan *plan = xcalloc(1, sizeof *plan);
+    ilpv_budget_plan_init(plan, &s->frame, s->bounds_min, s->bounds_max);
+    int rc = 0;
+    for (int i = 0; rc == 0 && i < ILPV_BUDGET_FRAMES; i++) {
+        frame_params f;
+        ilpv_budget_plan_frame(plan, i, &f);
+        double ms = stop && *stop ? -1 : budget_frame(s, &f);
+        if (ms < 0) {
+            snprintf(err, errlen, "--budget-ms: no node was ready in measuring frame %d of %d", i + 1,
+                     ILPV_BUDGET_FRAMES);
+            rc = -1;
+        }
+        ilpv_budget_plan_record(plan, i, ms);
+    }
+    lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
+    if (rc == 0 && ilpv_budget_plan_costs(plan, cand, err, errlen) != 0)
+        rc = -1;
+    if (rc == 0 && ilpv_budget_apply(budget_ms, cand, ILPV_BUDGET_CANDIDATES, &s->frame, &s->budget) != 0) {
+        snprintf(err, errlen, "--budget-ms: no choice from the measured costs");
+        rc = -1;
+    }
+    free(plan);
+    if (rc != 0)
+        return -1;
+    /* Every node starts the chosen lattice afresh, whatever the plan left in its history. */
+    params_store *store = cluster_master_params(s->m);
+    params_set_u32(store, PARAMS_RESET_EPOCH, params_get_u32(store, PARAMS_RESET_EPOCH) + 1);
+    s->budget_ms = budget_ms;
+    const lpv_budget_choice *c = &s->budget;
+    fprintf(stderr, "cavelight-master: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame "
+            "on the slowest node%s\n", budget_ms, c->axis_cells, c->steps, c->steps == 1 ? "" : "s",
+            c->predicted_ms, c->fits ? "" : ", over budget even at the coarsest lattice");
+    return 0;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -346,6 +432,15 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddItemToObject(root, "barrier_wait_ms", stat_obj(rs->barrier, rs->n));
     cJSON_AddItemToObject(root, "stall_timeout_ms", stat_obj(rs->timeout, rs->n));
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
+    if (s->budget_ms > 0) {
+        cJSON *b = cJSON_AddObjectToObject(root, "budget");
+        cJSON_AddNumberToObject(b, "budget_ms", s->budget_ms);
+        cJSON_AddNumberToObject(b, "frames", ILPV_BUDGET_FRAMES); /* measuring, among "frames" */
+        cJSON_AddNumberToObject(b, "lattice_cells", s->budget.axis_cells);
+        cJSON_AddNumberToObject(b, "steps", s->budget.steps);
+        cJSON_AddNumberToObject(b, "predicted_ms", s->budget.predicted_ms);
+        cJSON_AddBoolToObject(b, "fits", s->budget.fits);
+    }
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
     cJSON_AddNumberToObject(root, "frames_rendered", (double)st.frames_rendered);

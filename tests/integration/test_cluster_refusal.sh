@@ -27,7 +27,7 @@ set +e
 rc=$?
 set -e
 [ $rc = 1 ] && [ "$(wc -l < "$tmp/huge.log")" = 2 ] \
-  && grep -q "scene $tmp/huge.gltf: parameter light0.intensity is inf: every node would refuse every frame" "$tmp/huge.log" \
+  && grep -q "scene $tmp/huge.gltf: parameter light0\.[a-z]* is .*inf.*: every node would refuse every frame" "$tmp/huge.log" \
   || { cat "$tmp/huge.log"; fail "the master took a scene no node can take (exit $rc)"; }
 [ -e "$tmp/huge/logs" ] && fail "nodes were started for a scene the master refused"
 echo "a scene with a light of infinite power: refused by the master before any node starts"
@@ -47,11 +47,11 @@ set +e
 rc=$?
 set -e
 [ $rc = 1 ] || { cat spawn.log; fail "a session with a node that refused the scene ended with $rc"; }
-grep -q "^cavelight-master: node b refused the scene: scene room.gltf: cannot load glTF" spawn.log \
+grep -q "^cavelight-master: node b refused the scene: scene room.gltf: cannot" spawn.log \
   && grep -q "^cavelight-master: node b refused the scene (1 refusals), the last: scene room.gltf" spawn.log \
   || { cat spawn.log; fail "the master does not give node b's reason"; }
 [ "$(json '(r["frames"], r["per_node"][0]["frames_ready"], r["refusals"], r["per_node"][1]["refusals"])' r.json)" = "(5, 5, 1, 1)" ] \
-  && json 'r["per_node"][1]["last_refusal"]' r.json | grep -q "^scene room.gltf: cannot load glTF" \
+  && json 'r["per_node"][1]["last_refusal"]' r.json | grep -q "^scene room.gltf: cannot" \
   || fail "report: $(json '(r["frames"], r["per_node"][0]["frames_ready"], r["refusals"], r["per_node"][1])' r.json)"
 echo "spawned node without the scene: its reason in the master's output, exit 1, node a rendered every frame"
 
@@ -71,7 +71,7 @@ set +e
 wait $master
 rc=$?
 set -e
-[ $rc = 1 ] && grep -q "node b refused the scene: scene room.gltf: cannot load glTF" hand.log \
+[ $rc = 1 ] && grep -q "node b refused the scene: scene room.gltf: cannot" hand.log \
   || { cat hand.log b.log; fail "a node started by hand: its reason is not in the master's output (exit $rc)"; }
 echo "node started by hand without the scene: its reason in the master's output, exit 1"
 
