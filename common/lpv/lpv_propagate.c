@@ -105,8 +105,8 @@ static ALWAYS_INLINE void axis_weights(vf v, vf w[3])
  * coefficients over Y0). The split rows of a tile (what split_cells() and axis_weights()
  * give, the x weights times the energy) sit in a ring of three rows in y by the tile's
  * source slabs in z, each computed once per tile. A destination cell sums, per x offset,
- * what the source cells at its own x in the 9 (o_y, o_z) rows send (V_ox, 4 coefficients
- * in registers), and then adds V_-1 of the cell on its right, V_0 of its own and V_+1 of
+ * what the source cells at its own x in the 9 (o_y, o_z) rows send (V_ox: 3 x 4
+ * accumulators in registers), and then adds V_-1 of the cell on its right, V_0 of its own and V_+1 of
  * the one on its left: always in that order, so the bits do not depend on the threads. */
 enum { EX = 0, WY = 3, WZ = 6, SS = 9, PER_HALF = 12, ARRAYS = 2 * PER_HALF };
 /* A row is done in segments of XS cells; ring and V rows hold cells x0 - 8 .. x0 + XS + 7
@@ -123,20 +123,6 @@ typedef struct ring {
     _Alignas(32) unsigned zero_mask[PW];
     _Alignas(32) float V[3][4][PW];              /* a destination row's V_ox */
 } ring;
-
-/* Asks for source row (sy, sz) of colour c, segment x0, to be brought into the cache: the
- * tile walks its slabs row by row, a pattern the hardware prefetchers do not follow. */
-static void prefetch_row(const job *jb, int sy, int sz, int x0, int c)
-{
-    const int nx = jb->src->n[0], ny = jb->src->n[1];
-    if (sy >= ny)
-        return;
-    const size_t row = ((size_t)sz * ny + sy) * nx + (size_t)x0;
-    const int len = nx - x0 < XS ? nx - x0 : XS;
-    for (int k = 0; k < 4; k++)
-        for (int x = 0; x < len; x += 16)
-            __builtin_prefetch(jb->src->ch[4 * c + k] + row + x);
-}
 
 /* Splits source row (sy, sz), colour c, for the segment at x0 into ring slot (ry, rz). */
 static void split_row(const job *jb, ring *rg, int ry, int rz, int sy, int sz, int x0, int c)
@@ -273,10 +259,8 @@ static void tile(void *ctx, int item)
             for (int y = -1; y < ny; y++) {
                 if (y + 1 < ny)
                     for (int sz = z0 - 1; sz <= z1; sz++)
-                        if (sz >= 0 && sz < nz) {
-                            prefetch_row(jb, y + 2, sz, x0, c);
+                        if (sz >= 0 && sz < nz)
                             split_row(jb, rg, (y + 1) % 3, sz - (z0 - 1), y + 1, sz, x0, c);
-                        }
                 if (y >= 0)
                     for (int z = z0; z < z1; z++)
                         dst_row(jb, rg, y, z, z0, z1, x0, c);
