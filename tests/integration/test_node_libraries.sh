@@ -24,8 +24,8 @@ node=$build/cavelight-node
   || fail "reference render: $(cat "$out/err")"
 echo "loaded when asked for: an OSMesa context and the Embree reference render"
 
-osmesa=$(ldconfig -p | awk '/libOSMesa\.so\.8 .*x86-64|libOSMesa\.so\.8 / {print $NF; exit}')
-embree=$(ldconfig -p | awk '/libembree3\.so\.3 / {print $NF; exit}')
+osmesa=$(ldconfig -p | awk '/libOSMesa\.so\.8 .*x86-64|libOSMesa\.so\.8 / && !found {print $NF; found = 1}')
+embree=$(ldconfig -p | awk '/libembree3\.so\.3 / && !found {print $NF; found = 1}')
 if [ -z "$osmesa" ] || [ -z "$embree" ] || ! unshare -rm true 2> /dev/null; then
   echo "user namespaces or the libraries' paths not available here: the missing-library lines are not tried"
   exit 0
