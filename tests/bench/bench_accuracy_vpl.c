@@ -40,15 +40,15 @@
 
 enum { MAX_COUNTS = 8, MAX_LIST = 4, TIMED = 3 };
 
-/* A comma-separated list of at most MAX_LIST whole numbers in [lo, hi] into out; its
- * length, or 0 when bad. */
-static int int_list(const char *v, int lo, int hi, int *out)
+/* A comma-separated list of at most max whole numbers in [lo, hi] into out; its length, or
+ * 0 when bad. */
+static int int_list(const char *v, int lo, int hi, int *out, int max)
 {
     int n = 0;
     for (const char *c = v; *c; c += strcspn(c, ","), c += *c == ',') {
         char *end;
         long x = strtol(c, &end, 10);
-        if (n == MAX_LIST || end == c || (*end && *end != ',') || x < lo || x > hi)
+        if (n == max || end == c || (*end && *end != ',') || x < lo || x > hi)
             return 0;
         out[n++] = (int)x;
     }
@@ -272,40 +272,41 @@ int accuracy_vpl(int argc, char **argv)
     int points[MAX_LIST] = {1024}, np = 1;
     int blocks[MAX_LIST] = {0}, ni = 1;
     int rules[VPL_SELECT_COUNT] = {VPL_SELECT_FLUX}, nr = 1;
-    for (int i = 1; i < argc; i++) {
-        int bad = 0;
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (acc_parse_common(&o, argc, argv, &i, &bad)) {
-        } else if (v && strcmp(a, "--counts") == 0) {
-            nc = 0;
-            for (const char *c = v; *c && nc < MAX_COUNTS; c += strcspn(c, ","), c += *c == ',')
-                bad |= (counts[nc++] = atoi(c)) < VPL_COUNT_MIN || counts[nc - 1] > VPL_COUNT_MAX;
-            bad |= nc == 0, i++;
-        } else if (v && strcmp(a, "--seeds") == 0) {
-            bad = (seeds = atoi(v)) < 1, i++;
-        } else if (v && strcmp(a, "--visibility") == 0) {
-            bad = !(nv = name_list(v, visibility_names, 3, vis)), i++;
-        } else if (v && strcmp(a, "--selection") == 0) {
-            bad = !(nr = name_list(v, vpl_selection_names, VPL_SELECT_COUNT, rules)), i++;
-        } else if (v && strcmp(a, "--ism-sizes") == 0) {
-            bad = !(ns = int_list(v, VPL_ISM_SIZE_MIN, VPL_ISM_SIZE_MAX, sizes)), i++;
-            for (int k = 0; k < ns; k++)
-                bad |= (sizes[k] & (sizes[k] - 1)) != 0;
-        } else if (v && strcmp(a, "--interleave") == 0) {
-            bad = !(ni = int_list(v, 0, VPL_INTERLEAVE_MAX, blocks)), i++;
-        } else if (v && strcmp(a, "--ism-points") == 0) {
-            bad = !(np = int_list(v, VPL_ISM_POINTS_MIN, VPL_ISM_POINTS_MAX, points)), i++;
-        } else {
-            bad = 1;
-        }
-        if (bad) {
-            fprintf(stderr, "bench accuracy vpl: bad or unknown option %s (--counts %d..%d, "
-                    "--visibility exact,ism,ism-splat, --ism-sizes %d..%d powers of two, "
-                    "--ism-points %d..%d, --interleave 0..%d, --selection flux,view,regular)\n", a, VPL_COUNT_MIN, VPL_COUNT_MAX,
-                    VPL_ISM_SIZE_MIN, VPL_ISM_SIZE_MAX, VPL_ISM_POINTS_MIN,
-                    VPL_ISM_POINTS_MAX, VPL_INTERLEAVE_MAX);
-            return 2;
-        }
+    const char *counts_text = "64,256,1024", *vis_text = "exact", *rules_text = "flux", *sizes_text = "32",
+               *points_text = "1024", *blocks_text = "0";
+    const bench_option opts[] = {
+        ACC_COMMON_OPTIONS(&o),
+        BENCH_TEXT("counts", "N,N,..", "VPL counts (each 64..4096)", &counts_text),
+        BENCH_INT("seeds", "K", "seeds per setting (the error's spread)", &seeds, 1, 64),
+        BENCH_TEXT("visibility", "V,V,..", "exact, ism, ism-splat", &vis_text),
+        BENCH_TEXT("selection", "R,R,..", "flux, view, regular", &rules_text),
+        BENCH_TEXT("ism-sizes", "N,N,..", "imperfect maps' sides (powers of two, 8..256)", &sizes_text),
+        BENCH_TEXT("ism-points", "N,N,..", "points per imperfect map (64..16384)", &points_text),
+        BENCH_TEXT("interleave", "K,K,..", "interleaving blocks (0..8; 0: none)", &blocks_text),
+    };
+    int parsed = BENCH_PARSE("accuracy vpl", "the vpl method's indirect error and GI ms per setting against "
+                         "the path-traced reference\n  (scripts/chart.sh runs it)", opts, argc, argv);
+    if (parsed != 0)
+        return parsed > 0 ? 0 : 2;
+    const char *bad = NULL;
+    if (!(nc = int_list(counts_text, VPL_COUNT_MIN, VPL_COUNT_MAX, counts, MAX_COUNTS)))
+        bad = "--counts";
+    else if (!(nv = name_list(vis_text, visibility_names, 3, vis)))
+        bad = "--visibility";
+    else if (!(nr = name_list(rules_text, vpl_selection_names, VPL_SELECT_COUNT, rules)))
+        bad = "--selection";
+    else if (!(ns = int_list(sizes_text, VPL_ISM_SIZE_MIN, VPL_ISM_SIZE_MAX, sizes, MAX_LIST)))
+        bad = "--ism-sizes";
+    else if (!(np = int_list(points_text, VPL_ISM_POINTS_MIN, VPL_ISM_POINTS_MAX, points, MAX_LIST)))
+        bad = "--ism-points";
+    else if (!(ni = int_list(blocks_text, 0, VPL_INTERLEAVE_MAX, blocks, MAX_LIST)))
+        bad = "--interleave";
+    for (int k = 0; !bad && k < ns; k++)
+        if (sizes[k] & (sizes[k] - 1))
+            bad = "--ism-sizes";
+    if (bad) {
+        fprintf(stderr, "bench accuracy vpl: %s: a value out of range or unknown (see --help)\n", bad);
+        return 2;
     }
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)

@@ -29,6 +29,9 @@ for e in move path savings; do
     grep -q "^usage: cavelight-bench accuracy $e" "$out/exp" && grep -q "^  --lattice N" "$out/exp" \
     || fail "accuracy $e --help: $(cat "$out/exp" "$out/err")"
 done
+"$build/cavelight-bench" accuracy vpl --help > "$out/exp" 2> "$out/err" && [ ! -s "$out/err" ] &&
+  grep -q "^usage: cavelight-bench accuracy vpl" "$out/exp" && grep -q "^  --counts N,N,.. .*(default: 64,256,1024)" "$out/exp" \
+  || fail "accuracy vpl --help: $(cat "$out/exp" "$out/err")"
 # The groups the node and the master print.
 "$build/cavelight-node" --help > "$out/node"
 "$build/cavelight-master" --help > "$out/master"
