@@ -113,6 +113,26 @@ static void check_security(check_ctx *c)
         passed(c, "curve keys in %s", c->cfg->keys_dir);
 }
 
+/* Every screen's projector warp, read as its node reads it at start. */
+static void check_warps(check_ctx *c)
+{
+    int warps = 0, before = c->problems;
+    for (int n = 0; n < c->cfg->node_count; n++)
+        for (int s = 0; s < c->cfg->nodes[n].screen_count; s++) {
+            const cluster_warp *w = &c->cfg->nodes[n].screens[s].warp;
+            warp_map map = {0};
+            char err[1024];
+            if (w->kind == CLUSTER_WARP_NONE)
+                continue;
+            warps++;
+            if (cluster_warp_load(w, &map, err, sizeof err) != 0)
+                problem(c, "node %s: %s", c->cfg->nodes[n].name, err);
+            warp_map_free(&map);
+        }
+    if (warps && c->problems == before)
+        passed(c, "%d projector warp%s", warps, warps == 1 ? "" : "s");
+}
+
 static void input_warning(void *user, const char *line)
 {
     problem(user, "%s", line);
@@ -142,7 +162,7 @@ int check_run(const master_options *o)
     check_ctx c = {.o = o, .cfg = &cfg};
     passed(&c, "%d screens", cfg.screen_count);
     static void (*const checks[])(check_ctx *) = {check_keys, check_settings, check_scene,
-                                                  check_hosts, check_security, check_input};
+                                                  check_warps, check_hosts, check_security, check_input};
     for (size_t i = 0; i < sizeof checks / sizeof *checks; i++)
         checks[i](&c);
     if (c.problems) {

@@ -17,8 +17,6 @@
 #include "base/vec3.h"
 #include "present.h"
 #include "scene/scene.h"
-#include "warp/mpcdi.h"
-#include "warp/warp_mesh.h"
 
 struct cluster_view {
     const cluster_config *cfg;
@@ -97,10 +95,7 @@ static int open_output(cluster_view *v, const cluster_view_desc *desc, char *err
     char names[PRESENT_MAX_VIEWPORTS][2 * CLUSTER_NAME_MAX + 8], log_name[64];
     for (int s = 0; rc == 0 && s < n->screen_count; s++) {
         const cluster_warp *w = &n->screens[s].warp;
-        if (w->kind == CLUSTER_WARP_MPCDI)
-            rc = mpcdi_load(w->path, w->region, &maps[s], err, errlen);
-        else if (w->kind == CLUSTER_WARP_MESH)
-            rc = warp_mesh_load(w->path, &maps[s], err, errlen);
+        rc = cluster_warp_load(w, &maps[s], err, errlen);
         for (int e = 0; rc == 0 && e < eyes; e++, count++) {
             snprintf(names[count], sizeof names[count], "%s-%s", v->cfg->screens[n->screens[s].screen].name,
                      cluster_view_eye_name(v->cfg, v->node, e));

@@ -9,6 +9,8 @@
 
 #include "base/json_keys.h"
 #include "base/mat4.h"
+#include "warp/mpcdi.h"
+#include "warp/warp_mesh.h"
 #include "base/textfile.h"
 #include "frame/frame_view.h"
 #include "frame/screen_fit.h"
@@ -760,4 +762,13 @@ int cluster_config_find_screen(const cluster_config *c, const char *name)
         if (strcmp(c->screens[i].name, name) == 0)
             return i;
     return -1;
+}
+
+int cluster_warp_load(const cluster_warp *w, warp_map *out, char *err, size_t errlen)
+{
+    if (w->kind == CLUSTER_WARP_MPCDI)
+        return mpcdi_load(w->path, w->region, out, err, errlen);
+    if (w->kind == CLUSTER_WARP_MESH)
+        return warp_mesh_load(w->path, out, err, errlen);
+    return 0;
 }

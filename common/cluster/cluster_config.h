@@ -42,6 +42,7 @@
 #include <stdint.h>
 
 #include "scene/scene_load.h"
+#include "warp/warp_map.h"
 
 enum { CLUSTER_GI_MEMORY_MB = 2048 };
 enum {
@@ -138,6 +139,9 @@ typedef struct cluster_warp {
     char region[CLUSTER_TEXT_MAX]; /* MPCDI region id; "" = the file's only region */
     float to_cave[16];             /* MPCDI 3d: the file's points (metres) to CAVE space */
 } cluster_warp;
+/* A screen's projector warp read from its file (mpcdi_load() or warp_mesh_load()). Returns
+ * 0 (out untouched for CLUSTER_WARP_NONE), or -1 with one line in err. */
+int cluster_warp_load(const cluster_warp *w, warp_map *out, char *err, size_t errlen);
 
 typedef struct cluster_node_screen {
     int screen;        /* index into cluster_config.screens */

@@ -87,3 +87,15 @@ rc=0; "$master" --config "$tmp/bad.json" --bind 'tcp://127.0.0.1:*' --scene defa
 [ "$(wc -l < "$tmp/strict_in.log")" = 1 ] && grep -q "sources\[0\].prot: unknown key \"prot\" (did you mean \"port\"?) (and 1 more unknown keys)" \
   "$tmp/strict_in.log" || fail "--strict input config: $(cat "$tmp/strict_in.log")"
 echo "unknown keys: warned in a session, refused with --strict"
+
+# Projector warps, read as the nodes read them at start: the blended powerwall's MPCDI file
+# passes; the same config beside a damaged copy is one problem naming the node and the file.
+cfg=$(cd "$here/../../configs/clusters" && pwd)/powerwall-blend-local.json
+"$master" --config "$cfg" --check 2> "$tmp/pw.log" && grep -q "ok (.*2 projector warps" "$tmp/pw.log" \
+  || fail "the powerwall's warps: $(cat "$tmp/pw.log")"
+cp "$cfg" "$tmp/pw.json"
+head -c 100 "$(dirname "$cfg")/powerwall-blend.mpcdi" > "$tmp/powerwall-blend.mpcdi"
+rc=0; "$master" --config "$tmp/pw.json" --check 2> "$tmp/pwbad.log" || rc=$?
+[ $rc = 2 ] && [ "$(grep -c "^cavelight-master: check: node .*powerwall-blend.mpcdi" "$tmp/pwbad.log")" = 2 ] \
+  || fail "a damaged MPCDI file: rc $rc, $(cat "$tmp/pwbad.log")"
+echo "--check reads every projector warp: ok, and a damaged MPCDI file named per node"
