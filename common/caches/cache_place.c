@@ -13,6 +13,8 @@
 enum { POINT_STEPS = 3, MAX_POINTS = 1 << 22, POINT_FLOATS = 7 };
 /* A cube's best normal is sought among at most this many of its points' normals. */
 enum { MAX_CANDIDATES = 64 };
+/* Points farther than this many edges off a candidate's plane make a cache of their own. */
+#define PLANE_TOL 0.25f
 
 double cache_scene_area(const scene *s)
 {
@@ -31,13 +33,21 @@ float cache_place_edge(const scene *s, float density)
     return 1.0f / sqrtf(density);
 }
 
-/* Points of triangle t: ceil(area / step^2), at least 1. */
+/* Points of triangle t: one per step^2 of its area, and at least one per step of its
+ * longest edge (a sliver needs points along its length), at least 1. */
 static size_t points_of(const scene *s, size_t t, float step)
 {
-    float a = vec3_triangle_area(s->positions + 9 * t);
+    const float *p = s->positions + 9 * t;
+    float a = vec3_triangle_area(p);
     if (!(a > 0))
         return 0;
-    double k = ceil((double)a / ((double)step * step));
+    float longest = 0;
+    for (int e = 0; e < 3; e++) {
+        float d[3];
+        vec3_sub(p + 3 * e, p + 3 * ((e + 1) % 3), d);
+        longest = fmaxf(longest, vec3_length(d));
+    }
+    double k = fmax(ceil((double)a / ((double)step * step)), ceil((double)longest / step));
     return k < 1 ? 1 : (size_t)k;
 }
 
@@ -117,10 +127,19 @@ static uint64_t cube_of(const scene *s, float edge, const int dims[3], const flo
     return key;
 }
 
-/* One cache from the points of a cube still left (left[i]) whose normal lies within cos_eps
- * of the best candidate's; they are taken (left[i] = 0). Returns 0 when none is left. */
+/* Point q joins a cache around candidate point c: normals within the angle tolerance, and q
+ * within plane_tol of c's plane (two parallel surfaces in one cube make two caches). */
+static int joins(const float *c, const float *q, float cos_eps, float plane_tol)
+{
+    float d[3];
+    vec3_sub(q, c, d);
+    return vec3_dot(c + 3, q + 3) >= cos_eps && fabsf(vec3_dot(c + 3, d)) <= plane_tol;
+}
+
+/* One cache from the points of a cube still left (left[i]) that join the candidate
+ * gathering the most area; they are taken (left[i] = 0). Returns 0 when none is left. */
 static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned char *left,
-                      float cos_eps, light_cache *out)
+                      float cos_eps, float plane_tol, light_cache *out)
 {
     size_t remaining = 0;
     for (size_t i = 0; i < n; i++)
@@ -132,21 +151,22 @@ static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned ch
     for (size_t c = 0; c < n; c++) {
         if (!left[c] || seen++ % stride)
             continue;
-        const float *nc = pts + POINT_FLOATS * cube[c].point + 3;
+        const float *pc = pts + POINT_FLOATS * cube[c].point;
         double area = 0;
-        for (size_t i = 0; i < n; i++)
-            if (left[i] && vec3_dot(nc, pts + POINT_FLOATS * cube[i].point + 3) >= cos_eps)
-                area += pts[POINT_FLOATS * cube[i].point + 6];
+        for (size_t i = 0; i < n; i++) {
+            const float *q = pts + POINT_FLOATS * cube[i].point;
+            if (left[i] && joins(pc, q, cos_eps, plane_tol))
+                area += q[6];
+        }
         if (area > best_area)
             best_area = area, best = c;
     }
-    const float *centre = pts + POINT_FLOATS * cube[best].point + 3;
+    float centre[POINT_FLOATS];
+    memcpy(centre, pts + POINT_FLOATS * cube[best].point, sizeof centre);
     double pos[3] = {0, 0, 0}, nrm[3] = {0, 0, 0}, area = 0;
-    float cn[3];
-    memcpy(cn, centre, sizeof cn);
     for (size_t i = 0; i < n; i++) {
         const float *q = pts + POINT_FLOATS * cube[i].point;
-        if (!left[i] || vec3_dot(cn, q + 3) < cos_eps)
+        if (!left[i] || !joins(centre, q, cos_eps, plane_tol))
             continue;
         left[i] = 0;
         for (int k = 0; k < 3; k++) {
@@ -160,7 +180,7 @@ static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned ch
         out->normal[k] = (float)nrm[k];
     }
     if (vec3_normalize(out->normal) == 0)
-        memcpy(out->normal, cn, sizeof cn);
+        memcpy(out->normal, centre + 3, 3 * sizeof *centre);
     out->area = (float)area;
     return 1;
 }
@@ -223,7 +243,7 @@ int cache_place(const scene *s, const cache_place_desc *d, cache_set *out, char 
         for (b = a + 1; b < n && order[b].cube == order[a].cube; b++)
             ;
         light_cache *c = &out->caches[out->count];
-        while (take_cache(pts, order + a, b - a, left + a, cos_eps, c)) {
+        while (take_cache(pts, order + a, b - a, left + a, cos_eps, PLANE_TOL * d->edge, c)) {
             snap(pts, order + a, b - a, c);
             c = &out->caches[++out->count];
         }

@@ -4,14 +4,16 @@
  *
  * The paper's steps, as done here:
  *   1. the surfaces are sampled: every triangle gets points on a low-discrepancy pattern,
- *      one per (e / 3)^2 of its area and at least one, each with its share of the area and
- *      its interpolated normal (the paper voxelizes the model itself);
+ *      one per (e / 3)^2 of its area, and one per e / 3 of its longest edge at least (a
+ *      sliver), each with its share of the area and its interpolated normal (the paper
+ *      voxelizes the model itself);
  *   2. the points are binned into cubes of edge e (the paper's d_eps / 2), the grid shifted
  *      by e / 2 so that a wall on the scene's bounds or on a multiple of e from them lies
  *      mid-cube;
- *   3. in each cube, the normal that gathers the most area within the angle tolerance
- *      theta_eps becomes a cache: the area-weighted mean position and normal of those
- *      points; they leave the cube, and again until none is left;
+ *   3. in each cube, the point whose normal gathers the most area within the angle
+ *      tolerance theta_eps (and within e / 4 of its plane, so that two parallel surfaces
+ *      in a cube make two caches) becomes a cache: the area-weighted mean position and
+ *      normal of those points; they leave the cube, and again until none is left;
  *   4. a cache whose mean lies off the surface (two parallel surfaces in a cube) moves onto
  *      the plane of its nearest point.
  * The paper's step 5 (joining similar caches of neighbouring cubes) is left out: it would

@@ -23,8 +23,10 @@
  * Selection: slot i of n takes the texel whose interval of the mixed sums holds
  * T (i + u_i) / n (u_i = vpl_slot_random(seed, i, 0): a fixed jitter per slot, so a static
  * scene keeps its VALs), found by binary search over the column totals, then down the
- * column. Its weight 1 / (n p) = T / (n interval) scales its flux and area (stratified
- * importance sampling, unbiased for any quantity linear in flux).
+ * column. Its weight 1 / (n p) = T / (n interval) scales its flux, not its area (the
+ * paper's equation 14): each VAL's irradiance at a cache, Phi k(A, r), is then estimated
+ * without bias by stratified importance sampling. (The vpl method scales the area too,
+ * which bounds a rare VAL's spike near a receiver at the price of a bias.)
  * Plain maths on host arrays; no GL, no allocation. */
 #ifndef CAVELIGHT_VAL_SELECT_H
 #define CAVELIGHT_VAL_SELECT_H

@@ -1,6 +1,7 @@
 // Selection (val_sat_select()): slot i takes the texel whose interval of the mixed sums
 // holds T (i + u_i) / n, by binary search over the column totals, then down the column;
-// it becomes VAL u_first + i with flux and area times its weight 1 / (n p).
+// it becomes VAL u_first + i with its flux times its weight 1 / (n p) (its area stays its
+// texel's: equation 14 of the paper, unbiased).
 layout(local_size_x = 64) in;
 
 struct pick {
@@ -57,7 +58,7 @@ void main()
     picks[i] = pick(c, y, weight, 0.0);
     val v = val_fetch(ivec3(c % u_rsm_size, y, c / u_rsm_size));
     int o = 3 * (u_first + i);
-    vals[o] = vec4(v.position, v.area * weight);
+    vals[o] = vec4(v.position, v.area);
     vals[o + 1] = vec4(v.normal, 0.0);
     vals[o + 2] = vec4(v.flux * weight, 0.0);
 }
