@@ -1,7 +1,9 @@
 // Occlusion of each cache's proxy light by the other caches' disks (cache_occlusion()):
 // the proxy's sphere and each nearer cache's disk projected onto the unit sphere and down
 // onto the unit disk around the cache's normal, as squares of the same area; the overlaps
-// over the proxy's square is the share blocked. Scales the proxy's irradiance.
+// over the proxy's square is the share blocked. Scales the proxy's irradiance. Caches
+// [u_begin, u_end) per dispatch, the sum kept after the proxies' running sums (see
+// caches_proxy.comp); the last applies it.
 #define TILE 64
 layout(local_size_x = TILE) in;
 
@@ -9,6 +11,7 @@ layout(std430, binding = 0) readonly buffer Caches { vec4 caches[]; };
 layout(std430, binding = 1) buffer Proxies { vec4 proxies[]; };
 
 uniform int u_caches;
+uniform int u_begin, u_end, u_last;
 
 shared vec4 tile_position[TILE], tile_normal[TILE];
 
@@ -37,14 +40,16 @@ void main()
     float square_p = 2.0 * PI * (1.0 - sqrt(1.0 - s * s)) * cos_p;
     bool lit_cache = c < u_caches && d > 0.0 && cos_p > 0.0 && square_p > 0.0;
     vec2 cp = vec2(dot(w, t1), dot(w, t2));
-    float side_p = sqrt(max(square_p, 0.0)), nearer = d - radius, blocked = 0.0;
-    for (int base = 0; base < u_caches; base += TILE) {
+    int sum = 20 * u_caches + self; // a float after the proxies and their 3 running sums
+    float side_p = sqrt(max(square_p, 0.0)), nearer = d - radius;
+    float blocked = u_begin > 0 ? proxies[sum / 4][sum % 4] : 0.0;
+    for (int base = u_begin; base < u_end; base += TILE) {
         int k = base + slot;
-        tile_position[slot] = k < u_caches ? caches[2 * k] : vec4(0.0);
-        tile_normal[slot] = k < u_caches ? caches[2 * k + 1] : vec4(0.0);
+        tile_position[slot] = k < u_end ? caches[2 * k] : vec4(0.0);
+        tile_normal[slot] = k < u_end ? caches[2 * k + 1] : vec4(0.0);
         barrier();
         for (int j = 0; j < TILE && lit_cache; j++) {
-            if (base + j >= u_caches || base + j == c)
+            if (base + j >= u_end || base + j == c)
                 continue;
             vec3 u = tile_position[j].xyz - p;
             float r2 = dot(u, u);
@@ -62,6 +67,10 @@ void main()
     }
     if (!lit_cache)
         return;
+    if (u_last == 0) {
+        proxies[sum / 4][sum % 4] = blocked;
+        return;
+    }
     float visibility = max(0.0, 1.0 - blocked / square_p);
     vec4 e = proxies[2 * c + 1];
     proxies[2 * c + 1] = vec4(e.rgb * visibility, visibility);

@@ -26,6 +26,12 @@ static const char *const STAGE_NAMES[STAGES] = {"importance", "sat_select", "pro
 enum { P_IMPORTANCE = 0, P_COLUMNS, P_ROW, P_SELECT, P_PROXY, P_PROXY_ALL, P_OCCLUDE, P_INTERP,
        PROGRAMS };
 enum { TILE = 64 }; /* the compute shaders' local size */
+/* VALs or caches one dispatch loops over (caches_proxy.comp: llvmpipe stops a shader loop
+ * after 65535 iterations, and a GPU's watchdog a long dispatch). */
+enum { CHUNK = 8192 };
+/* Floats per cache in B_PROXIES: the proxy (8), the running sums of the proxy pass (12)
+ * and of the occlusion (1), rounded up to vec4s. */
+enum { PROXY_FLOATS = 24 };
 
 struct gi_caches {
     const gl_functions *gl;
@@ -125,7 +131,7 @@ static void upload_static(gi_caches *c)
     }
     buffer_data(gl, c->buffer[B_CACHES], n * 8 * sizeof *caches, caches);
     free(caches);
-    buffer_data(gl, c->buffer[B_PROXIES], n * 8 * sizeof(float), NULL);
+    buffer_data(gl, c->buffer[B_PROXIES], n * PROXY_FLOATS * sizeof(float), NULL);
     size_t cells = (size_t)c->grid.dims[0] * c->grid.dims[1] * c->grid.dims[2];
     uint32_t *grid = xmalloc((cells + 1 + c->grid.listed) * sizeof *grid);
     memcpy(grid, c->grid.first, (cells + 1) * sizeof *grid);
@@ -392,27 +398,39 @@ static void read_proxies(gi_caches *c)
     free(v);
 }
 
+/* Program prog over items [0, count) in chunks of CHUNK, one dispatch each (u_begin,
+ * u_end, u_last), a thread per cache. */
+static void dispatch_chunks(gi_caches *c, int prog, int count)
+{
+    GLuint groups = (GLuint)(c->set.count + TILE - 1) / TILE;
+    for (int begin = 0; groups && (begin < count || begin == 0); begin += CHUNK) {
+        int end = count - begin > CHUNK ? begin + CHUNK : count;
+        uniform1i(c, prog, "u_begin", begin);
+        uniform1i(c, prog, "u_end", end);
+        uniform1i(c, prog, "u_last", end == count);
+        c->gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        c->gl->DispatchCompute(groups, 1, 1);
+    }
+}
+
 /* Stages proxy and occlusion on the GPU (exact occlusion with every texel, which the
  * settings' check refuses, is approximated). */
 static void gpu_proxies(gi_caches *c, const gi_rsm *rsm)
 {
-    const gl_functions *gl = c->gl;
     int all = c->settings.selection == CACHES_SELECT_ALL, prog = all ? P_PROXY_ALL : P_PROXY;
-    GLuint groups = (GLuint)(c->set.count + TILE - 1) / TILE;
+    int texels = rsm->layers * rsm->size * rsm->size;
     double t0 = clock_now_ms();
     bind_rsm(c, prog, rsm);
     uniform1i(c, prog, "u_caches", (int)c->set.count);
     uniform1i(c, prog, "u_vals", (int)(all ? c->emitters : c->val_count));
-    uniform1i(c, prog, "u_texels", rsm->layers * rsm->size * rsm->size);
-    gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    if (groups)
-        gl->DispatchCompute(groups, 1, 1);
+    uniform1i(c, prog, "u_texels", texels);
+    dispatch_chunks(c, prog, (int)(all ? c->emitters + (size_t)texels : c->val_count));
     c->ms[STAGE_PROXY] = finish(c, t0);
     double t1 = clock_now_ms();
-    if (c->settings.occlusion != CACHES_OCCLUSION_OFF && groups) {
+    if (c->settings.occlusion != CACHES_OCCLUSION_OFF) {
         use_program(c, P_OCCLUDE);
         uniform1i(c, P_OCCLUDE, "u_caches", (int)c->set.count);
-        gl->DispatchCompute(groups, 1, 1);
+        dispatch_chunks(c, P_OCCLUDE, (int)c->set.count);
     }
     c->ms[STAGE_OCCLUSION] = finish(c, t1);
 }
