@@ -237,6 +237,24 @@ if three:
         p(t)
     p("")
 
+temporal = [(sc, summary(f"caches_{sc}.json")) for sc in SCENES]
+temporal = [(sc, t) for sc, t in temporal if t.get("experiment") == "caches_temporal"]
+if temporal:
+    p("### The caches method in motion\n")
+    p(f"Per frame at 60 Hz, {temporal[0][1]['frames']} frames, {temporal[0][1]['vals']} VALs: "
+      "the largest mean absolute change of the indirect (and direct) image from the frame "
+      "before, over its mean. A static frame computed again must be the same bits. The light "
+      "walks at 0.5 m/s (a directional light turns as fast); the tracked head walks at 1 m/s "
+      "while the camera stays, so the indirect image's change is the selection following the "
+      "head: the paper's flicker. Per-frame figures in `caches_temporal_SCENE.csv`.\n")
+    p("| scene | static frames identical | light moving: indirect | light moving: direct (the motion itself) | head moving: indirect (flicker) |")
+    p("|---|---|---|---|---|")
+    for sc, t in temporal:
+        p(f"| {sc} | {'yes' if t['static_identical'] else '**no**'} | "
+          f"{f(t['light_max_change_indirect'])} | {f(t['light_max_change_direct'])} | "
+          f"{f(t['head_max_change_indirect'])} |")
+    p("")
+
 p("## The reference and its noise\n")
 p("| scene | reference seconds (2 cores) | mean indirect radiance | noise of the averaged indirect (MAE) | noise relative to the mean |")
 p("|---|---|---|---|---|")

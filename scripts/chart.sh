@@ -44,14 +44,14 @@ if [ $quick = 1 ]; then
   sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
   vpl=(--counts 64,256 --seeds 1 --visibility exact,ism,ism-splat --interleave 0,4)
-  caches=(--vals 512,2048 --occlusion approx,exact --lightskin 0 --frames 2)
+  caches=(--vals 512,2048 --occlusion approx,exact --lightskin 0 --frames 2 --temporal-frames 10)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
        --ism-points 256,1024 --interleave 0,4 --selection flux,view,regular)
-  caches=(--vals 512,2048,8192 --occlusion approx,exact,off --lightskin 1 --frames 3)
+  caches=(--vals 512,2048,8192 --occlusion approx,exact,off --lightskin 1 --frames 3 --temporal-frames 30)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS

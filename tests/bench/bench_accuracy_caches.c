@@ -15,7 +15,18 @@
  * the same RSM size, density and occlusion: its relRMSE against that image
  * (rmse_rel_vs_all), the difference of their errors against the reference, and the
  * speed-up (its GI ms over this row's).
- * Writes <out>/caches_<scene>.csv and prints one JSON line per row. */
+ * Writes <out>/caches_<scene>.csv and prints one JSON line per row.
+ *
+ * With --temporal 1 (the default) also, with the defaults but --temporal-vals VALs
+ * (default 2048) and --temporal-frames frames at
+ * 60 Hz each (default 30): a static frame computed twice (identical images and checksums?);
+ * the light moving at walking speed (0.5 m/s on a 0.5 m circle as accuracy path; a
+ * directional light turning so that a point half the scene's diagonal away walks at that
+ * speed); the tracked head walking at 1 m/s along the view's right axis while the camera
+ * stays, so that every change of the image is the selection following the head (the
+ * paper's flicker). Per frame the mean absolute change of the indirect and of the direct
+ * image from the frame before over their means: <out>/caches_temporal_<scene>.csv and one
+ * JSON line with the largest of each. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +35,7 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
+#include "gi/caches/caches_settings.h"
 
 enum { MAX_ITEMS = 8, MAX_FRAMES = 64, STAGES = 5 };
 static const char *const STAGE_NAMES[STAGES] = {"importance", "sat_select", "proxy",
@@ -149,7 +161,7 @@ static int row(sweep *w, renderer *r, const frame_params *fp)
 typedef struct lists {
     char rsm[MAX_ITEMS][32], density[MAX_ITEMS][32], occlusion[MAX_ITEMS][32],
         vals[MAX_ITEMS][32];
-    int nr, nd, no, nv, lightskin;
+    int nr, nd, no, nv, lightskin, temporal;
 } lists;
 
 /* Every row of one RSM size and density, with one renderer. */
@@ -193,11 +205,11 @@ static int check(const char *name, char items[MAX_ITEMS][32], int n)
     return n ? 0 : -1;
 }
 
-static int parse(int argc, char **argv, acc_options *o, lists *l, int *frames)
+static int parse(int argc, char **argv, acc_options *o, lists *l, int *frames, int motion[2])
 {
     const char *rsm = "256", *density = "0", *occlusion = "approx,exact",
                *vals = "512,2048,8192";
-    l->lightskin = 1;
+    l->lightskin = l->temporal = 1;
     const bench_option opts[] = {
         ACC_COMMON_OPTIONS(o),
         BENCH_TEXT("rsm", "N,...", "RSM sizes", &rsm),
@@ -207,6 +219,10 @@ static int parse(int argc, char **argv, acc_options *o, lists *l, int *frames)
         BENCH_INT("lightskin", "0|1", "also every RSM texel as a VAL (plain LightSkin)",
                   &l->lightskin, 0, 1),
         BENCH_INT("frames", "N", "frames per row (medians)", frames, 1, MAX_FRAMES),
+        BENCH_INT("temporal", "0|1", "also the temporal measures", &l->temporal, 0, 1),
+        BENCH_INT("temporal-frames", "N", "frames of each motion", &motion[0], 2, 100000),
+        BENCH_INT("temporal-vals", "N", "VALs of the temporal measures", &motion[1],
+                  CACHES_VALS_MIN, CACHES_VALS_MAX),
     };
     int rc = BENCH_PARSE("accuracy caches", "the caches method per setting row against the "
                          "reference, and importance-sampled VALs against every RSM texel",
@@ -223,13 +239,98 @@ static int parse(int argc, char **argv, acc_options *o, lists *l, int *frames)
     return 0;
 }
 
+/* Mean |a - b| over mean |b| of two linear images of n floats. */
+static double change(const float *a, const float *b, size_t n)
+{
+    double d = 0, m = 0;
+    for (size_t i = 0; i < n; i++) {
+        d += fabs((double)a[i] - b[i]);
+        m += fabs((double)b[i]);
+    }
+    return m > 0 ? d / m : 0.0;
+}
+
+/* Frame f of a motion: 0 the light moves, 1 the head. */
+static void move(const acc_setup *s, frame_params *fp, int motion, int f)
+{
+    const double speed = 0.5, radius = 0.5, head_speed = 1.0;
+    double t = f / 60.0;
+    if (motion == 1) {
+        for (int k = 0; k < 3; k++) /* the view's right axis (view matrix row 0) */
+            fp->head[12 + k] = s->view.eye_position[k] + (float)(head_speed * t) * s->view.view[4 * k];
+        return;
+    }
+    frame_light *l = &fp->lights[0];
+    const frame_light *l0 = &s->base.lights[0];
+    if (l->type == SCENE_LIGHT_DIRECTIONAL) {
+        double a = speed * t / (0.5 * scene_diagonal(&s->sc));
+        l->direction[0] = (float)(l0->direction[0] * cos(a) - l0->direction[2] * sin(a));
+        l->direction[2] = (float)(l0->direction[0] * sin(a) + l0->direction[2] * cos(a));
+        return;
+    }
+    double a = speed * t / radius;
+    l->position[0] = l0->position[0] + (float)(radius * (cos(a) - 1.0));
+    l->position[2] = l0->position[2] + (float)(radius * sin(a));
+}
+
+/* The temporal measures (see the top). */
+static int temporal(acc_setup *s, int frames, int vals)
+{
+    size_t n = (size_t)s->opt.width * s->opt.height * 3;
+    frame_params fp = s->base;
+    gi_set_number(&fp, "caches-vals", vals);
+    renderer *r = acc_renderer_create(s, &(acc_renderer_desc){.gi = "caches"}, &fp);
+    float *prev[2] = {malloc(n * sizeof(float)), malloc(n * sizeof(float))};
+    FILE *csv = acc_open_csv(s, "caches_temporal", "scene,motion,frame,change_indirect,change_direct");
+    int rc = r && prev[0] && prev[1] && csv ? 0 : -1;
+    double largest[2][2] = {{0, 0}, {0, 0}}, static_change = -1;
+    uint64_t sums[2] = {0, 0};
+    renderer_image img;
+    for (int motion = -1; motion < 2 && rc == 0; motion++)
+        for (int f = 0; f < (motion < 0 ? 2 : frames) && rc == 0; f++) {
+            frame_params p = fp;
+            if (motion >= 0)
+                move(s, &p, motion, f);
+            uint64_t sum = renderer_frame_pass(r, &p);
+            if ((rc = renderer_eye_pass(r, &s->view, 1, &img)) != 0)
+                break;
+            double ci = f ? change(img.indirect, prev[0], n) : 0;
+            double cd = f ? change(img.direct, prev[1], n) : 0;
+            if (motion < 0) {
+                sums[f] = sum;
+                static_change = ci;
+            } else if (f) {
+                largest[motion][0] = fmax(largest[motion][0], ci);
+                largest[motion][1] = fmax(largest[motion][1], cd);
+                fprintf(csv, "%s,%s,%d,%.6g,%.6g\n", s->opt.scene, motion ? "head" : "light", f,
+                        ci, cd);
+            }
+            memcpy(prev[0], img.indirect, n * sizeof(float));
+            memcpy(prev[1], img.direct, n * sizeof(float));
+        }
+    if (rc == 0)
+        printf("{\"bench\":\"accuracy\",\"experiment\":\"caches_temporal\",\"scene\":\"%s\","
+               "\"frames\":%d,\"vals\":%d,\"static_identical\":%s,\"static_change_indirect\":%.6g,"
+               "\"light_max_change_indirect\":%.6g,\"light_max_change_direct\":%.6g,"
+               "\"head_max_change_indirect\":%.6g,\"head_max_change_direct\":%.6g}\n",
+               s->opt.scene, frames, vals, sums[0] == sums[1] && static_change == 0 ? "true" : "false",
+               static_change, largest[0][0], largest[0][1], largest[1][0], largest[1][1]);
+    if (csv)
+        fclose(csv);
+    free(prev[0]);
+    free(prev[1]);
+    if (r)
+        renderer_destroy(r);
+    return rc;
+}
+
 int accuracy_caches(int argc, char **argv)
 {
     acc_options o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                      .ref_samples = 64};
     lists l;
-    int frames = 3;
-    int pr = parse(argc, argv, &o, &l, &frames);
+    int frames = 3, motion[2] = {30, CACHES_VALS_DEFAULT};
+    int pr = parse(argc, argv, &o, &l, &frames, motion);
     if (pr)
         return pr > 0 ? 0 : 2;
     acc_setup s;
@@ -258,6 +359,8 @@ int accuracy_caches(int argc, char **argv)
     int rc = w.image && w.all && w.csv ? 0 : 1;
     for (int k = 0; k < l.nr * l.nd && rc == 0; k++)
         rc = rows_of(&w, &l, l.rsm[k / l.nd], l.density[k % l.nd]) ? 1 : 0;
+    if (rc == 0 && l.temporal)
+        rc = temporal(&s, motion[0], motion[1]) ? 1 : 0;
     if (w.csv)
         fclose(w.csv);
     free(w.image);

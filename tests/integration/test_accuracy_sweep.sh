@@ -92,7 +92,8 @@ mv "$out/first.csv" "$out/sweep_default.csv"
 "$bench" accuracy savings --scene default "${small[@]}" --lattice 8 --frames 40 \
     > "$out/savings_default.json" 2>/dev/null || fail "savings failed"
 CAVELIGHT_CACHE_DIR="$out/light-caches" "$bench" accuracy caches --scene default "${small[@]}" \
-    --ref-samples 4 --rsm 64 --vals 256 --occlusion approx --frames 1 > "$out/caches_default.json" \
+    --ref-samples 4 --rsm 64 --vals 256 --occlusion approx --frames 1 --temporal-frames 3 \
+    > "$out/caches_default.json" \
     2> "$out/caches.log" || { cat "$out/caches.log" >&2; fail "caches failed"; }
 cp "$out/sweep.json" "$out/sweep_default.json"
 python3 - "$out" <<'PY' || fail "caches output wrong"
@@ -107,7 +108,12 @@ for r in rows:
 assert float(rows[1]["speedup"]) > 0 and float(rows[1]["rmse_rel_vs_all"]) > 0
 assert rows[0]["speedup"] == "nan" and float(rows[1]["importance_ms"]) > 0
 lines = [json.loads(l) for l in open(f"{out}/caches_default.json")]
-assert len(lines) == 2 and lines[1]["speedup"] == float(rows[1]["speedup"])
+assert len(lines) == 3 and lines[1]["speedup"] == float(rows[1]["speedup"])
+t = lines[2]
+assert t["experiment"] == "caches_temporal" and t["static_identical"] is True, t
+assert t["light_max_change_indirect"] > 0 and t["head_max_change_indirect"] > 0
+assert t["head_max_change_direct"] == 0  # the head moves, the camera does not
+assert len(list(csv.DictReader(open(f"{out}/caches_temporal_default.csv")))) == 2 * 2
 PY
 python3 - "$out" <<'PY' || fail "move, path or savings output wrong"
 import csv, json, sys
@@ -132,4 +138,5 @@ grep -q "^| default | [0-9.]* | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/
 grep -q "Modelling no more than the scene needs" "$out/ACCURACY.md" || fail "report lacks savings"
 grep -q "^| every texel | approx | 64 | " "$out/ACCURACY.md" || fail "report lacks the caches rows"
 grep -q "^## Three methods: ILPV, vpl and caches" "$out/ACCURACY.md" || fail "report lacks the method table"
+grep -q "^| default | yes | " "$out/ACCURACY.md" || fail "report lacks the caches' temporal table"
 echo "accuracy sweep: ok"
