@@ -419,5 +419,5 @@ if budgets:
     for r in sorted(budgets, key=lambda r: r["budget"]["budget_ms"]):
         b, m = r["budget"], r["median"]
         p(f"| {f(b['budget_ms'], 0)} | {b['lattice_cells']} | {b['steps']} | {f(b['predicted_ms'], 1)} | "
-          f"{f(m['inject_ms'] + m['propagate_ms'], 1)} | {'yes' if b['fits'] else 'no (coarsest)'} |")
+          f"{f(m.get('gi_ms', 0), 1)} | {'yes' if b['fits'] else 'no (coarsest)'} |")
     p("")

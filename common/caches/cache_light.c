@@ -119,7 +119,7 @@ void cache_proxy_at(const light_cache *c, const cache_proxy *p, const float x[3]
         out[a] = p->irradiance[a] * g;
 }
 
-void cache_interpolate(const cache_grid *g, const light_cache *caches,
+void cache_interpolate(const cache_grid *g, const light_cache *caches, const uint8_t *hidden,
                        const cache_proxy *proxies, const float x[3], const float n[3],
                        float out[3])
 {
@@ -127,6 +127,8 @@ void cache_interpolate(const cache_grid *g, const light_cache *caches,
     float sum[3] = {0, 0, 0}, weights = 0;
     for (uint32_t i = g->first[cell]; i < g->first[cell + 1]; i++) {
         uint32_t k = g->index[i];
+        if (hidden && hidden[k])
+            continue;
         float w = cache_weight(&caches[k], x, n, g->reach);
         if (!(w > 0.0f))
             continue;

@@ -61,9 +61,9 @@ float cache_occlusion(const light_cache *caches, size_t count, size_t self,
 /* E(x) of one cache's proxy at x (normal n_x) as above, before the interpolation. */
 void cache_proxy_at(const light_cache *c, const cache_proxy *p, const float x[3],
                     const float n[3], float out[3]);
-/* The interpolated irradiance at x (normal n) from the caches g lists for its cell: 0
- * when no cache reaches it. */
-void cache_interpolate(const cache_grid *g, const light_cache *caches,
+/* The interpolated irradiance at x (normal n) from the caches g lists for its cell but the
+ * hidden ones (hidden: a flag per cache, or NULL): 0 when no cache reaches it. */
+void cache_interpolate(const cache_grid *g, const light_cache *caches, const uint8_t *hidden,
                        const cache_proxy *proxies, const float x[3], const float n[3],
                        float out[3]);
 

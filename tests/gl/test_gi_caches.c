@@ -266,8 +266,8 @@ static void test_interpolation(void **state)
         light_cache at = {{p[0], p[1], p[2]}, {nrm[0], nrm[1], nrm[2]}, 0};
         cache_proxy g;
         cache_proxy_gather(&at, vals, n, NULL, &g);
-        cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_proxies(c), p,
-                          nrm, host);
+        cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_hidden(c),
+                          gi_caches_proxies(c), p, nrm, host);
         for (int k = 0; k < 3; k++) {
             e[k] = albedo[k] / 3.14159265f * g.irradiance[k];
             shaded[k] = albedo[k] / 3.14159265f * host[k];

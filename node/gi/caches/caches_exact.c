@@ -76,6 +76,18 @@ static void gather(void *ctx, int item)
         cache_proxy_gather(&j->caches[c], j->vals, j->n, j->visible + c * j->n, &j->out[c]);
 }
 
+void caches_hidden(const scene_rt *rt, const light_cache *caches, size_t count, float distance,
+                   float offset, uint8_t *hidden)
+{
+    for (size_t i = 0; i < count; i++) {
+        const light_cache *c = &caches[i];
+        float end[3];
+        for (int k = 0; k < 3; k++)
+            end[k] = c->position[k] + distance * c->normal[k];
+        hidden[i] = !clear(rt, c->position, c->normal, end, c->normal, offset);
+    }
+}
+
 caches_exact *caches_exact_create(const scene_rt *rt, int threads, float offset)
 {
     caches_exact *x = xcalloc(1, sizeof *x);

@@ -1,8 +1,14 @@
-/* caches_exact: the caches method's exact occlusion, its ceiling: a ray from every cache to
- * every VAL (Embree, scene_rt.h, on the host's threads), and each cache's proxy light
- * gathered from the VALs it sees (cache_proxy_gather()). What the approximation of
- * cache_light.h stands in for; it costs caches x VALs rays per frame.
- * The same caches, VALs and scene give the same proxies whatever the thread count. */
+/* caches_exact: the caches method's rays (Embree, scene_rt.h, on the host's threads).
+ *
+ * The exact occlusion, its ceiling: a ray from every cache to every VAL, and each cache's
+ * proxy light gathered from the VALs it sees (cache_proxy_gather()). What the
+ * approximation of cache_light.h stands in for; it costs caches x VALs rays per frame. The
+ * same caches, VALs and scene give the same proxies whatever the thread count.
+ *
+ * Hidden caches: a surface under another one a hair above it (a floor under a rug, two
+ * boxes sharing a face, stacked glTF meshes) gets caches that no one sees, and that the
+ * interpolation of the visible surface above would take in; a cache whose normal meets a
+ * surface within the given distance is hidden (once, at load). */
 #ifndef CAVELIGHT_CACHES_EXACT_H
 #define CAVELIGHT_CACHES_EXACT_H
 
@@ -22,5 +28,9 @@ void caches_exact_destroy(caches_exact *x);
 int caches_exact_proxies(caches_exact *x, const light_cache *caches, size_t count,
                          const vpl *vals, size_t n, cache_proxy *out, double *rays_ms,
                          double *gather_ms);
+
+/* hidden[i] = 1 for each of count caches whose normal meets a surface within distance. */
+void caches_hidden(const scene_rt *rt, const light_cache *caches, size_t count, float distance,
+                   float offset, uint8_t *hidden);
 
 #endif

@@ -1,5 +1,5 @@
 // Interpolation (cache_interpolate()): every cache the pixel's grid cell lists that reaches
-// it, weighted by cache_weight(), each proxy light's irradiance at the pixel
+// it and is not hidden (normal.w 1, caches_exact.h), weighted by cache_weight(), each proxy light's irradiance at the pixel
 // (cache_proxy_at()), over the G-buffer into the eye's irradiance texture.
 layout(location = 0) out vec4 out_irradiance;
 
@@ -33,7 +33,10 @@ void main()
     float weights = 0.0;
     for (uint i = grid[cell]; i < grid[cell + 1]; i++) {
         int c = int(grid[u_grid_cells + 1 + int(i)]);
-        vec3 cp = caches[2 * c].xyz, cn = caches[2 * c + 1].xyz;
+        vec4 cn4 = caches[2 * c + 1];
+        if (cn4.w > 0.0)
+            continue;
+        vec3 cp = caches[2 * c].xyz, cn = cn4.xyz;
         vec3 d = x - cp;
         float off = dot(cn, d), d2 = dot(d, d) + u_plane_weight * off * off;
         float facing = dot(n, cn);

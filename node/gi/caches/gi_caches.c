@@ -53,6 +53,8 @@ struct gi_caches {
     val_pick picks[CACHES_VALS_MAX];
     int pick_count;
     cache_proxy *proxies;      /* read back each frame (or computed here: exact) */
+    uint8_t *hidden;           /* per cache: under another surface (caches_hidden()) */
+    size_t hidden_count;
     uint64_t checksum;
     double ms[STAGES];
 
@@ -85,6 +87,7 @@ static void release(gi_caches *c)
     caches_exact_destroy(c->exact);
     free(c->vals);
     free(c->proxies);
+    free(c->hidden);
 }
 
 /* A storage buffer of size bytes (data or zeros). */
@@ -127,7 +130,7 @@ static void upload_static(gi_caches *c)
         memcpy(o, l->position, 3 * sizeof *o);
         o[3] = l->area;
         memcpy(o + 4, l->normal, 3 * sizeof *o);
-        o[7] = 0;
+        o[7] = c->hidden[i];
     }
     buffer_data(gl, c->buffer[B_CACHES], n * 8 * sizeof *caches, caches);
     free(caches);
@@ -178,6 +181,12 @@ static int place(gi_caches *c, char *err, size_t errlen)
         c->vals[i] = vpl_from_emitter(&raw[i]);
     free(raw);
     c->proxies = xcalloc(c->set.count ? c->set.count : 1, sizeof *c->proxies);
+    c->hidden = xcalloc(c->set.count ? c->set.count : 1, 1);
+    /* a quarter edge: what the placement keeps apart as two parallel surfaces */
+    caches_hidden(view_samples_rt(c->viewer), c->set.caches, c->set.count, 0.25f * c->set.edge,
+                  1e-4f * scene_diagonal(s), c->hidden);
+    for (size_t i = 0; i < c->set.count; i++)
+        c->hidden_count += c->hidden[i];
     return 0;
 }
 
@@ -190,9 +199,8 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     c->never_reuse = d->no_reuse;
     memcpy(c->head_to_eye, d->head_to_eye, sizeof c->head_to_eye);
     caches_settings_get(d->frame, &c->settings);
-    if (place(c, err, errlen) != 0 ||
-        !(c->viewer = view_samples_create(d->scene, VIEW_SAMPLES_MAX, err, errlen)) ||
-        programs(c, err, errlen) != 0) {
+    if (!(c->viewer = view_samples_create(d->scene, VIEW_SAMPLES_MAX, err, errlen)) ||
+        place(c, err, errlen) != 0 || programs(c, err, errlen) != 0) {
         release(c);
         free(c);
         return NULL;
@@ -534,6 +542,7 @@ static void stats(const void *state, gi_stats *out)
     size_t bytes = 2 * (cache_bytes + cache_grid_bytes(&c->grid)); /* host and GPU copies */
     const gi_stat figures[] = {
         {"caches", (double)c->set.count},
+        {"hidden_caches", (double)c->hidden_count},
         {"vals", (double)(c->settings.selection == CACHES_SELECT_ALL ? 0 : c->val_count)},
         {"cache_kb", (double)bytes / 1024.0},
         {"placement_ms", c->store.ms},
@@ -554,6 +563,7 @@ const cache_set *gi_caches_set(const gi_caches *c) { return &c->set; }
 const cache_grid *gi_caches_grid(const gi_caches *c) { return &c->grid; }
 const cache_store_report *gi_caches_store(const gi_caches *c) { return &c->store; }
 const cache_proxy *gi_caches_proxies(const gi_caches *c) { return c->proxies; }
+const uint8_t *gi_caches_hidden(const gi_caches *c) { return c->hidden; }
 
 int gi_caches_picks(const gi_caches *c, const val_pick **picks)
 {

@@ -4,7 +4,8 @@
  *
  * create(): the caches of the scene (common/caches/cache_place.h) from the disk cache or
  * placed and stored there (cache_file.h; a note on stderr when a file was not trusted or
- * could not be written), the lookup grid of the interpolation (cache_grid.h), the scene's
+ * could not be written), which of them are hidden under another surface (caches_exact.h),
+ * the lookup grid of the interpolation (cache_grid.h), the scene's
  * emissive triangles as fixed VALs, the view samples' rays (view_samples.h), the GPU
  * buffers and programs.
  * frame(), each stage timed with GL finished:
@@ -26,7 +27,7 @@
  * "interpolate" (of the last eye pass).
  * reuse(): lights, medium, settings and (with importance) the viewer unchanged, unless the
  * renderer computes every frame.
- * stats(): the stages above; figures: caches, vals (lighting the caches this frame),
+ * stats(): the stages above; figures: caches, hidden_caches, vals (lighting the caches this frame),
  * cache_kb (host and GPU memory of caches, grid and proxies), placement_ms and
  * cache_file (1: read from disk) of create(), reach_m (the interpolation's radius),
  * longest_list. */
@@ -55,5 +56,7 @@ const cache_store_report *gi_caches_store(const gi_caches *c);
 int gi_caches_picks(const gi_caches *c, const val_pick **picks);
 size_t gi_caches_vals(gi_caches *c, const vpl **vals);
 const cache_proxy *gi_caches_proxies(const gi_caches *c);
+/* Per cache 1 when it lies under another surface (caches_exact.h): not interpolated. */
+const uint8_t *gi_caches_hidden(const gi_caches *c);
 
 #endif
