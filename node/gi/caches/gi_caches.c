@@ -51,6 +51,7 @@ struct gi_caches {
     vpl *vals;                 /* the emitters, then the picks' VALs (read back) */
     size_t emitters, val_count;
     val_pick picks[CACHES_VALS_MAX];
+    float pick_read[CACHES_VALS_MAX * 4]; /* the picks as the GPU wrote them */
     int pick_count;
     cache_proxy *proxies;      /* read back each frame (or computed here: exact) */
     uint8_t *hidden;           /* per cache: under another surface (caches_hidden()) */
@@ -268,11 +269,10 @@ static void bind_rsm(gi_caches *c, int i, const gi_rsm *rsm)
     uniform1i(c, i, "u_rsm_size", rsm->size);
 }
 
-/* Room for the tables of this frame's maps. */
+/* Room for the tables of this frame's maps; every buffer bound to its binding (another
+ * method or pass may have bound others there). */
 static void reserve_tables(gi_caches *c, size_t texels, int columns)
 {
-    for (int i = 0; i < BUFFERS; i++) /* a rebuilt buffer keeps its binding */
-        c->gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)i, c->buffer[i]);
     if (texels > c->sums_texels) {
         buffer_data(c->gl, c->buffer[B_SUMS], texels * 2 * sizeof(float), NULL);
         c->sums_texels = texels;
@@ -339,7 +339,7 @@ static void select_vals(gi_caches *c, const frame_params *p, const gi_rsm *rsm)
     uniform1i(c, P_SELECT, "u_seed", c->settings.seed);
     gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl->DispatchCompute((GLuint)(n + TILE - 1) / TILE, 1, 1);
-    float picks[CACHES_VALS_MAX * 4];
+    float *picks = c->pick_read;
     gl->MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, c->buffer[B_PICKS]);
     gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(n * 4 * sizeof *picks), picks);
@@ -529,7 +529,9 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit));
     gl->BindTexture(GL_TEXTURE_2D, c->irradiance);
     gl->Uniform1i(gl->GetUniformLocation(e->program, "u_caches_irradiance"), e->first_unit);
-    c->ms[STAGE_INTERPOLATE] = finish(c, t0);
+    /* measured with GL finished only when the renderer measures every frame: a node's eye
+     * pass does not wait for it */
+    c->ms[STAGE_INTERPOLATE] = c->never_reuse ? finish(c, t0) : clock_now_ms() - t0;
 }
 
 static void stats(const void *state, gi_stats *out)

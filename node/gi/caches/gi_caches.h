@@ -24,7 +24,8 @@
  * The checksum READY carries: FNV-1a over the picks and the proxies as read back.
  * eye_bind(): the interpolation (caches_interpolate.frag) over the eye's G-buffer into an
  * irradiance texture the snippet (caches_shade.glsl) reads; timed as stage
- * "interpolate" (of the last eye pass).
+ * "interpolate" (of the last eye pass; with GL finished when the renderer measures every
+ * frame, gi_desc.no_reuse, else the host's time to submit it).
  * reuse(): lights, medium, settings and (with importance) the viewer unchanged, unless the
  * renderer computes every frame.
  * stats(): the stages above; figures: caches, hidden_caches, vals (lighting the caches this frame),
