@@ -35,7 +35,7 @@ enum id {
     O_GL, O_SCENE, O_CAMERA, O_FRAMES, O_WIDTH, O_HEIGHT, O_POSITION, O_TARGET, O_FOV, O_SCREEN, O_EYE,
     O_EYES, O_EYE_SEPARATION,
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_SHOW_BLEND, O_PFM,
-    O_THREADS, O_BUDGET, O_HUD, O_WAND,
+    O_THREADS, O_CACHE_DIR, O_BUDGET, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
     O_FAULT_CHECKSUM,
     O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
@@ -57,7 +57,7 @@ static const cli_option options[] = {
     {O_GL, "gl", "egl|osmesa|glfw", "egl", G_SCENE, S, "GL context: headless EGL, OSMesa, or a GLFW window"},
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
-     "corridor, doorway, courtyard, leak-lid, leak-panel,\nleak-wall (docs/node.md)"},
+     "corridor, doorway, courtyard, street, leak-lid,\nleak-panel, leak-wall (docs/node.md)"},
     {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_CLUSTER, C,
      "where the scene stands in the CAVE (docs/cluster.md)"},
     {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_SCENE, 0,
@@ -86,6 +86,8 @@ static const cli_option options[] = {
      "while the master shows the pattern: tint where each\nprojector's blend dims it (docs/cluster.md)"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
     {O_THREADS, "threads", "T", "all cores", G_GI, 0, "CPU threads of the GI methods (and the path tracer)"},
+    {O_CACHE_DIR, "cache-dir", "DIR", "CAVELIGHT_CACHE_DIR, else $XDG_CACHE_HOME/cavelight, else ~/.cache/cavelight",
+     G_GI, 0, "where a GI method keeps what it computes once per scene\n(caches: the light caches; sets CAVELIGHT_CACHE_DIR)"},
     {O_BUDGET, "budget-ms", "MS", NULL, G_GI, S,
      "ilpv: choose --lattice and --steps so that the LPV work\ntakes about MS ms per frame on this machine"},
     {O_HUD, "hud", "0|1|2", "no HUD", G_DISPLAY, S, "show the HUD of that layout (navigation, lighting, settings)"},
@@ -203,6 +205,10 @@ static const char *set(void *user, int id, const char *v)
         d->threads = o->threads;
         return why;
     }
+    case O_CACHE_DIR: /* read where the folder is needed (common/caches/cache_file.h) */
+        if (!*v || setenv("CAVELIGHT_CACHE_DIR", v, 1) != 0)
+            return "a folder";
+        break;
     case O_FAULT_CHECKSUM: {
         char *end;
         d->fault_checksum_from = strtoull(v, &end, 10);

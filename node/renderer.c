@@ -387,6 +387,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     query_end(r, &r->frame_queries, slot, Q_RSM);
     gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
     rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
+    renderer_rsm_textures(r->rsm, rsm.textures);
     r->checksum = gi_frame(r->gi, p, &rsm);
     gi_stats_get(r->gi, &r->timings.gi);
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];

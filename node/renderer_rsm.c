@@ -127,6 +127,13 @@ int renderer_rsm_views(const renderer_rsm *r, const light_view **views, const GL
 
 int renderer_rsm_size(const renderer_rsm *r) { return r->size; }
 
+void renderer_rsm_textures(const renderer_rsm *r, GLuint out[3])
+{
+    out[0] = r->position;
+    out[1] = r->normal;
+    out[2] = r->flux;
+}
+
 static void uniform1i(const renderer_rsm *r, GLuint prog, const char *name, int v)
 {
     r->gl->Uniform1i(r->gl->GetUniformLocation(prog, name), v);

@@ -31,6 +31,9 @@ void renderer_rsm_render(renderer_rsm *m, const scene_gl *mesh, const frame_para
  * position, normal, flux in colour attachments 0..2. */
 int renderer_rsm_views(const renderer_rsm *m, const light_view **views, const GLuint **fbo);
 int renderer_rsm_size(const renderer_rsm *m);
+/* The maps as three 2D array textures (RGBA32F, one layer per view of the last render):
+ * position (w 1 where geometry), normal with the texel's plane (n, -n . position), flux. */
+void renderer_rsm_textures(const renderer_rsm *m, GLuint out[3]);
 /* The lights, their views and shadow maps as shade.frag's uniforms (texture units given);
  * p: the parameters of the last render. */
 void renderer_rsm_bind_shading(const renderer_rsm *m, GLuint prog, const frame_params *p,

@@ -451,7 +451,7 @@ int standalone_run(const node_options *o)
         frame_params fp;
         standalone_frame_params(o, &sc, &eyes[0].view, &fp);
         /* No tracker: the head stands between the eyes, where the vpl method's view rule
-         * casts its rays from (vpl_view.h). */
+         * casts its rays from (view_samples.h). */
         for (int i = 0; i < 3; i++)
             fp.head[12 + i] = 0.5f * (eyes[0].view.eye_position[i] +
                                       eyes[eye_count - 1].view.eye_position[i]);

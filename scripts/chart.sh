@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Speed against accuracy of the LPV and the vpl method on the built-in chart scenes
-# (default room, corridor, doorway, courtyard, arcades) and any glTF file given with
-# --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and the classic
+# (default room, corridor, doorway, courtyard, arcades, street block) and any glTF file given
+# with --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and
+# the classic
 # accumulating LPV, and the vpl method's VPL counts, against a path-traced (Embree)
 # reference, every scene with the same settings. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
@@ -19,7 +20,7 @@ cavelight_install_deps
 cavelight_build "$root" >/dev/null
 
 quick=0 docs=1 reuse=0 out=$root/out/chart
-scenes=(default corridor doorway courtyard arcades)
+scenes=(default corridor doorway courtyard arcades street)
 usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--scene FILE]..."
 while [ $# -gt 0 ]; do
   case $1 in
@@ -44,12 +45,14 @@ if [ $quick = 1 ]; then
   sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
   vpl=(--counts 64,256 --seeds 1 --visibility exact,ism,ism-splat --interleave 0,4)
+  caches=(--vals 512,2048 --occlusion approx,exact --lightskin 0 --frames 2 --temporal-frames 10)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
        --ism-points 256,1024 --interleave 0,4 --selection flux,view,regular)
+  caches=(--vals 512,2048,8192 --occlusion approx,exact,off --lightskin 1 --frames 3 --temporal-frames 30)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
@@ -68,6 +71,9 @@ for scene in "${scenes[@]}"; do
   echo "chart: $k: vpl" >&2
   "$bench" accuracy vpl --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${vpl[@]}" \
     > "$out/vpl_$k.json"
+  echo "chart: $k: caches" >&2
+  "$bench" accuracy caches --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${caches[@]}" \
+    > "$out/caches_$k.json"
 done
 echo "chart: frame-time budgets" >&2
 for budget in 5 10 20 40; do
@@ -79,18 +85,21 @@ echo "chart: measured in $((SECONDS - start)) s" >&2
 # Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
 # 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
 # 8 frame_ms, 9 rmse_rel_indirect, 16 visibility, 17 ism_size, 18 ism_points, 19
-# interleave, 28 selection). ILPV's GI
-# ms is its propagation, vpl's its selection, shadow maps and gather.
+# interleave, 28 selection); of caches_*.csv (2 vals, 3 selection, 4 occlusion, 13 gi_ms,
+# 14 frame_ms, 15 rmse_rel_indirect). ILPV's GI ms is its propagation, vpl's its selection,
+# shadow maps and gather, caches' its stages.
 while read -r scene; do
   csv=$out/sweep_$scene.csv
   vcsv=$out/vpl_$scene.csv
+  ccsv=$out/caches_$scene.csv
+  [ -f "$ccsv" ] || echo "scene,vals,selection,occlusion" > "$ccsv"
   gnuplot <<EOF
 set datafile separator ","
 set terminal pngcairo size 1000,700 font ",11"
 set key outside right top
 set grid
 set logscale x
-set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather"
+set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather, caches stages"
 set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
@@ -98,6 +107,8 @@ front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
 vis(v) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"flux\" && \$16==\"" . v . "\"' $vcsv"
 rule(r) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"" . r . "\"' $vcsv"
 inter = "< awk -F, 'NR>1 && \$19>0' $vcsv"
+cs(o) = "< awk -F, 'NR>1 && \$3==\"importance\" && \$4==\"" . o . "\"' $ccsv"
+lightskin = "< awk -F, 'NR>1 && \$3==\"all\"' $ccsv"
 set output "$out/speed_accuracy_$scene.png"
 set title "$scene: speed against accuracy (labels: lattice/steps; fit = 32^3 cells shaped to the scene)"
 plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
@@ -115,6 +126,11 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      inter using 7:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
      rule("view") using 7:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection (any maps)", \
      rule("regular") using 7:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern (any maps)", \
+     cs("approx") using 13:15 with linespoints pt 8 ps 1.3 lc rgb "#e9c46a" title "caches, disk occlusion (labels: VALs)", \
+     cs("exact") using 13:15 with linespoints pt 10 ps 1.3 lc rgb "#bc6c25" title "caches, exact occlusion", \
+     cs("off") using 13:15 with points pt 1 ps 1.3 lc rgb "#a3a380" title "caches, no occlusion", \
+     lightskin using 13:15 with points pt 12 ps 1.5 lc rgb "#3a5a40" title "caches, every RSM texel (plain LightSkin)", \
+     cs("approx") using 13:15:2 with labels offset 0,0.9 font ",8" notitle, \
      "< tail -n +2 $vcsv" using 7:9:((strcol(16) eq "exact" ? sprintf("%d", \$2) : sprintf("%d/%d/%d", \$2, \$17, \$18)) . (\$19 > 0 ? sprintf(" k%d", \$19) : "")) with labels offset 0,-0.9 font ",8" notitle, \
      front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
@@ -130,7 +146,9 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      vis("ism-splat") using 8:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
      inter using 8:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
      rule("view") using 8:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection", \
-     rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern"
+     rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern", \
+     cs("approx") using 14:15 with linespoints pt 8 ps 1.3 lc rgb "#e9c46a" title "caches, disk occlusion", \
+     cs("exact") using 14:15 with linespoints pt 10 ps 1.3 lc rgb "#bc6c25" title "caches, exact occlusion"
 unset logscale x
 unset logscale y
 set logscale x 2

@@ -6,7 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { HELP_ID = -1000, HELP_COLUMN = 30, HELP_WIDTH = 96 };
+/* getopt_long() returns an option's val: each option's is its index plus OPTION_BASE, past
+ * every character getopt_long() returns of itself ('?', ':', 'h'), which the 58th, 63rd and
+ * 104th option's index would otherwise be. */
+enum { HELP_ID = -1000, HELP_COLUMN = 30, HELP_WIDTH = 96, OPTION_BASE = 256 };
 
 static const cli_option *by_id(const cli_program *p, int id, int *index)
 {
@@ -109,7 +112,7 @@ cli_result cli_parse(const cli_program *p, int argc, char **argv, const char **p
     struct option longs[CLI_MAX_OPTIONS + 2];
     for (int i = 0; i < p->count; i++)
         longs[i] = (struct option){p->options[i].name, p->options[i].arg ? required_argument : no_argument,
-                                   NULL, i};
+                                   NULL, OPTION_BASE + i};
     longs[p->count] = (struct option){"help", no_argument, NULL, HELP_ID};
     longs[p->count + 1] = (struct option){0, 0, 0, 0};
     memset(given, 0, sizeof *given);
@@ -157,6 +160,7 @@ cli_result cli_parse(const cli_program *p, int argc, char **argv, const char **p
             refuse_unknown(p, arg);
             return CLI_ERROR;
         }
+        c -= OPTION_BASE;
         if (c < 0 || c >= p->count)
             continue;
         const cli_option *o = &p->options[c];

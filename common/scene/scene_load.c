@@ -30,6 +30,7 @@ static const struct {
     {"doorway", scene_doorway_build},
     {"courtyard", scene_courtyard_build},
     {"arcades", scene_arcades_build},
+    {"street", scene_street_build},
     {"leak-lid", scene_leak_lid_build},
     {"leak-panel", scene_leak_panel_build},
     {"leak-wall", scene_leak_wall_build},

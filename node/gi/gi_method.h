@@ -56,6 +56,8 @@ typedef struct gi_rsm {
     int size;                      /* texels per side */
     int layers;                    /* light views rendered, one layer each */
     const GLuint *fbo;             /* per layer: position, normal, flux in attachments 0..2 */
+    GLuint textures[3];            /* the same as 2D array textures, a layer per view
+                                      (renderer_rsm_textures()): for GPU passes over them */
     const light_view *views;       /* per layer: the light and view it was rendered from */
     renderer_rsm *maps;            /* renderer_rsm_vpls(maps): the VPL source every method
                                       shares (read back from the maps, on request) */

@@ -15,6 +15,8 @@
  *                     (bench_accuracy_savings.c)
  *   accuracy vpl      the vpl method's error and GI ms per VPL count, and the bias of its
  *                     disk bound (bench_accuracy_vpl.c)
+ *   accuracy caches   the caches method per setting row, and its importance-sampled VALs
+ *                     against every RSM texel (bench_accuracy_caches.c)
  *
  * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
 #include <math.h>
@@ -392,8 +394,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_savings(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "vpl") == 0)
         return accuracy_vpl(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "caches") == 0)
+        return accuracy_caches(argc - 1, argv + 1);
     int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
-    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl [options]\n"
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|caches [options]\n"
             "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
     return help ? 0 : 2;
 }

@@ -9,7 +9,10 @@
  * enclosed (one grid for both eyes): milliseconds and (VPL, cluster) pairs of each.
  * --vpl-visibility and --vpl-interleave choose the shadow test (shadow_ms is then the
  * imperfect maps' time) and interleaved sampling (its gather and blur are in gather_ms).
- * GPU passes use the
+ * With --gi caches the stages are importance, sat_select, proxy, occlusion (the frame pass)
+ * and interpolate (the eye pass's interpolation), and the same frames run again with every
+ * RSM texel as a VAL (caches-selection all, plain LightSkin): every_texel_gi_ms and the
+ * speed-up of the selection, gi_ms against it. GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. */
 #include <stdio.h>
@@ -28,7 +31,7 @@
 #include "scene/scene.h"
 #include "gi/gi_settings.h"
 
-enum { WARMUP = 2, PASSES = 8, GI_STAGES = 4 };
+enum { WARMUP = 2, PASSES = 8, GI_STAGES = GI_STATS_MAX };
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -174,6 +177,22 @@ int bench_frame(int argc, char **argv)
         if (f >= WARMUP)
             base[f - WARMUP] = t.eye_host_ms;
     }
+    /* caches: the same frames with every RSM texel as a VAL (plain LightSkin). */
+    char selection[32];
+    gi_get_text(&fp, "caches-selection", selection, sizeof selection);
+    int caches = fp.gi == gi_method_find("caches") && strcmp(selection, "importance") == 0;
+    double *lightskin = calloc((size_t)n, sizeof *lightskin);
+    frame_params every_texel = fp;
+    gi_set(&every_texel, "caches-selection", "all");
+    for (int f = 0; f < frames && rc == 0 && caches; f++) {
+        renderer_frame_pass(r, &every_texel);
+        renderer_image img;
+        rc = renderer_eye_pass(r, &v, 0, &img);
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        if (f >= WARMUP)
+            lightskin[f - WARMUP] = gi_stats_total_ms(&t.gi);
+    }
     static const char *passes[PASSES] = {"rsm_ms", "gi_ms", "gbuffer_ms", "shade_ms",
                                          "final_ms", "frame_host_ms", "eye_host_ms", NULL};
     double med[PASSES + 1 + GI_STAGES];
@@ -214,6 +233,11 @@ int bench_frame(int argc, char **argv)
                    "\"stereo_assignments_enclosed\":%zu,\"enclosed_fewer\":%.3f",
                    med[PASSES], am[0], gather, pairs[0], am[1], am[2], pairs[1], pairs[2],
                    pairs[1] ? 1.0 - (double)pairs[2] / (double)pairs[1] : 0.0);
+        if (caches) {
+            qsort(lightskin, (size_t)n, sizeof *lightskin, cmp_double);
+            double all = n % 2 ? lightskin[n / 2] : 0.5 * (lightskin[n / 2 - 1] + lightskin[n / 2]);
+            printf(",\"every_texel_gi_ms\":%.3f,\"speedup\":%.3f", all, med[1] > 0 ? all / med[1] : 0.0);
+        }
         /* The method's work: its frame-pass stages, and vpl's gather. */
         double work = med[1] + (vpl ? am[0] + gather : 0.0);
         printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
@@ -222,6 +246,7 @@ int bench_frame(int argc, char **argv)
     }
     free(s);
     free(assign);
+    free(lightskin);
     renderer_destroy(r);
     present_destroy(out);
     scene_free(&sc);

@@ -2,8 +2,9 @@
  * edge. One node serves the two front half walls and the front half of the floor (one
  * frame pass, three off-axis eye passes, as a cluster node does); the pixels on both
  * sides of each shared edge must differ no more than neighbouring pixels inside one
- * screen do, and much less than unrelated columns; with ILPV and with the vpl method (64
- * VPLs), which the frames switch to as the master's would. */
+ * screen do, and much less than unrelated columns; with ILPV, with the vpl method (64
+ * VPLs) and with the caches method (512 VALs chosen from the head, not a screen), which
+ * the frames switch to as the master's would. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -90,14 +91,16 @@ static void test_seams_agree(void **state)
     assert_null(gi_set(&f, "lattice", "20"));
     assert_null(gi_set(&f, "rsm", "128"));
     assert_null(gi_set(&f, "vpl-count", "64"));
+    assert_null(gi_set(&f, "caches-vals", "512"));
     /* Head off-centre and turned: the seams are seen at an angle. */
     float head[16] = {0.955f, 0, 0.296f, 0, 0, 1, 0, 0, -0.296f, 0, 0.955f, 0, 0.4f, 1.6f, 0.3f, 1};
     memcpy(f.head, head, sizeof head);
     f.light_count = 1;
     f.lights[0] = (frame_light){.enabled = 1, .position = {0.5f, 2.8f, -0.5f}, .direction = {-0.3f, -0.95f, 0},
                                 .color = {1, 1, 1}, .intensity = 20, .outer_angle = 0.8f, .inner_angle = 0.6f};
-    for (int k = 0; k < 2; k++) {
-        f.gi = k ? gi_method_find("vpl") : gi_method_find("ilpv");
+    const char *methods[3] = {"ilpv", "vpl", "caches"};
+    for (int k = 0; k < 3; k++) {
+        f.gi = gi_method_find(methods[k]);
         print_message("%s:\n", gi_method_at(f.gi)->name);
         check_seams(v, &f);
     }

@@ -3,8 +3,9 @@
 # experiment writes its CSV and JSON line, the Pareto marks (on the indirect relative RMSE
 # the CSV prints) are right, the goal's rows are run and summarised, the metrics are
 # masked to geometry (the open courtyard's sky is left out), the reference cache is
-# reused, and scripts/accuracy_report.py turns the output into markdown with the goal
-# table.
+# reused, the caches method's rows (one with every RSM texel, one selected, against it), and
+# scripts/accuracy_report.py turns the output into markdown with the goal table and the
+# three methods' table.
 set -euo pipefail
 build=$1
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -90,7 +91,30 @@ mv "$out/first.csv" "$out/sweep_default.csv"
     --frames 6 > "$out/path_default.json" 2>/dev/null || fail "path failed"
 "$bench" accuracy savings --scene default "${small[@]}" --lattice 8 --frames 40 \
     > "$out/savings_default.json" 2>/dev/null || fail "savings failed"
+CAVELIGHT_CACHE_DIR="$out/light-caches" "$bench" accuracy caches --scene default "${small[@]}" \
+    --ref-samples 4 --rsm 64 --vals 256 --occlusion approx --frames 1 --temporal-frames 3 \
+    > "$out/caches_default.json" \
+    2> "$out/caches.log" || { cat "$out/caches.log" >&2; fail "caches failed"; }
 cp "$out/sweep.json" "$out/sweep_default.json"
+python3 - "$out" <<'PY' || fail "caches output wrong"
+import csv, json, math, sys
+out = sys.argv[1]
+rows = list(csv.DictReader(open(f"{out}/caches_default.csv")))
+assert [(r["selection"], r["vals"]) for r in rows] == [("all", "all"), ("importance", "256")], rows
+for r in rows:
+    for k in ("gi_ms", "rmse_rel_indirect", "ssim_indirect", "reference_noise_rel"):
+        assert math.isfinite(float(r[k])) and float(r[k]) > 0, (k, r[k])
+    assert int(r["caches"]) > 0 and r["occlusion"] == "approx" and r["rsm"] == "64"
+assert float(rows[1]["speedup"]) > 0 and float(rows[1]["rmse_rel_vs_all"]) > 0
+assert rows[0]["speedup"] == "nan" and float(rows[1]["importance_ms"]) > 0
+lines = [json.loads(l) for l in open(f"{out}/caches_default.json")]
+assert len(lines) == 3 and lines[1]["speedup"] == float(rows[1]["speedup"])
+t = lines[2]
+assert t["experiment"] == "caches_temporal" and t["static_identical"] is True, t
+assert t["light_max_change_indirect"] > 0 and t["head_max_change_indirect"] > 0
+assert t["head_max_change_direct"] == 0  # the head moves, the camera does not
+assert len(list(csv.DictReader(open(f"{out}/caches_temporal_default.csv")))) == 2 * 2
+PY
 python3 - "$out" <<'PY' || fail "move, path or savings output wrong"
 import csv, json, sys
 out = sys.argv[1]
@@ -112,4 +136,7 @@ grep -q "^## default: speed against accuracy" "$out/ACCURACY.md" || fail "report
 grep -q "^| default | [0-9.]* | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
     || fail "report lacks the goal table"
 grep -q "Modelling no more than the scene needs" "$out/ACCURACY.md" || fail "report lacks savings"
+grep -q "^| every texel | approx | 64 | " "$out/ACCURACY.md" || fail "report lacks the caches rows"
+grep -q "^## Three methods: ILPV, vpl and caches" "$out/ACCURACY.md" || fail "report lacks the method table"
+grep -q "^| default | yes | " "$out/ACCURACY.md" || fail "report lacks the caches' temporal table"
 echo "accuracy sweep: ok"

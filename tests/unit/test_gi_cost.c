@@ -2,7 +2,7 @@
  * frame (lattice 128, 256 steps) and the other heavy combinations are refused, naming what;
  * everything up to ten times the set-up (or default) work passes; heavier settings pass
  * when the config sets the wall up for them; the memory cap counts the method's state and
- * the RSMs; the budget plan's measuring frames are within the defaults' limits. */
+ * the RSMs; the caches method's VALs and density are bounded likewise; the budget plan's measuring frames are within the defaults' limits. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -73,6 +73,21 @@ static void test_vpl_and_rsm_work(void **state)
     assert_true(within(&l, FRAME({"gi", "none"}, {"rsm", "256"}), why)); /* nothing to bound */
 }
 
+/* The caches method: more VALs within the tenfold; every RSM texel as a VAL, or caches
+ * ten times as dense, beyond it (unless the config sets the wall up for them). */
+static void test_caches_work(void **state)
+{
+    gi_limits l = limits();
+    char why[256];
+    assert_true(within(&l, FRAME({"gi", "caches"}), why));
+    assert_true(within(&l, FRAME({"gi", "caches"}, {"caches-vals", "16384"}), why)); /* 8x */
+    assert_false(within(&l, FRAME({"gi", "caches"}, {"caches-selection", "all"}), why));
+    assert_non_null(strstr(why, "the caches settings"));
+    assert_false(within(&l, FRAME({"gi", "caches"}, {"caches-density", "1000"}), why));
+    assert_null(gi_set(&l.base, "caches-selection", "all"));
+    assert_true(within(&l, FRAME({"gi", "caches"}, {"caches-selection", "all"}), why));
+}
+
 static void test_memory(void **state)
 {
     gi_limits l = limits();
@@ -113,6 +128,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ilpv_work),
         cmocka_unit_test(test_vpl_and_rsm_work),
+        cmocka_unit_test(test_caches_work),
         cmocka_unit_test(test_memory),
         cmocka_unit_test(test_budget_plan_within),
     };

@@ -58,7 +58,7 @@ static void test_builtin_scenes(void **state)
         assert_true(s.light_count + emitters >= 1);
         scene_free(&s);
     }
-    assert_int_equal(count, 8);
+    assert_int_equal(count, 9);
     assert_null(scene_builtin_name(count));
     assert_null(scene_builtin_name(-1));
 }
@@ -128,6 +128,38 @@ static void test_arcades(void **state)
 
 /* scene_add_rect: two triangles with the normal along the flat axis, signed by facing;
  * refused when no axis or two axes are flat, or facing is 0. */
+/* The street block: open (tens of metres across, nothing above the camera's square), lit
+ * by one low directional sun, with a red and a green panel. */
+static void test_street(void **state)
+{
+    (void)state;
+    scene s;
+    char err[256];
+    assert_int_equal(scene_load("street", &s, err, sizeof err), 0);
+    assert_true(s.bounds_max[0] - s.bounds_min[0] >= 40);
+    assert_true(s.bounds_max[2] - s.bounds_min[2] >= 40);
+    assert_int_equal(s.light_count, 1);
+    assert_int_equal(s.lights[0].type, SCENE_LIGHT_DIRECTIONAL);
+    float elevation = asinf(-s.lights[0].direction[1]) * 180.0f / 3.14159265f;
+    assert_true(elevation > 10 && elevation < 30);
+    int red = 0, green = 0;
+    for (size_t m = 0; m < s.material_count; m++) {
+        const float *c = s.materials[m].base_color;
+        red |= c[0] > 0.6f && c[1] < 0.2f && c[2] < 0.2f;
+        green |= c[1] > 0.6f && c[0] < 0.2f && c[2] < 0.3f;
+    }
+    assert_true(red && green);
+    for (size_t t = 0; t < s.triangle_count; t++) { /* no roof over the camera */
+        const float *p = s.positions + 9 * t;
+        float lo[2] = {fminf(p[0], fminf(p[3], p[6])), fminf(p[2], fminf(p[5], p[8]))};
+        float hi[2] = {fmaxf(p[0], fmaxf(p[3], p[6])), fmaxf(p[2], fmaxf(p[5], p[8]))};
+        int over = lo[0] <= s.camera.position[0] && hi[0] >= s.camera.position[0] &&
+                   lo[1] <= s.camera.position[2] && hi[1] >= s.camera.position[2];
+        assert_false(over && p[1] > s.camera.position[1]);
+    }
+    scene_free(&s);
+}
+
 static void test_rect(void **state)
 {
     (void)state;
@@ -400,6 +432,7 @@ int main(void)
         cmocka_unit_test(test_builtin_scenes),
         cmocka_unit_test(test_doorway_and_courtyard),
         cmocka_unit_test(test_arcades),
+        cmocka_unit_test(test_street),
         cmocka_unit_test(test_rect),
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),

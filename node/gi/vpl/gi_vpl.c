@@ -17,8 +17,8 @@
 #include "gi/vpl/gi_vpl.h"
 #include "gi/vpl/vpl_interleave.h"
 #include "gi/vpl/vpl_ism.h"
-#include "gi/vpl/vpl_view.h"
 #include "gltools.h"
+#include "view_samples.h"
 #include "lpv/lpv_converge.h"
 
 enum { VPL_ATLAS_SIDE = 2048 };
@@ -27,6 +27,8 @@ enum { VPL_ATLAS_SIDE = 2048 };
  * the RSM size: every texel of a 256^2 map would take 65536 x VPL_VIEW_SAMPLES kernel
  * evaluations per light view. */
 enum { VIEW_TERM_EVALS = 4096 };
+/* Rays of the view rule: the high-res RSM paper found 256 view samples enough. */
+enum { VPL_VIEW_SAMPLES = 256 };
 /* Texture units of its shading snippet's samplers, from gi_eye.first_unit on. */
 enum { UNIT_VPLS = 0, UNIT_SHADOW, UNIT_CLUSTERS, UNIT_LISTS, UNIT_ISM, UNIT_IRRADIANCE };
 
@@ -53,7 +55,7 @@ typedef struct gi_vpl {
     double *cdf;             /* vpl_select()'s scratch */
     double *view;            /* the view rule's view term per candidate */
     size_t capacity;
-    vpl_view *viewer;        /* the view rule's rays (vpl_view.h), ready for a live switch */
+    view_samples *viewer;    /* the view rule's rays (view_samples.h); only with that rule */
     vpl *emitters;           /* as candidates: at their centroids */
     vpl_emitter *emitter_shape; /* their triangles */
     size_t emitter_count;
@@ -163,7 +165,7 @@ static void release(gi_vpl *v)
     free(v->candidates);
     free(v->cdf);
     free(v->view);
-    vpl_view_destroy(v->viewer);
+    view_samples_destroy(v->viewer);
     free(v->emitters);
     free(v->emitter_shape);
 }
@@ -376,7 +378,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     memcpy(v->head_to_eye, d->head_to_eye, sizeof v->head_to_eye);
     int bad = init(v, err, errlen);
     if (!bad && v->settings.selection == VPL_SELECT_VIEW) /* Embree, loaded only for it */
-        bad = !(v->viewer = vpl_view_create(d->scene, err, errlen));
+        bad = !(v->viewer = view_samples_create(d->scene, VPL_VIEW_SAMPLES, err, errlen));
     if (!bad && v->settings.visibility != VPL_VISIBILITY_EXACT) {
         vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,
                            .size = v->settings.ism_size, .points = v->settings.ism_points,
@@ -440,7 +442,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         float eye[3];
         const float *samples;
         viewer(v, p, eye);
-        int n = vpl_view_samples(v->viewer, eye, &samples);
+        int n = view_samples_cast(v->viewer, eye, VPL_VIEW_SAMPLES, &samples);
         size_t stride = (candidates + VIEW_TERM_EVALS - 1) / VIEW_TERM_EVALS;
         vpl_view_term(v->candidates, candidates, texels, samples, n, stride, v->view);
     }

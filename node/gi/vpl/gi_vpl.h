@@ -3,7 +3,7 @@
  * frame(): every RSM texel with flux and every emissive triangle is a candidate
  * (common/vpl/vpl_source.h); vpl-count of them are chosen with vpl-seed by
  * vpl-selection's rule (vpl_settings.h; common/vpl/vpl_select.h:
- * flux, bidirectional view importance from the head's view samples (vpl_view.h), or the
+ * flux, bidirectional view importance from the head's view samples (view_samples.h), or the
  * regular pattern; unbiased weights, the same choice on every node); the checksum READY
  * carries is vpl_checksum() of that set.
  * Each chosen VPL gets a real shadow map: a cube of six distance maps (faces wholly

@@ -1,4 +1,4 @@
-#include "gi/vpl/vpl_view.h"
+#include "view_samples.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -8,10 +8,11 @@
 #include "base/xalloc.h"
 #include "scene_rt.h"
 
-struct vpl_view {
+struct view_samples {
     scene_rt rt;
-    float direction[3 * VPL_VIEW_SAMPLES];
-    float sample[6 * VPL_VIEW_SAMPLES];
+    int count;
+    float direction[3 * VIEW_SAMPLES_MAX];
+    float sample[6 * VIEW_SAMPLES_MAX];
 };
 
 static double radical_inverse(unsigned i, unsigned base)
@@ -22,17 +23,18 @@ static double radical_inverse(unsigned i, unsigned base)
     return r;
 }
 
-vpl_view *vpl_view_create(const scene *s, char *err, size_t errlen)
+view_samples *view_samples_create(const scene *s, int count, char *err, size_t errlen)
 {
-    vpl_view *v = xcalloc(1, sizeof *v);
+    view_samples *v = xcalloc(1, sizeof *v);
+    v->count = count < 1 ? 1 : (count > VIEW_SAMPLES_MAX ? VIEW_SAMPLES_MAX : count);
     char why[256];
     if (scene_rt_build(&v->rt, s, 1, why, sizeof why) != 0) {
-        snprintf(err, errlen, "renderer: vpl view samples: %s", why);
+        snprintf(err, errlen, "renderer: view samples: %s", why);
         free(v);
         return NULL;
     }
     /* Halton points (bases 2, 3) mapped to the sphere uniformly in solid angle. */
-    for (int i = 0; i < VPL_VIEW_SAMPLES; i++) {
+    for (int i = 0; i < v->count; i++) {
         double z = 1.0 - 2.0 * radical_inverse((unsigned)i + 1, 2);
         double phi = 6.283185307179586 * radical_inverse((unsigned)i + 1, 3);
         double r = sqrt(fmax(0.0, 1.0 - z * z));
@@ -44,7 +46,7 @@ vpl_view *vpl_view_create(const scene *s, char *err, size_t errlen)
     return v;
 }
 
-void vpl_view_destroy(vpl_view *v)
+void view_samples_destroy(view_samples *v)
 {
     if (!v)
         return;
@@ -52,10 +54,12 @@ void vpl_view_destroy(vpl_view *v)
     free(v);
 }
 
-int vpl_view_samples(vpl_view *v, const float viewer[3], const float **samples)
+const scene_rt *view_samples_rt(const view_samples *v) { return &v->rt; }
+
+int view_samples_cast(view_samples *v, const float viewer[3], int count, const float **samples)
 {
     int n = 0;
-    for (int i = 0; i < VPL_VIEW_SAMPLES; i++) {
+    for (int i = 0; i < count && i < v->count; i++) {
         const float *d = v->direction + 3 * i;
         struct RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
