@@ -156,6 +156,13 @@ GLuint gltools_program(const gl_functions *gl, const char *vert, const char *fra
     return shader ? link_program(gl, &shader, 1, comp, err, errlen) : 0;
 }
 
+GLuint gltools_compute_parts(const gl_functions *gl, const char *const *files, int count,
+                             const char *defines, char *err, size_t errlen)
+{
+    GLuint shader = compile(gl, GL_COMPUTE_SHADER, files, count, defines, NULL, err, errlen);
+    return shader ? link_program(gl, &shader, 1, files[count - 1], err, errlen) : 0;
+}
+
 GLuint gltools_texture2d(const gl_functions *gl, GLenum format, int w, int h, GLenum filter)
 {
     GLuint t;

@@ -25,6 +25,10 @@ GLuint gltools_program(const gl_functions *gl, const char *vert, const char *fra
  * (a GI method's snippet before shaders/shade.frag), at most 4. */
 GLuint gltools_program_parts(const gl_functions *gl, const char *vert, const char *const *frags,
                              int frag_count, const char *defines, char *err, size_t errlen);
+/* A compute program from the files in that order (shared functions before the main
+ * file), at most 4. */
+GLuint gltools_compute_parts(const gl_functions *gl, const char *const *files, int count,
+                             const char *defines, char *err, size_t errlen);
 GLuint gltools_texture2d(const gl_functions *gl, GLenum format, int w, int h, GLenum filter);
 /* size x size x layers, nearest filtering. */
 GLuint gltools_texture_array(const gl_functions *gl, GLenum format, int size, int layers);

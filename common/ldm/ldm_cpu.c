@@ -30,6 +30,25 @@ static int insert(uint32_t *list, int layers, uint32_t z)
     return z != LDM_EMPTY;
 }
 
+/* Whether a texel centre with barycentric weights w covers the triangle: inside, or on an
+ * edge that the GL's fill rule gives it (a top or left edge, counter-clockwise with y up),
+ * so that a centre on an edge two triangles share belongs to one of them, as on the GPU. */
+static int covers(const double w[3], const double x[3], const double y[3], double area)
+{
+    for (int e = 0; e < 3; e++) {
+        if (w[e] > 0)
+            continue;
+        if (w[e] < 0)
+            return 0;
+        int a = (e + 1) % 3, b = (e + 2) % 3;
+        double dx = (x[b] - x[a]) * (area > 0 ? 1 : -1), dy = (y[b] - y[a]) * (area > 0 ? 1 : -1);
+        int top = dy == 0 && dx < 0, left = dy < 0;
+        if (!top && !left)
+            return 0;
+    }
+    return 1;
+}
+
 /* One triangle (texel coordinates and depths of its corners) into map m. */
 static void raster(ldm_cpu *c, int m, const double x[3], const double y[3], const float t[3])
 {
@@ -48,7 +67,7 @@ static void raster(ldm_cpu *c, int m, const double x[3], const double y[3], cons
                 int a = (e + 1) % 3, b = (e + 2) % 3;
                 w[e] = ((x[b] - x[a]) * (cy - y[a]) - (cx - x[a]) * (y[b] - y[a])) / area;
             }
-            if (w[0] < 0 || w[1] < 0 || w[2] < 0)
+            if (!covers(w, x, y, area))
                 continue;
             float depth = (float)(w[0] * t[0] + w[1] * t[1] + w[2] * t[2]);
             uint32_t *list = c->depth + (((size_t)m * res + py) * res + px) * layers;
