@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { HELP_ID = -1000, HELP_COLUMN = 30, HELP_WIDTH = 96 };
+/* getopt_long's value for option i is FIRST_ID + i: above every character it returns
+ * itself ('?', ':', 'h'), which the 64th option's bare index would be. */
+enum { HELP_ID = -1000, FIRST_ID = 256, HELP_COLUMN = 30, HELP_WIDTH = 96 };
 
 static const cli_option *by_id(const cli_program *p, int id, int *index)
 {
@@ -109,7 +111,7 @@ cli_result cli_parse(const cli_program *p, int argc, char **argv, const char **p
     struct option longs[CLI_MAX_OPTIONS + 2];
     for (int i = 0; i < p->count; i++)
         longs[i] = (struct option){p->options[i].name, p->options[i].arg ? required_argument : no_argument,
-                                   NULL, i};
+                                   NULL, FIRST_ID + i};
     longs[p->count] = (struct option){"help", no_argument, NULL, HELP_ID};
     longs[p->count + 1] = (struct option){0, 0, 0, 0};
     memset(given, 0, sizeof *given);
@@ -157,6 +159,7 @@ cli_result cli_parse(const cli_program *p, int argc, char **argv, const char **p
             refuse_unknown(p, arg);
             return CLI_ERROR;
         }
+        c -= FIRST_ID;
         if (c < 0 || c >= p->count)
             continue;
         const cli_option *o = &p->options[c];
