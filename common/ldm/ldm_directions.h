@@ -13,8 +13,9 @@
 #ifndef CAVELIGHT_LDM_DIRECTIONS_H
 #define CAVELIGHT_LDM_DIRECTIONS_H
 
-/* The direction count's range: the 16..512 maps; 1 still works (a single cap). */
-enum { LDM_DIRECTIONS_MAX = 512 };
+/* The settings' range of maps, 16..512; ldm_directions() takes any count from 1 (a
+ * single cap). */
+enum { LDM_DIRECTIONS_MIN = 16, LDM_DIRECTIONS_MAX = 512 };
 
 /* The n unit directions (n in 1..LDM_DIRECTIONS_MAX) into out, cap first, then collar by
  * collar from the pole down, each collar by longitude. Returns n, or 0 for a bad n. */
