@@ -26,7 +26,7 @@ void main()
         float c = dot(n, ldm_direction(m));
         if (c == 0.0)
             continue;
-        float d = ldm_trace(m, sign(c), p, ldm_self_distance(c));
+        float d = ldm_trace_from(m, sign(c), p, n);
         seen += ao_visibility(d) * abs(c);
         total += abs(c);
     }

@@ -18,14 +18,6 @@ vec3 ldm_direction(int m) { return ldm_map[3 * m + 2].xyz; }
 // A texel's side, metres.
 float ldm_texel() { return 2.0 * u_ldm_radius / float(u_ldm_resolution); }
 
-// ldm_self_distance() of ldm_map.h: how far along the map a surface point's own surface
-// may lie in its texel (cos_nd = |n . d|).
-float ldm_self_distance(float cos_nd)
-{
-    float c = max(abs(cos_nd), 0.05);
-    return ldm_texel() * (0.70711 * sqrt(max(1.0 - c * c, 0.0)) / c + 0.01);
-}
-
 // From p along sign * d of map m: the distance to the first surface farther than skip,
 // or -1 when there is none (or p lies outside the map).
 float ldm_trace(int m, float sign, vec3 p, float skip)
@@ -52,3 +44,22 @@ float ldm_trace(int m, float sign, vec3 p, float skip)
     }
     return best;
 }
+
+// A surface point p with unit normal n (on the side a trace along +-d leaves it, |n . d| =
+// cos_nd) moved along n by half a texel's diagonal times sin(theta): the largest distance
+// along n of its own plane over its texel, so the plane lies behind the moved point
+// wherever the texel's centre is, and nothing in front of it need be skipped (a wall a
+// texel away is still found).
+vec3 ldm_lift(vec3 p, vec3 n, float cos_nd)
+{
+    return p + n * (ldm_texel() * (0.70711 * sqrt(max(1.0 - cos_nd * cos_nd, 0.0)) + 0.01));
+}
+
+// From a surface point p with unit normal n along sign * d of map m: the distance from
+// the lifted point (ldm_lift()) to the first other surface, or -1.
+float ldm_trace_from(int m, float sign, vec3 p, vec3 n)
+{
+    float c = dot(n, ldm_direction(m)) * sign;
+    return ldm_trace(m, sign, ldm_lift(p, c >= 0.0 ? n : -n, abs(c)), 0.01 * ldm_texel());
+}
+

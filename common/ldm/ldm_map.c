@@ -62,12 +62,3 @@ const char *ldm_memory_check(int directions, int resolution, int layers, int cap
              "raise ldm-memory", what, directions, resolution, layers, mb, cap_mb);
     return buf;
 }
-
-float ldm_self_distance(const ldm_layout *l, float cos_nd)
-{
-    float c = fabsf(cos_nd);
-    c = c > 0.05f ? c : 0.05f; /* grazing: a direction the cosine weighs at almost 0 */
-    float tan_theta = sqrtf(fmaxf(1.0f - c * c, 0.0f)) / c;
-    /* A hundredth of a texel more for the float rounding of both depths. */
-    return ldm_texel(l) * (0.70711f * tan_theta + 0.01f);
-}

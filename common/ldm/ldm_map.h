@@ -52,10 +52,5 @@ double ldm_memory_bytes(const ldm_layout *l);
  * what to change, in buf. `what` names them ("ldm", "ao"). */
 const char *ldm_memory_check(int directions, int resolution, int layers, int cap_mb,
                              const char *what, char *buf, size_t cap);
-/* How far along a map's direction, from a surface point with unit normal n, the point's
- * own surface may still lie in the texel it falls in: the texel's centre is up to half a
- * diagonal across, where a plane tilted by theta to the direction lies tan(theta) times
- * that along it. Hits nearer than this are the surface itself. cos_nd = |n . d|. */
-float ldm_self_distance(const ldm_layout *l, float cos_nd);
 
 #endif
