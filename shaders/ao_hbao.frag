@@ -1,9 +1,9 @@
 // Screen-space ambient occlusion, horizon based (node/renderer_ao.h): the baseline the
 // layered depth maps are measured against. Per pixel, SLICES planes through the view
 // vector, each marched both ways on the screen over the projected distance limit (one
-// step per pixel, at most STEPS a side) through the G-buffer's positions; the highest
-// occluder on each side is its horizon, lowered by the visibility of its distance
-// (ao_visibility()), clamped to the normal's hemisphere; the slice's visible arc is
+// step per pixel, at most STEPS a side) through the G-buffer's positions; each sample
+// that rises above the horizon so far (from the normal's tangent plane up) hides the arc
+// between, weighted by its distance's falloff (HBAO's incremental horizons); arcs are
 // integrated with the cosine in closed form (Jimenez et al.'s ground-truth AO) and
 // weighted by the normal's length in the slice. The sum is divided by the same sum with
 // no occluder, so an open surface gets exactly 1. It sees only what the G-buffer holds:
@@ -23,20 +23,25 @@ layout(location = 0) out vec4 out_ao;
 const int SLICES = 8;
 const int STEPS = 32;
 
-// The cosine-weighted visible arc between the horizons h1 <= 0 <= h2 (angles from the
-// view vector) of a slice whose normal lies at angle g.
-float arc(float h1, float h2, float g)
+// The cosine-weighted visible part of a slice from the view vector to angle h (signed:
+// negative on the slice's other side), for a normal at angle g in the slice.
+float arc(float h, float g)
 {
-    return 0.25 * (-cos(2.0 * h1 - g) + cos(g) + 2.0 * h1 * sin(g)) +
-           0.25 * (-cos(2.0 * h2 - g) + cos(g) + 2.0 * h2 * sin(g));
+    return 0.25 * (-cos(2.0 * h - g) + cos(g) + 2.0 * h * sin(g));
 }
 
-// The highest horizon (its cosine to v) marching from px along the screen direction w.
-float horizon(vec2 px, vec2 w, vec3 p, vec3 v, float stride, int steps)
+// One side of a slice (side +1 or -1 along the screen direction w): marching out from px,
+// each sample above the horizon so far raises it, and the arc it hides counts as much as
+// its surface hides at its distance (1 - ao_visibility(d)): all of it for occlusion
+// within the limit, less the farther it is for obscurance (Bavoil et al.'s falloff).
+// Returns the side's visible arc.
+float side_visible(vec2 px, vec2 w, float side, vec3 p, vec3 v, float g, float stride,
+                   int steps)
 {
-    float best = -1.0;
+    float h = g + side * 0.5 * PI; // the open horizon: the normal's tangent plane
+    float seen = arc(h, g);
     for (int k = 1; k <= steps; k++) {
-        vec2 q = px + w * stride * float(k);
+        vec2 q = px + side * w * stride * float(k);
         if (any(lessThan(q, vec2(0.0))) || any(greaterThanEqual(q, u_size)))
             break;
         vec4 s = texelFetch(u_position, ivec2(q), 0);
@@ -46,9 +51,13 @@ float horizon(vec2 px, vec2 w, vec3 p, vec3 v, float stride, int steps)
         float d = length(delta);
         if (d < 1e-5)
             continue;
-        best = max(best, mix(dot(delta, v) / d, -1.0, ao_visibility(d)));
+        float a = side * acos(clamp(dot(delta, v) / d, -1.0, 1.0));
+        if (side * (h - a) <= 0.0)
+            continue; // not above the horizon so far
+        seen -= (1.0 - ao_visibility(d)) * (arc(h, g) - arc(a, g));
+        h = a;
     }
-    return best;
+    return seen;
 }
 
 void main()
@@ -82,12 +91,9 @@ void main()
         if (len < 1e-4)
             continue;
         float g = atan(dot(np, t), dot(np, v));
-        float h2 = acos(clamp(horizon(gl_FragCoord.xy, w, p, v, stride, steps), -1.0, 1.0));
-        float h1 = -acos(clamp(horizon(gl_FragCoord.xy, -w, p, v, stride, steps), -1.0, 1.0));
-        h1 = g + max(h1 - g, -0.5 * PI);
-        h2 = g + min(h2 - g, 0.5 * PI);
-        seen += len * arc(h1, h2, g);
-        open += len * arc(g - 0.5 * PI, g + 0.5 * PI, g);
+        seen += len * (side_visible(gl_FragCoord.xy, w, 1.0, p, v, g, stride, steps) +
+                       side_visible(gl_FragCoord.xy, w, -1.0, p, v, g, stride, steps));
+        open += len * (arc(g - 0.5 * PI, g) + arc(g + 0.5 * PI, g));
     }
     out_ao = vec4(vec3(open > 0.0 ? clamp(seen / open, 0.0, 1.0) : 1.0), 1.0);
 }
