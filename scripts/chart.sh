@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Speed against accuracy of the LPV and the vpl method on the built-in chart scenes
+# Speed against accuracy of the LPV, the vpl and the ldm methods on the built-in chart scenes
 # (default room, corridor, doorway, courtyard) and any glTF file given with --scene: sweeps
 # lattice size, steps per frame, lambda_incr, the CPU and GL backends and the classic
-# accumulating LPV, and the vpl method's VPL counts, against a path-traced (Embree)
-# reference, every scene with the same settings. Accuracy is the
+# accumulating LPV, the vpl method's VPL counts and the ldm method's maps, against a
+# path-traced (Embree) reference, every scene with the same settings; and the layered depth
+# maps' ambient occlusion against the screen-space baseline at several distance limits. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
@@ -44,12 +45,14 @@ if [ $quick = 1 ]; then
   sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
   vpl=(--counts 64,256 --seeds 1 --visibility exact,ism,ism-splat --interleave 0,4)
+  ldm=(--configs 16:64,32:128 --ao-configs 32:64,64:128)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
        --ism-points 256,1024 --interleave 0,4 --selection flux,view,regular)
+  ldm=(--configs 16:64,32:128,64:128 --ao-configs 32:64,64:128,128:128)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
@@ -68,6 +71,9 @@ for scene in "${scenes[@]}"; do
   echo "chart: $k: vpl" >&2
   "$bench" accuracy vpl --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${vpl[@]}" \
     > "$out/vpl_$k.json"
+  echo "chart: $k: ldm and AO" >&2
+  "$bench" accuracy ldm --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${ldm[@]}" \
+    > "$out/ldm_$k.json"
 done
 echo "chart: frame-time budgets" >&2
 for budget in 5 10 20 40; do
@@ -79,18 +85,21 @@ echo "chart: measured in $((SECONDS - start)) s" >&2
 # Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
 # 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
 # 8 frame_ms, 9 rmse_rel_indirect, 16 visibility, 17 ism_size, 18 ism_points, 19
-# interleave, 28 selection). ILPV's GI
-# ms is its propagation, vpl's its selection, shadow maps and gather.
+# interleave, 28 selection); of ldm_*.csv (2 directions, 3 resolution, 9 gi_ms, 10 frame_ms,
+# 12 rmse_rel_indirect); of ao_*.csv (2 method, 3 distance, 4 directions, 5 resolution,
+# 6 ao_ms, 9 rmse_rel). ILPV's GI ms is its propagation, vpl's its selection, shadow maps
+# and gather, ldm's its maps, photons, split and splat.
 while read -r scene; do
   csv=$out/sweep_$scene.csv
   vcsv=$out/vpl_$scene.csv
+  lcsv=$out/ldm_$scene.csv
   gnuplot <<EOF
 set datafile separator ","
 set terminal pngcairo size 1000,700 font ",11"
 set key outside right top
 set grid
 set logscale x
-set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather"
+set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather, ldm all"
 set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
@@ -115,6 +124,8 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      inter using 7:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
      rule("view") using 7:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection (any maps)", \
      rule("regular") using 7:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern (any maps)", \
+     "< tail -n +2 $lcsv" using 9:12 with linespoints pt 8 ps 1.4 lc rgb "#0077b6" title "ldm (labels: maps/resolution)", \
+     "< tail -n +2 $lcsv" using 9:12:(sprintf("%d/%d", \$2, \$3)) with labels offset 0,0.9 font ",8" notitle, \
      "< tail -n +2 $vcsv" using 7:9:((strcol(16) eq "exact" ? sprintf("%d", \$2) : sprintf("%d/%d/%d", \$2, \$17, \$18)) . (\$19 > 0 ? sprintf(" k%d", \$19) : "")) with labels offset 0,-0.9 font ",8" notitle, \
      front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
@@ -130,7 +141,17 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      vis("ism-splat") using 8:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
      inter using 8:9 with points pt 3 ps 1.3 lc rgb "#d62828" title "vpl, interleaved (any maps)", \
      rule("view") using 8:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection", \
-     rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern"
+     rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern", \
+     "< tail -n +2 $lcsv" using 10:12 with linespoints pt 8 ps 1.4 lc rgb "#0077b6" title "ldm"
+set output "$out/ao_$scene.png"
+set xlabel "ambient occlusion ms per eye (median)"
+set ylabel "AO relative RMSE vs the path tracer's AO"
+set title "$scene: layered depth maps against screen-space AO (labels: distance m; maps/resolution)"
+ao(m,d) = "< awk -F, 'NR>1 && \$2==\"" . m . "\" && \$3==" . d . "' $out/ao_$scene.csv"
+ds = "0.25 0.5 1 2"
+plot for [i=1:4] ao("ssao", word(ds, i)) using 6:9 with points pt 6 ps 1.5 lc i title "ssao, ".word(ds, i)." m", \
+     for [i=1:4] ao("ldm", word(ds, i)) using 6:9 with linespoints pt 7 lc i title "ldm, ".word(ds, i)." m", \
+     "< awk -F, 'NR>1 && \$2==\"ldm\"' $out/ao_$scene.csv" using 6:9:(sprintf("%gm %d/%d", \$3, \$4, \$5)) with labels offset 0,-0.9 font ",7" notitle
 unset logscale x
 unset logscale y
 set logscale x 2

@@ -15,6 +15,9 @@
  *                     (bench_accuracy_savings.c)
  *   accuracy vpl      the vpl method's error and GI ms per VPL count, and the bias of its
  *                     disk bound (bench_accuracy_vpl.c)
+ *   accuracy ldm      the layered depth maps: the ldm method's error and GI ms per maps
+ *                     configuration, and LDM against screen-space AO per distance limit
+ *                     (bench_accuracy_ldm.c)
  *
  * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
 #include <math.h>
@@ -392,8 +395,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_savings(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "vpl") == 0)
         return accuracy_vpl(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "ldm") == 0)
+        return accuracy_ldm(argc - 1, argv + 1);
     int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
-    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl [options]\n"
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|ldm [options]\n"
             "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
     return help ? 0 : 2;
 }
