@@ -238,6 +238,26 @@ def ldm_section():
               + (f"{at_time['directions']}/{at_time['resolution']}: {f(at_time['rmse_rel'], 3)}"
                  if at_time else "none as fast") + " |")
     p("")
+    p("Every AO configuration: time and memory against maps and resolution (relRMSE per "
+      "distance limit, metres):\n")
+    for sc in scenes:
+        ao = rows(f"ao_{sc}.csv")
+        dists = sorted({r["distance"] for r in ao}, key=float)
+        if not ao:
+            continue
+        p(f"| {sc} | maps | resolution | MB | build ms | " + " | ".join(f"ms, relRMSE at {d}" for d in dists) + " |")
+        p("|---|---|---|---|---|" + "---|" * len(dists))
+        for key in sorted({(r["method"], int(r["directions"]), int(r["resolution"])) for r in ao}):
+            cells = []
+            for d in dists:
+                hit = [r for r in ao if (r["method"], int(r["directions"]), int(r["resolution"])) == key
+                       and r["distance"] == d]
+                cells.append(f"{f(hit[0]['ao_ms'], 1)}, {f(hit[0]['rmse_rel'], 3)}" if hit else "")
+            first = next(r for r in ao if (r["method"], int(r["directions"]), int(r["resolution"])) == key)
+            name = "ssao" if key[0] == "ssao" else "ldm"
+            p(f"| {name} | {key[1] or ''} | {key[2] or ''} | {f(first['memory_mb'], 0)} | "
+              f"{f(first['build_ms'], 0)} | " + " | ".join(cells) + " |")
+        p("")
     for sc in scenes:
         if rows(f"ao_{sc}.csv"):
             p(f"![{sc}: AO error against time](accuracy/ao_{sc}.png)\n")
