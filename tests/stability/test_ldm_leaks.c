@@ -15,7 +15,7 @@
  * around the box sends any, above 1e-4 of it), so a method that renders nothing fails.
  *
  * Measured (build/stability_ldm_leaks), dark view / lit view over the lit level:
- *   lid 2.65e-05 / 1.98e-04, wall 2.83e-05 / 0.0485, thin wall 6.81e-06 / 0.0683;
+ *   lid 2.45e-05 / 1.98e-04, wall 2.91e-05 / 0.0484, thin wall 6.82e-06 / 0.0680;
  * at the method's defaults (32 maps of 128^2, 32^2 photons, RSM 256): 2.0e-06, 7.6e-05,
  * 6.0e-08; at a 64^2 resolution the wall leaked 1.1e-04 (a wall's foot within a texel of a
  * photon: docs/stability.md). */

@@ -276,6 +276,10 @@ static void splat(gi_ldm *g, const gi_eye *e)
     gl->Uniform2f(gl->GetUniformLocation(prog, "u_scale"), e->view->projection[0],
                   e->view->projection[5]);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_perspective"), e->view->projection[11] != 0);
+    gl->Uniform2f(gl->GetUniformLocation(prog, "u_pixel"), 2.0f / (float)e->width,
+                  2.0f / (float)e->height);
+    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_eye"), 1, e->eye);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_pixel_angle"), e->pixel_angle);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_position"), 0);
     gl->Uniform1i(gl->GetUniformLocation(prog, "u_normal"), 1);
     gl->Enable(GL_BLEND);

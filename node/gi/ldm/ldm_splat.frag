@@ -1,7 +1,8 @@
 // The ldm method's splat (gi_ldm.h), fragment stage, after shaders/ldm_trace.glsl: the
 // irradiance split photon v_slot gives the G-buffer's surface point p. The photon is a
 // beam from its origin x1 along its direction: a disk of radius r on the origin's surface
-// seen along the beam (semi-axes r and r |n1 . d|), each widening by `spread` per metre.
+// seen along the beam (semi-axes r and r |n1 . d|), each widening by `spread` per metre,
+// neither below the width of a pixel at p.
 // p receives when it lies inside the beam's ellipse at its distance s along it, not far
 // beyond where the beam landed, faces the
 // beam, and the first surface back along the beam lies in the origin's plane (within half
@@ -19,6 +20,8 @@ layout(std430, binding = 4) readonly buffer split_buffer { vec4 splits[]; };
 
 uniform sampler2D u_position;
 uniform sampler2D u_normal;
+uniform vec4 u_eye;              // the eye (w 1), or the direction towards it (w 0)
+uniform float u_pixel_angle;     // a pixel's width over its distance (w 0: its width)
 
 layout(location = 0) out vec4 out_irradiance;
 
@@ -42,7 +45,10 @@ void main()
     e1 = dot(e1, e1) > 1e-12 ? normalize(e1) : normalize(cross(abs(d.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), d));
     vec3 e2 = cross(d, e1);
     float c1 = abs(dot(n1, d));
-    float ra = b.w + f.w * s, rb = max(b.w * c1 + f.w * s, 1e-6 * ra);
+    // No axis narrower than the pixel there: a thinner ellipse would put its whole flux
+    // into the few pixels whose centres it happens to cover (hot pixels).
+    float pixel = u_pixel_angle * (u_eye.w > 0.0 ? length(u_eye.xyz - p) : 1.0);
+    float ra = max(b.w + f.w * s, pixel), rb = max(b.w * c1 + f.w * s, pixel);
     vec3 across = y - d * s;
     float u = dot(across, e1) / ra, v = dot(across, e2) / rb;
     float l2 = u * u + v * v;

@@ -8,6 +8,7 @@ layout(std430, binding = 4) readonly buffer split_buffer { vec4 splits[]; };
 uniform mat4 u_view_projection;
 uniform vec2 u_scale;            // the projection's x and y scale (clip per view unit)
 uniform int u_perspective;       // 0: orthographic (w is 1)
+uniform vec2 u_pixel;            // a pixel's size in clip units
 
 flat out int v_slot;
 
@@ -28,7 +29,8 @@ void main()
     vec2 centre = vec2(0.0), half_size = vec2(1.0);
     if (u_perspective == 0 || c.w > reach) {
         centre = c.xy / c.w;
-        half_size = reach * u_scale / c.w;
+        half_size = max(reach * u_scale / c.w, u_pixel); // at least a pixel: the
+        // fragment stage widens a beam narrower than that to a pixel
     }
     gl_Position = vec4(centre + corner[gl_VertexID % 6] * half_size, 0.0, 1.0);
 }
