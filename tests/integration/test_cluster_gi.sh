@@ -47,7 +47,7 @@ echo "live switch ILPV -> none -> vpl on 2 nodes: no desync"
   || { cat "$tmp/m2.log"; fail "master --gi none failed"; }
 [ "$(json 'r["per_node"][1]["last_checksum"]' "$tmp/r_gi.json")" = $none ] || fail "--gi none not applied"
 bad=$("$build/cavelight-master" --config "$tmp/c2.json" --gi bogus 2>&1 || true)
-grep -q -- "--gi bogus: expected one of ilpv, none or vpl" <<< "$bad" || fail "bad --gi accepted: $bad"
+grep -q -- "--gi bogus: expected one of ilpv, none, vpl or ldm" <<< "$bad" || fail "bad --gi accepted: $bad"
 echo "--gi none on the master: every node on none"
 
 "$build/cavelight-master" --config "$tmp/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local --gi vpl \
