@@ -166,10 +166,12 @@ static int warm_up(cluster_view *v, char *err, size_t errlen)
         int fixed;
         f.gi = m;
         /* The session's method with the scene's lights; the others, which a frame may
-         * switch to later, without (their programs are made and run all the same): a
-         * method's light can take seconds a frame on a software GL (ldm's splat), and
-         * ten nodes on two cores must still join in time. */
+         * switch to later, under an ambient light instead (their programs are made and
+         * run all the same, and no view is dark): a method's light can take seconds a
+         * frame on a software GL (ldm's splat), and ten nodes on two cores must still
+         * join in time. */
         f.light_count = m == v->first.gi ? lights : 0;
+        f.ambient = m == v->first.gi ? v->first.ambient : 1.0f;
         if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
             return -1;
     }
