@@ -155,11 +155,19 @@ static int warm_up(cluster_view *v, char *err, size_t errlen)
     frame_params f = v->first;
     frame_params_lights_from_scene(&f, &v->sc);
     memcpy(&f.head[12], v->cfg->observer.home, sizeof v->cfg->observer.home);
+    int lights = f.light_count;
     for (int m = 0; m < gi_method_count(); m++) {
         uint64_t checksum;
         float timings[WIRE_TIMING_COUNT];
         int fixed;
         f.gi = m;
+        /* The session's method with the scene's lights; the others, which a frame may
+         * switch to later, under an ambient light instead (their programs are made and
+         * run all the same, and no view is dark): a method's light can take seconds a
+         * frame on a software GL (ldm's splat), and ten nodes on two cores must still
+         * join in time. */
+        f.light_count = m == v->first.gi ? lights : 0;
+        f.ambient = m == v->first.gi ? v->first.ambient : 1.0f;
         if (cluster_view_render(v, &f, &checksum, timings, &fixed, err, errlen) != 0)
             return -1;
     }

@@ -248,6 +248,9 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
     job->samples = d->samples > 0 ? d->samples : REFERENCE_DEFAULT_SAMPLES;
     job->max_bounces = d->max_bounces > 0 ? d->max_bounces : REFERENCE_DEFAULT_BOUNCES;
     job->seed = d->seed;
+    job->ao_distance = p->ao_distance;
+    job->ao_falloff = p->ao_falloff;
+    job->ambient = p->ambient;
     return 0;
 }
 
@@ -270,8 +273,11 @@ int reference_render(reference *ref, const reference_render_desc *d, reference_i
     out->indirect1 = job.indirect1 = malloc(n * sizeof(float));
     out->indirect = job.indirect = malloc(n * sizeof(float));
     out->coverage = job.coverage = malloc(n / 3);
+    if (d->params->ao != FRAME_AO_OFF)
+        out->ao = job.ao = malloc(n * sizeof(float));
     job.row_rays = calloc((size_t)job.height, sizeof *job.row_rays);
-    if (!job.direct || !job.indirect1 || !job.indirect || !job.coverage || !job.row_rays) {
+    if (!job.direct || !job.indirect1 || !job.indirect || !job.coverage || !job.row_rays ||
+        (d->params->ao != FRAME_AO_OFF && !job.ao)) {
         free(job.row_rays);
         reference_images_free(out);
         snprintf(err, errlen, "reference: out of memory for a %dx%d image", job.width, job.height);
@@ -293,7 +299,8 @@ void reference_images_free(reference_images *img)
     free(img->indirect1);
     free(img->indirect);
     free(img->coverage);
-    img->direct = img->indirect1 = img->indirect = NULL;
+    free(img->ao);
+    img->direct = img->indirect1 = img->indirect = img->ao = NULL;
     img->coverage = NULL;
 }
 
@@ -330,10 +337,13 @@ int reference_render_averaged(reference *ref, const reference_render_desc *d,
     }
     noise->indirect1_rms = covered ? sqrt(sq / (double)covered) / 2.0 : 0.0;
     noise->indirect = half_difference(out->indirect, half.indirect, n);
+    noise->ao = out->ao ? half_difference(out->ao, half.ao, n) : 0.0;
     for (size_t i = 0; i < n; i++) {
         out->direct[i] = 0.5f * (out->direct[i] + half.direct[i]);
         out->indirect1[i] = 0.5f * (out->indirect1[i] + half.indirect1[i]);
         out->indirect[i] = 0.5f * (out->indirect[i] + half.indirect[i]);
+        if (out->ao)
+            out->ao[i] = 0.5f * (out->ao[i] + half.ao[i]);
     }
     out->render_ms += half.render_ms;
     out->rays += half.rays;

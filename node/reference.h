@@ -14,7 +14,12 @@
  *   indirect   every path with at least one reflection before the visible point, up to
  *              max_bounces reflections (Russian roulette after the second); a superset of
  *              indirect1. Both indirect images shade the visible point with albedo/pi.
- * All three are multiplied by params->exposure, as the rasterizer's are.
+ *   ao         when params->ao is not off: the visible point's ambient occlusion under the
+ *              frame's distance limit and falloff (ao_visibility() of frame/ao.h), from
+ *              `samples` cosine-weighted rays (its own random numbers: the other images
+ *              are the same with or without it); params->ambient times albedo times it
+ *              is part of direct, as in the rasterizer
+ * All but ao are multiplied by params->exposure, as the rasterizer's are.
  *
  * Deterministic: every pixel draws from its own generator seeded by (seed, pixel), so the
  * images depend on the seed only, never on the thread count or scheduling. */
@@ -49,6 +54,9 @@ typedef struct reference_images {
     float *direct;    /* linear RGB, top row first, same layout as renderer_image.direct */
     float *indirect1; /* one diffuse bounce: what the LPV models */
     float *indirect;  /* many bounces */
+    float *ao;        /* ambient occlusion (frame/ao.h: the frame's ao-distance and
+                         ao-falloff) as grey RGB, 1 where no geometry; NULL when the frame's
+                         ao is off */
     uint8_t *coverage; /* 1 where the pixel's primary ray meets geometry, else 0 (the mask
                           of "masked to geometry"; a black surface is still covered) */
     double render_ms; /* wall time of reference_render() */
@@ -65,7 +73,7 @@ void reference_images_free(reference_images *img);
  * independent estimates a and b; indirect1_rms: its RMS, sqrt(mean (a - b)^2) / 2 over
  * the covered pixels (the averaged image's standard deviation, what adds to a relRMSE). */
 typedef struct reference_noise {
-    double direct, indirect1, indirect;
+    double direct, indirect1, indirect, ao;
     double indirect1_rms;
 } reference_noise;
 

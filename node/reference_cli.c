@@ -44,6 +44,8 @@ static int write_outputs(const reference_cli_desc *d, const reference_images *im
         add_noise(noise, "indirect1", nz->indirect1, img->indirect1, n);
         add_noise(noise, "indirect", nz->indirect, img->indirect, n);
         add_noise(noise, "direct", nz->direct, img->direct, n);
+        if (img->ao)
+            add_noise(noise, "ao", nz->ao, img->ao, n);
         printf("reference: noise of the average: indirect1 %.3g%% of its mean, indirect %.3g%%\n",
                100 * cJSON_GetObjectItem(cJSON_GetObjectItem(noise, "indirect1"), "relative")->valuedouble,
                100 * cJSON_GetObjectItem(cJSON_GetObjectItem(noise, "indirect"), "relative")->valuedouble);
@@ -51,9 +53,9 @@ static int write_outputs(const reference_cli_desc *d, const reference_images *im
         fprintf(stderr, "cavelight-node: out of memory for the reference images\n");
     }
     char path[4096], err[512];
-    static const char *names[5] = {"direct", "indirect1", "indirect", "final1", "final"};
-    const float *images[5] = {img->direct, img->indirect1, img->indirect, final1, final};
-    for (int k = 0; k < 5 && rc == 0 && d->out; k++) {
+    static const char *names[6] = {"direct", "indirect1", "indirect", "final1", "final", "ao"};
+    const float *images[6] = {img->direct, img->indirect1, img->indirect, final1, final, img->ao};
+    for (int k = 0; k < 6 && images[k] && rc == 0 && d->out; k++) { /* ao: when asked for */
         snprintf(path, sizeof path, "%s/reference_%s.pfm", d->out, names[k]);
         if (image_write_pfm(path, w, ht, images[k], err, sizeof err) != 0) {
             fprintf(stderr, "cavelight-node: %s\n", err);

@@ -52,6 +52,9 @@ typedef struct reference_job {
     int width, height, samples, max_bounces;
     uint64_t seed;
     float *direct, *indirect1, *indirect;
+    float *ao;                      /* NULL: no AO asked for (params->ao off) */
+    float ao_distance, ambient;     /* the frame's (frame/ao.h) */
+    frame_ao_falloff ao_falloff;
     uint8_t *coverage;
     uint64_t *row_rays;             /* per row, summed after the run (no atomics) */
 } reference_job;

@@ -126,6 +126,30 @@ static void sample_path(const reference_job *job, const hit *x0, rng *g, double 
     }
 }
 
+/* The visible point's ambient occlusion (frame/ao.h) from `samples` cosine rays: each
+ * ray's visibility of the first surface within the distance limit. A direction below the
+ * true surface (smooth normals) meets it at once. */
+static float ambient_occlusion(const reference_job *job, const hit *x0, uint64_t pix,
+                               uint64_t *rays)
+{
+    rng g = {splitmix64(job->seed ^ splitmix64(pix ^ 0xa0a0a0a0a0a0a0a0ull))};
+    float far = job->ao_distance > 0 ? job->ao_distance : INFINITY, o[3];
+    reference_ray_offset(x0, o);
+    double sum = 0;
+    for (int s = 0; s < job->samples; s++) {
+        float d[3];
+        cosine_direction(x0->n, &g, d);
+        if (vec3_dot(d, x0->ng) <= 0) {
+            sum += ao_visibility(0.0f, job->ao_distance, job->ao_falloff);
+            continue;
+        }
+        struct RTCRayHit rh;
+        float t = reference_ray_trace(job, o, d, far, &rh, rays) ? rh.ray.tfar : -1.0f;
+        sum += ao_visibility(t, job->ao_distance, job->ao_falloff);
+    }
+    return (float)(sum / job->samples);
+}
+
 void reference_sample_row(void *ctx, int row)
 {
     reference_job *job = ctx;
@@ -136,6 +160,9 @@ void reference_sample_row(void *ctx, int row)
         for (int i = 0; i < 3; i++)
             dst[i][0] = dst[i][1] = dst[i][2] = 0;
         job->coverage[pix] = 0;
+        float *ao = job->ao ? job->ao + 3 * pix : NULL;
+        if (ao)
+            ao[0] = ao[1] = ao[2] = 1.0f;
         /* Pixel centre -> clip space at the near and far planes -> world. */
         double ndc[2] = {2.0 * (x + 0.5) / job->width - 1.0, 1.0 - 2.0 * (row + 0.5) / job->height};
         double w[2][3];
@@ -165,6 +192,10 @@ void reference_sample_row(void *ctx, int row)
         float toward_eye[3] = {-d[0], -d[1], -d[2]};
         reference_ray_hit(job->ref, &rh.hit, toward_eye, &x0);
         shade_direct(job, &x0, toward_eye, dst[0], &rays);
+        if (ao)
+            ao[0] = ao[1] = ao[2] = ambient_occlusion(job, &x0, pix, &rays);
+        for (int k = 0; k < 3; k++) /* the ambient term, as shade.frag has it */
+            dst[0][k] += x0.albedo[k] * job->ambient * (ao ? ao[0] : 1.0f);
         rng g = {splitmix64(job->seed ^ splitmix64(pix))};
         double acc1[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
         for (int s = 0; s < job->samples; s++)

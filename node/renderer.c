@@ -14,6 +14,7 @@
 #include "gi/gi_settings.h"
 #include "gltools.h"
 #include "renderer.h"
+#include "renderer_ao.h"
 #include "renderer_hud.h"
 #include "renderer_rsm.h"
 #include "scene_gl.h"
@@ -51,6 +52,7 @@ struct renderer {
     float *linear[3];
 
     gi *gi;                  /* the indirect-light method (gi.h), with its shading program */
+    renderer_ao *ao;         /* the ambient term's occlusion (renderer_ao.h) */
     uint64_t checksum;       /* its last frame's */
     renderer_desc desc;
     int software;            /* a software GL (llvmpipe) */
@@ -276,6 +278,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
         build_frame_state(r, &r->frame, err, errlen) != 0 ||
+        !(r->ao = renderer_ao_create(r->gl, r->scene, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
@@ -300,6 +303,7 @@ void renderer_destroy(renderer *r)
         return;
     const gl_functions *gl = r->gl;
     gi_destroy(r->gi);
+    renderer_ao_destroy(r->ao);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_final};
@@ -364,6 +368,15 @@ static void keep_within_limits(renderer *r)
              "the limits", why);
 }
 
+/* The ambient occlusion's maps for frame p; a refusal (memory) is said in
+ * renderer_last_error() and leaves AO off. */
+static void follow_ao(renderer *r, const frame_params *p)
+{
+    char err[256];
+    if (renderer_ao_frame(r->ao, p, err, sizeof err) != 0)
+        snprintf(r->error, sizeof r->error, "renderer: no ambient occlusion: %s", err);
+}
+
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
@@ -375,6 +388,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     r->eye_index = 0;
     const frame_params *p = &r->frame;
     follow_frame(r, p);
+    follow_ao(r, p);
     if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
         r->timings.rsm_ms = 0;
         gi_stats_get(r->gi, &r->timings.gi);
@@ -464,7 +478,13 @@ void renderer_screen(renderer *r, const renderer_view *views, int n)
 
 /* Texture units of the shading program: the G-buffer, the lights' shadow maps, then the
  * GI method's own. */
-enum { UNIT_GBUFFER = 0, UNIT_RSM_DEPTH = 4, UNIT_RSM_NORMAL = 5, UNIT_GI = 6 };
+enum { UNIT_GBUFFER = 0, UNIT_RSM_DEPTH = 4, UNIT_RSM_NORMAL = 5, UNIT_AO = 6, UNIT_GI = 7 };
+
+/* A pixel's width over its distance from the eye (an orthographic view: its width). */
+static float pixel_angle(const renderer_view *view)
+{
+    return 2.0f / (view->projection[5] * view->height);
+}
 
 static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[16],
                          const float eye[4])
@@ -501,9 +521,10 @@ static void shade_pass(renderer *r, const renderer_view *view, const float eye[4
         gl->Uniform1i(loc(r, prog, gname[i]), UNIT_GBUFFER + i);
     }
     renderer_rsm_bind_shading(r->rsm, prog, p, UNIT_RSM_DEPTH, UNIT_RSM_NORMAL);
+    renderer_ao_bind(r->ao, prog, UNIT_AO);
     gi_eye_bind(r->gi, &(gi_eye){.program = prog, .first_unit = UNIT_GI, .view = view,
                                  .width = view->width, .height = view->height, .eye = eye,
-                                 .pixel_angle = 2.0f / (view->projection[5] * view->height)});
+                                 .pixel_angle = pixel_angle(view)});
     gl->Uniform1f(loc(r, prog, "u_absorption"), p->absorption);
     gl->Uniform4fv(loc(r, prog, "u_eye"), 1, eye);
     gl->Uniform1f(loc(r, prog, "u_exposure"), p->exposure);
@@ -551,8 +572,9 @@ static void read_back(renderer *r, int want_linear, renderer_image *out)
     out->width = w;
     out->height = h;
     out->rgb = r->rgb;
-    out->final = out->direct = out->indirect = NULL;
+    out->final = out->direct = out->indirect = out->ao = NULL;
     if (want_linear) {
+        out->ao = renderer_ao_read(r->ao);
         gl->BindFramebuffer(GL_FRAMEBUFFER, r->shade_fbo);
         for (int i = 0; i < 3; i++)
             read_rgb_float(r, GL_COLOR_ATTACHMENT0 + i, r->linear[i]);
@@ -581,6 +603,10 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     query_begin(r, &r->eye_queries, slot, Q_GBUFFER);
     gbuffer_pass(r, view, vp, eye);
     query_end(r, &r->eye_queries, slot, Q_GBUFFER);
+    renderer_ao_eye(r->ao, &(renderer_ao_eye_desc){.view = view, .position = r->g_position,
+                                                   .normal = r->g_normal, .eye = eye,
+                                                   .pixel_angle = pixel_angle(view),
+                                                   .vao = r->empty_vao});
     query_begin(r, &r->eye_queries, slot, Q_SHADE);
     shade_pass(r, view, eye);
     query_end(r, &r->eye_queries, slot, Q_SHADE);
@@ -592,6 +618,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
     r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
     r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
+    renderer_ao_stats_get(r->ao, &r->timings.ao);
     r->timings.eye_host_ms = clock_now_ms() - t0;
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {

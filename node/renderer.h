@@ -9,9 +9,10 @@
  *                          master compares across nodes. When the method can reuse last
  *                          frame's result (ILPV: unchanged inputs, converged) nothing is
  *                          rendered and the last checksum is returned.
- *   renderer_eye_pass()    per (screen, eye): G-buffer -> direct + the method's indirect
- *                          shading -> tone map + gamma -> HUD -> 8-bit RGB (and optional
- *                          linear floats).
+ *   renderer_eye_pass()    per (screen, eye): G-buffer -> ambient occlusion
+ *                          (renderer_ao.h, when the frame asks for it) -> direct + the
+ *                          method's indirect shading -> tone map + gamma -> HUD -> 8-bit RGB
+ *                          (and optional linear floats).
  *
  * The renderer loads nothing: the caller passes a loaded scene and owns it. */
 #ifndef CAVELIGHT_RENDERER_H
@@ -22,6 +23,7 @@
 #include "frame/frame_view.h"
 #include "gi/gi.h"
 #include "gl_functions.h"
+#include "renderer_ao.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
 
@@ -38,6 +40,7 @@ typedef struct renderer_image {
     const float *final;    /* linear RGB floats, or NULL unless requested */
     const float *direct;
     const float *indirect;
+    const float *ao;       /* the ambient occlusion as grey RGB, or NULL (ao off) */
 } renderer_image;
 
 typedef struct renderer_timings {
@@ -45,6 +48,8 @@ typedef struct renderer_timings {
     gi_stats gi;                            /* frame pass: the GI method's stages (host
                                                ms), its figures */
     double gbuffer_ms, shade_ms, final_ms;  /* last eye pass (GPU clock) */
+    renderer_ao_stats ao;                   /* last eye pass: the ambient occlusion (host
+                                               ms); its maps' build and memory */
     double frame_host_ms, eye_host_ms;
     int fixed;                              /* fields of the last frame the renderer
                                                clamped (gi_frame_sanitize()) */

@@ -260,9 +260,24 @@ void renderer_rsm_bind_shading(const renderer_rsm *r, GLuint prog, const frame_p
     uniform1f(r, prog, "u_min_light_distance", scene_min_light_distance(r->scene));
 }
 
-size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
+void renderer_rsm_read_layer(renderer_rsm *r, int layer, const float **position,
+                             const float **normal, const float **flux)
 {
     const gl_functions *gl = r->gl;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo[layer]);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    for (int b = 0; b < 3; b++) {
+        gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
+        gl->ReadPixels(0, 0, r->size, r->size, GL_RGBA, GL_FLOAT, r->read[b]);
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    *position = r->read[0];
+    *normal = r->read[1];
+    *flux = r->read[2];
+}
+
+size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
+{
     size_t texels = (size_t)r->size * r->size, n = 0;
     size_t need = (size_t)r->view_count * texels;
     if (need > r->vpl_capacity) {
@@ -275,13 +290,8 @@ size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
         r->vpl_capacity = need;
     }
     for (int layer = 0; layer < r->view_count; layer++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo[layer]);
-        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        for (int b = 0; b < 3; b++) {
-            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
-            gl->ReadPixels(0, 0, r->size, r->size, GL_RGBA, GL_FLOAT, r->read[b]);
-        }
-        const float *pos = r->read[0], *nrm = r->read[1], *flux = r->read[2];
+        const float *pos, *nrm, *flux;
+        renderer_rsm_read_layer(r, layer, &pos, &nrm, &flux);
         for (size_t i = 0; i < texels; i++) {
             const float *f = flux + 4 * i;
             if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
@@ -292,7 +302,6 @@ size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
             memcpy(v->flux, f, sizeof v->flux);
         }
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     *out = r->vpls;
     return n;
 }

@@ -38,6 +38,10 @@ void renderer_rsm_textures(const renderer_rsm *m, GLuint out[3]);
  * p: the parameters of the last render. */
 void renderer_rsm_bind_shading(const renderer_rsm *m, GLuint prog, const frame_params *p,
                                GLenum depth_unit, GLenum normal_unit);
+/* One layer of the last render read back: position, normal (w: the texel's plane) and flux,
+ * 4 floats per texel, row by row; the module's arrays, valid until the next read. */
+void renderer_rsm_read_layer(renderer_rsm *m, int layer, const float **position,
+                             const float **normal, const float **flux);
 /* The VPL source every GI method shares: every RSM texel a light reaches, of every view of
  * the last render, as a Lambertian VPL carrying the flux it reflects, Phi in W (not
  * Phi / pi), in view then texel order (deterministic). Reads the RSMs back. The array is

@@ -112,9 +112,9 @@ static int write_images(const node_options *o, int frame, const char *eye,
         return fprintf(stderr, "cavelight-node: %s\n", err), -1;
     if (!o->pfm)
         return 0;
-    const char *kind[3] = {"final", "direct", "indirect"};
-    const float *data[3] = {img->final, img->direct, img->indirect};
-    for (int k = 0; k < 3; k++) {
+    const char *kind[4] = {"final", "direct", "indirect", "ao"};
+    const float *data[4] = {img->final, img->direct, img->indirect, img->ao};
+    for (int k = 0; k < 4 && data[k]; k++) { /* the AO only when the frame asks for it */
         snprintf(path, sizeof path, "%s/frame%04d_%s_%s.pfm", o->out, frame, eye, kind[k]);
         if (image_write_pfm(path, img->width, img->height, data[k], err, sizeof err))
             return fprintf(stderr, "cavelight-node: %s\n", err), -1;

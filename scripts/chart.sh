@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Speed against accuracy of the LPV and the vpl method on the built-in chart scenes
-# (default room, corridor, doorway, courtyard, arcades, street block) and any glTF file given
-# with --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and
-# the classic
-# accumulating LPV, and the vpl method's VPL counts, against a path-traced (Embree)
-# reference, every scene with the same settings. Accuracy is the
+# Speed against accuracy of the GI methods (ILPV, vpl, caches, ldm) on the built-in chart
+# scenes (default room, corridor, doorway, courtyard, arcades, street block) and any glTF
+# file given with --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL
+# backends and the classic accumulating LPV, the vpl method's VPL counts, the caches
+# method's VALs and occlusion and the ldm method's maps, against a
+# path-traced (Embree) reference, every scene with the same settings; and the layered depth
+# maps' ambient occlusion against the screen-space baseline at several distance limits. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
@@ -46,6 +47,7 @@ if [ $quick = 1 ]; then
   motion=(--frames 40)
   vpl=(--counts 64,256 --seeds 1 --visibility exact,ism,ism-splat --interleave 0,4)
   caches=(--vals 512,2048 --occlusion approx,exact --lightskin 0 --frames 2 --temporal-frames 10)
+  ldm=(--configs 16:64,32:128 --ao-configs 32:64,64:128)
 else
   size=(--width 320 --height 240) ref=(--ref-samples 256)
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
@@ -53,6 +55,7 @@ else
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
        --ism-points 256,1024 --interleave 0,4 --selection flux,view,regular)
   caches=(--vals 512,2048,8192 --occlusion approx,exact,off --lightskin 1 --frames 3 --temporal-frames 30)
+  ldm=(--configs 16:64,32:128,64:128 --ao-configs 32:64,64:128,128:128)
 fi
 bench=$root/build/cavelight-bench
 start=$SECONDS
@@ -74,6 +77,9 @@ for scene in "${scenes[@]}"; do
   echo "chart: $k: caches" >&2
   "$bench" accuracy caches --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${caches[@]}" \
     > "$out/caches_$k.json"
+  echo "chart: $k: ldm and AO" >&2
+  "$bench" accuracy ldm --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${ldm[@]}" \
+    > "$out/ldm_$k.json"
 done
 echo "chart: frame-time budgets" >&2
 for budget in 5 10 20 40; do
@@ -86,20 +92,23 @@ echo "chart: measured in $((SECONDS - start)) s" >&2
 # 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
 # 8 frame_ms, 9 rmse_rel_indirect, 16 visibility, 17 ism_size, 18 ism_points, 19
 # interleave, 28 selection); of caches_*.csv (2 vals, 3 selection, 4 occlusion, 13 gi_ms,
-# 14 frame_ms, 15 rmse_rel_indirect). ILPV's GI ms is its propagation, vpl's its selection,
-# shadow maps and gather, caches' its stages.
+# 14 frame_ms, 15 rmse_rel_indirect); of ldm_*.csv (2 directions, 3 resolution, 9 gi_ms,
+# 10 frame_ms, 12 rmse_rel_indirect); of ao_*.csv (2 method, 3 distance, 4 directions,
+# 5 resolution, 6 ao_ms, 9 rmse_rel). ILPV's GI ms is its propagation, vpl's its selection,
+# shadow maps and gather, caches' its stages, ldm's its maps, photons, split and splat.
 while read -r scene; do
   csv=$out/sweep_$scene.csv
   vcsv=$out/vpl_$scene.csv
   ccsv=$out/caches_$scene.csv
   [ -f "$ccsv" ] || echo "scene,vals,selection,occlusion" > "$ccsv"
+  lcsv=$out/ldm_$scene.csv
   gnuplot <<EOF
 set datafile separator ","
 set terminal pngcairo size 1000,700 font ",11"
 set key outside right top
 set grid
 set logscale x
-set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather, caches stages"
+set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather, caches stages, ldm all"
 set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
 sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
@@ -131,6 +140,8 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      cs("off") using 13:15 with points pt 1 ps 1.3 lc rgb "#a3a380" title "caches, no occlusion", \
      lightskin using 13:15 with points pt 12 ps 1.5 lc rgb "#3a5a40" title "caches, every RSM texel (plain LightSkin)", \
      cs("approx") using 13:15:2 with labels offset 0,0.9 font ",8" notitle, \
+     "< tail -n +2 $lcsv" using 9:12 with linespoints pt 8 ps 1.4 lc rgb "#0077b6" title "ldm (labels: maps/resolution)", \
+     "< tail -n +2 $lcsv" using 9:12:(sprintf("%d/%d", \$2, \$3)) with labels offset 0,0.9 font ",8" notitle, \
      "< tail -n +2 $vcsv" using 7:9:((strcol(16) eq "exact" ? sprintf("%d", \$2) : sprintf("%d/%d/%d", \$2, \$17, \$18)) . (\$19 > 0 ? sprintf(" k%d", \$19) : "")) with labels offset 0,-0.9 font ",8" notitle, \
      front using 11:16:((\$4 == 0 ? "fit" : sprintf("%d", \$4)) . sprintf("/%d", \$8)) with labels offset 0,0.8 font ",8" notitle
 set output "$out/frame_accuracy_$scene.png"
@@ -148,7 +159,17 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      rule("view") using 8:9 with points pt 15 ps 1.3 lc rgb "#f4a261" title "vpl, view-importance selection", \
      rule("regular") using 8:9 with points pt 2 ps 1.3 lc rgb "#6d6875" title "vpl, regular pattern", \
      cs("approx") using 14:15 with linespoints pt 8 ps 1.3 lc rgb "#e9c46a" title "caches, disk occlusion", \
-     cs("exact") using 14:15 with linespoints pt 10 ps 1.3 lc rgb "#bc6c25" title "caches, exact occlusion"
+     cs("exact") using 14:15 with linespoints pt 10 ps 1.3 lc rgb "#bc6c25" title "caches, exact occlusion", \
+     "< tail -n +2 $lcsv" using 10:12 with linespoints pt 8 ps 1.4 lc rgb "#0077b6" title "ldm"
+set output "$out/ao_$scene.png"
+set xlabel "ambient occlusion ms per eye (median)"
+set ylabel "AO relative RMSE vs the path tracer's AO"
+set title "$scene: layered depth maps against screen-space AO (labels: distance m; maps/resolution)"
+ao(m,d) = "< awk -F, 'NR>1 && \$2==\"" . m . "\" && \$3==" . d . "' $out/ao_$scene.csv"
+ds = "0.25 0.5 1 2"
+plot for [i=1:4] ao("ssao", word(ds, i)) using 6:9 with points pt 6 ps 1.5 lc i title "ssao, ".word(ds, i)." m", \
+     for [i=1:4] ao("ldm", word(ds, i)) using 6:9 with linespoints pt 7 lc i title "ldm, ".word(ds, i)." m", \
+     "< awk -F, 'NR>1 && \$2==\"ldm\"' $out/ao_$scene.csv" using 6:9:(sprintf("%gm %d/%d", \$3, \$4, \$5)) with labels offset 0,-0.9 font ",7" notitle
 unset logscale x
 unset logscale y
 set logscale x 2

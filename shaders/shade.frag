@@ -2,7 +2,8 @@
 // Blinn-Phong (spots: the D3D cone; spots and point lights: inverse-square falloff;
 // directional lights: parallel) and 3x3 PCF against the light's RSM;
 // indirect light from the active GI method (gi_irradiance()); emitted radiance of surface
-// lights. HDR out, linear.
+// lights; the ambient light times its occlusion (node/renderer_ao.h), counted as direct
+// light (it reaches the surface from its source without a reflection). HDR out, linear.
 in vec2 v_uv;
 
 uniform sampler2D u_position;
@@ -29,6 +30,9 @@ uniform float u_min_light_distance;  // falloff bound near a light, metres (scal
 uniform float u_absorption;
 uniform vec4 u_eye;                  // the eye (w 1), or the direction towards it (w 0)
 uniform float u_exposure;
+uniform sampler2D u_ao;              // the ambient occlusion of this eye (renderer_ao.h)
+uniform int u_ao_on;                 // 0: none computed, AO is 1
+uniform float u_ambient;             // the ambient light's radiance, W/(m^2 sr)
 
 // The active GI method's irradiance at p (normal n), W/m^2 before the albedo: defined by
 // the method's shading snippet, compiled after this file (node/gi/gi_method.h).
@@ -138,6 +142,10 @@ void main()
         direct += brdf * irradiance;
     }
 
+    if (u_ambient > 0.0) { // irradiance pi L AO, times albedo / pi
+        float ao = u_ao_on != 0 ? texelFetch(u_ao, ivec2(gl_FragCoord.xy), 0).r : 1.0;
+        direct += albedo * u_ambient * ao;
+    }
     vec3 indirect = albedo / PI * gi_irradiance(p, n);
     direct *= u_exposure;
     indirect *= u_exposure;

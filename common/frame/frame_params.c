@@ -3,6 +3,8 @@
 #include <string.h>
 
 #include "frame/frame_params.h"
+#include "ldm/ldm_directions.h"
+#include "ldm/ldm_map.h"
 #include "scene/scene.h"
 
 static void identity(float m[16])
@@ -12,6 +14,8 @@ static void identity(float m[16])
 }
 
 static const char *const environment_names[] = {"dark", "dim", "office"};
+static const char *const ao_names[FRAME_AO_COUNT] = {"off", "ldm", "ssao"};
+static const char *const ao_falloff_names[FRAME_AO_FALLOFFS] = {"occlusion", "obscurance"};
 
 #define FIELD(f) offsetof(frame_params, f)
 const setting frame_transport_settings[] = {
@@ -28,6 +32,13 @@ const setting frame_transport_settings[] = {
     /* 2048^2 texels of the four RSM targets are 256 MB per light view. */
     {"rsm", "N", SETTING_INT, 8, 2048, 256, NULL, 0, SETTING_REBUILD, FIELD(rsm_size),
      "reflective shadow map size"},
+    /* 8 layers hold every surface over a texel of the chart's rooms (ldm_gl.h counts the
+     * rest); 512 MB is the paper's 512 maps of 200^2 at 8 layers with room to spare. */
+    {"ldm-layers", "K", SETTING_INT, LDM_LAYERS_MIN, LDM_LAYERS_MAX, 8, NULL, 0, SETTING_REBUILD,
+     FIELD(ldm_layers), "layered depth maps: depths kept per texel (the nearest\nK along "
+     "each map's direction)"},
+    {"ldm-memory", "MB", SETTING_INT, 1, 65536, 512, NULL, 0, 0, FIELD(ldm_memory_mb),
+     "layered depth maps: most memory one set of them may take"},
 };
 const int frame_transport_setting_count =
     (int)(sizeof frame_transport_settings / sizeof frame_transport_settings[0]);
@@ -41,6 +52,21 @@ const setting frame_display_settings[] = {
     {"exposure", "E|auto", SETTING_FLOAT, 1e-6, 1e6, 1, NULL, 0, 0, FIELD(exposure),
      "linear scale before tone mapping; auto: the scene's\naverage lit surface at middle grey "
      "(docs/node.md)"},
+    {"ao", NULL, SETTING_CHOICE, 0, 0, FRAME_AO_OFF, ao_names, FRAME_AO_COUNT, 0,
+     FIELD(ao), "ambient occlusion of the ambient term: layered depth\nmaps, screen space "
+     "(horizons) or none"},
+    {"ao-distance", "M", SETTING_FLOAT, 0, 1e6, 1, NULL, 0, 0, FIELD(ao_distance),
+     "ambient occlusion: farthest occluder, metres (0: any)"},
+    {"ao-falloff", NULL, SETTING_CHOICE, 0, 0, FRAME_AO_OCCLUSION, ao_falloff_names,
+     FRAME_AO_FALLOFFS, 0, FIELD(ao_falloff),
+     "ambient occlusion (an occluder hides) or obscurance\n(it hides less the farther it is)"},
+    /* 64 maps of 128^2 (32 MB at 8 layers) take a few seconds to build on llvmpipe. */
+    {"ao-directions", "N", SETTING_INT, LDM_DIRECTIONS_MIN, LDM_DIRECTIONS_MAX, 64, NULL, 0, SETTING_REBUILD,
+     FIELD(ao_directions), "ambient occlusion: layered depth maps (directions)"},
+    {"ao-resolution", "N", SETTING_INT, LDM_RESOLUTION_MIN, LDM_RESOLUTION_MAX, 128, NULL, 0,
+     SETTING_REBUILD, FIELD(ao_resolution), "ambient occlusion: texels per side of each map"},
+    {"ambient", "L", SETTING_FLOAT, 0, 1e6, 0, NULL, 0, 0, FIELD(ambient),
+     "ambient light from every direction, W/(m^2 sr), times\nits occlusion (ao); 0: none"},
 };
 #undef FIELD
 const int frame_display_setting_count =

@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "base/setting.h"
+#include "frame/ao.h"
 #include "scene/scene.h"
 
 enum { FRAME_MAX_LIGHTS = 8 };
@@ -61,6 +62,14 @@ typedef struct frame_params {
     int rsm_size;           /* texels per side of each reflective shadow map */
     int gi;                 /* the indirect-light method: its index in node/gi's registry
                                (gi_settings.h); 0, the first, is ILPV */
+    int ldm_layers;         /* layered depth maps (ldm_map.h): depths kept per texel */
+    int ldm_memory_mb;      /* their memory cap, per set of maps */
+    frame_ao ao;            /* the ambient occlusion (ao.h) */
+    float ao_distance;      /* its maximum distance, metres; 0: none */
+    frame_ao_falloff ao_falloff;
+    int ao_directions;      /* its layered depth maps */
+    int ao_resolution;
+    float ambient;          /* the ambient light's radiance, W/(m^2 sr); 0: none */
     /* Interaction state */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
     int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
@@ -68,8 +77,9 @@ typedef struct frame_params {
 } frame_params;
 
 /* The frame's settings, the one place of their names, ranges and defaults (offsets into
- * frame_params): how light travels (steps, lambda, absorption, scattering, rsm) and how
- * it is shown (env, display-gamma, exposure). */
+ * frame_params): how light travels (steps, lambda, absorption, scattering, rsm, and the
+ * layered depth maps' layers and memory cap) and how it is shown (env, display-gamma,
+ * exposure, the ambient term and its occlusion: ao.h). */
 extern const setting frame_transport_settings[];
 extern const int frame_transport_setting_count;
 extern const setting frame_display_settings[];

@@ -191,6 +191,9 @@ int gi_set_config(const cluster_config *cfg, frame_params *p, char *err, size_t 
 
 const char *gi_check(const frame_params *p)
 {
+    const char *ao = ao_check(p);
+    if (ao)
+        return ao;
     for (int m = 0; m < METHODS; m++) {
         const char *why = methods[m]->check ? methods[m]->check(p) : NULL;
         if (why)

@@ -17,6 +17,9 @@
  *                     disk bound (bench_accuracy_vpl.c)
  *   accuracy caches   the caches method per setting row, and its importance-sampled VALs
  *                     against every RSM texel (bench_accuracy_caches.c)
+ *   accuracy ldm      the layered depth maps: the ldm method's error and GI ms per maps
+ *                     configuration, and LDM against screen-space AO per distance limit
+ *                     (bench_accuracy_ldm.c)
  *
  * Each writes <out>/<experiment>_<scene>.csv and prints one JSON summary line. */
 #include <math.h>
@@ -396,8 +399,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_vpl(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "caches") == 0)
         return accuracy_caches(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "ldm") == 0)
+        return accuracy_ldm(argc - 1, argv + 1);
     int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
-    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|caches [options]\n"
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|caches|ldm [options]\n"
             "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
     return help ? 0 : 2;
 }

@@ -98,5 +98,6 @@ int accuracy_path(int argc, char **argv);
 int accuracy_savings(int argc, char **argv);
 int accuracy_vpl(int argc, char **argv);
 int accuracy_caches(int argc, char **argv);
+int accuracy_ldm(int argc, char **argv);
 
 #endif

@@ -12,7 +12,13 @@
  * With --gi caches the stages are importance, sat_select, proxy, occlusion (the frame pass)
  * and interpolate (the eye pass's interpolation), and the same frames run again with every
  * RSM texel as a VAL (caches-selection all, plain LightSkin): every_texel_gi_ms and the
- * speed-up of the selection, gi_ms against it. GPU passes use the
+ * speed-up of the selection, gi_ms against it.
+ * With --gi ldm the stages are construct (the maps, rebuilt every frame here as a moving
+ * scene would need them), photons and trace (the split), and splat_ms the eye pass's
+ * splat; memory_mb the maps'. With --ao ldm|ssao, ao_ms is the eye pass's ambient
+ * occlusion, ao_build_ms and ao_memory_mb its maps' (built once). A method's figures in ms
+ * are medians over the frames like the passes.
+ * GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. */
 #include <stdio.h>
@@ -38,6 +44,20 @@ static int cmp_double(const void *a, const void *b)
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
+
+/* 1 for a method's figure that is a per-frame time (its name ends in _ms). */
+static int timed(const char *name)
+{
+    size_t n = strlen(name);
+    return n > 3 && strcmp(name + n - 3, "_ms") == 0;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 
 int bench_frame(int argc, char **argv)
 {
@@ -111,6 +131,8 @@ int bench_frame(int argc, char **argv)
     }
     int rc = 0;
     double *assign = calloc((size_t)n * 3, sizeof *assign); /* mono, per eye, enclosed */
+    double *figs = calloc((size_t)n * (GI_STATS_MAX + 1), sizeof *figs); /* and the AO's */
+    renderer_ao_stats ao = {0};
     size_t pairs[3] = {0, 0, 0};
     for (int f = 0; f < frames && rc == 0; f++) {
         renderer_frame_pass(r, &fp);
@@ -123,6 +145,10 @@ int bench_frame(int argc, char **argv)
         assign[f - WARMUP] = gi_stats_value(&t.gi, "assign_ms", NULL);
         pairs[0] = (size_t)gi_stats_value(&t.gi, "assignments", NULL);
         stages = t.gi;
+        ao = t.ao;
+        for (int k = 0; k < stages.figure_count; k++)
+            figs[(size_t)k * n + (f - WARMUP)] = t.gi.figure[k].value;
+        figs[(size_t)GI_STATS_MAX * n + (f - WARMUP)] = t.ao.eye_ms;
         for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
             s[(size_t)(PASSES + 1 + k) * n + (f - WARMUP)] = t.gi.stage[k].value;
         double vals[PASSES] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.gbuffer_ms, t.shade_ms,
@@ -212,9 +238,19 @@ int bench_frame(int argc, char **argv)
             if (o->method < 0 || o->method == fp.gi)
                 printf(",\"%s\":\"%s\"", o->row->name, gi_get_text(&fp, o->row->name, text, sizeof text));
         }
-        for (int i = 0; i < stages.figure_count; i++) /* what the method reports of itself */
-            if (strcmp(stages.figure[i].name, "assign_ms") && strcmp(stages.figure[i].name, "assignments"))
-                printf(",\"%s\":%.6g", stages.figure[i].name, stages.figure[i].value);
+        double eye_work = 0; /* the method's own eye-side times (ldm: its splat) */
+        for (int i = 0; i < stages.figure_count; i++) { /* what the method reports of itself */
+            const char *name = stages.figure[i].name;
+            if (!strcmp(name, "assign_ms") || !strcmp(name, "assignments"))
+                continue;
+            double value = timed(name) ? median(figs + (size_t)i * n, n) : stages.figure[i].value;
+            eye_work += timed(name) ? value : 0.0;
+            printf(",\"%s\":%.6g", name, value);
+        }
+        if (fp.ao != FRAME_AO_OFF)
+            printf(",\"ao_ms\":%.3f,\"ao_build_ms\":%.3f,\"ao_memory_mb\":%.6g,\"ao_overflow\":%zu",
+                   median(figs + (size_t)GI_STATS_MAX * n, n), ao.build_ms, ao.memory_mb,
+                   ao.overflow);
         for (int p = 0; p < PASSES - 1; p++)
             printf(",\"%s\":%.3f", passes[p], med[p]);
         for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
@@ -239,7 +275,7 @@ int bench_frame(int argc, char **argv)
             printf(",\"every_texel_gi_ms\":%.3f,\"speedup\":%.3f", all, med[1] > 0 ? all / med[1] : 0.0);
         }
         /* The method's work: its frame-pass stages, and vpl's gather. */
-        double work = med[1] + (vpl ? am[0] + gather : 0.0);
+        double work = med[1] + eye_work + (vpl ? am[0] + gather : 0.0);
         printf(",\"gi_share\":%.3f}\n", total > 0 ? work / total : 0.0);
     } else {
         fprintf(stderr, "bench frame: %s\n", renderer_last_error(r));
@@ -247,6 +283,7 @@ int bench_frame(int argc, char **argv)
     free(s);
     free(assign);
     free(lightskin);
+    free(figs);
     renderer_destroy(r);
     present_destroy(out);
     scene_free(&sc);

@@ -4,8 +4,9 @@
 # on its command line renders each screen as a standalone node with the same options and
 # that screen's view does (the same checksum, the same pixels), both nodes with equal
 # checksums in every frame; first the vpl method's fastest chart rows (imperfect shadow
-# maps, 4 x 4 interleaving), the caches method with 512 VALs and exact occlusion, then ILPV
-# with a fitted lattice, lambda and steps. The same settings from the config's "settings"
+# maps, 4 x 4 interleaving), the caches method with 512 VALs and exact occlusion, ILPV with
+# a fitted lattice, lambda and steps, the layered depth maps' indirect light with their
+# ambient occlusion of an ambient term. The same settings from the config's "settings"
 # give the same frames. --budget-ms measures every node and takes one choice for all. And
 # the master refuses a bad value or name in one line, before any node starts.
 here=$(cd "$(dirname "$0")" && pwd)
@@ -73,6 +74,8 @@ done
 same_as_standalone vpl --gi vpl --vpl-count 64 --vpl-visibility ism --vpl-interleave 4
 same_as_standalone caches --gi caches --caches-vals 512 --caches-occlusion exact
 same_as_standalone ilpv --gi ilpv --lattice-cells 4096 --lambda 0.5 --steps 4
+same_as_standalone ldm --gi ldm --ldm-directions 16 --ldm-resolution 64 --ldm-photons 8 \
+  --ao ldm --ao-directions 16 --ao-resolution 64 --ambient 0.5
 
 # The same ILPV settings from the config's "settings": the same frames.
 SETTINGS='"rsm": 64, "gi": "ilpv", "lattice-cells": 4096, "lambda": 0.5, "steps": 4' \

@@ -3,7 +3,7 @@
 # in a scratch folder that holds the repository's files (links to them) and build/
 # pointing at the built tree, with nothing under out/. Each must exit 0 and write what it
 # says: a command with --out DIR leaves files in DIR (images, PFMs, reports), a benchmark
-# prints one JSON line. The two top-level scripts (scripts/demo.sh, scripts/test.sh) are
+# or a comparison prints one JSON line. The two top-level scripts (scripts/demo.sh, scripts/test.sh) are
 # left out: they install packages and rebuild, and CI runs them. No override: a README
 # command too slow for this test is a README defect (make the command faster).
 set -euo pipefail
@@ -59,7 +59,7 @@ while IFS= read -r cmd; do
         files=$(find "$dir" -type f -size +0 \( -name '*.png' -o -name '*.pfm' -o -name '*.json' \) 2>/dev/null | wc -l)
         [ "$files" -gt 0 ] || fail "wrote no image or report into ${BASH_REMATCH[1]}: $cmd"
         what="$files files in ${BASH_REMATCH[1]}"
-    elif [[ "$cmd" == build/cavelight-bench* ]]; then
+    elif [[ "$cmd" == build/cavelight-bench* || "$cmd" == build/cavelight-compare* ]]; then
         python3 -c 'import json, sys; [json.loads(l) for l in sys.stdin if l.strip()]' < "$tmp/stdout" \
             && [ "$(grep -c . "$tmp/stdout")" -eq 1 ] || fail "no single JSON line on stdout: $cmd"
         what="one JSON line"

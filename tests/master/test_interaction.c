@@ -258,12 +258,14 @@ static void test_settings(void **state)
         assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_AUX), INTERACTION_CHANGED_LAMBDA);
         assert_float_equal(p.lambda_incr, expect[i], 0);
     }
-    /* C switches the GI method round-robin: ILPV, none, vpl, ILPV */
+    /* C switches the GI method round-robin in registry order: ILPV, none, vpl, ldm, ILPV */
     assert_int_equal(p.gi, gi_method_find("ilpv"));
     assert_int_equal(press(&ia, &s, &p, INPUT_BUTTON_C), INTERACTION_CHANGED_GI);
     assert_int_equal(p.gi, gi_method_find("none"));
     press(&ia, &s, &p, INPUT_BUTTON_C);
     assert_int_equal(p.gi, gi_method_find("vpl"));
+    press(&ia, &s, &p, INPUT_BUTTON_C);
+    assert_int_equal(p.gi, gi_method_find("ldm"));
     press(&ia, &s, &p, INPUT_BUTTON_C);
     assert_int_equal(p.gi, gi_method_find("ilpv"));
     /* axes: X absorption, Y scattering, clamped to [0, 1] */

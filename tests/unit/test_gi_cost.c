@@ -2,7 +2,8 @@
  * frame (lattice 128, 256 steps) and the other heavy combinations are refused, naming what;
  * everything up to ten times the set-up (or default) work passes; heavier settings pass
  * when the config sets the wall up for them; the memory cap counts the method's state and
- * the RSMs; the caches method's VALs and density are bounded likewise; the budget plan's measuring frames are within the defaults' limits. */
+ * the RSMs; the caches method's VALs and density and the ldm method's photons and maps are bounded
+ * likewise; the budget plan's measuring frames are within the defaults' limits. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -88,6 +89,22 @@ static void test_caches_work(void **state)
     assert_true(within(&l, FRAME({"gi", "caches"}, {"caches-selection", "all"}), why));
 }
 
+/* The ldm method: more photons within the tenfold, 64 x 64 of them beyond it; the maps'
+ * memory counts towards the cap. */
+static void test_ldm_cost(void **state)
+{
+    gi_limits l = limits();
+    char why[256];
+    assert_true(within(&l, FRAME({"gi", "ldm"}), why));
+    assert_true(within(&l, FRAME({"gi", "ldm"}, {"ldm-photons", "64"}), why)); /* 4x */
+    assert_false(within(&l, FRAME({"gi", "ldm"}, {"ldm-photons", "64"}, {"ldm-directions", "128"}), why));
+    assert_non_null(strstr(why, "the ldm settings"));
+    gi_cost m;
+    frame_params p = FRAME({"gi", "ldm"}, {"ldm-directions", "64"}, {"ldm-resolution", "256"});
+    gi_cost_method(&p, l.bounds_min, l.bounds_max, &m);
+    assert_true(m.memory_bytes >= 64.0 * 256 * 256 * p.ldm_layers * 4);
+}
+
 static void test_memory(void **state)
 {
     gi_limits l = limits();
@@ -129,6 +146,7 @@ int main(void)
         cmocka_unit_test(test_ilpv_work),
         cmocka_unit_test(test_vpl_and_rsm_work),
         cmocka_unit_test(test_caches_work),
+        cmocka_unit_test(test_ldm_cost),
         cmocka_unit_test(test_memory),
         cmocka_unit_test(test_budget_plan_within),
     };
