@@ -377,7 +377,10 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     m->cfg = desc->config;
     m->quiet = desc->quiet;
     m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;
-    gi_params_schema(&m->schema);
+    if (desc->schema)
+        m->schema = *desc->schema;
+    else
+        gi_params_schema(&m->schema);
     params_init(&m->params, &m->schema);
     m->hello_hash = params_session_hash(m->cfg->hash, &m->schema);
     m->ctx = zmq_ctx_new();

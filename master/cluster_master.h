@@ -30,6 +30,7 @@ typedef struct cluster_master_desc {
     const char *bind;        /* NULL = config->master_bind */
     int barrier_timeout_ms;  /* 0 = config->barrier_timeout_ms */
     int quiet;               /* 1: log only errors */
+    const params_schema *schema; /* the store's keys (copied); NULL: gi_params_schema() */
 } cluster_master_desc;
 
 typedef enum cluster_peer_state {

@@ -169,7 +169,10 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     c->cfg = desc->config;
     c->quiet = desc->quiet;
     snprintf(c->name, sizeof c->name, "%s", desc->name);
-    gi_params_schema(&c->schema);
+    if (desc->schema)
+        c->schema = *desc->schema;
+    else
+        gi_params_schema(&c->schema);
     params_init(&c->params, &c->schema);
     c->ctx = zmq_ctx_new();
     c->endpoint = desc->endpoint ? desc->endpoint : c->cfg->master_connect;

@@ -28,6 +28,7 @@ typedef struct cluster_client_desc {
     const char *name;      /* this node, as named in the config */
     const char *endpoint;  /* NULL = config->master_connect */
     int quiet;             /* 1: log only errors */
+    const params_schema *schema; /* the store's keys (copied); NULL: gi_params_schema() */
 } cluster_client_desc;
 
 typedef enum cluster_event_type {

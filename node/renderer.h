@@ -13,6 +13,11 @@
  *                          shading -> tone map + gamma -> HUD -> 8-bit RGB (and optional
  *                          linear floats).
  *
+ *   renderer_set_pose()    before a frame pass: where the scene's objects are
+ *                          (scene_pose.h); every pass draws them there, the GI method
+ *                          follows (gi_objects_moved()) and nothing of the last frame is
+ *                          reused when one moved.
+ *
  * The renderer loads nothing: the caller passes a loaded scene and owns it. */
 #ifndef CAVELIGHT_RENDERER_H
 #define CAVELIGHT_RENDERER_H
@@ -24,6 +29,7 @@
 #include "gl_functions.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
+#include "scene/scene_pose.h"
 
 typedef struct renderer renderer;
 
@@ -53,6 +59,8 @@ typedef struct renderer_timings {
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
+/* The objects' pose for the next frame passes (until called: as loaded). */
+void renderer_set_pose(renderer *r, const scene_pose *pose);
 /* Takes the frame's parameters as sent (gi_frame_sanitize() runs here, once). A method
  * that cannot be built (memory) leaves the current one in place and says why in
  * renderer_last_error(); the checksums then tell the master whether the nodes disagree. */

@@ -8,6 +8,7 @@
 #define CAVELIGHT_RENDERER_DESC_H
 
 #include "frame/frame_params.h"
+#include "frame/frame_view.h"
 #include "gl_functions.h"
 #include "scene/scene.h"
 
@@ -21,6 +22,12 @@ typedef struct renderer_desc {
                                   result: to measure it */
     float head_to_eye[3];      /* the viewer's eye centre from the tracked head
                                   (frame_view_head_centre()): a cluster config's observer */
+    /* Drawn into the G-buffer after the scene in every eye pass (an application's own
+     * geometry: depth-tested against the scene's, then lit and tone-mapped like it), with
+     * the G-buffer bound, its viewport set and depth test and writes on; NULL: nothing. */
+    void (*gbuffer_draw)(void *user, const frame_view *view, const float view_projection[16], GLuint fbo,
+                         GLuint depth_texture);
+    void *gbuffer_user;
 } renderer_desc;
 
 #endif

@@ -27,7 +27,7 @@ enum {
                                  GI setting), HELLO's hash covers it */
     WIRE_HEADER_SIZE = 16,
     WIRE_NAME_MAX = 32,
-    WIRE_MAX_PAYLOAD = 8192,
+    WIRE_MAX_PAYLOAD = 65536, /* a snapshot of a full store (PARAMS_ENCODED_MAX) fits */
     WIRE_MAX_MESSAGE = WIRE_HEADER_SIZE + WIRE_MAX_PAYLOAD,
 };
 

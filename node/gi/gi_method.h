@@ -15,6 +15,11 @@
  *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the
  *               method's uniforms and textures for its shading snippet
  *   stats()     the last frame's stages and figures
+ *   objects()   optional (NULL: none), before frame() when scene objects moved or were
+ *               hidden (scene_pose.h), and after create() when any is not where it was
+ *               loaded: a method that keeps geometry of its own (ILPV's blockers) follows
+ *               them here; the renderer's passes (RSMs, shadow maps, G-buffer) draw them
+ *               where they are without it
  *
  * The shading snippet (shade: files of the method's folder) defines
  *   vec3 gi_irradiance(vec3 p, vec3 n)
@@ -74,6 +79,14 @@ typedef struct gi_eye {
                                       (w 0: the pixel's width) */
 } gi_eye;
 
+/* The scene's objects in this frame (renderer.c), for objects(). */
+typedef struct gi_objects {
+    int count;                     /* the scene's object_count */
+    const float (*model)[16];      /* where each object's triangles are (column-major) */
+    const uint8_t *shown;          /* 0: hidden */
+    const uint8_t *moved;          /* 1: model or visibility changed since the last call */
+} gi_objects;
+
 enum { GI_STATS_MAX = 12 };
 
 typedef struct gi_stat {
@@ -108,6 +121,7 @@ typedef struct gi_method {
     void (*screen)(void *state, const frame_view *views, int n);
     void (*eye_bind)(void *state, const gi_eye *eye);
     void (*stats)(const void *state, gi_stats *out);
+    void (*objects)(void *state, const gi_objects *o);
 } gi_method;
 
 #endif
