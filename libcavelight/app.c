@@ -272,3 +272,13 @@ void cavelight_mat4_mul(const float *a, const float *b, float *out)
 {
     mat4_mul(a, b, out);
 }
+
+int cavelight_mat4_inverse(const float *m, float *out)
+{
+    return mat4_affine_inverse(m, out);
+}
+
+void cavelight_mat4_point(const float *m, const float *p, float *out)
+{
+    mat4_transform_point(m, p, out);
+}

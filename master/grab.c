@@ -106,7 +106,7 @@ int grab_update(grab *g, const scene *s, scene_pose *pose, const frame_params *f
     }
     /* model = W_now W_start^-1 model_start; offset = parent_model^-1 model. */
     float inv[16], m[16], parent_inv[16];
-    if (scene_pose_affine_inverse(g->wand_start, inv) != 0)
+    if (mat4_affine_inverse(g->wand_start, inv) != 0)
         return 1;
     mat4_mul(world, inv, m);
     mat4_mul(m, g->model_start, m);
@@ -115,7 +115,7 @@ int grab_update(grab *g, const scene *s, scene_pose *pose, const frame_params *f
         float (*model)[16] = xmalloc((size_t)s->object_count * sizeof *model);
         uint8_t shown[SCENE_MAX_OBJECTS];
         scene_pose_models(s, pose, model, shown);
-        int ok = scene_pose_affine_inverse(model[parent], parent_inv) == 0;
+        int ok = mat4_affine_inverse(model[parent], parent_inv) == 0;
         free(model);
         if (!ok)
             return 1;

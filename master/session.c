@@ -130,7 +130,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
         !(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
     if (s->app)
-        app_host_bind(s->app, cluster_master_params(s->m), &s->pose);
+        app_host_bind(s->app, cluster_master_params(s->m), cluster_master_params(s->m), &s->pose);
     grab_init(&s->grab);
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
@@ -280,7 +280,10 @@ static session_step apply_input(session *s, input_state *out)
     pose_guard_apply(&s->guard, &s->guard.wand, &ist.wand, now);
     if (s->print_poses)
         print_poses(s, &ist);
-    interaction_update(&s->ia, &ist, ist.dt, &s->frame);
+    input_state layouts = ist; /* without the buttons the application takes */
+    layouts.buttons &= ~app_host_buttons(s->app);
+    layouts.pressed &= ~app_host_buttons(s->app);
+    interaction_update(&s->ia, &layouts, ist.dt, &s->frame);
     s->frame.time = ist.time;
     *out = ist;
     return SESSION_FRAME_DONE;

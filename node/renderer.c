@@ -350,6 +350,15 @@ static void follow_frame(renderer *r, const frame_params *p)
                  gi_method_at(gi_active(r->gi))->name);
 }
 
+void renderer_set_gbuffer_draw(renderer *r,
+                               void (*draw)(void *user, const frame_view *view, const float view_projection[16],
+                                            GLuint fbo, GLuint depth_texture),
+                               void *user)
+{
+    r->desc.gbuffer_draw = draw;
+    r->desc.gbuffer_user = user;
+}
+
 void renderer_set_pose(renderer *r, const scene_pose *pose)
 {
     if (memcmp(&r->pose, pose, sizeof *pose) == 0)

@@ -59,6 +59,11 @@ typedef struct renderer_timings {
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
+/* Replaces renderer_desc's gbuffer_draw and its user (NULL: nothing drawn). */
+void renderer_set_gbuffer_draw(renderer *r,
+                               void (*draw)(void *user, const frame_view *view, const float view_projection[16],
+                                            GLuint fbo, GLuint depth_texture),
+                               void *user);
 /* The objects' pose for the next frame passes (until called: as loaded). */
 void renderer_set_pose(renderer *r, const scene_pose *pose);
 /* Takes the frame's parameters as sent (gi_frame_sanitize() runs here, once). A method

@@ -34,7 +34,8 @@ struct app_host {
     app_key keys[APP_MAX_KEYS];
     int key_count, key_refused;
     size_t bytes_registered;
-    params_store *store;
+    const params_store *store;   /* read */
+    params_store *writable;      /* set (the master's), or NULL */
     scene_pose *pose;
     float (*bounds)[6];          /* per object, its own triangles at rest */
     float models[SCENE_MAX_OBJECTS][16];
@@ -178,7 +179,7 @@ static app_key *typed(app_host *h, const char *call, int key, app_key_kind kind,
 
 static int settable(app_host *h, const char *call)
 {
-    if (h->app.role == CAVELIGHT_ROLE_MASTER && h->phase == PHASE_UPDATE)
+    if (h->writable && h->phase == PHASE_UPDATE)
         return 1;
     return refusal(h, "%s: keys and objects are set on the master in update only (this is %s, in %s)", call,
                    h->app.process,
@@ -192,7 +193,7 @@ static int host_key_set(void *host, int key, app_key_kind kind, int n, const voi
     if (!k)
         return -1;
     if (kind == APP_KEY_STRING || kind == APP_KEY_BLOB) {
-        if (params_set_bytes(h->store, k->store_key, data, len) == 0)
+        if (params_set_bytes(h->writable, k->store_key, data, len) == 0)
             return 0;
         return refusal(h, "cavelight_set_%s(%s): %zu bytes %s (at most %zu%s)", kind_name(kind), k->name, len,
                        len > k->capacity ? "too many" : "not UTF-8 without NUL", k->capacity,
@@ -200,7 +201,7 @@ static int host_key_set(void *host, int key, app_key_kind kind, int n, const voi
     }
     if (!all_finite(k, data))
         return refusal(h, "cavelight_set_%s(%s): not a finite value", kind_name(kind), k->name);
-    return params_set(h->store, k->store_key, data, fixed_size(k));
+    return params_set(h->writable, k->store_key, data, fixed_size(k));
 }
 
 static const void *host_key_get(void *host, int key, app_key_kind kind, int n, size_t *len)
@@ -290,8 +291,11 @@ static int host_draw(void *host, const cavelight_draw *d, int mode, const caveli
                      float size)
 {
     app_host *h = host;
+    const char *what = mode ? "lines" : "points";
     if (h->phase != PHASE_DRAW || !h->desc.draw)
-        return refusal(h, "cavelight_draw_%s(): only in draw, on a render node", mode ? "lines" : "points");
+        return refusal(h, "cavelight_draw_%s(): only in draw, on a render node", what);
+    if (count > APP_DRAW_MAX_VERTICES)
+        return refusal(h, "cavelight_draw_%s(): %d vertices, at most %d a call", what, count, APP_DRAW_MAX_VERTICES);
     return h->desc.draw(h->desc.user, d, mode, v, count, size);
 }
 
@@ -412,9 +416,10 @@ int app_host_add_keys(app_host *h, params_schema *schema, char *err, size_t errl
     return 0;
 }
 
-void app_host_bind(app_host *h, params_store *store, scene_pose *pose)
+void app_host_bind(app_host *h, const params_store *store, params_store *writable, scene_pose *pose)
 {
     h->store = store;
+    h->writable = writable;
     h->pose = pose;
 }
 
@@ -448,6 +453,7 @@ void app_host_draw(app_host *h, const cavelight_draw *d)
 }
 
 const char *app_host_name(const app_host *h) { return h->name; }
+uint32_t app_host_buttons(const app_host *h) { return h ? h->app.desc.buttons : 0; }
 
 void app_host_destroy(app_host *h)
 {

@@ -4,7 +4,7 @@
  *   app_host *h = app_host_load(&desc, err, sizeof err);  dlopen, cavelight_app_main()
  *   app_host_init(h, err, sizeof err);                     its init: keys registered
  *   app_host_add_keys(h, &schema, err, sizeof err);        "app.NAME" keys into the schema
- *   app_host_bind(h, &store, &pose);                       where values and objects live
+ *   app_host_bind(h, &store, &store or NULL, &pose);       where values and objects live
  *   per frame: app_host_update(h, &input)  (master)        its update: sets keys, objects
  *              app_host_frame(h)           (node)          its frame: reads them
  *              app_host_draw(h, &draw)     (node)          its draw, per screen and eye
@@ -26,7 +26,7 @@
 #include "cluster/params.h"
 #include "scene/scene_pose.h"
 
-enum { APP_MAX_KEYS = 128 };
+enum { APP_MAX_KEYS = 128, APP_DRAW_MAX_VERTICES = 1 << 22 };
 
 typedef struct app_host app_host;
 
@@ -51,13 +51,16 @@ app_host *app_host_load(const app_host_desc *desc, char *err, size_t errlen);
 int app_host_init(app_host *h, char *err, size_t errlen);
 /* Adds the registered keys to schema (after the scene's); -1 with one line in err. */
 int app_host_add_keys(app_host *h, params_schema *schema, char *err, size_t errlen);
-/* The store the keys are read from (and set in, on the master) and the objects' pose. */
-void app_host_bind(app_host *h, params_store *store, scene_pose *pose);
+/* The store the keys are read from, the one they are set in (the master's; NULL on a
+ * node) and the objects' pose. */
+void app_host_bind(app_host *h, const params_store *store, params_store *writable, scene_pose *pose);
 void app_host_update(app_host *h, const cavelight_input *in);
 void app_host_frame(app_host *h);
 /* Whether the application draws (has a draw callback). */
 int app_host_draws(const app_host *h);
 void app_host_draw(app_host *h, const cavelight_draw *d);
+/* The buttons the application takes from the interaction layouts (its desc.buttons). */
+uint32_t app_host_buttons(const app_host *h);
 /* The application's name (desc.name or the file's). */
 const char *app_host_name(const app_host *h);
 /* Calls shutdown, unloads. NULL is fine. */

@@ -74,35 +74,7 @@ static dmat dfrom(const float m[16])
 
 static int dinverse(dmat a, dmat *out)
 {
-    const double *m = a.m;
-    /* The 3x3 part by cofactors, the translation by -R^-1 t. */
-    double c[9] = {
-        m[5] * m[10] - m[6] * m[9], m[2] * m[9] - m[1] * m[10], m[1] * m[6] - m[2] * m[5],
-        m[6] * m[8] - m[4] * m[10], m[0] * m[10] - m[2] * m[8], m[2] * m[4] - m[0] * m[6],
-        m[4] * m[9] - m[5] * m[8], m[1] * m[8] - m[0] * m[9], m[0] * m[5] - m[1] * m[4],
-    };
-    double det = m[0] * c[0] + m[4] * c[1] + m[8] * c[2];
-    if (!(fabs(det) > 1e-30) || !isfinite(det))
-        return -1;
-    dmat r = {{0}};
-    for (int col = 0; col < 3; col++)
-        for (int row = 0; row < 3; row++)
-            r.m[col * 4 + row] = c[col * 3 + row] / det;
-    for (int row = 0; row < 3; row++)
-        r.m[12 + row] = -(r.m[row] * m[12] + r.m[4 + row] * m[13] + r.m[8 + row] * m[14]);
-    r.m[15] = 1;
-    *out = r;
-    return 0;
-}
-
-int scene_pose_affine_inverse(const float m[16], float out[16])
-{
-    dmat r;
-    if (dinverse(dfrom(m), &r) != 0)
-        return -1;
-    for (int i = 0; i < 16; i++)
-        out[i] = (float)r.m[i];
-    return 0;
+    return mat4_affine_inverse_d(a.m, out->m);
 }
 
 /* T * R(q) * S, q = (x, y, z, w) normalized here. */

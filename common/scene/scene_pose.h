@@ -35,8 +35,4 @@ int scene_pose_animate(const scene *s, double t, scene_pose *p);
  * moved between two frames. */
 int scene_pose_object_changed(const scene *s, const scene_pose *a, const scene_pose *b, int o);
 
-/* Small affine helpers on column-major matrices, in double inside. */
-/* out = the inverse of the affine m (last row 0 0 0 1); returns -1 when m is singular. */
-int scene_pose_affine_inverse(const float m[16], float out[16]);
-
 #endif

@@ -103,6 +103,8 @@ typedef struct cavelight_app_desc {
     int version;              /* CAVELIGHT_APP_VERSION (0: the current one) */
     const char *name;         /* for messages; NULL: the file's name */
     void *user;               /* cavelight_app_user() */
+    uint32_t buttons;         /* buttons it takes (bits 1 << CAVELIGHT_BUTTON_*): they reach its
+                                 update only, not the master's interaction layouts */
     void (*init)(cavelight_app *app);
     void (*update)(cavelight_app *app, const cavelight_input *in);
     void (*frame)(cavelight_app *app);
@@ -192,10 +194,14 @@ CAVELIGHT_API void *cavelight_gl_proc(cavelight_app *app, const char *name);
 
 CAVELIGHT_API void cavelight_mat4_identity(float *m);
 CAVELIGHT_API void cavelight_mat4_translation(float *m, float x, float y, float z);
-/* A rotation by radians about the unit axis (x, y, z). */
+/* A rotation by radians about the axis (x, y, z). */
 CAVELIGHT_API void cavelight_mat4_rotation(float *m, float radians, float x, float y, float z);
+/* out = the inverse of the affine m (rotation, scale, translation); -1 when singular. */
+CAVELIGHT_API int cavelight_mat4_inverse(const float *m, float *out);
 /* out = a * b (out may be a or b). */
 CAVELIGHT_API void cavelight_mat4_mul(const float *a, const float *b, float *out);
+/* out = m applied to the point p (w 1). */
+CAVELIGHT_API void cavelight_mat4_point(const float *m, const float *p, float *out);
 
 #ifdef __cplusplus
 }
