@@ -8,7 +8,7 @@
 #include <sys/socket.h>
 
 #include "cluster/cluster_config.h"
-#include "cluster/cluster_keys.h"
+#include "cluster_auth.h"
 #include "gi/gi_settings.h"
 #include "input_config.h"
 #include "scene/scene.h"
@@ -106,16 +106,9 @@ static void check_security(check_ctx *c)
         passed(c, "security %s", cluster_security_name(c->cfg->security));
         return;
     }
-    char z85[CLUSTER_KEY_Z85 + 1], err[1024], first[1024] = "";
-    int missing = cluster_key_read(c->cfg, "master", CLUSTER_KEY_SECRET, z85, first, sizeof first) != 0;
-    for (int n = 0; n < c->cfg->node_count; n++)
-        if (cluster_key_read(c->cfg, c->cfg->nodes[n].name, CLUSTER_KEY_PUBLIC, z85, err, sizeof err) != 0 &&
-            missing++ == 0)
-            snprintf(first, sizeof first, "%s", err);
-    if (missing > 1)
-        problem(c, "%s (and %d more key files)", first, missing - 1);
-    else if (missing)
-        problem(c, "%s", first);
+    char err[1024];
+    if (cluster_auth_check_keys(c->cfg, err, sizeof err) != 0)
+        problem(c, "%s", err);
     else
         passed(c, "curve keys in %s", c->cfg->keys_dir);
 }

@@ -1,8 +1,10 @@
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "cluster_auth.h"
 #include "base/xalloc.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -104,6 +106,40 @@ static void *zap_thread(void *arg)
     return NULL;
 }
 
+/* The master's key pair (its secret key into secret), every node's public key (into a's
+ * table when a is not NULL), and every node's pair whose secret key is here too (a keygen
+ * folder, or a cluster on one machine): a pair that does not match is named at start
+ * instead of failing each handshake. */
+static int check_keys(const cluster_config *cfg, cluster_auth *a, char secret[CLUSTER_KEY_Z85 + 1], char *err,
+                      size_t errlen)
+{
+    char pub[CLUSTER_KEY_Z85 + 1], other[CLUSTER_KEY_Z85 + 1], path[CLUSTER_TEXT_MAX + 64];
+    if (cluster_key_read_pair(cfg, NULL, "master", zmq_curve_public, pub, secret, err, errlen) != 0)
+        return -1;
+    for (int i = 0; i < cfg->node_count; i++) {
+        const char *name = cfg->nodes[i].name;
+        int has_secret = cluster_key_path(cfg, name, CLUSTER_KEY_SECRET, path, sizeof path) == 0 &&
+                         access(path, F_OK) == 0;
+        if ((has_secret ? cluster_key_read_pair(cfg, NULL, name, zmq_curve_public, pub, other, err, errlen)
+                        : cluster_key_read(cfg, NULL, name, CLUSTER_KEY_PUBLIC, pub, err, errlen)) != 0)
+            return -1;
+        uint8_t key[32];
+        if (!zmq_z85_decode(key, pub)) {
+            snprintf(err, errlen, "cluster keys %s/%s.pub: not a key", cfg->keys_dir, name);
+            return -1;
+        }
+        if (a)
+            memcpy(a->node_key[i], key, sizeof key);
+    }
+    return 0;
+}
+
+int cluster_auth_check_keys(const cluster_config *cfg, char *err, size_t errlen)
+{
+    char secret[CLUSTER_KEY_Z85 + 1];
+    return check_keys(cfg, NULL, secret, err, errlen);
+}
+
 cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cfg, int quiet,
                                  char *err, size_t errlen)
 {
@@ -111,29 +147,19 @@ cluster_auth *cluster_auth_start(void *ctx, void *sock, const cluster_config *cf
     a->cfg = cfg;
     a->ctx = ctx;
     a->quiet = quiet;
-    if (cfg->security == CLUSTER_SECURITY_INSECURE) {
-        if (!quiet)
-            fprintf(stderr, "cavelight-master: security \"insecure\" in %s: any peer that reaches %s "
-                    "may join as a node (local runs and tests only)\n", cfg->path, cfg->master_bind);
-        return a;
-    }
+    if (cfg->security == CLUSTER_SECURITY_INSECURE)
+        return a; /* cluster_master says so, naming the endpoint it bound */
     if (!zmq_has("curve")) {
         snprintf(err, errlen, "cluster master: this libzmq has no CURVE security; install one that "
                  "has (Debian's libzmq5 does)");
         free(a);
         return NULL;
     }
-    char secret[CLUSTER_KEY_Z85 + 1], pub[CLUSTER_KEY_Z85 + 1];
-    if (cluster_key_read(cfg, "master", CLUSTER_KEY_SECRET, secret, err, errlen) != 0) {
+    char secret[CLUSTER_KEY_Z85 + 1];
+    if (check_keys(cfg, a, secret, err, errlen) != 0) {
         free(a);
         return NULL;
     }
-    for (int i = 0; i < cfg->node_count; i++)
-        if (cluster_key_read(cfg, cfg->nodes[i].name, CLUSTER_KEY_PUBLIC, pub, err, errlen) != 0 ||
-            !zmq_z85_decode(a->node_key[i], pub)) {
-            free(a);
-            return NULL;
-        }
     int one = 1, zero = 0;
     a->zap = zmq_socket(ctx, ZMQ_REP);
     if (!a->zap || zmq_setsockopt(a->zap, ZMQ_LINGER, &zero, sizeof zero) != 0 ||
@@ -198,29 +224,106 @@ static int write_key(const char *path, const char *z85, int secret, char *err, s
     return ok ? 0 : -1;
 }
 
-int cluster_keygen(const cluster_config *cfg, char *err, size_t errlen)
+static int make_dir(const char *path, char *err, size_t errlen)
+{
+    if (mkdir(path, 0700) == 0 || errno == EEXIST)
+        return 0;
+    snprintf(err, errlen, "cluster keygen %s: %s", path, strerror(errno));
+    return -1;
+}
+
+/* Fresh key pairs: [0] the master's, [1 + i] node i's. */
+typedef struct key_set {
+    char pub[CLUSTER_MAX_NODES + 1][CLUSTER_KEY_Z85 + 1], secret[CLUSTER_MAX_NODES + 1][CLUSTER_KEY_Z85 + 1];
+} key_set;
+
+/* WHO's pair into folder dir. */
+static int write_pair(const char *dir, const char *who, const key_set *k, int i, int with_secret, char *err,
+                      size_t errlen)
+{
+    char key[CLUSTER_TEXT_MAX + 240], pub[CLUSTER_TEXT_MAX + 240];
+    if (snprintf(key, sizeof key, "%s/%s.key", dir, who) >= (int)sizeof key ||
+        snprintf(pub, sizeof pub, "%s/%s.pub", dir, who) >= (int)sizeof pub) {
+        snprintf(err, errlen, "cluster keygen %s: path too long", dir);
+        return -1;
+    }
+    if (with_secret && write_key(key, k->secret[i], 1, err, errlen) != 0)
+        return -1;
+    return write_key(pub, k->pub[i], 0, err, errlen);
+}
+
+/* Where a host's bundle goes: the key folder as the config there names it, the config's
+ * path there being the node's "config" (in its "workdir" when relative), or this one's. */
+static void bundle_target(const cluster_config *cfg, const cluster_node *n, char *out, size_t cap)
+{
+    char there[2 * CLUSTER_TEXT_MAX + 2] = "", abs_keys[PATH_MAX];
+    if (n->config[0] && n->config[0] != '/' && n->workdir[0])
+        snprintf(there, sizeof there, "%s/%s", n->workdir, n->config);
+    else if (n->config[0])
+        snprintf(there, sizeof there, "%s", n->config);
+    if (there[0] && cluster_keys_dir_for(cfg, there, out, cap) == 0)
+        return;
+    snprintf(out, cap, "%s", realpath(cfg->keys_dir, abs_keys) ? abs_keys : cfg->keys_dir);
+}
+
+/* One bundle per host, with its nodes' pairs and master.pub, and one line saying where it
+ * goes. The first node of each host writes it. */
+static int write_bundles(const cluster_config *cfg, const key_set *k, FILE *say, char *err, size_t errlen)
+{
+    char hosts[CLUSTER_TEXT_MAX + 16];
+    snprintf(hosts, sizeof hosts, "%s/hosts", cfg->keys_dir);
+    if (make_dir(hosts, err, errlen) != 0)
+        return -1;
+    for (int i = 0; i < cfg->node_count; i++) {
+        const char *host = cfg->nodes[i].host;
+        int first = 1;
+        for (int j = 0; j < i && first; j++)
+            first = strcmp(cfg->nodes[j].host, host) != 0;
+        if (!first)
+            continue;
+        char dir[CLUSTER_TEXT_MAX + 160], files[1024] = "", names[512] = "", target[PATH_MAX];
+        int count = 0;
+        if (cluster_keys_bundle_dir(cfg, host, dir, sizeof dir) != 0 || make_dir(dir, err, errlen) != 0 ||
+            write_pair(dir, "master", k, 0, 0, err, errlen) != 0)
+            return -1;
+        for (int j = i; j < cfg->node_count; j++) {
+            const char *name = cfg->nodes[j].name;
+            if (strcmp(cfg->nodes[j].host, host) != 0)
+                continue;
+            if (write_pair(dir, name, k, 1 + j, 1, err, errlen) != 0)
+                return -1;
+            size_t f = strlen(files), nn = strlen(names);
+            snprintf(files + f, sizeof files - f, "%s.key, %s.pub, ", name, name);
+            snprintf(names + nn, sizeof names - nn, "%s%s", nn ? ", " : "", name);
+            count++;
+        }
+        bundle_target(cfg, &cfg->nodes[i], target, sizeof target);
+        fprintf(say, "  %s (node%s %s): %s/{%smaster.pub} -> %s:%s/\n", host, count > 1 ? "s" : "", names, dir,
+                files, host, target);
+    }
+    return 0;
+}
+
+int cluster_keygen(const cluster_config *cfg, FILE *say, char *err, size_t errlen)
 {
     if (!zmq_has("curve")) {
         snprintf(err, errlen, "cluster keygen: this libzmq has no CURVE security");
         return -1;
     }
-    if (mkdir(cfg->keys_dir, 0700) != 0 && errno != EEXIST) {
-        snprintf(err, errlen, "cluster keygen %s: %s", cfg->keys_dir, strerror(errno));
-        return -1;
-    }
-    for (int i = -1; i < cfg->node_count; i++) {
-        const char *who = i < 0 ? "master" : cfg->nodes[i].name;
-        char pub[CLUSTER_KEY_Z85 + 1], secret[CLUSTER_KEY_Z85 + 1];
-        char pub_path[CLUSTER_TEXT_MAX + 64], secret_path[CLUSTER_TEXT_MAX + 64];
-        if (zmq_curve_keypair(pub, secret) != 0 ||
-            cluster_key_path(cfg, who, CLUSTER_KEY_PUBLIC, pub_path, sizeof pub_path) != 0 ||
-            cluster_key_path(cfg, who, CLUSTER_KEY_SECRET, secret_path, sizeof secret_path) != 0) {
-            snprintf(err, errlen, "cluster keygen %s: cannot make a key pair for %s", cfg->keys_dir, who);
+    static key_set k;
+    for (int i = 0; i <= cfg->node_count; i++)
+        if (zmq_curve_keypair(k.pub[i], k.secret[i]) != 0) {
+            snprintf(err, errlen, "cluster keygen %s: cannot make a key pair", cfg->keys_dir);
             return -1;
         }
-        if (write_key(secret_path, secret, 1, err, errlen) != 0 ||
-            write_key(pub_path, pub, 0, err, errlen) != 0)
+    if (make_dir(cfg->keys_dir, err, errlen) != 0)
+        return -1;
+    for (int i = -1; i < cfg->node_count; i++)
+        if (write_pair(cfg->keys_dir, i < 0 ? "master" : cfg->nodes[i].name, &k, i + 1, 1, err, errlen) != 0)
             return -1;
-    }
-    return 0;
+    fprintf(say, "cavelight-master: wrote the key pairs of the master and %d nodes into %s; the master reads "
+            "master.key, master.pub and every node's .pub there. Copy each host's bundle into the key folder "
+            "its config names (security.keys), .key files readable by their owner only, and no other host's "
+            ".key files:\n", cfg->node_count, cfg->keys_dir);
+    return write_bundles(cfg, &k, say, err, errlen);
 }

@@ -5,13 +5,18 @@
  * incremental LPV restarts from the same frame. cluster_master_frame() commits the
  * parameter store as version v, sends FRAME(v, delta since each node's version), waits
  * for READY(v) from every live node until the stall timeout, drops the late ones,
- * compares LPV checksums (a difference is a desync) and sends SWAP(v).
+ * compares the frame's GI checksums (a difference is a desync) and sends SWAP(v).
  * The stall timeout adapts: 4 x the p99 READY latency of the last 64 frames, at least
  * timeouts.stall_min_ms and at most barrier_ms. A node whose connection closes (killed,
  * crashed, heartbeats unanswered) is dropped at once from the socket's disconnect event.
  * Every live node hears from the master at least every heartbeat_ms (FRAME, or HEARTBEAT
  * while it waits), so nodes notice a hung master within master_ms.
+ * A node that cannot take the scene or a version's parameters says why (REFUSE): logged,
+ * counted per node with its last reason, and the node leaves the barrier.
  * Malformed messages and unknown peers are dropped, counted and logged (rate-limited).
+ * Handshakes must finish within WIRE_HANDSHAKE_MS, and at most pending_max connections may
+ * wait for a node's first message (conn_guard.h): a flood of unfinished handshakes cannot
+ * take every descriptor, and a restarted node gets in while one runs.
  * Queues are bounded by high-water marks and a maximum message size; every wait times out. */
 #ifndef CAVELIGHT_CLUSTER_MASTER_H
 #define CAVELIGHT_CLUSTER_MASTER_H
@@ -30,6 +35,9 @@ typedef struct cluster_master_desc {
     const char *bind;        /* NULL = config->master_bind */
     int barrier_timeout_ms;  /* 0 = config->barrier_timeout_ms */
     int quiet;               /* 1: log only errors */
+    int insecure_anywhere;   /* 1: security "insecure" may bind outside the loopback range */
+    int pending_max;         /* connections no node has spoken on yet, at most (conn_guard.h;
+                                0 = CONN_GUARD_DEFAULT); the oldest beyond it is shut down */
     const params_schema *schema; /* the store's keys (copied); NULL: gi_params_schema() */
 } cluster_master_desc;
 
@@ -42,21 +50,29 @@ typedef enum cluster_peer_state {
 typedef struct cluster_peer_stats {
     cluster_peer_state state;
     uint64_t version;        /* last version the node applied (snapshot or READY) */
-    uint64_t checksum;       /* LPV checksum of its last READY */
+    uint64_t checksum;       /* the frame's GI checksum of its last READY */
     uint64_t frames_ready;
     uint32_t joins, drops;
+    uint32_t refusals;       /* REFUSE messages: it could not take the scene or parameters */
+    uint32_t refused_what;   /* of the last one: wire_refuse_what */
+    char refusal[WIRE_TEXT_MAX + 1]; /* the last one's reason, as the node gave it */
     float timings[WIRE_TIMING_COUNT]; /* of the last READY */
     double ready_ms;         /* FRAME sent to READY received, last frame */
 } cluster_peer_stats;
 
 typedef struct cluster_master_stats {
     uint64_t frames, desyncs;
+    uint64_t frames_rendered; /* frames with at least one node READY */
+    uint64_t refusals;       /* REFUSE messages from nodes */
     uint64_t malformed, unknown_peers, stale;
     uint64_t bytes_sent, bytes_received, messages_sent, messages_received;
     uint64_t joins, drops;
     uint64_t refused;        /* connections refused for an unknown CURVE key */
     uint64_t disconnects;    /* live nodes dropped when their connection closed */
     uint64_t handshakes_failed;
+    uint64_t unauthenticated_dropped; /* connections shut down by the pending_max bound */
+    uint64_t accept_failures; /* connections the socket could not accept (no descriptor left) */
+    long fd_limit;           /* the process's descriptor limit when the master started */
 } cluster_master_stats;
 
 typedef struct cluster_frame_result {
@@ -72,7 +88,8 @@ typedef struct cluster_frame_result {
     size_t frame_bytes;      /* bytes of one FRAME message (to a node at v-1) */
 } cluster_frame_result;
 
-/* Returns NULL with a one-line reason in err. */
+/* Returns NULL with a one-line reason in err: among them security "insecure" on an
+ * endpoint outside the loopback range (127.0.0.0/8, ::1, ipc) without insecure_anywhere. */
 cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err, size_t errlen);
 /* Sends BYE(shutdown) to every live node, then closes. */
 void cluster_master_destroy(cluster_master *m);
@@ -89,6 +106,9 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out);
 void cluster_master_stats_get(const cluster_master *m, cluster_master_stats *out);
 void cluster_master_peer_stats(const cluster_master *m, int node, cluster_peer_stats *out);
 int cluster_master_live_count(const cluster_master *m);
+/* 0 when every node would take a snapshot of the store as it is (params_apply(), the
+ * nodes' own check); else -1 with the first key they would refuse and its value in err. */
+int cluster_master_check_params(cluster_master *m, char *err, size_t errlen);
 /* The endpoint actually bound (resolves a wildcard port such as tcp://127.0.0.1:*). */
 int cluster_master_endpoint(const cluster_master *m, char *buf, size_t cap);
 

@@ -2,8 +2,10 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "base/clock.h"
+#include "base/ratelog.h"
 #include "base/folder.h"
 #include "cluster_auth.h"
 #include "check.h"
@@ -41,6 +43,7 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
 {
     double start = clock_now_ms();
     int rc = 0;
+    ratelog idle_log = {0}; /* nodes that come and go (churn) must not flood the output */
     while ((o->frames == 0 || session_frames(s) < o->frames) && !stop_requested) {
         cluster_frame_result r;
         session_step step = session_frame(s, &r);
@@ -58,8 +61,12 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
             rc = 1;
             break;
         }
+        uint64_t skipped = 0;
         if (step == SESSION_NO_NODES) {
-            fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one\n", wait_ms);
+            if (ratelog_event(&idle_log, clock_now_ms(), &skipped))
+                fprintf(stderr, "cavelight-master: no node is live; waiting up to %d ms for one (%llu times so far, "
+                        "%llu not logged)\n", wait_ms, (unsigned long long)idle_log.count,
+                        (unsigned long long)skipped);
             if (session_wait_nodes(s, 1, wait_ms, &stop_requested) == 0) {
                 fprintf(stderr, "cavelight-master: no node came back: stopping\n");
                 rc = 1;
@@ -72,6 +79,27 @@ static int run_frames(session *s, const master_options *o, launch_set *nodes, pr
     }
     *wall_s = (clock_now_ms() - start) / 1000.0;
     return rc;
+}
+
+/* A session whose nodes refused it, or in which no node rendered any frame, did not show
+ * what was asked: each refusing node's last reason, and 1 for the exit status. */
+static int session_failed(const cluster_config *cfg, cluster_master *m, const cluster_master_stats *st)
+{
+    int failed = 0;
+    for (int i = 0; i < cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(m, i, &ps);
+        if (!ps.refusals)
+            continue;
+        fprintf(stderr, "cavelight-master: node %s refused the %s (%u refusals), the last: %s\n", cfg->nodes[i].name,
+                ps.refused_what == WIRE_REFUSE_PARAMS ? "parameters" : "scene", ps.refusals, ps.refusal);
+        failed = 1;
+    }
+    if (st->frames > 0 && st->frames_rendered == 0) {
+        fprintf(stderr, "cavelight-master: no node rendered any of the %llu frames\n", (unsigned long long)st->frames);
+        failed = 1;
+    }
+    return failed;
 }
 
 static void print_summary(const cluster_master_stats *st, double wall_s)
@@ -115,12 +143,10 @@ static preview *open_preview(const master_options *o, const cluster_config *cfg)
 static int keygen(const cluster_config *cfg)
 {
     char err[1024];
-    if (cluster_keygen(cfg, err, sizeof err) != 0) {
+    if (cluster_keygen(cfg, stderr, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 1;
     }
-    fprintf(stderr, "cavelight-master: wrote master.key/.pub and one pair per node into %s; give "
-            "each host its own .key and master.pub\n", cfg->keys_dir);
     return 0;
 }
 
@@ -136,40 +162,76 @@ static int unknown_keys(const master_options *o, const cluster_config *cfg)
     return o->strict && cfg->unknown_key_count ? -1 : 0;
 }
 
+/* Every connection costs a descriptor: take as many as the system allows (the hard limit)
+ * and say so, before a handshake flood can reach the usual soft limit of 1024. A hard limit
+ * under FD_LIMIT_LOW is named too. The report has the limit either way. */
+enum { FD_LIMIT_LOW = 4096 };
+static void raise_fd_limit(int quiet)
+{
+    struct rlimit r;
+    if (getrlimit(RLIMIT_NOFILE, &r) != 0)
+        return;
+    rlim_t before = r.rlim_cur;
+    if (r.rlim_cur < r.rlim_max) {
+        r.rlim_cur = r.rlim_max == RLIM_INFINITY ? 1 << 20 : r.rlim_max;
+        if (setrlimit(RLIMIT_NOFILE, &r) != 0 || getrlimit(RLIMIT_NOFILE, &r) != 0)
+            r.rlim_cur = before;
+    }
+    if (quiet)
+        return;
+    if (r.rlim_cur > before)
+        fprintf(stderr, "cavelight-master: file descriptor limit raised from %llu to %llu (the hard limit)\n",
+                (unsigned long long)before, (unsigned long long)r.rlim_cur);
+    else if (r.rlim_cur < FD_LIMIT_LOW)
+        fprintf(stderr, "cavelight-master: file descriptor limit %llu, the hard limit (LimitNOFILE= or "
+                "ulimit -Hn raise it)\n", (unsigned long long)r.rlim_cur);
+}
+
+/* The config with the command line's placement applied, and what was fitted said. Returns
+ * 0, or -1 after one line. */
+static int load_config(const master_options *o, cluster_config *cfg)
+{
+    char err[1024];
+    if (cluster_config_load(o->config, cfg, err, sizeof err) != 0) {
+        fprintf(stderr, "cavelight-master: %s\n", err);
+        return -1;
+    }
+    if (unknown_keys(o, cfg) != 0)
+        return -1;
+    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
+        cfg->scene_transform = o->scene_transform;
+        cfg->has_scene_transform = 1;
+        if (!o->spawn_local && !o->spawn_remote && !o->keygen)
+            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
+                    "start every node with the same --scene-transform\n");
+    }
+    cfg->scene_outside_paths = o->allow_outside_paths;
+    for (int i = 0; i < cfg->screen_count && !o->quiet; i++)
+        if (cfg->screens[i].fit_mm >= 0.05f)
+            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
+                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg->screens[i].name,
+                    cfg->screens[i].fit_mm, cfg->corner_tolerance_mm);
+    return 0;
+}
+
 static int master_run(const master_options *o)
 {
     static cluster_config cfg;
     static launch_set nodes;
     char err[1024];
-    if (cluster_config_load(o->config, &cfg, err, sizeof err) != 0) {
-        fprintf(stderr, "cavelight-master: %s\n", err);
-        return 1;
-    }
-    if (unknown_keys(o, &cfg) != 0)
+    if (load_config(o, &cfg) != 0)
         return 1;
     if (o->keygen)
         return keygen(&cfg);
-    if (o->has_scene_transform) { /* spawned nodes get the option too (launch.c) */
-        cfg.scene_transform = o->scene_transform;
-        cfg.has_scene_transform = 1;
-        if (!o->spawn_local && !o->spawn_remote)
-            fprintf(stderr, "cavelight-master: --scene-transform replaces the config's scene_transform: "
-                    "start every node with the same --scene-transform\n");
-    }
-    cfg.scene_outside_paths = o->allow_outside_paths;
-    for (int i = 0; i < cfg.screen_count && !o->quiet; i++)
-        if (cfg.screens[i].fit_mm >= 0.05f)
-            fprintf(stderr, "cavelight-master: screen %s: measured corners fitted to the nearest rectangle, "
-                    "the furthest moved %.1f mm (corner_tolerance_mm %g)\n", cfg.screens[i].name,
-                    cfg.screens[i].fit_mm, cfg.corner_tolerance_mm);
     static frame_params settings;
     if (master_settings(o, &cfg, &settings, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: %s\n", err);
         return 2;
     }
     handle_signals();
+    raise_fd_limit(o->quiet);
     session_desc sd = {.config = &cfg, .bind = o->bind, .barrier_ms = o->barrier_ms,
-                       .quiet = o->quiet, .scene = o->scene, .input = o->input, .dt = o->dt,
+                       .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .settings = &settings,
                        .exposure_auto = o->exposure_auto, .strict = o->strict, .app = o->app};
@@ -191,8 +253,12 @@ static int master_run(const master_options *o)
     if (!o->quiet)
         fprintf(stderr, "cavelight-master: %d nodes live, running %s%d frames\n", live,
                 o->frames ? "" : "until stopped, ", o->frames);
-    double wall_s;
-    int exit_code = run_frames(s, o, &nodes, pv, wait_ms, &wall_s);
+    double wall_s = 0;
+    int exit_code = 1;
+    if (o->budget_ms > 0 && session_choose_budget(s, o->budget_ms, &stop_requested, err, sizeof err) != 0)
+        fprintf(stderr, "cavelight-master: %s\n", err);
+    else
+        exit_code = run_frames(s, o, &nodes, pv, wait_ms, &wall_s);
     if (o->report && folder_create_for(o->report, err, sizeof err) != 0) {
         fprintf(stderr, "cavelight-master: report: %s\n", err);
         exit_code = 1;
@@ -201,6 +267,8 @@ static int master_run(const master_options *o)
     }
     cluster_master_stats st;
     cluster_master_stats_get(m, &st);
+    if (session_failed(&cfg, m, &st))
+        exit_code = 1;
     session_destroy(s); /* BYE: spawned nodes leave by themselves */
     launch_stop(&nodes);
     /* After the nodes are gone, every image on disk is from the last frame. */

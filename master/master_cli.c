@@ -5,6 +5,7 @@
 
 #include "cluster/cluster_config.h"
 #include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 
 enum group { G_CLUSTER, G_NODES, G_GI, G_DISPLAY, G_FRAMES, G_OUTPUT, G_INPUT, G_CALIBRATION, G_COUNT };
 
@@ -16,13 +17,13 @@ static const char *const groups[G_COUNT] = {
 };
 
 enum id {
-    O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN,
+    O_CONFIG, O_BIND, O_ENDPOINT_FILE, O_BARRIER_MS, O_KEYGEN, O_INSECURE_ANYWHERE,
     O_SPAWN_LOCAL, O_SPAWN_REMOTE, O_NODE_EXE, O_NODE_ARGS, O_WAIT_MS, O_RENDER, O_SCENE,
     O_FRAMES, O_DT, O_FPS,
     O_OUTPUT, O_OUT, O_KEEP_FRAMES, O_OVERVIEW, O_REPORT, O_PREVIEW, O_QUIET,
     O_INPUT, O_RECORD,
     O_PATTERN, O_PATTERN_BLEND, O_PRINT_POSES,
-    O_CHECK, O_STRICT,
+    O_CHECK, O_STRICT, O_BUDGET,
     O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE, O_APP,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
@@ -40,6 +41,8 @@ static const cli_option options[] = {
      "validate the config and exit, starting nothing: its keys,\nthe scene, the hosts, the CURVE keys, --input; one line\nper problem, exit 0 or 2"},
     {O_STRICT, "strict", NULL, NULL, G_CLUSTER, 0,
      "a key no part of the cluster or input config reads\n(a misspelling) is an error, not a warning"},
+    {O_INSECURE_ANYWHERE, "insecure-anywhere", NULL, NULL, G_CLUSTER, 0,
+     "let security \"insecure\" bind outside the loopback range\n(anybody who reaches the port may join or steer)"},
     {O_SPAWN_LOCAL, "spawn-local", NULL, NULL, G_NODES, 0, "start every node on this machine"},
     {O_SPAWN_REMOTE, "spawn-remote", NULL, NULL, G_NODES, 0,
      "start every node on its host through the config's launch\ncommand (ssh by default)"},
@@ -57,6 +60,8 @@ static const cli_option options[] = {
      "where the scene stands in the CAVE, e.g. '{\"up\": \"z\",\n\"scale\": 0.01}' or '{\"fit\": true}' (docs/cluster.md)"},
     {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
      "glTF buffers and images from outside the scene file's\nfolder too"},
+    {O_BUDGET, "budget-ms", "MS", NULL, G_GI, 0,
+     "ilpv: choose --lattice and --steps so that the frame pass\ntakes about MS ms on the slowest node (measured on every\nnode before the session's frames)"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -119,6 +124,7 @@ static const char *set(void *user, int id, const char *v)
     case O_ENDPOINT_FILE: o->endpoint_file = v; break;
     case O_BARRIER_MS: why = cli_int(v, 10, 600000, &o->barrier_ms); break;
     case O_KEYGEN: o->keygen = 1; break;
+    case O_INSECURE_ANYWHERE: o->insecure_anywhere = 1; break;
     case O_SPAWN_LOCAL: o->spawn_local = 1; break;
     case O_SPAWN_REMOTE: o->spawn_remote = 1; break;
     case O_NODE_EXE: o->node_exe = v; break;
@@ -159,6 +165,7 @@ static const char *set(void *user, int id, const char *v)
     case O_PRINT_POSES: o->print_poses = 1; break;
     case O_CHECK: o->check = 1; break;
     case O_STRICT: o->strict = 1; break;
+    case O_BUDGET: why = cli_float(v, 1e-3f, 1e6f, &o->budget_ms); break;
     case O_SETTING: break;
     }
     return why;
@@ -223,6 +230,14 @@ int master_settings(const master_options *o, const cluster_config *cfg, frame_pa
     for (int i = 0; i < o->setting_count; i++)
         gi_set(out, o->setting_name[i], o->setting_value[i]); /* checked when parsed */
     const char *why = gi_check(out);
+    if (!why && o->budget_ms > 0) {
+        int lattice_given = 0;
+        for (int i = 0; i < o->setting_count; i++)
+            lattice_given |= strcmp(o->setting_name[i], "lattice") == 0 ||
+                             strcmp(o->setting_name[i], "lattice-cells") == 0 ||
+                             strcmp(o->setting_name[i], "steps") == 0;
+        why = ilpv_budget_check(out, lattice_given);
+    }
     if (why) {
         snprintf(err, errlen, "%s", why);
         return -1;

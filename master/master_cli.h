@@ -14,6 +14,7 @@ enum { MASTER_MAX_SETTINGS = 96 };
 typedef struct master_options {
     const char *config;
     int spawn_local, spawn_remote, keygen, quiet;
+    int insecure_anywhere;      /* security "insecure" may bind outside the loopback range */
     const char *bind, *endpoint_file;
     int frames;                 /* 0 = until stopped */
     double dt, fps;             /* scripted seconds per frame; pacing (0 = as fast as possible) */
@@ -31,6 +32,7 @@ typedef struct master_options {
     int setting_count;
     const char *setting_name[MASTER_MAX_SETTINGS], *setting_value[MASTER_MAX_SETTINGS];
     int exposure_auto;          /* --exposure auto */
+    float budget_ms;            /* > 0: --budget-ms, every node measured (session.h) */
     int check;                  /* --check: validate the config and exit (check.h) */
     int strict;                 /* unknown keys in the cluster or input config are errors */
     const char *scene_transform_text; /* --scene-transform JSON, passed on to spawned nodes */

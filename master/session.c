@@ -17,6 +17,9 @@
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
+#include "gi/gi_cost.h"
+#include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 #include "scene/scene_load.h"
 #include "script.h"
 
@@ -55,6 +58,9 @@ struct session {
     int frames;
     uint64_t last_version;
     run_stats rs;
+    float bounds_min[3], bounds_max[3]; /* the scene's */
+    double budget_ms;                   /* > 0: the budget chose lattice and steps */
+    lpv_budget_choice budget;
 };
 
 /* The scene as every node places it, the application (its init registers its keys) and
@@ -76,12 +82,30 @@ static int load_scene_and_app(session *s, const char *scene_path, const session_
     return session_keys_add(&s->schema, &s->scene, &s->objects, s->app, err, errlen);
 }
 
+/* The nodes' limits on what the GI settings cost (gi_cost.h), checked as they check them:
+ * settings they would refuse are refused here, before any node starts. */
+static int check_limits(session *s, char *err, size_t errlen)
+{
+    gi_limits lim = {.memory_mb = s->cfg->gi_memory_mb};
+    frame_params_default(&lim.base);
+    char why[256];
+    if (gi_set_config(s->cfg, &lim.base, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s", why);
+        return -1;
+    }
+    memcpy(lim.bounds_min, s->bounds_min, sizeof lim.bounds_min);
+    memcpy(lim.bounds_max, s->bounds_max, sizeof lim.bounds_max);
+    if (gi_cost_within(&lim, &s->frame, why, sizeof why))
+        return 0;
+    snprintf(err, errlen, "%s: every node would refuse it; give heavier settings in the config's \"settings\", "
+             "which sets up the wall", why);
+    return -1;
+}
+
 /* The frame every node starts from: the defaults and the scene's lights. */
 static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
                 size_t errlen)
 {
-    (void)err;
-    (void)errlen;
     const scene sc = s->scene;
     if (sc.warning[0]) /* the nodes load it too; the master says it once */
         fprintf(stderr, "cavelight-master: warning: scene %s: %s\n", scene_path, sc.warning);
@@ -106,9 +130,18 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
         if (!d->quiet)
             fprintf(stderr, "cavelight-master: exposure %.3g from the scene's light\n", s->frame.exposure);
     }
+    memcpy(s->bounds_min, sc.bounds_min, sizeof s->bounds_min);
+    memcpy(s->bounds_max, sc.bounds_max, sizeof s->bounds_max);
     scene_pose_rest(&s->scene, &s->pose);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
-    return 0;
+    /* The nodes' own check, before any node is started: a scene no node can take is
+     * refused here, not reported as a session of frames nobody rendered. */
+    char why[300];
+    if (cluster_master_check_params(s->m, why, sizeof why) != 0) {
+        snprintf(err, errlen, "scene %s: %s; check its size and its lights", scene_path, why);
+        return -1;
+    }
+    return check_limits(s, err, errlen);
 }
 
 static void input_warning(void *user, const char *line)
@@ -124,7 +157,8 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->dt = d->dt;
     s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
-                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet, .schema = &s->schema};
+                              .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet,
+                              .insecure_anywhere = d->insecure_anywhere, .schema = &s->schema};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
     if (load_scene_and_app(s, scene_path, d, err, errlen) != 0 ||
         !(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
@@ -342,6 +376,64 @@ session_step session_frame(session *s, cluster_frame_result *result)
     return SESSION_FRAME_DONE;
 }
 
+/* One measuring frame of the budget plan on every live node: the slowest frame pass of the
+ * nodes that were READY in time, or -1 when none was. */
+static double budget_frame(session *s, const frame_params *f)
+{
+    params_store *store = cluster_master_params(s->m);
+    frame_params g = *f;
+    g.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH);
+    params_set_from_frame(store, &g);
+    cluster_frame_result r;
+    if (cluster_master_frame(s->m, &r) != 0)
+        return -1;
+    double slowest = -1;
+    for (int i = 0; i < s->cfg->node_count; i++) {
+        cluster_peer_stats ps;
+        cluster_master_peer_stats(s->m, i, &ps);
+        if (ps.state == CLUSTER_PEER_LIVE && ps.version == r.version)
+            slowest = fmax(slowest, ps.timings[WIRE_TIMING_FRAME]);
+    }
+    return slowest;
+}
+
+int session_choose_budget(session *s, double budget_ms, volatile sig_atomic_t *stop, char *err, size_t errlen)
+{
+    ilpv_budget_plan *plan = xcalloc(1, sizeof *plan);
+    ilpv_budget_plan_init(plan, &s->frame, s->bounds_min, s->bounds_max);
+    int rc = 0;
+    for (int i = 0; rc == 0 && i < ILPV_BUDGET_FRAMES; i++) {
+        frame_params f;
+        ilpv_budget_plan_frame(plan, i, &f);
+        double ms = stop && *stop ? -1 : budget_frame(s, &f);
+        if (ms < 0) {
+            snprintf(err, errlen, "--budget-ms: no node was ready in measuring frame %d of %d", i + 1,
+                     ILPV_BUDGET_FRAMES);
+            rc = -1;
+        }
+        ilpv_budget_plan_record(plan, i, ms);
+    }
+    lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
+    if (rc == 0 && ilpv_budget_plan_costs(plan, cand, err, errlen) != 0)
+        rc = -1;
+    if (rc == 0 && ilpv_budget_apply(budget_ms, cand, ILPV_BUDGET_CANDIDATES, &s->frame, &s->budget) != 0) {
+        snprintf(err, errlen, "--budget-ms: no choice from the measured costs");
+        rc = -1;
+    }
+    free(plan);
+    if (rc != 0)
+        return -1;
+    /* Every node starts the chosen lattice afresh, whatever the plan left in its history. */
+    params_store *store = cluster_master_params(s->m);
+    params_set_u32(store, PARAMS_RESET_EPOCH, params_get_u32(store, PARAMS_RESET_EPOCH) + 1);
+    s->budget_ms = budget_ms;
+    const lpv_budget_choice *c = &s->budget;
+    fprintf(stderr, "cavelight-master: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame "
+            "on the slowest node%s\n", budget_ms, c->axis_cells, c->steps, c->steps == 1 ? "" : "s",
+            c->predicted_ms, c->fits ? "" : ", over budget even at the coarsest lattice");
+    return 0;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -411,8 +503,22 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddItemToObject(root, "barrier_wait_ms", stat_obj(rs->barrier, rs->n));
     cJSON_AddItemToObject(root, "stall_timeout_ms", stat_obj(rs->timeout, rs->n));
     cJSON_AddNumberToObject(root, "nodes_wait_ms", rs->nodes_wait_ms);
+    if (s->budget_ms > 0) {
+        cJSON *b = cJSON_AddObjectToObject(root, "budget");
+        cJSON_AddNumberToObject(b, "budget_ms", s->budget_ms);
+        cJSON_AddNumberToObject(b, "frames", ILPV_BUDGET_FRAMES); /* measuring, among "frames" */
+        cJSON_AddNumberToObject(b, "lattice_cells", s->budget.axis_cells);
+        cJSON_AddNumberToObject(b, "steps", s->budget.steps);
+        cJSON_AddNumberToObject(b, "predicted_ms", s->budget.predicted_ms);
+        cJSON_AddBoolToObject(b, "fits", s->budget.fits);
+    }
     cJSON_AddNumberToObject(root, "disconnects", (double)st.disconnects);
     cJSON_AddNumberToObject(root, "handshakes_failed", (double)st.handshakes_failed);
+    cJSON_AddNumberToObject(root, "frames_rendered", (double)st.frames_rendered);
+    cJSON_AddNumberToObject(root, "refusals", (double)st.refusals);
+    cJSON_AddNumberToObject(root, "unauthenticated_dropped", (double)st.unauthenticated_dropped);
+    cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
+    cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
     static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
     for (int i = 0; i < cfg->node_count; i++) {
@@ -425,6 +531,8 @@ int session_write_report(session *s, const char *path, double wall_s)
         cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
         cJSON_AddNumberToObject(n, "joins", ps.joins);
         cJSON_AddNumberToObject(n, "drops", ps.drops);
+        cJSON_AddNumberToObject(n, "refusals", ps.refusals);
+        cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
         char hex[20];
         snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
         cJSON_AddStringToObject(n, "last_checksum", hex);

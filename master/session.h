@@ -35,6 +35,7 @@ typedef struct session_desc {
     const char *bind;       /* NULL = the config's */
     int barrier_ms;         /* 0 = the config's */
     int quiet;              /* 1: log only errors */
+    int insecure_anywhere;  /* 1: security "insecure" may bind outside the loopback range */
     const char *scene;      /* NULL = the config's scene, or "default" */
     const char *input;      /* input config or recording; NULL = the scripted path */
     const char *record;     /* record the merged input there; NULL = the input config's */
@@ -64,6 +65,12 @@ cluster_master *session_master(session *s);
 /* Waits until count nodes are live, timeout_ms passed or *stop is set (may be NULL),
  * in short steps so that a signal is honoured. Returns the live count. */
 int session_wait_nodes(session *s, int count, int timeout_ms, volatile sig_atomic_t *stop);
+/* --budget-ms: the ILPV's lattice and steps for every node at once (gi/ilpv/ilpv_budget.h):
+ * the plan's measuring frames run on every live node (they do not count as the session's
+ * frames), each counted at its slowest node, and the choice goes into the settings of the
+ * frames that follow, which start the LPV afresh. Returns 0, or -1 with one line in err
+ * (no node was ready, or *stop was set). */
+int session_choose_budget(session *s, double budget_ms, volatile sig_atomic_t *stop, char *err, size_t errlen);
 /* One frame. result is filled for SESSION_FRAME_DONE. */
 session_step session_frame(session *s, cluster_frame_result *result);
 /* Frames done and the last committed version. */

@@ -10,10 +10,39 @@
 #include <time.h>
 #include <unistd.h>
 
-/* The log relay: copies what a child writes to its log file and to the master's standard
- * error, until every writer has closed the pipe. It holds nothing else of the master's (its
- * sockets would outlive the master otherwise), and leaves the stopping to the child. */
-static void relay(int in, int log_fd)
+/* The longest line the relay names as one (longer ones go on in pieces). */
+enum { RELAY_LINE = 4096 };
+
+/* One line (or a piece of a long one) of a child's output for the master's output, naming
+ * its node when the line does not: "cavelight-node: x" (a warning from deep inside the
+ * renderer) becomes "cavelight-node NODE: x", any other line "NODE| x" (the prefix of
+ * spawn_log_tail()'s lines). One write per line, so relays of several nodes never mix
+ * inside a line. */
+static void relay_line(const char *label, const char *s, size_t len, int line_start)
+{
+    static const char prog[] = "cavelight-node";
+    size_t plen = sizeof prog - 1, llen = strlen(label);
+    char out[RELAY_LINE + 160];
+    int head = 0;
+    size_t skip = 0;
+    if (line_start && len > plen && memcmp(s, prog, plen) == 0 && s[plen] == ':') {
+        head = snprintf(out, 160, "%s %s", prog, label);
+        skip = plen;
+    } else if (line_start && !(len > plen + llen && memcmp(s, prog, plen) == 0 && s[plen] == ' ' &&
+                               memcmp(s + plen + 1, label, llen) == 0)) {
+        head = snprintf(out, 160, "%s| ", label);
+    }
+    memcpy(out + head, s + skip, len - skip);
+    if (write(STDERR_FILENO, out, (size_t)head + len - skip) < 0) {
+        /* a closed terminal: keep draining so the child never blocks */
+    }
+}
+
+/* The log relay: copies what a child writes to its log file as it is and, line by line
+ * with its node named (relay_line()), to the master's standard error, until every writer
+ * has closed the pipe. It holds nothing else of the master's (its sockets would outlive the
+ * master otherwise), and leaves the stopping to the child. */
+static void relay(const char *label, int in, int log_fd)
 {
     signal(SIGINT, SIG_IGN);
     signal(SIGTERM, SIG_IGN);
@@ -21,16 +50,35 @@ static void relay(int in, int log_fd)
     for (int fd = 3; fd < (max_fd > 0 && max_fd < 65536 ? max_fd : 65536); fd++)
         if (fd != in && fd != log_fd)
             close(fd);
-    char buf[4096];
+    char buf[RELAY_LINE];
+    size_t held = 0;    /* the start of a line not yet ended */
+    int line_start = 1; /* held starts a line (not the rest of a long one) */
     for (;;) {
-        ssize_t n = read(in, buf, sizeof buf);
+        ssize_t n = read(in, buf + held, sizeof buf - held);
         if (n < 0 && errno == EINTR)
             continue;
-        if (n <= 0)
+        if (n <= 0) {
+            if (held)
+                relay_line(label, buf, held, line_start);
             _exit(0);
-        if (write(log_fd, buf, (size_t)n) < 0 || write(STDERR_FILENO, buf, (size_t)n) < 0) {
-            /* a full disk or a closed terminal: keep draining so the child never blocks */
         }
+        if (write(log_fd, buf + held, (size_t)n) < 0) {
+            /* a full disk: keep draining so the child never blocks */
+        }
+        held += (size_t)n;
+        size_t done = 0;
+        for (char *nl; (nl = memchr(buf + done, '\n', held - done)) != NULL; line_start = 1) {
+            size_t len = (size_t)(nl - (buf + done)) + 1;
+            relay_line(label, buf + done, len, line_start);
+            done += len;
+        }
+        if (done == 0 && held == sizeof buf) { /* a line longer than the buffer: its first part */
+            relay_line(label, buf, held, line_start);
+            line_start = 0;
+            done = held;
+        }
+        memmove(buf, buf + done, held - done);
+        held -= done;
     }
 }
 
@@ -50,7 +98,7 @@ static int start_relay(spawn_set *s, int i, const char *log_path, char *err, siz
     s->relay[i] = fork();
     if (s->relay[i] == 0) {
         close(fds[1]);
-        relay(fds[0], log_fd);
+        relay(s->label[i], fds[0], log_fd);
     }
     close(fds[0]);
     close(log_fd);

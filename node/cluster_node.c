@@ -108,8 +108,10 @@ static int render_frame(const cluster_node_desc *d, cluster_view *view, node_key
     float timings[WIRE_TIMING_COUNT] = {0};
     int fixed;
     if (view) {
-        if (cluster_view_render(view, &f, &checksum, timings, &fixed, err, errlen) != 0)
+        if (cluster_view_render(view, &f, &checksum, timings, &fixed, err, errlen) != 0) {
+            cluster_client_refuse(client, WIRE_REFUSE_SCENE, ev->version, err, 0);
             return -1;
+        }
     } else {
         fixed = gi_frame_sanitize(&f);
     }
@@ -123,6 +125,41 @@ static int render_frame(const cluster_node_desc *d, cluster_view *view, node_key
     st->last_version = ev->version;
     st->last_checksum = checksum;
     return 0;
+}
+
+/* A node that cannot take part (no scene, no GL context, no renderer) tells the master why,
+ * so that it is in the master's output even when the node runs on another host: it waits
+ * up to REFUSE_WAIT_MS for a connection, says REFUSE (never HELLO) and leaves. */
+enum { REFUSE_WAIT_MS = 3000 };
+
+static void refuse_session(const cluster_node_desc *d, const char *why)
+{
+    char ignored[512];
+    cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = 1,
+                              .refuse_only = 1};
+    cluster_client *client = cluster_client_create(&cd, ignored, sizeof ignored);
+    if (client)
+        cluster_client_refuse(client, WIRE_REFUSE_SCENE, 0, why, REFUSE_WAIT_MS);
+    cluster_client_destroy(client);
+}
+
+/* The lines about losing the master and the end of its session (rate-limited with the
+ * client's other lines about the master). */
+static void say_link(const cluster_node_desc *d, cluster_client *client, const cluster_event *ev)
+{
+    char note[96];
+    if (!cluster_client_log_link(client, note, sizeof note))
+        return;
+    if (ev->type == CLUSTER_EVENT_SHUTDOWN)
+        fprintf(stderr, "cavelight-node %s: the master ended the session%s%s\n", d->name,
+                d->exit_with_master ? "" : "; waiting for it to return", note);
+    else if (ev->lost == CLUSTER_LOST_CLOSED)
+        fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
+                "unreachable); keeping the output up, reconnecting when one answers%s\n", d->name, note);
+    else
+        fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
+                "or stopped); keeping the output up, reconnecting%s\n", d->name, d->config->master_timeout_ms,
+                note);
 }
 
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
@@ -143,13 +180,20 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
                                 .keep_frames = d->keep_frames, .show_blend = d->show_blend,
                                 .quiet = d->quiet};
         view = cluster_view_create(&vd, err, errlen);
-        if (!view)
+        if (!view) {
+            refuse_session(d, err);
             return 1;
+        }
     }
     node_keys *keys = node_keys_create(d, view, err, errlen);
+    if (!keys) { /* no scene or application: the master hears why */
+        refuse_session(d, err);
+        cluster_view_destroy(view);
+        return 1;
+    }
     cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet,
-                              .schema = keys ? &keys->schema : NULL};
-    cluster_client *client = keys ? cluster_client_create(&cd, err, errlen) : NULL;
+                              .schema = &keys->schema};
+    cluster_client *client = cluster_client_create(&cd, err, errlen);
     if (!client) {
         node_keys_destroy(keys);
         cluster_view_destroy(view);
@@ -189,19 +233,12 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             }
             break;
         case CLUSTER_EVENT_LOST:
-            if (!lost_reported && !d->quiet && ev.lost == CLUSTER_LOST_CLOSED)
-                fprintf(stderr, "cavelight-node %s: master lost: its connection closed (stopped, killed or "
-                        "unreachable); keeping the output up, reconnecting when one answers\n", d->name);
-            else if (!lost_reported && !d->quiet)
-                fprintf(stderr, "cavelight-node %s: master lost: nothing heard for %d ms (timeouts.master_ms; hung "
-                        "or stopped); keeping the output up, waiting for it\n", d->name,
-                        d->config->master_timeout_ms);
+            if (!lost_reported)
+                say_link(d, client, &ev);
             lost_reported = 1;
             break;
         case CLUSTER_EVENT_SHUTDOWN:
-            if (!d->quiet)
-                fprintf(stderr, "cavelight-node %s: the master ended the session%s\n", d->name,
-                        d->exit_with_master ? "" : "; waiting for it to return");
+            say_link(d, client, &ev);
             if (d->exit_with_master)
                 goto out;
             break;

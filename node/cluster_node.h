@@ -1,7 +1,7 @@
 /* cluster_node: the render node's cluster mode (cavelight-node --cluster FILE --name N).
  *
  * Runs the frame loop against the master: FRAME v -> params_to_frame -> frame pass once
- * and an eye pass per (screen, eye) -> READY(v, GI checksum, timings) -> SWAP v ->
+ * and an eye pass per (screen, eye) -> READY(v, the frame's GI checksum, timings) -> SWAP v ->
  * present or write. With render "none" no GL is touched and the checksum is the
  * parameter store's (params_checksum): the stub used by the benchmark and fast tests.
  * cluster_node_run() is a library call (the benchmark runs nodes as threads);

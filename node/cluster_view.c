@@ -28,6 +28,7 @@ struct cluster_view {
     cluster_output output;
     int threads;
     frame_params first;  /* the config's settings on the defaults: the warm-up frame */
+    gi_limits limits;    /* what the frames' GI settings may cost (gi_cost.h) */
     scene sc;
     int scene_loaded;
     glctx *ctx;          /* the presentation's: headless, or the first window's */
@@ -154,8 +155,8 @@ static void gbuffer_draw(void *user, const frame_view *view, const float vp[16],
 static int make_renderer(cluster_view *v, char *err, size_t errlen)
 {
     renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .first = &v->first,
-                        .threads = v->threads, .gbuffer_draw = app_host_draws(v->app) ? gbuffer_draw : NULL,
-                        .gbuffer_user = v};
+                        .threads = v->threads, .limits = &v->limits,
+                        .gbuffer_draw = app_host_draws(v->app) ? gbuffer_draw : NULL, .gbuffer_user = v};
     memcpy(rd.head_to_eye, v->cfg->observer.head_to_eye, sizeof rd.head_to_eye);
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
@@ -207,6 +208,9 @@ cluster_view *cluster_view_create(const cluster_view_desc *desc, char *err, size
         goto fail;
     v->scene_loaded = 1;
     v->far_plane = scene_far_plane(&v->sc);
+    v->limits = (gi_limits){.base = v->first, .memory_mb = v->cfg->gi_memory_mb};
+    memcpy(v->limits.bounds_min, v->sc.bounds_min, sizeof v->limits.bounds_min);
+    memcpy(v->limits.bounds_max, v->sc.bounds_max, sizeof v->limits.bounds_max);
     if (open_output(v, desc, err, errlen) != 0 || make_renderer(v, err, errlen) != 0)
         goto fail;
     if (warm_up(v, err, errlen) != 0)

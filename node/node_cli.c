@@ -7,6 +7,7 @@
 #include "frame/frame_view.h"
 #include "frame/hud.h"
 #include "gi/gi_settings.h"
+#include "gi/ilpv/ilpv_budget.h"
 #include "reference.h"
 
 enum { MODE_STANDALONE = 1u << NODE_MODE_STANDALONE, MODE_CLUSTER = 1u << NODE_MODE_CLUSTER };
@@ -87,8 +88,8 @@ static const cli_option options[] = {
      "while the master shows the pattern: tint where each\nprojector's blend dims it (docs/cluster.md)"},
     {O_PFM, "pfm", NULL, NULL, G_OUTPUT, S, "also write linear final/direct/indirect PFMs"},
     {O_THREADS, "threads", "T", "all cores", G_GI, 0, "CPU threads of the GI methods (and the path tracer)"},
-    {O_BUDGET, "budget-ms", "X", NULL, G_GI, S,
-     "ilpv: choose --lattice and --steps so that the LPV work\ntakes about X ms per frame on this machine"},
+    {O_BUDGET, "budget-ms", "MS", NULL, G_GI, S,
+     "ilpv: choose --lattice and --steps so that the LPV work\ntakes about MS ms per frame on this machine"},
     {O_HUD, "hud", "0|1|2", "no HUD", G_DISPLAY, S, "show the HUD of that layout (navigation, lighting, settings)"},
     {O_WAND, "wand", "x,y,z", "in front of the first eye", G_DISPLAY, S, "HUD wand position (pointing along -Z)"},
     {O_RENDERER, "renderer", "raster|reference", "raster", G_REFERENCE, S,
@@ -241,18 +242,14 @@ static int setting_given(const cli_program *p, const cli_given *given, const cha
 /* What no single option can say. */
 static int check_standalone(const node_options *o, const cli_program *p, const cli_given *given)
 {
-    const char *why = gi_check(&o->frame);
     int lattice_given = setting_given(p, given, "lattice") ||
                         setting_given(p, given, "lattice-cells") || setting_given(p, given, "steps");
-    if (why)
-        ; /* the methods' own rule said it */
-    else if (o->budget_ms > 0 && lattice_given)
-        why = "--budget-ms chooses --lattice and --steps: give either the budget or those two";
-    else if (o->budget_ms > 0 && o->frame.gi != gi_method_find("ilpv"))
-        why = "--budget-ms chooses the ILPV lattice: it needs --gi ilpv";
-    else if (o->have_screen != o->have_eye)
+    const char *why = gi_check(&o->frame); /* the methods' own rules first */
+    if (!why && o->budget_ms > 0)
+        why = ilpv_budget_check(&o->frame, lattice_given);
+    if (!why && o->have_screen != o->have_eye)
         why = "--screen and --eye go together";
-    else if (o->reference && o->stereo)
+    if (!why && o->reference && o->stereo)
         why = "--renderer reference renders one eye: use --eyes mono";
     if (why)
         fprintf(stderr, "cavelight-node: %s\n", why);

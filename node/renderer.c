@@ -56,6 +56,9 @@ struct renderer {
     int software;            /* a software GL (llvmpipe) */
     frame_params refused;    /* the last frame whose method or RSM could not be built */
     int have_refused;
+    gi_limits limits;        /* desc.limits' copy, when limited */
+    int limited;
+    frame_params within;     /* the last frame within the limits */
     renderer_hud *hud;
     frame_params frame;      /* the last frame pass's parameters, sanitized: what the eye
                                 passes render */
@@ -264,11 +267,17 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     r->shown = xcalloc(objects, 1);
     r->desc = *desc;
     r->desc.first = NULL;
+    r->desc.limits = NULL;
     if (desc->first)
         r->frame = *desc->first;
     else
         frame_params_default(&r->frame);
     gi_frame_sanitize(&r->frame);
+    if (desc->limits) {
+        r->limits = *desc->limits;
+        r->limited = 1;
+        r->within = r->frame;
+    }
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     r->software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                   strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
@@ -385,6 +394,22 @@ static int objects_moved(renderer *r)
     return 1;
 }
 
+/* A frame over a cluster node's limits (gi_cost.h) is rendered with the last settings
+ * within them, said once per refusal (renderer_last_error()). */
+static void keep_within_limits(renderer *r)
+{
+    char why[200];
+    if (!r->limited)
+        return;
+    if (gi_cost_within(&r->limits, &r->frame, why, sizeof why)) {
+        r->within = r->frame;
+        return;
+    }
+    gi_cost_keep_settings(&r->within, &r->frame);
+    snprintf(r->error, sizeof r->error, "renderer: frame settings refused: %s; keeping the last ones within "
+             "the limits", why);
+}
+
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
@@ -392,6 +417,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
      * per frame; the eye passes render this copy. */
     r->frame = *params;
     r->timings.fixed = gi_frame_sanitize(&r->frame);
+    keep_within_limits(r);
     r->eye_index = 0;
     const frame_params *p = &r->frame;
     follow_frame(r, p);

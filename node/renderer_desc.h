@@ -3,12 +3,14 @@
  * Everything the frames decide (the GI method, its settings, the RSM size, steps, medium,
  * tone mapping) comes with the frames: the renderer starts from `first` and follows them.
  * What stays here is the machine's and the caller's own: threads, whether to measure every
- * frame, where the viewer's eyes sit relative to the tracker. */
+ * frame, where the viewer's eyes sit relative to the tracker, the bounds a cluster node
+ * holds the frames' settings to. */
 #ifndef CAVELIGHT_RENDERER_DESC_H
 #define CAVELIGHT_RENDERER_DESC_H
 
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
+#include "gi/gi_cost.h"
 #include "gl_functions.h"
 #include "scene/scene.h"
 
@@ -22,6 +24,8 @@ typedef struct renderer_desc {
                                   result: to measure it */
     float head_to_eye[3];      /* the viewer's eye centre from the tracked head
                                   (frame_view_head_centre()): a cluster config's observer */
+    const gi_limits *limits;   /* a cluster node's bounds on the frames' GI settings
+                                  (gi_cost.h); NULL: none */
     /* Drawn into the G-buffer after the scene in every eye pass (an application's own
      * geometry: depth-tested against the scene's, then lit and tone-mapped like it), with
      * the G-buffer bound, its viewport set and depth test and writes on; NULL: nothing. */

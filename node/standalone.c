@@ -122,6 +122,34 @@ static int write_images(const node_options *o, int frame, const char *eye,
     return 0;
 }
 
+/* The budget plan's frames on a renderer of their own (ilpv_budget.h): the costs of each
+ * candidate lattice on this machine. */
+static int measure_budget(const renderer_desc *base, const frame_params *fp,
+                          lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES])
+{
+    char err[512];
+    ilpv_budget_plan *plan = xcalloc(1, sizeof *plan);
+    frame_params f;
+    ilpv_budget_plan_init(plan, fp, base->scene->bounds_min, base->scene->bounds_max);
+    ilpv_budget_plan_frame(plan, 0, &f);
+    renderer_desc rd = *base;
+    rd.first = &f;
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    for (int i = 0; r && i < ILPV_BUDGET_FRAMES; i++) {
+        ilpv_budget_plan_frame(plan, i, &f);
+        renderer_frame_pass(r, &f);
+        renderer_timings t;
+        renderer_get_timings(r, &t);
+        ilpv_budget_plan_record(plan, i, t.frame_host_ms);
+    }
+    int rc = r ? ilpv_budget_plan_costs(plan, cand, err, sizeof err) : -1;
+    if (rc != 0)
+        fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+    renderer_destroy(r);
+    free(plan);
+    return rc;
+}
+
 /* --budget-ms: the ILPV's lattice and steps from this machine's measured costs
  * (ilpv_budget.h), into fp and the report. */
 static int choose_budget(const node_options *o, const renderer_desc *base, frame_params *fp,
@@ -129,11 +157,8 @@ static int choose_budget(const node_options *o, const renderer_desc *base, frame
 {
     lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
     lpv_budget_choice choice;
-    char err[512];
-    if (ilpv_budget_measure(base, fp, cand, err, sizeof err) != 0) {
-        fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+    if (measure_budget(base, fp, cand) != 0)
         return -1;
-    }
     if (ilpv_budget_apply(o->budget_ms, cand, ILPV_BUDGET_CANDIDATES, fp, &choice) != 0) {
         fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
         return -1;

@@ -27,7 +27,7 @@ for c in node master; do
 done
 mkdir -p "$out/lib"
 # Embree is dlopen()ed: pack it and what it needs like a linked library.
-embree=$(ldconfig -p | awk '$1 == "libembree3.so.3" {print $NF; exit}')
+embree=$(ldconfig -p | awk '$1 == "libembree3.so.3" && !found {print $NF; found = 1}')
 [ -n "$embree" ] || { echo "bundle: libembree3.so.3 not found (install libembree3-3)" >&2; exit 1; }
 cp -L "$embree" "$out/lib/libembree3.so.3"
 for f in "$out/bin/cavelight-node" "$out/bin/cavelight-master" "$embree"; do

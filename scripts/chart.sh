@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Speed against accuracy of the LPV and the vpl method on the built-in chart scenes
-# (default room, corridor, doorway, courtyard) and any glTF file given with --scene: sweeps
-# lattice size, steps per frame, lambda_incr, the CPU and GL backends and the classic
+# (default room, corridor, doorway, courtyard, arcades) and any glTF file given with
+# --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL backends and the classic
 # accumulating LPV, and the vpl method's VPL counts, against a path-traced (Embree)
 # reference, every scene with the same settings. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
@@ -19,7 +19,7 @@ cavelight_install_deps
 cavelight_build "$root" >/dev/null
 
 quick=0 docs=1 reuse=0 out=$root/out/chart
-scenes=(default corridor doorway courtyard)
+scenes=(default corridor doorway courtyard arcades)
 usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--scene FILE]..."
 while [ $# -gt 0 ]; do
   case $1 in

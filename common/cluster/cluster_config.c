@@ -695,6 +695,8 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
 
     cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
+    cfg->gi_memory_mb = get_number(&c, json_keys_get(c.keys, root, "limits"), "gi_memory_mb", "limits.gi_memory_mb",
+                                   CLUSTER_GI_MEMORY_MB, 0, 16, 1 << 20);
     parse_observer(&c, json_keys_get(c.keys, root, "observer"), &cfg->observer);
     parse_security(&c, json_keys_get(c.keys, root, "security"), cfg);
     parse_settings(&c, json_keys_get(c.keys, root, "settings"), cfg);

@@ -22,6 +22,7 @@
  *                                 [x,y,z]} (scene/scene_transform.h; --scene-transform),
  *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
  *                          "join_ms"},
+ *             "limits": {"gi_memory_mb"} (what a node's GI may take, node/gi/gi_cost.h),
  *             "settings": {"NAME": value, ...} (the options of cavelight-master's GI and
  *             display groups by their names, e.g. {"gi": "vpl", "vpl-interleave": 4}: the
  *             session's settings for every node, checked by the programs that know them),
@@ -42,6 +43,7 @@
 
 #include "scene/scene_load.h"
 
+enum { CLUSTER_GI_MEMORY_MB = 2048 };
 enum {
     CLUSTER_MAX_SCREENS = 32,
     CLUSTER_MAX_NODES = 32,
@@ -190,6 +192,7 @@ typedef struct cluster_config {
     int stall_min_ms;        /* floor of the adaptive stall timeout (default 250) */
     int join_timeout_ms;     /* the master waits this long for every node to join (15000) */
     double corner_tolerance_mm; /* measured corners further from a rectangle are refused (20) */
+    double gi_memory_mb;     /* a node's GI state and RSMs at most (CLUSTER_GI_MEMORY_MB) */
     cluster_observer observer;
     int setting_count;
     cluster_setting settings[CLUSTER_MAX_SETTINGS];

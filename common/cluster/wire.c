@@ -72,6 +72,26 @@ static void put_name(cursor *c, const char *name)
     put_bytes(c, name, n);
 }
 
+/* REFUSE's text: printable ASCII only, so that a peer's text cannot forge log lines. */
+static int text_valid(const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (s[i] < 0x20 || s[i] > 0x7e)
+            return 0;
+    return n <= WIRE_TEXT_MAX;
+}
+
+static void put_text(cursor *c, const char *text)
+{
+    size_t n = strnlen(text, WIRE_TEXT_MAX + 1);
+    if (!text_valid(text, n)) {
+        c->bad = 1;
+        return;
+    }
+    put(c, n, 2);
+    put_bytes(c, text, n);
+}
+
 static uint64_t get(cursor *c, int bytes)
 {
     if (c->bad || c->cap - c->pos < (size_t)bytes) {
@@ -95,6 +115,18 @@ static void get_name(cursor *c, char *out)
     c->pos += n;
     if (!wire_name_valid(out))
         c->bad = 1;
+}
+
+static void get_text(cursor *c, char *out)
+{
+    size_t n = (size_t)get(c, 2);
+    if (c->bad || n > WIRE_TEXT_MAX || c->cap - c->pos < n || !text_valid((const char *)c->r + c->pos, n)) {
+        c->bad = 1;
+        return;
+    }
+    memcpy(out, c->r + c->pos, n);
+    out[n] = 0;
+    c->pos += n;
 }
 
 static void put_f32(cursor *c, float f)
@@ -151,6 +183,12 @@ size_t wire_encode(const wire_msg *m, uint8_t *buf, size_t cap)
     case WIRE_HEARTBEAT:
         put_name(&c, m->name);
         put(&c, m->version, 8);
+        break;
+    case WIRE_REFUSE:
+        put_name(&c, m->name);
+        put(&c, m->reason, 4);
+        put(&c, m->version, 8);
+        put_text(&c, m->text);
         break;
     default:
         return 0;
@@ -228,6 +266,12 @@ wire_error wire_decode(const uint8_t *buf, size_t len, wire_msg *out)
         get_name(&c, out->name);
         out->version = get(&c, 8);
         break;
+    case WIRE_REFUSE:
+        get_name(&c, out->name);
+        out->reason = (uint32_t)get(&c, 4);
+        out->version = get(&c, 8);
+        get_text(&c, out->text);
+        break;
     default:
         c.bad = 1;
     }
@@ -250,7 +294,7 @@ const char *wire_error_string(wire_error e)
 const char *wire_type_name(int type)
 {
     static const char *const s[WIRE_TYPE_END] = {
-        "?", "HELLO", "SNAPSHOT", "FRAME", "READY", "SWAP", "BYE", "HEARTBEAT",
+        "?", "HELLO", "SNAPSHOT", "FRAME", "READY", "SWAP", "BYE", "HEARTBEAT", "REFUSE",
     };
     return type > 0 && type < WIRE_TYPE_END ? s[type] : "?";
 }

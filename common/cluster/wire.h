@@ -7,10 +7,13 @@
  *             params_session_hash()), version the sender holds u64
  *   SNAPSHOT  version u64, params encoding (all keys)
  *   FRAME     version u64, base version u64, params delta (keys changed after base)
- *   READY     name, version u64, GI checksum u64, timings 4 x f32 (ms)
+ *   READY     name, version u64, the frame's GI checksum u64, timings 4 x f32 (ms)
  *   SWAP      version u64
  *   BYE       name, reason u32
  *   HEARTBEAT name, version u64
+ *   REFUSE    name, what u32 (wire_refuse_what), version u64, why: u16 length and
+ *             0..WIRE_TEXT_MAX printable ASCII characters (a node that cannot take the
+ *             scene or a version's parameters tells the master why)
  * A name is a u8 length and 1..WIRE_NAME_MAX bytes of [A-Za-z0-9_.-].
  * wire_decode() checks everything (size, magic, version, type, length, CRC, payload
  * layout, name characters) and never reads outside the buffer; params point into it. */
@@ -22,13 +25,18 @@
 
 enum {
     WIRE_MAGIC = 0x544c5643u, /* "CVLT" as little-endian bytes */
-    WIRE_PROTOCOL = 5,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
-                                 vpl_seed; 4: vpl_selection; 5: keys from a schema (every
-                                 GI setting), HELLO's hash covers it */
+    WIRE_PROTOCOL = 6,        /* 2: the store's gi, pattern and light type keys; 3: vpl_count,
+                                 vpl_seed; 4: vpl_selection; 5: REFUSE; 6: keys from a
+                                 schema (every GI setting), HELLO's hash covers it */
     WIRE_HEADER_SIZE = 16,
     WIRE_NAME_MAX = 32,
+    WIRE_TEXT_MAX = 300,      /* REFUSE's why */
     WIRE_MAX_PAYLOAD = 65536, /* a snapshot of a full store (PARAMS_ENCODED_MAX) fits */
     WIRE_MAX_MESSAGE = WIRE_HEADER_SIZE + WIRE_MAX_PAYLOAD,
+    /* The longest a connection may take to finish its ZMTP (and CURVE) handshake, on both
+     * ends (ZMQ_HANDSHAKE_IVL): a node's takes milliseconds, and libzmq's default of 30 s
+     * let a stranger's unfinished handshakes hold the master's descriptors. */
+    WIRE_HANDSHAKE_MS = 2000,
 };
 
 typedef enum wire_type {
@@ -39,6 +47,7 @@ typedef enum wire_type {
     WIRE_SWAP,
     WIRE_BYE,
     WIRE_HEARTBEAT,
+    WIRE_REFUSE,
     WIRE_TYPE_END
 } wire_type;
 
@@ -62,6 +71,12 @@ typedef enum wire_bye_reason {
     WIRE_BYE_LEAVING = 4,         /* node is exiting */
 } wire_bye_reason;
 
+/* What a node refuses (REFUSE). */
+typedef enum wire_refuse_what {
+    WIRE_REFUSE_SCENE = 1,  /* it cannot load or draw the scene: it leaves */
+    WIRE_REFUSE_PARAMS = 2, /* a snapshot or frame whose values it cannot take (version) */
+} wire_refuse_what;
+
 typedef enum wire_timing {
     WIRE_TIMING_APPLY = 0, /* applying the delta */
     WIRE_TIMING_FRAME,     /* frame pass: RSM, injection, propagation */
@@ -72,13 +87,14 @@ typedef enum wire_timing {
 
 typedef struct wire_msg {
     wire_type type;
-    char name[WIRE_NAME_MAX + 1]; /* HELLO, READY, BYE, HEARTBEAT */
+    char name[WIRE_NAME_MAX + 1]; /* HELLO, READY, BYE, HEARTBEAT, REFUSE */
     uint64_t version;             /* every type but BYE */
     uint64_t base_version;        /* FRAME */
     uint64_t config_hash;         /* HELLO */
     uint64_t checksum;            /* READY */
     float timings[WIRE_TIMING_COUNT]; /* READY */
-    uint32_t reason;              /* BYE */
+    uint32_t reason;              /* BYE: wire_bye_reason; REFUSE: wire_refuse_what */
+    char text[WIRE_TEXT_MAX + 1]; /* REFUSE: why, printable ASCII */
     const uint8_t *params;        /* SNAPSHOT, FRAME */
     size_t params_len;
 } wire_msg;

@@ -7,6 +7,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Light volumes of the driver (ilpv_init()) and of a backend's chain (front, next, sum:
+ * ilpv_cpu_create(), the GL backend's images likewise), and the origins' volume. */
+enum { ILPV_LIGHT_VOLUMES = 6, ILPV_CHAIN_VOLUMES = 3 };
+
+double ilpv_state_bytes(const lattice_desc *lat)
+{
+    double channels = (ILPV_LIGHT_VOLUMES + ILPV_CHAIN_VOLUMES) * LPV_LIGHT_CHANNELS + LPV_GEOMETRY_CHANNELS;
+    return (double)lattice_cell_count(lat) * channels * sizeof(float);
+}
+
 int ilpv_init(ilpv *s, const ilpv_desc *d)
 {
     const lattice_desc *lat = d->lattice;
@@ -25,8 +35,9 @@ int ilpv_init(ilpv *s, const ilpv_desc *d)
         return -1;
     }
     s->lattice = *lat;
-    lpv_volume *light[] = {&s->injected, &s->near, &s->shell, &s->early, &s->faded, &s->result};
-    for (size_t i = 0; i < sizeof light / sizeof light[0]; i++)
+    lpv_volume *light[ILPV_LIGHT_VOLUMES] = {&s->injected, &s->near, &s->shell, &s->early, &s->faded,
+                                             &s->result};
+    for (size_t i = 0; i < ILPV_LIGHT_VOLUMES; i++)
         if (lpv_volume_init(light[i], lat->n, LPV_LIGHT_CHANNELS) != 0) {
             ilpv_free(s);
             return -1;

@@ -119,6 +119,9 @@ typedef struct ilpv_desc {
 /* Returns 0, or -1 (nothing to free) for a bad lattice or no memory; the backend is then
  * destroyed. */
 int ilpv_init(ilpv *s, const ilpv_desc *desc);
+/* The bytes a lattice's driver and a backend's chain take (what the method's memory
+ * limit counts, gi_cost.h). */
+double ilpv_state_bytes(const lattice_desc *lat);
 void ilpv_free(ilpv *s);
 void ilpv_reset(ilpv *s);                 /* forget the history */
 lpv_volume *ilpv_injection(ilpv *s);      /* cleared by ilpv_begin_frame() */

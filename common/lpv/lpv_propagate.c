@@ -1,93 +1,13 @@
 #include "lpv/lpv_propagate.h"
 
-#include "base/fpmode.h"
-
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
+#include "base/fpmode.h"
+#include "lpv/lpv_paper_step.h"
+#include "lpv/lpv_simd.h"
 #include "lpv/sh.h"
-
-/* One kernel, written against a tiny 8-lane vector layer: AVX2+FMA intrinsics when the
- * build targets them, plain C with fmaf otherwise. Both layers perform the same IEEE
- * operations in the same order, so a build's result never depends on the thread count. */
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-
-typedef __m256 vf;
-typedef __m256i vi;
-static inline vf vf_load(const float *p) { return _mm256_loadu_ps(p); }
-static inline vf vf_set1(float x) { return _mm256_set1_ps(x); }
-static inline vf vf_zero(void) { return _mm256_setzero_ps(); }
-static inline vf vf_add(vf a, vf b) { return _mm256_add_ps(a, b); }
-static inline vf vf_sub(vf a, vf b) { return _mm256_sub_ps(a, b); }
-static inline vf vf_mul(vf a, vf b) { return _mm256_mul_ps(a, b); }
-static inline vf vf_div(vf a, vf b) { return _mm256_div_ps(a, b); }
-static inline vf vf_fma(vf a, vf b, vf c) { return _mm256_fmadd_ps(a, b, c); } /* a*b+c */
-static inline vf vf_sqrt(vf a) { return _mm256_sqrt_ps(a); }
-static inline vf vf_max(vf a, vf b) { return _mm256_max_ps(a, b); }
-static inline vf vf_min(vf a, vf b) { return _mm256_min_ps(a, b); }
-/* all-ones lanes where the comparison holds (false for NaN) */
-static inline vf vf_gt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
-static inline vf vf_ge(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
-static inline vf vf_and(vf a, vf m) { return _mm256_and_ps(a, m); }
-static inline vf vf_sel(vf m, vf a, vf b) { return _mm256_blendv_ps(b, a, m); } /* m ? a : b */
-static inline vi vi_load(const unsigned *p) { return _mm256_loadu_si256((const __m256i *)p); }
-static inline vi vi_zero(void) { return _mm256_setzero_si256(); }
-/* all-ones lanes whose word has bit k clear */
-static inline vf vi_bit_clear(vi m, int k)
-{
-    __m256i b = _mm256_and_si256(m, _mm256_set1_epi32((int)(1u << k)));
-    return _mm256_castsi256_ps(_mm256_cmpeq_epi32(b, _mm256_setzero_si256()));
-}
-static inline vf vf_lanes(int lo, int hi) /* all-ones lanes l with lo <= l < hi */
-{
-    __m256i l = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    __m256i in = _mm256_and_si256(_mm256_cmpgt_epi32(l, _mm256_set1_epi32(lo - 1)),
-                                  _mm256_cmpgt_epi32(_mm256_set1_epi32(hi), l));
-    return _mm256_castsi256_ps(in);
-}
-static inline void vf_store_mask(float *p, vf a, vf m)
-{
-    _mm256_maskstore_ps(p, _mm256_castps_si256(m), a);
-}
-static inline void vf_store(float *p, vf a) { _mm256_storeu_ps(p, a); }
-#else
-typedef struct { float v[8]; } vf;
-typedef struct { unsigned v[8]; } vi;
-#define VF_MAP(expr) { vf r; for (int l = 0; l < 8; l++) r.v[l] = (expr); return r; }
-static inline vf vf_load(const float *p) { vf r; memcpy(r.v, p, sizeof r.v); return r; }
-static inline vf vf_set1(float x) VF_MAP(x)
-static inline vf vf_zero(void) VF_MAP(0.0f)
-static inline vf vf_add(vf a, vf b) VF_MAP(a.v[l] + b.v[l])
-static inline vf vf_sub(vf a, vf b) VF_MAP(a.v[l] - b.v[l])
-static inline vf vf_mul(vf a, vf b) VF_MAP(a.v[l] * b.v[l])
-static inline vf vf_div(vf a, vf b) VF_MAP(a.v[l] / b.v[l])
-static inline vf vf_fma(vf a, vf b, vf c) VF_MAP(fmaf(a.v[l], b.v[l], c.v[l]))
-static inline vf vf_sqrt(vf a) VF_MAP(sqrtf(a.v[l]))
-/* x86 rule: the second operand when either is NaN */
-static inline vf vf_max(vf a, vf b) VF_MAP(a.v[l] > b.v[l] ? a.v[l] : b.v[l])
-static inline vf vf_min(vf a, vf b) VF_MAP(a.v[l] < b.v[l] ? a.v[l] : b.v[l])
-static inline float lane_mask(int on) { unsigned u = on ? ~0u : 0u; float f; memcpy(&f, &u, 4); return f; }
-static inline int lane_on(float m) { unsigned u; memcpy(&u, &m, 4); return u >> 31; }
-static inline vf vf_gt(vf a, vf b) VF_MAP(lane_mask(a.v[l] > b.v[l]))
-static inline vf vf_ge(vf a, vf b) VF_MAP(lane_mask(a.v[l] >= b.v[l]))
-static inline vf vf_and(vf a, vf m) VF_MAP(lane_on(m.v[l]) ? a.v[l] : 0.0f)
-static inline vf vf_sel(vf m, vf a, vf b) VF_MAP(lane_on(m.v[l]) ? a.v[l] : b.v[l])
-static inline vi vi_load(const unsigned *p) { vi r; memcpy(r.v, p, sizeof r.v); return r; }
-static inline vi vi_zero(void) { vi r; memset(&r, 0, sizeof r); return r; }
-static inline vf vi_bit_clear(vi m, int k) VF_MAP(lane_mask(!((m.v[l] >> k) & 1u)))
-static inline vf vf_lanes(int lo, int hi) VF_MAP(lane_mask(l >= lo && l < hi))
-static inline void vf_store_mask(float *p, vf a, vf m)
-{
-    for (int l = 0; l < 8; l++)
-        if (lane_on(m.v[l]))
-            p[l] = a.v[l];
-}
-static inline void vf_store(float *p, vf a) { memcpy(p, a.v, sizeof a.v); }
-#endif
-
-#define ALWAYS_INLINE inline __attribute__((always_inline))
 
 enum { Z_TILE = 8 };
 
@@ -179,107 +99,181 @@ static ALWAYS_INLINE void axis_weights(vf v, vf w[3])
     w[2] = vf_mul(h, vf_add(sigma, v));
 }
 
-/* The 8 source cells at (x .. x + 7, y, sz) send to the tile's destination rows. */
-static ALWAYS_INLINE void send(const job *jb, int x, int y, int sz, int z0, int z1, int blocking)
+/* The step as a gather. Per colour a source cell's half h (+, -) sends a = Ex[o_x] Wy[o_y]
+ * Wz[o_z] to offset o: the half's energy times the three axis weights, as energy
+ * coefficient a and directional coefficients a S (S: the half's direction as SH
+ * coefficients over Y0). The split rows of a tile (what split_cells() and axis_weights()
+ * give, the x weights times the energy) sit in a ring of three rows in y by the tile's
+ * source slabs in z, each computed once per tile. A destination cell sums, per x offset,
+ * what the source cells at its own x in the 9 (o_y, o_z) rows send (V_ox: 3 x 4
+ * accumulators in registers), and then adds V_-1 of the cell on its right, V_0 of its own and V_+1 of
+ * the one on its left: always in that order, so the bits do not depend on the threads. */
+enum { EX = 0, WY = 3, WZ = 6, SS = 9, PER_HALF = 12, ARRAYS = 2 * PER_HALF };
+/* A row is done in segments of XS cells; ring and V rows hold cells x0 - 8 .. x0 + XS + 7
+ * of the segment at index x - x0 + 8. */
+enum { XS = 64, PW = XS + 16, RING_Z = Z_TILE + 2 };
+
+/* A split row is stored chunk by chunk: the ARRAYS vectors of 8 cells one after another
+ * (what one destination chunk reads of a row lies in a few cache lines); array a of the
+ * chunk at ring index i (a multiple of 8) starts at row + i ARRAYS + 8 a. */
+typedef struct ring {
+    _Alignas(32) float v[3][RING_Z][PW * ARRAYS]; /* source row (y mod 3, z - (z0 - 1)) */
+    _Alignas(32) unsigned mask[3][RING_Z][PW];    /* its blockers */
+    _Alignas(32) float zero[PW * ARRAYS];         /* a row outside the lattice: sends nothing */
+    _Alignas(32) unsigned zero_mask[PW];
+    _Alignas(32) float V[3][4][PW];              /* a destination row's V_ox */
+} ring;
+
+/* Splits source row (sy, sz), colour c, for the segment at x0 into ring slot (ry, rz). */
+static void split_row(const job *jb, ring *rg, int ry, int rz, int sy, int sz, int x0, int c)
 {
     const int nx = jb->src->n[0], ny = jb->src->n[1];
-    const int n = nx - x < 8 ? nx - x : 8;
-    const size_t at = ((size_t)sz * ny + y) * nx + (size_t)x;
-    vi mask = vi_zero();
-    if (blocking) {
-        unsigned words[8] = {0};
-        memcpy(words, jb->blockers->mask + at, (size_t)n * sizeof *words);
-        mask = vi_load(words);
-    }
-    /* Store masks per x offset: destination lanes inside the row (and sources that exist). */
-    vf lanes[3];
-    for (int ox = -1; ox <= 1; ox++) {
-        int lo = -(x + ox) > 0 ? -(x + ox) : 0, hi = nx - (x + ox) < n ? nx - (x + ox) : n;
-        lanes[ox + 1] = vf_lanes(lo, hi);
-    }
-    int full[3];
-    for (int ox = -1; ox <= 1; ox++)
-        full[ox + 1] = x + ox >= 0 && x + ox + 8 <= nx && n == 8;
-    for (int c = 0; c < 3; c++) {
+    float *out = rg->v[ry][rz];
+    unsigned *m = rg->mask[ry][rz];
+    const size_t row = ((size_t)sz * ny + sy) * nx;
+    for (int i = 0; i < PW; i += 8) {
+        int x = x0 - 8 + i, n = nx - x < 8 ? nx - x : 8;
+        float *chunk = out + (size_t)i * ARRAYS;
+        if (x < 0 || n <= 0) {
+            for (int k = 0; k < ARRAYS; k++)
+                vf_store(chunk + 8 * k, vf_zero());
+            memset(m + i, 0, 8 * sizeof *m);
+            continue;
+        }
         split sp;
-        split_cells(jb, (const float *const *)jb->src->ch, at, n, c, &sp);
-        vf w[2][3][3]; /* half, axis, offset */
-        for (int h = 0; h < 2; h++)
+        split_cells(jb, (const float *const *)jb->src->ch, row + (size_t)x, n, c, &sp);
+        for (int h = 0; h < 2; h++) {
+            float *o = chunk + 8 * h * PER_HALF;
+            vf w[3][3];
             for (int a = 0; a < 3; a++)
-                axis_weights(sp.dir[h][a], w[h][a]);
-        for (int h = 0; h < 2; h++)
-            for (int o = 0; o < 3; o++)
-                w[h][0][o] = vf_mul(w[h][0][o], sp.half);
-        for (int oz = -1; oz <= 1; oz++) {
-            int z = sz + oz;
-            if (z < z0 || z >= z1)
-                continue;
-            for (int oy = -1; oy <= 1; oy++) {
-                int yy = y + oy;
-                if (yy < 0 || yy >= ny)
-                    continue;
-                vf yz[2] = {vf_mul(w[0][1][oy + 1], w[0][2][oz + 1]),
-                            vf_mul(w[1][1][oy + 1], w[1][2][oz + 1])};
-                size_t row = ((size_t)z * ny + yy) * nx;
-                for (int ox = -1; ox <= 1; ox++) {
-                    vf a = vf_mul(w[0][0][ox + 1], yz[0]), b = vf_mul(w[1][0][ox + 1], yz[1]);
-                    int k27 = (oz + 1) * 9 + (oy + 1) * 3 + (ox + 1);
-                    if (blocking && k27 != 13) {
-                        vf open = vi_bit_clear(mask, k27 < 13 ? k27 : k27 - 1);
-                        a = vf_and(a, open);
-                        b = vf_and(b, open);
-                    }
-                    vf coef[4] = {vf_add(a, b),
-                                  vf_fma(b, sp.sh[1][0], vf_mul(a, sp.sh[0][0])),
-                                  vf_fma(b, sp.sh[1][1], vf_mul(a, sp.sh[0][1])),
-                                  vf_fma(b, sp.sh[1][2], vf_mul(a, sp.sh[0][2]))};
-                    for (int s = 0; s < 4; s++) {
-                        float *p = jb->dst->ch[4 * c + s] + row + (ptrdiff_t)(x + ox);
-                        if (full[ox + 1])
-                            vf_store(p, vf_add(vf_load(p), coef[s]));
-                        else
-                            vf_store_mask(p, vf_add(vf_load(p), coef[s]), lanes[ox + 1]);
-                    }
+                axis_weights(sp.dir[h][a], w[a]);
+            for (int k = 0; k < 3; k++) {
+                vf_store(o + 8 * (EX + k), vf_mul(w[0][k], sp.half));
+                vf_store(o + 8 * (WY + k), w[1][k]);
+                vf_store(o + 8 * (WZ + k), w[2][k]);
+                vf_store(o + 8 * (SS + k), sp.sh[h][k]);
+            }
+        }
+        const unsigned *words = jb->blockers ? jb->blockers->mask + row + x : NULL;
+        for (int l = 0; l < 8; l++) /* a loop the compiler turns into vector moves */
+            m[i + l] = words && l < n ? words[l] : 0u;
+    }
+}
+
+/* V_ox of the 8 destination cells at ring index i: what the source cells at the same x in
+ * the 9 rows r[(o_z + 1) 3 + o_y + 1] send to offset (o_x, o_y, o_z); with `masked`, a
+ * target whose segment the source's word m marks gets nothing. */
+static ALWAYS_INLINE void gather_v(const float *const r[9], const unsigned *const m[9], int i,
+                                   int masked, vf V[3][4])
+{
+    for (int ox = 0; ox < 3; ox++)
+        for (int k = 0; k < 4; k++)
+            V[ox][k] = vf_zero();
+    for (int oz = 0; oz < 3; oz++)
+        for (int oy = 0; oy < 3; oy++) {
+            const float *row = r[oz * 3 + oy] + (size_t)i * ARRAYS;
+            vi words = masked ? vi_load(m[oz * 3 + oy] + i) : vi_zero();
+            for (int h = 0; h < 2; h++) {
+                const float *o = row + 8 * h * PER_HALF;
+                vf wyz = vf_mul(vf_load(o + 8 * (WY + oy)), vf_load(o + 8 * (WZ + oz)));
+                vf s0 = vf_load(o + 8 * SS), s1 = vf_load(o + 8 * (SS + 1));
+                vf s2 = vf_load(o + 8 * (SS + 2));
+                for (int ox = 0; ox < 3; ox++) {
+                    vf a = vf_mul(vf_load(o + 8 * (EX + ox)), wyz);
+                    int k27 = oz * 9 + oy * 3 + ox;
+                    if (masked && k27 != 13)
+                        a = vf_and(a, vi_bit_clear(words, k27 < 13 ? k27 : k27 - 1));
+                    V[ox][0] = vf_add(V[ox][0], a);
+                    V[ox][1] = vf_fma(a, s0, V[ox][1]);
+                    V[ox][2] = vf_fma(a, s1, V[ox][2]);
+                    V[ox][3] = vf_fma(a, s2, V[ox][3]);
                 }
             }
+        }
+}
+
+/* Destination row (y, z), colour c, segment x0: V_ox of its cells and of the cells either
+ * side of the segment that lie in the row, then dst = V_-1(x + 1) + V_0(x) + V_+1(x - 1). */
+static void dst_row(const job *jb, ring *rg, int y, int z, int z0, int z1, int x0, int c)
+{
+    const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
+    const int len = nx - x0 < XS ? nx - x0 : XS;
+    const float *r[9];
+    const unsigned *m[9];
+    for (int oz = -1; oz <= 1; oz++)
+        for (int oy = -1; oy <= 1; oy++) {
+            int sy = y - oy, sz = z - oz, k = (oz + 1) * 3 + oy + 1;
+            int inside = sy >= 0 && sy < ny && sz >= 0 && sz < nz && sz >= z0 - 1 && sz <= z1;
+            r[k] = inside ? rg->v[sy % 3][sz - (z0 - 1)] : rg->zero;
+            m[k] = inside ? rg->mask[sy % 3][sz - (z0 - 1)] : rg->zero_mask;
+        }
+    for (int i = 0; i < PW; i += 8) {
+        int x = x0 - 8 + i;
+        vf V[3][4];
+        if (x >= 0 && x < nx && (i > 0 || x0 > 0) && x < x0 + len + 8) {
+            vi any = vi_zero();
+            for (int k = 0; k < 9; k++)
+                any = vi_or(any, vi_load(m[k] + i));
+            if (vi_any(any))
+                gather_v(r, m, i, 1, V);
+            else
+                gather_v(r, m, i, 0, V);
+        } else {
+            for (int ox = 0; ox < 3; ox++)
+                for (int k = 0; k < 4; k++)
+                    V[ox][k] = vf_zero();
+        }
+        for (int ox = 0; ox < 3; ox++)
+            for (int k = 0; k < 4; k++)
+                vf_store(rg->V[ox][k] + i, V[ox][k]);
+    }
+    const size_t row = ((size_t)z * ny + y) * nx + (size_t)x0;
+    for (int v = 0; v < len; v += 8) {
+        const int i = v + 8;
+        for (int k = 0; k < 4; k++) {
+            vf d = vf_add(vf_load(rg->V[0][k] + i + 1), vf_load(rg->V[1][k] + i));
+            d = vf_add(d, vf_load(rg->V[2][k] + i - 1));
+            float *p = jb->dst->ch[4 * c + k] + row + v;
+            if (len - v >= 8)
+                vf_store(p, d);
+            else
+                vf_store_mask(p, d, vf_lanes(0, len - v));
         }
     }
 }
 
-/* One tile of destination slabs z0 .. z1 - 1: start from 0, add what every source slab
- * z0 - 1 .. z1 sends there, in lattice order, then add the finished rows into accum. */
-static ALWAYS_INLINE void tile_rows(const job *jb, int z0, int z1, int blocking)
+/* One tile of destination slabs z0 .. z1 - 1, segment by segment and colour by colour:
+ * row y's destination rows once the source rows y - 1 .. y + 1 of slabs z0 - 1 .. z1 are
+ * in the ring; then the finished slabs are added into accum. */
+static void tile(void *ctx, int item)
 {
+    const job *jb = ctx;
+    fpmode mode = fpmode_enter();
     const int nx = jb->src->n[0], ny = jb->src->n[1], nz = jb->src->n[2];
-    size_t lo = (size_t)z0 * ny * nx, count = (size_t)(z1 - z0) * ny * nx;
-    for (int k = 0; k < LPV_LIGHT_CHANNELS; k++)
-        memset(jb->dst->ch[k] + lo, 0, count * sizeof(float));
-    for (int sz = z0 - 1; sz <= z1; sz++) {
-        if (sz < 0 || sz >= nz)
-            continue;
-        for (int y = 0; y < ny; y++)
-            for (int x = 0; x < nx; x += 8)
-                send(jb, x, y, sz, z0, z1, blocking);
-    }
-    if (jb->accum)
+    int z0 = item * Z_TILE, z1 = z0 + Z_TILE < nz ? z0 + Z_TILE : nz;
+    ring storage, *rg = &storage; /* 250 KB: well inside any thread's stack */
+    memset(rg->zero, 0, sizeof rg->zero);
+    memset(rg->zero_mask, 0, sizeof rg->zero_mask);
+    for (int x0 = 0; x0 < nx; x0 += XS)
+        for (int c = 0; c < 3; c++)
+            for (int y = -1; y < ny; y++) {
+                if (y + 1 < ny)
+                    for (int sz = z0 - 1; sz <= z1; sz++)
+                        if (sz >= 0 && sz < nz)
+                            split_row(jb, rg, (y + 1) % 3, sz - (z0 - 1), y + 1, sz, x0, c);
+                if (y >= 0)
+                    for (int z = z0; z < z1; z++)
+                        dst_row(jb, rg, y, z, z0, z1, x0, c);
+            }
+    if (jb->accum) {
+        size_t lo = (size_t)z0 * ny * nx, count = (size_t)(z1 - z0) * ny * nx;
         for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
             float *a = jb->accum->ch[k] + lo;
             const float *d = jb->dst->ch[k] + lo;
             for (size_t i = 0; i < count; i++)
                 a[i] += d[i];
         }
-}
-
-static void tile(void *ctx, int item)
-{
-    const job *jb = ctx;
-    fpmode mode = fpmode_enter();
-    const int nz = jb->src->n[2];
-    int z0 = item * Z_TILE, z1 = z0 + Z_TILE < nz ? z0 + Z_TILE : nz;
-    if (jb->blockers)
-        tile_rows(jb, z0, z1, 1);
-    else
-        tile_rows(jb, z0, z1, 0);
+    }
     fpmode_leave(mode);
 }
 
@@ -301,6 +295,12 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
                          desc->accum == src)) ||
         (desc->blockers && memcmp(desc->blockers->n, src->n, sizeof src->n) != 0))
         return;
+    if (desc->transport == LPV_TRANSPORT_PAPER) {
+        lpv_paper_step(desc, src, dst);
+        return;
+    }
+    if (desc->transport != LPV_TRANSPORT_BEAMS)
+        return;
     job jb;
     jb.src = src;
     jb.dst = dst;
@@ -313,11 +313,16 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
     workpool_run(desc->pool, (src->n[2] + Z_TILE - 1) / Z_TILE, tile, &jb);
 }
 
-double lpv_propagate_flops(size_t cells)
+const char *const lpv_transport_names[LPV_TRANSPORT_COUNT] = {"beams", "paper"};
+
+double lpv_propagate_flops(lpv_transport t, size_t cells)
 {
-    /* Per colour: the split (about 60 operations) and the 27 targets' weights and
-     * coefficients (2 multiplies, 1 add, 3 multiply-adds counted as 2, 4 accumulating
-     * adds: 13). */
-    double per_cell = 3.0 * (60.0 + LPV_TARGETS * 13.0);
+    if (t == LPV_TRANSPORT_PAPER)
+        return lpv_paper_step_flops_per_cell() * (double)cells;
+    /* Per colour: the split (about 60 operations), its axis weights (2 halves x 3 axes x 7)
+     * and x weights times the energy (6); per (o_y, o_z) and half the y-z weight (1) and per
+     * x offset the share (1 multiply) and its four coefficients (1 add, 3 multiply-adds
+     * counted as 2: 7); the three V_ox summed (8). */
+    double per_cell = 3.0 * (60.0 + 42.0 + 6.0 + 9.0 * 2.0 * (1.0 + 3.0 * 8.0) + 8.0);
     return per_cell * (double)cells;
 }

@@ -12,6 +12,10 @@
 /* Targets are cells whose centre may lie within R + 1 of an origin anywhere in its cell
  * (up to sqrt(3)/2 from the centre, and VPLs sit up to another cell away): |t| < R + 2.9. */
 enum { REACH = LPV_SPLAT_RADIUS + 3, MAX_HOPS = REACH, Z_TILE = 8 };
+/* Hops that take a shell cell out of its surface's own layer: one for an axis-aligned
+ * surface, at most two for any other (the layer is 0.5 (|n_x| + |n_y| + |n_z|) + 0.5 cells
+ * thick, and each hop along the axis closest to n moves at least 1 / sqrt(3) cells out). */
+enum { LIFT_MAX = 3 };
 #define REACH_LIMIT ((double)LPV_SPLAT_RADIUS + 2.9)
 
 typedef struct target {
@@ -159,6 +163,33 @@ static int in_own_layer(const lpv_splat_source *src, const float r[3])
     return r[0] * n[0] + r[1] * n[1] + r[2] * n[2] < lpv_own_layer(n);
 }
 
+/* Where a shell share lands: target c (offset r from the origin), or, when c lies in the
+ * emitting surface's own layer, the first cell beyond that layer along the lattice axis
+ * closest to the surface's normal, the share keeping its direction. That grazing light
+ * passes just above the surface; left in the layer its own receivers read, the receiver's
+ * shapes (lpv_receive.h) would count part of it as arriving, and a lit surface would see its
+ * own outgoing light. Returns 0, or -1 when the lift leaves the lattice or a surface blocks
+ * it. */
+static int shell_cell(const lpv_splat_source *src, const lpv_blockers *b, const int n[3], int c[3],
+                      float r[3])
+{
+    int ax = 0;
+    for (int a = 1; a < 3; a++)
+        if (fabsf(src->plane[a]) > fabsf(src->plane[ax]))
+            ax = a;
+    int dir = src->plane[ax] > 0.0f ? 1 : -1, o[3] = {0, 0, 0};
+    o[ax] = dir;
+    int k = neighbour_index(o[0], o[1], o[2]);
+    for (int hop = 0; hop < LIFT_MAX && in_own_layer(src, r); hop++) {
+        if (c[ax] + dir < 0 || c[ax] + dir >= n[ax] ||
+            (b && ((b->mask[index_of(b->n, c[0], c[1], c[2])] >> k) & 1u)))
+            return -1;
+        c[ax] += dir;
+        r[ax] += (float)dir;
+    }
+    return 0;
+}
+
 static void splat_tile(void *ctx, int item)
 {
     const job *jb = ctx;
@@ -168,13 +199,13 @@ static void splat_tile(void *ctx, int item)
     int z0 = item * Z_TILE, z1 = z0 + Z_TILE < n[2] ? z0 + Z_TILE : n[2];
     for (size_t si = 0; si < jb->s->count; si++) {
         const lpv_splat_source *src = &jb->s->sources[si];
-        if (src->cell[2] + REACH < z0 || src->cell[2] - REACH >= z1)
+        if (src->cell[2] + REACH + LIFT_MAX < z0 || src->cell[2] - REACH - LIFT_MAX >= z1)
             continue;
         for (int ti = 0; ti < jb->tb->count; ti++) {
             const target *g = &jb->tb->targets[ti];
             int c3[3] = {src->cell[0] + g->t[0], src->cell[1] + g->t[1], src->cell[2] + g->t[2]};
-            if (c3[2] < z0 || c3[2] >= z1 || c3[0] < 0 || c3[1] < 0 || c3[0] >= n[0] ||
-                c3[1] >= n[1])
+            if (c3[0] < 0 || c3[1] < 0 || c3[2] < z0 - LIFT_MAX || c3[2] >= z1 + LIFT_MAX ||
+                c3[2] < 0 || c3[0] >= n[0] || c3[1] >= n[1] || c3[2] >= n[2])
                 continue;
             float r[3] = {c3[0] - src->origin[0], c3[1] - src->origin[1], c3[2] - src->origin[2]};
             float r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2], dist = sqrtf(r2);
@@ -195,6 +226,11 @@ static void splat_tile(void *ctx, int item)
                     w[a] = r[a] / dist;
             float keep = jb->log_keep != 0.0f ? exp2f(jb->log_keep * dist) : 1.0f;
             float inv_r2 = 1.0f / (r2 > 0.25f ? r2 : 0.25f);
+            float at[3] = {r[0], r[1], r[2]};
+            if (dist >= R && shell_cell(src, jb->d->blockers, n, c3, at) != 0)
+                continue;
+            if (c3[2] < z0 || c3[2] >= z1)
+                continue;
             size_t i = index_of(n, c3[0], c3[1], c3[2]);
             for (int c = 0; c < 3; c++) {
                 if (!(src->energy[c] > 0.0f))

@@ -16,7 +16,11 @@
  *     each cell's share a beam along w.
  * A cell gets nothing when a surface blocks one of the lattice hops that lead there from
  * the injected cell (lpv_geometry.h) or when it lies outside the lattice; absorption keeps
- * (1 - absorption)^r. The ILPV renders near + sum over steps of propagated shells
+ * (1 - absorption)^r. The emitting surface's own layer (lpv_own_layer(), what its own
+ * receivers read) gets no light: a near cell there gets nothing, and a shell cell's share
+ * lands in the first cell beyond that layer along the lattice axis closest to the surface's
+ * normal, with its direction (grazing light just above the surface, which the receiver's
+ * shapes would otherwise partly count as arriving at the surface that sent it). The ILPV renders near + sum over steps of propagated shells
  * (ilpv.h). Deterministic and independent of the thread count: each work item owns a range
  * of z slabs and adds the injected cells in lattice order. */
 #ifndef CAVELIGHT_LPV_SPLAT_H

@@ -8,8 +8,8 @@
  *
  * scene_load() (scene_load.c; scene_load.h places the scene too) picks the loader: a
  * built-in scene's name (scene_builtin_name(): the chart's rooms in scene_default.c,
- * scene_corridor.c, scene_doorway.c, scene_courtyard.c and the leak tests' boxes in
- * scene_leaks.c) builds it in code, *.gltf / *.glb go through tinygltf (gltf_import.cpp).
+ * scene_corridor.c, scene_doorway.c, scene_courtyard.c, scene_arcades.c and the leak tests'
+ * boxes in scene_leaks.c) builds it in code, *.gltf / *.glb go through tinygltf (gltf_import.cpp).
  * The scene owns its arrays; scene_free() releases them. The scene_add_* builders are what
  * the loaders use. */
 #ifndef CAVELIGHT_SCENE_H
@@ -241,6 +241,9 @@ int scene_corridor_build(scene *s, char *err, size_t errlen);
 int scene_doorway_build(scene *s, char *err, size_t errlen);
 /* Built-in open-top courtyard with tall walls, lit from above (scene_courtyard.c). */
 int scene_courtyard_build(scene *s, char *err, size_t errlen);
+/* Built-in 12 x 24 m courtyard with two storeys of arcaded galleries, lit by a lamp inside
+ * one lower gallery (scene_arcades.c). */
+int scene_arcades_build(scene *s, char *err, size_t errlen);
 /* Leak tests of single-sided, zero-thickness walls (scene_leaks.c; docs/stability.md):
  * a spot above a closed box with a zero-thickness lid, an emissive panel flush with the
  * ceiling of a closed room, a single-sided wall between a lit and a dark room. */

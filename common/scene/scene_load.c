@@ -29,6 +29,7 @@ static const struct {
     {"corridor", scene_corridor_build},
     {"doorway", scene_doorway_build},
     {"courtyard", scene_courtyard_build},
+    {"arcades", scene_arcades_build},
     {"leak-lid", scene_leak_lid_build},
     {"leak-panel", scene_leak_panel_build},
     {"leak-wall", scene_leak_wall_build},

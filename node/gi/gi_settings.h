@@ -23,6 +23,8 @@
 #include "cluster/params.h"
 #include "frame/frame_params.h"
 
+struct gi_cost;
+
 /* What a method's settings file defines. */
 typedef struct gi_method_settings {
     const char *name;      /* "vpl": the value of --gi */
@@ -33,6 +35,10 @@ typedef struct gi_method_settings {
     /* Optional: what no single row can say (two settings that exclude each other), from
      * the slots a command line or config set; NULL or one line. */
     const char *(*check)(const frame_params *p);
+    /* Optional: the frame's work and memory for this method (gi_cost.h); NULL: nothing
+     * worth bounding. */
+    void (*cost)(const frame_params *p, const float bounds_min[3], const float bounds_max[3],
+                 struct gi_cost *out);
 } gi_method_settings;
 
 int gi_method_count(void);

@@ -2,7 +2,8 @@
  * ILPV and no indirect light at all, with a constant checksum; a frame that asks for
  * another method switches the renderer in that frame, and switching back to ILPV starts
  * it afresh: the same light, bit for bit, as a new renderer's first frames; every method
- * of the registry renders; a setting that rebuilds a method does so, the others do not. */
+ * of the registry renders; a setting that rebuilds a method does so, the others do not; a
+ * cluster node's limits keep a runaway frame on the last settings within them. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +11,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "gl/gl_testutil.h"
 
@@ -175,6 +177,46 @@ static void test_rebuild_settings(void **state)
     gltest_close(&t);
 }
 
+/* A cluster node's limits (gi_cost.h): a frame asking for a runaway lattice and steps is
+ * rendered with the last settings within them, bit for bit, and says why once; settings
+ * within the limits are taken again at once. */
+static void test_limits_keep_the_last_settings(void **state)
+{
+    (void)state;
+    gltest a;
+    assert_int_equal(gltest_open(&a, GLCTX_EGL, ILPV_BACKEND_CPU, 0), 0);
+    gi_limits lim = {.base = a.params, .memory_mb = 2048};
+    memcpy(lim.bounds_min, a.scene.bounds_min, sizeof lim.bounds_min);
+    memcpy(lim.bounds_max, a.scene.bounds_max, sizeof lim.bounds_max);
+    char err[512];
+    gltest b = a; /* the same context and scene: a renderer without limits */
+    renderer_desc rd = {.gl = glctx_gl(a.ctx), .scene = &a.scene, .first = &a.params, .limits = &lim};
+    renderer_destroy(a.r);
+    assert_non_null(a.r = renderer_create(&rd, err, sizeof err));
+    rd.limits = NULL;
+    assert_non_null(b.r = renderer_create(&rd, err, sizeof err));
+    static float d[W * H * 3], ia[W * H * 3], ib[W * H * 3];
+    frame_params runaway = a.params;
+    gltest_setn(&runaway, "lattice", 128);
+    gltest_setn(&runaway, "steps", 256);
+    for (int f = 0; f < 3; f++) {
+        uint64_t ca = frame(&a, f == 0 ? &a.params : &runaway, d, ia);
+        uint64_t cb = frame(&b, &a.params, d, ib);
+        assert_true(ca == cb);
+        assert_memory_equal(ia, ib, sizeof ia);
+    }
+    assert_non_null(strstr(renderer_last_error(a.r), "frame settings refused: the ilpv settings would take"));
+    const lattice_desc *lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(a.r)));
+    assert_true(lat->n[0] <= 20 && lat->n[1] <= 20 && lat->n[2] <= 20); /* never built */
+    frame_params finer = a.params; /* within: taken */
+    gltest_setn(&finer, "lattice", 32);
+    frame(&a, &finer, d, ia);
+    lat = gi_ilpv_lattice(gi_ilpv_of(renderer_gi(a.r)));
+    assert_true(lat->n[0] == 32 || lat->n[1] == 32 || lat->n[2] == 32);
+    renderer_destroy(b.r);
+    gltest_close(&a);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -183,6 +225,7 @@ int main(void)
         cmocka_unit_test(test_created_with_none),
         cmocka_unit_test(test_every_registry_method),
         cmocka_unit_test(test_rebuild_settings),
+        cmocka_unit_test(test_limits_keep_the_last_settings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

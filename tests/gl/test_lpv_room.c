@@ -77,11 +77,10 @@ static void test_faces_against_the_reference(void **state)
     reference_destroy(ref);
 
     const int sizes[3] = {16, 32, 64};
-    /* Measured ratios lpv / reference (docs/lpv.md, "Stage tests"): floor 1.92 .. 2.86 (its
-     * one-bounce light is faint, and the lattice's floor cells still hold some of its own
-     * outgoing light), ceiling 1.32 .. 1.37, walls 0.68 .. 0.84, geometric means
-     * 0.956 .. 1.020; bounds with a margin. */
-    const double lo[6] = {1.5, 1.1, 0.55, 0.55, 0.55, 0.55}, hi[6] = {3.3, 1.6, 1.0, 1.0, 1.0, 1.0};
+    /* Measured ratios lpv / reference (docs/lpv.md, "Stage tests"): floor 0.87 .. 1.17,
+     * ceiling 1.26 .. 1.29, walls 0.72 .. 0.99, geometric means 0.898 .. 0.932; bounds with
+     * a margin. */
+    const double lo[6] = {0.7, 1.1, 0.6, 0.6, 0.6, 0.6}, hi[6] = {1.4, 1.45, 1.1, 1.1, 1.1, 1.1};
     for (int k = 0; k < 3; k++) {
         glctx_desc gd = {.backend = GLCTX_EGL};
         glctx *ctx = glctx_create(&gd, err, sizeof err);
@@ -107,7 +106,7 @@ static void test_faces_against_the_reference(void **state)
             assert_true(ratio > lo[f] && ratio < hi[f]);
         }
         printf("  geometric mean %.3f\n", exp(log_sum / 6));
-        assert_true(fabs(log_sum / 6) < 0.1);
+        assert_true(fabs(log_sum / 6) < 0.15);
         renderer_destroy(r);
         glctx_destroy(ctx);
     }

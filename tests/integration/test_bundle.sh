@@ -40,8 +40,10 @@ if ! unshare -rm true 2> /dev/null; then
   exit 0
 fi
 hide=""
+# awk reads ldconfig's list to the end: leaving early would kill ldconfig with SIGPIPE,
+# which pipefail turns into a failed assignment that ends the script.
 for f in "$b"/lib/*; do
-  sys=$(ldconfig -p | awk -v n="$(basename "$f")" '$1 == n && $NF ~ /^\// {print $NF; exit}')
+  sys=$(ldconfig -p | awk -v n="$(basename "$f")" '$1 == n && $NF ~ /^\// && !found {print $NF; found = 1}')
   [ -n "$sys" ] && hide+="mount --bind /dev/null $(readlink -f "$sys") && "
 done
 unshare -rm sh -c "${hide}exec \"\$@\"" sh "$b/bin/cavelight-node" --standalone --width 64 --height 48 \

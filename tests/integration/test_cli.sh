@@ -48,10 +48,10 @@ options "$out/node" "Display" | grep -v -e "^--hud" -e "^--wand" >> "$out/node-g
 [ "$(wc -l < "$out/node-gi")" -ge 20 ] || fail "the node lists only $(wc -l < "$out/node-gi") GI options"
 { options "$out/master" "GI: indirect light"; options "$out/master" "Display"; } > "$out/master-gi"
 while read -r line; do
-    case $line in --threads*|--budget-ms*) continue ;; esac # the node's machine and its own choice
+    case $line in --threads*) continue ;; esac # the node's own machine
     grep -qxF -- "$line" "$out/master-gi" || fail "master --help lacks the node's $line"
 done < "$out/node-gi"
-echo "the master lists all $(grep -vc -e '^--threads' -e '^--budget-ms' "$out/node-gi") GI and display options of the node"
+echo "the master lists all $(grep -vc -e '^--threads' "$out/node-gi") GI and display options of the node"
 
 # Errors: exit 2, one line, naming what is wrong and what to use instead.
 one_line_error() { # expected-substring command...

@@ -25,7 +25,7 @@ ip -n "$ns_n" link set "vn$$" up
 make_config "$tmp/c.json" 3000 a b
 sed -i 's#"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"#"bind": "tcp://10.77.0.1:5599", "connect": "tcp://10.77.0.1:5599"#' "$tmp/c.json"
 run() { # FRAMES REPORT
-  ip netns exec "$ns_m" "$build/cavelight-master" --config "$tmp/c.json" --frames "$1" --wait-ms 10000 \
+  ip netns exec "$ns_m" "$build/cavelight-master" --config "$tmp/c.json" --insecure-anywhere --frames "$1" --wait-ms 10000 \
     --report "$2" --quiet 2> "$tmp/master.log" &
   local m=$!
   pids+=($m)

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # A 2-node cluster in curve mode against a stranger who has the config file and the
 # master's public key but no node key (tests/cluster/cluster_stranger.c): without CURVE,
-# with a key of its own and as an insider holding node b's real key, it tries a routing-id
-# takeover of node a, reading the stream, forged READYs and a HELLO flood while frames
-# run, then poses as the master to nodes waiting for one. Nothing may change: same frames,
-# same final parameters (the nodes' checksums equal a run without the stranger), no join,
-# drop or desync, and the stranger gets no
-# message. In insecure mode a fake master's hostile parameters are clamped, not fatal.
-# (The same attacks 10,000 times each are a measurement: docs/cluster.md.)
+# with a key of its own, with node b's stolen public key and a random secret key, and as an
+# insider holding node b's real key pair, it tries a routing-id takeover of node a, reading
+# the stream, forged READYs and a HELLO flood while frames run; it replays node b's
+# captured CURVE traffic (handshake, HELLO, READYs) to the master on new connections; then
+# it poses as the master, with a key of its own or none, to nodes waiting for one. Nothing
+# may change: same frames, same final parameters (the nodes' checksums equal a run without
+# the stranger), no join, drop or desync, the stranger gets no message, and the nodes say
+# why the fake master's handshakes fail. In insecure mode a fake master's hostile
+# parameters are clamped, not fatal, and a node cut off by a stranger's message under its
+# name is back within a second. (Floods of unfinished handshakes: test_cluster_flood. The
+# same attacks 10,000 times each are a measurement: docs/cluster.md.)
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
 stranger=$build/cluster_stranger
@@ -36,7 +40,7 @@ run() {
   done
   for _ in $(seq 200); do grep -q "running" "$tmp/$name-master.log" && break; sleep 0.1; done
   for attack in "$@"; do
-    for key in none wrong insider; do
+    for key in none wrong stolen insider; do
       "$stranger" --config "$tmp/c.json" --endpoint "$ep" --attack $attack --key $key --victim a \
         --count $attempts --listen-ms 1500 >> "$tmp/$name-stranger.log" 2>&1 || fail "stranger $attack failed"
     done
@@ -65,13 +69,42 @@ want=$(json 'r["per_node"][0]["last_checksum"]' "$tmp/quiet.json")
 [ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json")" = "['$want', '$want']" ] \
   || fail "parameters changed under attack: $(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/attacked.json") vs $want"
 grep -q "replies=[1-9]\|received=[1-9]" "$tmp/attacked-stranger.log" && fail "the stranger got messages from the cluster"
-[ "$(grep -c "attempts=$attempts " "$tmp/attacked-stranger.log")" = 12 ] || fail "not every attack ran"
+[ "$(grep -c "attempts=$attempts " "$tmp/attacked-stranger.log")" = 16 ] || fail "not every attack ran"
 [ "$(json 'r["refused_connections"] > 0' "$tmp/attacked.json")" = True ] || fail "no wrong key was refused"
 lines=$(grep -c "refused\|unauthenticated" "$tmp/attacked-master.log" || true)
 # Two kinds of line (refused keys, unknown peers): the first 5 each, then one per 10 s.
 most=$(json 'int(2 * (5 + r["wall_seconds"] / 10 + 1))' "$tmp/attacked.json")
 [ "$lines" -le "$most" ] || fail "$lines log lines for the stranger (at most $most): not rate-limited"
 echo "stranger in the stream: $(json 'r["refused_connections"]' "$tmp/attacked.json") keys refused, $lines log lines, nothing changed"
+
+# Replay: node b reaches the master through the stranger's relay, which records what b
+# sends and sends the recording again on new connections while the session runs.
+rm -f "$tmp/ep" "$tmp/rep"
+"$build/cavelight-master" --config "$tmp/c.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" \
+  --frames $frames --fps 30 --report "$tmp/replayed.json" 2> "$tmp/replayed-master.log" &
+master=$!; pids+=($master)
+wait_for_file "$tmp/ep" 20
+"$stranger" --config "$tmp/c.json" --endpoint "$(cat "$tmp/ep")" --attack replay --count $attempts \
+  --endpoint-file "$tmp/rep" --listen-ms 600000 > "$tmp/replay.log" 2>&1 &
+relay=$!; pids+=($relay)
+wait_for_file "$tmp/rep" 20
+"$build/cavelight-node" --cluster "$tmp/c.json" --name a --master "$(cat "$tmp/ep")" --render none --exit-with-master \
+  2> /dev/null &
+pids+=($!)
+"$build/cavelight-node" --cluster "$tmp/c.json" --name b --master "$(cat "$tmp/rep")" --render none --exit-with-master \
+  2> "$tmp/replayed-b.log" &
+pids+=($!)
+wait $master || { cat "$tmp/replayed-master.log"; fail "master of the replayed run failed"; }
+wait $relay || fail "the relay failed"
+cat "$tmp/replay.log"
+grep -q "attempts=$attempts .*received=[1-9]" "$tmp/replay.log" || fail "nothing was replayed"
+[ "$(json '(r["joins"], r["drops"], r["desyncs"], r["nodes_live_min"])' "$tmp/replayed.json")" = "(2, 0, 0, 2)" ] \
+  || { cat "$tmp/replayed-master.log"; fail "replayed: joins, drops, desyncs, live: $(json '(r["joins"], r["drops"], r["desyncs"], r["nodes_live_min"])' "$tmp/replayed.json")"; }
+[ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/replayed.json")" = "['$want', '$want']" ] \
+  || fail "parameters changed by the replays"
+[ "$(json "r['handshakes_failed'] >= $attempts" "$tmp/replayed.json")" = True ] \
+  || fail "only $(json 'r["handshakes_failed"]' "$tmp/replayed.json") of $attempts replays failed their handshake"
+echo "replay of node b's captured traffic, $attempts times: every handshake failed, nothing changed"
 
 # A fake master (its own key, or none) where the nodes look for theirs: they never take its
 # parameters, and join the real master once it binds the same endpoint.
@@ -82,15 +115,24 @@ for key in wrong none; do
   fake=$!; pids+=($fake)
   wait_for_file "$tmp/fep" 20
   fep=$(cat "$tmp/fep")
+  t0=$(date +%s%N)
   node_pids=()
   for n in a b; do
     "$build/cavelight-node" --cluster "$tmp/c.json" --name $n --master "$fep" --render none --exit-with-master \
       2> "$tmp/fake-$key-node-$n.log" &
     node_pids+=($!); pids+=($!)
   done
+  for _ in $(seq 300); do grep -q "handshake with the master" "$tmp/fake-$key-node-a.log" && break; sleep 0.01; done
+  said=$(( ($(date +%s%N) - t0) / 1000000 ))
   wait $fake
   grep -q "received=0" "$tmp/fake-$key.log" || fail "the fake master ($key) heard from a node: $(cat "$tmp/fake-$key.log")"
   grep -q "joined" "$tmp/fake-$key-node-a.log" && fail "node a joined the fake master ($key)"
+  # The nodes say why the handshakes fail: another key than master.pub, or no CURVE (a
+  # connection closed before the master's greeting was read names both).
+  cause="master.pub is not this master's key"
+  [ $key = none ] && cause="the master uses another security mode"
+  grep -q "handshake with the master at $fep failed (.*): .*$cause" "$tmp/fake-$key-node-a.log" \
+    || { cat "$tmp/fake-$key-node-a.log"; fail "node a does not say why the fake master ($key) failed"; }
   "$build/cavelight-master" --config "$tmp/c.json" --bind "$fep" --frames $frames --fps 0 \
     --report "$tmp/after-$key.json" 2> "$tmp/after-$key.log" || { cat "$tmp/after-$key.log"; fail "real master failed"; }
   [ "$(json '[n["last_checksum"] for n in r["per_node"]]' "$tmp/after-$key.json")" = "['$want', '$want']" ] \
@@ -100,6 +142,7 @@ for key in wrong none; do
   [ "$(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")" = "(2, 2)" ] \
     || { cat "$tmp/after-$key.log"; fail "after the fake master ($key): joins, live: $(json '(r["joins"], r["nodes_live_min"])' "$tmp/after-$key.json")"; }
   for p in "${node_pids[@]}"; do wait $p || fail "a node failed after the fake master ($key)"; done
+  echo "fake master ($key): node a said why its handshakes fail $said ms after it started; both joined the real master $(json 'round(r["nodes_wait_ms"])' "$tmp/after-$key.json") ms after it bound"
 done
 echo "fake master: no node took its parameters; the real master got both"
 
@@ -120,6 +163,31 @@ kill -0 $node || { cat "$tmp/fake-i-node.log"; fail "the node exited on hostile 
 grep -q "out of range, clamped" "$tmp/fake-i-node.log" || { cat "$tmp/fake-i-node.log"; fail "no clamp logged"; }
 grep -q 'security "insecure"' "$tmp/fake-i-node.log" || fail "insecure mode not named in the node's log"
 echo "insecure mode: hostile parameters clamped, the node stays up"
+
+# Insecure mode believes any name: one message under node a's name takes its routing id
+# over on the master's side, and node a hears nothing more. With the default master_ms
+# (400) it calls the master lost and reconnects on a fresh connection: back within a second.
+MASTER_MS= make_config "$tmp/cut.json" 3000 a b
+rm -f "$tmp/ep"
+"$build/cavelight-master" --config "$tmp/cut.json" --bind 'tcp://127.0.0.1:*' --endpoint-file "$tmp/ep" --frames 0 \
+  --fps 30 --report "$tmp/cut.json.r" 2> "$tmp/cut-master.log" &
+master=$!; pids+=($master)
+wait_for_file "$tmp/ep" 20
+for n in a b; do
+  "$build/cavelight-node" --cluster "$tmp/cut.json" --name $n --master "$(cat "$tmp/ep")" --render none 2> "$tmp/cut-$n.log" &
+  pids+=($!)
+done
+for _ in $(seq 200); do grep -q "running" "$tmp/cut-master.log" && break; sleep 0.1; done
+"$stranger" --config "$tmp/cut.json" --endpoint "$(cat "$tmp/ep")" --attack ready --key none --victim a --count 1 \
+  --listen-ms 100 > /dev/null 2>&1
+for _ in $(seq 100); do grep -q "reconnected to the master" "$tmp/cut-a.log" && break; sleep 0.05; done
+sleep 0.3
+kill -TERM $master; wait $master || true
+grep -q "master lost: nothing heard for 400 ms" "$tmp/cut-a.log" && grep -q "reconnected to the master" "$tmp/cut-a.log" \
+  || { cat "$tmp/cut-a.log" "$tmp/cut-master.log"; fail "node a did not come back after a stranger cut it off"; }
+back=$(( 400 + $(grep -o "reconnected to the master at version [0-9]*, [0-9]* ms" "$tmp/cut-a.log" | head -1 | grep -o "[0-9]* ms" | grep -o "[0-9]*") ))
+echo "insecure mode: node a cut off by a stranger's message under its name, back after $back ms (400 of them master_ms)"
+[ "$back" -lt 1000 ] || fail "node a took $back ms to come back"
 
 # Insecure mode believes any name, so every HELLO is a join or a refusal: the master's
 # lines about a node are rate-limited (common/base/ratelog.h) however many arrive.

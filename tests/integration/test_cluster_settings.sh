@@ -5,8 +5,9 @@
 # that screen's view does (the same checksum, the same pixels), both nodes with equal
 # checksums in every frame; first the vpl method's fastest chart rows (imperfect shadow
 # maps, 4 x 4 interleaving), then ILPV with a fitted lattice, lambda and steps. The same
-# settings from the config's "settings" give the same frames. And the master refuses a bad
-# value or name in one line, before any node starts.
+# settings from the config's "settings" give the same frames. --budget-ms measures every
+# node and takes one choice for all. And the master refuses a bad value or name in one
+# line, before any node starts.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
 
@@ -82,6 +83,26 @@ SETTINGS='"rsm": 64, "gi": "ilpv", "lattice-cells": 4096, "lambda": 0.5, "steps"
   "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/ilpv.json")" ] || fail "config settings differ from the options"
 echo "the config's settings give the options' frames"
 
+# --budget-ms: every node measures the candidate lattices, the slowest counts, and one
+# choice serves the wall: the frames after the measuring ones are a standalone node's with
+# the chosen lattice and steps.
+SETTINGS='"rsm": 64' make_config "$tmp/c2.json" 30000 a b
+"$build/cavelight-master" --config "$tmp/c2.json" --bind 'tcp://127.0.0.1:*' --spawn-local \
+  --input "$tmp/still.rec" --output png --out "$tmp/budget" --report "$tmp/budget.json" \
+  --node-args "$small_render" --budget-ms 20 2> "$tmp/budget.log" || { cat "$tmp/budget.log"; fail "budget: master failed"; }
+grep -q "budget 20 ms: lattice [0-9]*, [0-9]* steps\?, predicted .* on the slowest node" "$tmp/budget.log" \
+  || fail "budget: no choice said: $(cat "$tmp/budget.log")"
+[ "$(json 'r["frames"] - r["budget"]["frames"], r["desyncs"], len(set(n["last_checksum"] for n in r["per_node"]))' \
+     "$tmp/budget.json")" = "4 0 1" ] || fail "budget: not 4 frames with equal checksums after measuring"
+lattice=$(json 'r["budget"]["lattice_cells"]' "$tmp/budget.json")
+steps=$(json 'r["budget"]["steps"]' "$tmp/budget.json")
+"$build/cavelight-node" --standalone --frames 4 --width 32 --height 64 --threads 1 --screen "$screen_a" \
+  --eye 0,1.7,0 --eyes stereo --rsm 64 --lattice "$lattice" --steps "$steps" --out "$tmp/budget-a" > /dev/null \
+  || fail "budget: standalone failed"
+[ "$(json 'r["frames"][3]["checksum"]' "$tmp/budget-a/report.json")" = \
+  "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/budget.json")" ] || fail "budget: the wall did not take the choice"
+echo "--budget-ms 20: lattice $lattice, $steps steps on both nodes, as a standalone node with those"
+
 # Refused in one line naming the option and its range, or the setting and the nearest name.
 one_line() { # WHAT EXPECTED ARGS...
   local what=$1 expect=$2 out
@@ -94,9 +115,24 @@ one_line "--vpl-interleave 9" "--vpl-interleave 9: expected a whole number in 0.
 one_line "--ism-size 48" "--ism-size 48: expected a power of two in 8..256" --ism-size 48
 one_line "--lpv-mode fast" "expected one of incremental or classic" --lpv-mode fast
 one_line "--lambda 1.5" "--lambda 1.5: expected a number in [0, 0.999]" --lambda 1.5
+one_line "--budget-ms with --lattice" "give either the budget or those two" --budget-ms 10 --lattice 32
+one_line "--budget-ms with vpl" "it needs --gi ilpv" --budget-ms 10 --gi vpl
 SETTINGS='"vpl-cuont": 64' make_config "$tmp/bad.json" 30000 a b
 out=$("$build/cavelight-master" --config "$tmp/bad.json" --spawn-local --out "$tmp/bad" 2>&1) \
   && fail "a misspelt setting accepted"
 grep -qF "settings.vpl-cuont: 64: not a setting (did you mean vpl-count?)" <<< "$out" || fail "bad setting: $out"
 [ ! -d "$tmp/bad/logs" ] || fail "nodes were started for a refused config"
 echo "bad settings refused in one line before any node starts"
+
+# Settings the nodes' limits would refuse (node/gi/gi_cost.h: over ten times the set-up
+# work, or over limits.gi_memory_mb) are refused by the master before any node starts; set
+# up in the config, the same settings pass.
+out=$("$build/cavelight-master" --config "$tmp/c2.json" --spawn-local --out "$tmp/runaway" \
+      --lattice 128 --steps 256 2>&1) && fail "a runaway lattice and steps accepted"
+grep -qF "the ilpv settings would take" <<< "$out" && grep -qF "(at most 10): every node would refuse it" <<< "$out" \
+  || fail "runaway: $out"
+[ ! -d "$tmp/runaway/logs" ] || fail "nodes were started for runaway settings"
+SETTINGS='"rsm": 64, "lattice": 64, "steps": 16' make_config "$tmp/heavy.json" 30000 a b
+"$build/cavelight-master" --config "$tmp/heavy.json" --bind 'tcp://127.0.0.1:*' --spawn-local --render none \
+  --frames 1 --out "$tmp/heavy" --quiet 2> "$tmp/heavy.log" || { cat "$tmp/heavy.log"; fail "set-up heavy settings refused"; }
+echo "runaway settings refused before any node starts; the same set up in the config pass"

@@ -24,8 +24,8 @@ node=$build/cavelight-node
   || fail "reference render: $(cat "$out/err")"
 echo "loaded when asked for: an OSMesa context and the Embree reference render"
 
-osmesa=$(ldconfig -p | awk '/libOSMesa\.so\.8 .*x86-64|libOSMesa\.so\.8 / {print $NF; exit}')
-embree=$(ldconfig -p | awk '/libembree3\.so\.3 / {print $NF; exit}')
+osmesa=$(ldconfig -p | awk '/libOSMesa\.so\.8 .*x86-64|libOSMesa\.so\.8 / && !found {print $NF; found = 1}')
+embree=$(ldconfig -p | awk '/libembree3\.so\.3 / && !found {print $NF; found = 1}')
 if [ -z "$osmesa" ] || [ -z "$embree" ] || ! unshare -rm true 2> /dev/null; then
   echo "user namespaces or the libraries' paths not available here: the missing-library lines are not tried"
   exit 0
@@ -40,6 +40,9 @@ one_line() { # expected command...
 one_line "OSMesa: cannot load libOSMesa.so.8 (.*); install libosmesa6" "$node" --standalone --gl osmesa --width 32 --height 24
 one_line "Embree: cannot load libembree3.so.3 (.*); install libembree3-3" \
   "$node" --standalone --renderer reference --samples 1 --width 32 --height 24
-unshare -rm sh -c "$hide && exec \"\$@\"" sh "$node" --standalone --width 32 --height 24 --out "$out/egl" 2> "$out/err" \
-  || fail "an EGL node failed without OSMesa and Embree: $(cat "$out/err")"
-echo "missing OSMesa or Embree: one line naming the package; an EGL node does not need them"
+for gi in ilpv vpl; do
+  unshare -rm sh -c "$hide && exec \"\$@\"" sh "$node" --standalone --gi $gi --width 32 --height 24 --out "$out/egl" \
+    2> "$out/err" || fail "an EGL node on $gi failed without OSMesa and Embree: $(cat "$out/err")"
+done
+one_line "Embree: cannot load libembree3.so.3" "$node" --standalone --gi vpl --vpl-selection view --width 32 --height 24
+echo "missing OSMesa or Embree: one line naming the package; an EGL node on ilpv or vpl does not need them"

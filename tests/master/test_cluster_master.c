@@ -47,6 +47,7 @@ typedef struct fake_node {
     const char *name;
     uint64_t checksum;          /* reported in READY */
     volatile int silent;        /* 1: receive but never answer */
+    volatile int refuse;        /* 1: answer a FRAME with REFUSE(params) instead of READY */
     volatile int rejoin;        /* set: send HELLO again, then clear */
     volatile int stop;
     uint64_t config_hash;
@@ -107,7 +108,11 @@ static void *fake_node_main(void *arg)
             n->byes++;
             n->last_bye = m.reason;
         }
-        if (m.type == WIRE_FRAME && !n->silent) {
+        if (m.type == WIRE_FRAME && n->refuse) {
+            wire_msg r = {.type = WIRE_REFUSE, .reason = WIRE_REFUSE_PARAMS, .version = m.version};
+            snprintf(r.text, sizeof r.text, "frame %llu: invalid values", (unsigned long long)m.version);
+            send_wire(s, &r, n->name);
+        } else if (m.type == WIRE_FRAME && !n->silent) {
             n->frames++;
             wire_msg r = {.type = WIRE_READY, .version = m.version, .checksum = n->checksum,
                           .timings = {0.1f, 1, 2, 3}};
@@ -228,6 +233,38 @@ static void test_drop_after_timeout_and_rejoin(void **state)
     assert_int_equal(r.epoch, epoch + 1);
     stop_node(&a);
     stop_node(&b);
+}
+
+/* A node that refuses a frame's parameters leaves the barrier at once (no timeout), its
+ * reason is kept, and a frame nobody rendered is not counted as rendered. */
+static void test_refusal_leaves_the_barrier(void **state)
+{
+    fake_node c;
+    start_node(&c, "c", 1);
+    while (c.snapshots == 0)
+        cluster_master_wait_nodes(master, 3, 20);
+    cluster_master_stats before, after;
+    cluster_master_stats_get(master, &before);
+    c.refuse = 1;
+    cluster_frame_result r;
+    assert_int_equal(cluster_master_frame(master, &r), 0);
+    assert_int_equal(r.live, 1);
+    assert_int_equal(r.ready, 0);
+    assert_int_equal(r.dropped, 0);
+    assert_true(r.barrier_ms < 250); /* the barrier timeout is 300 */
+    cluster_master_stats_get(master, &after);
+    assert_int_equal(after.refusals, before.refusals + 1);
+    assert_int_equal(after.frames_rendered, before.frames_rendered);
+    assert_int_equal(after.frames, before.frames + 1);
+    cluster_peer_stats ps;
+    cluster_master_peer_stats(master, 2, &ps);
+    assert_int_equal(ps.refusals, 1);
+    assert_int_equal(ps.refused_what, WIRE_REFUSE_PARAMS);
+    char want[64];
+    snprintf(want, sizeof want, "frame %llu: invalid values", (unsigned long long)r.version);
+    assert_string_equal(ps.refusal, want);
+    assert_int_equal(cluster_master_live_count(master), 0);
+    stop_node(&c);
 }
 
 static void test_config_mismatch_refused(void **state)
@@ -396,6 +433,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_barrier_epoch_and_desync),
         cmocka_unit_test(test_drop_after_timeout_and_rejoin),
+        cmocka_unit_test(test_refusal_leaves_the_barrier),
         cmocka_unit_test(test_config_mismatch_refused),
         cmocka_unit_test(test_garbage_is_dropped_and_counted),
         cmocka_unit_test(test_shutdown_answers_hello_with_bye),

@@ -1,6 +1,7 @@
 /* The splat (lpv_splat.h): the shell holds the injected energy once; the near field is the
- * point source's closed form; the emitting surface's own layer gets no near light; blocked and
- * absorbed light is missing; the same bits for any thread count. */
+ * point source's closed form; the emitting surface's own layer gets no light, the shell's
+ * share there lands one layer further out with its direction; blocked and absorbed light is
+ * missing; the same bits for any thread count. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -72,8 +73,8 @@ static void test_shell_holds_the_energy_and_near_is_the_closed_form(void **state
     for (int c = 0; c < 3; c++)
         assert_float_equal(e[c], c + 1.0, 1e-5 * (c + 1.0));
     /* Each near cell holds, per colour, E cos(w, n) / (pi r^2) as a beam along w (w, r from
-     * the VPL, in lattice units with centres at integers) -- or nothing in the own layer
-     * (the shell is not cut there: it stands for light that has left the surface). */
+     * the VPL, in lattice units with centres at integers) -- or nothing in the own layer,
+     * neither near nor shell light. */
     float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), u[3] = {n[0] / len, n[1] / len, n[2] / len};
     int checked = 0;
     for (int z = 0; z < 16; z++)
@@ -85,7 +86,7 @@ static void test_shell_holds_the_energy_and_near_is_the_closed_form(void **state
                 float ahead = r[0] * u[0] + r[1] * u[1] + r[2] * u[2];
                 if (ahead < lpv_own_layer(u)) {
                     for (int c = 0; c < 12; c++)
-                        assert_true(f.near.ch[c][i] == 0.0f);
+                        assert_true(f.near.ch[c][i] == 0.0f && f.shell.ch[c][i] == 0.0f);
                     continue;
                 }
                 if (d >= LPV_SPLAT_RADIUS)
@@ -100,6 +101,30 @@ static void test_shell_holds_the_energy_and_near_is_the_closed_form(void **state
                 checked++;
             }
     assert_true(checked >= 3);
+    close_fixture(&f);
+}
+
+/* The shell's share of a cell in a floor VPL's own layer lands in the cell above it, as a
+ * beam along the direction from the VPL to the cell it stands for (grazing, not up). */
+static void test_own_layer_share_lands_one_layer_out(void **state)
+{
+    (void)state;
+    const float p[3] = {7.5f, 2.0f, 8.5f}, n[3] = {0, 1, 0};
+    fixture f;
+    open_fixture(&f, p, n);
+    run(&f, 0.0f, NULL);
+    /* origin (7, 1.5, 8) in centre units: cell (9, 2, 8) is in the own layer, 2.06 cells
+     * away (the shell); its share lands in (9, 3, 8) as a beam along (2, 0.5, 0) */
+    float r[3] = {2.0f, 0.5f, 0.0f}, d = sqrtf(r[0] * r[0] + r[1] * r[1]);
+    size_t lifted = at(&f.lat, 9, 3, 8);
+    float e = (float)SH_ENERGY * f.shell.ch[0][lifted];
+    float fx = -f.shell.ch[3][lifted] / (float)SH_Y1, fy = -f.shell.ch[1][lifted] / (float)SH_Y1;
+    assert_true(e > 0.0f);
+    for (size_t i = 0; i < 12; i++)
+        assert_true(f.shell.ch[i][at(&f.lat, 9, 2, 8)] == 0.0f);
+    /* the cell above also holds its own share (along (2, 1.5, 0)): the mean direction lies
+     * between the two, below 45 degrees */
+    assert_true(fx > 0.0f && fy > 0.0f && fy < fx && fy / e > r[1] / d * 0.99f);
     close_fixture(&f);
 }
 
@@ -175,6 +200,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shell_holds_the_energy_and_near_is_the_closed_form),
+        cmocka_unit_test(test_own_layer_share_lands_one_layer_out),
         cmocka_unit_test(test_blocked_and_absorbed_light_is_missing),
         cmocka_unit_test(test_same_bits_for_any_thread_count),
     };

@@ -29,7 +29,7 @@ static const double PI = 3.14159265358979323846;
 /* Measured bounds (docs/lpv.md, "Stage tests"), a little wider than what the tests print:
  * (a) 0.16 .. 1.51, geometric means 0.929 .. 0.952; (b) 0.40 .. 1.63, 1.042 .. 1.090. */
 #define STAGE_A_LO 0.13
-#define STAGE_A_HI 1.7
+#define STAGE_A_HI 1.9
 #define STAGE_A_MEAN 0.1  /* |log geometric mean| */
 #define STAGE_B_LO 0.33
 #define STAGE_B_HI 1.8

@@ -58,7 +58,7 @@ static void test_builtin_scenes(void **state)
         assert_true(s.light_count + emitters >= 1);
         scene_free(&s);
     }
-    assert_int_equal(count, 7);
+    assert_int_equal(count, 8);
     assert_null(scene_builtin_name(count));
     assert_null(scene_builtin_name(-1));
 }
@@ -96,6 +96,33 @@ static void test_doorway_and_courtyard(void **state)
                      s.positions[9 * t + 4] == s.bounds_max[1] &&
                      s.positions[9 * t + 7] == s.bounds_max[1]);
     assert_true(s.lights[0].position[1] > s.bounds_max[1]);
+    scene_free(&s);
+}
+
+/* The arcaded courtyard: 12 x 8.6 x 24 m, open to the sky over the court; its one light is
+ * a point lamp in the lower gallery at x > 0 (between the columns and the outer wall,
+ * under the first-floor slab), in free space; the camera stands in the court. */
+static void test_arcades(void **state)
+{
+    (void)state;
+    scene s;
+    char err[256];
+    assert_int_equal(scene_load("arcades", &s, err, sizeof err), 0);
+    const float lo[3] = {-6, 0, -12}, hi[3] = {6, 8.6f, 12};
+    for (int a = 0; a < 3; a++) {
+        assert_true(fabsf(s.bounds_min[a] - lo[a]) < 1e-6f);
+        assert_true(fabsf(s.bounds_max[a] - hi[a]) < 1e-6f);
+    }
+    assert_int_equal(s.light_count, 1);
+    const scene_light *l = &s.lights[0];
+    assert_int_equal(l->type, SCENE_LIGHT_POINT);
+    assert_true(l->position[0] > 3.7f && l->position[0] < 6.0f && l->position[1] < 4.0f);
+    assert_true(scene_point_is_free(&s, l->position, NULL));
+    int fronts;
+    const float court[3] = {0, 4, 0};
+    assert_true(scene_point_is_free(&s, court, &fronts));
+    assert_true(fronts < 14); /* some rays escape through the open top */
+    assert_true(fabsf(s.camera.position[0]) < 3.3f);
     scene_free(&s);
 }
 
@@ -372,6 +399,7 @@ int main(void)
         cmocka_unit_test(test_corridor),
         cmocka_unit_test(test_builtin_scenes),
         cmocka_unit_test(test_doorway_and_courtyard),
+        cmocka_unit_test(test_arcades),
         cmocka_unit_test(test_rect),
         cmocka_unit_test(test_gltf_transform_material_light),
         cmocka_unit_test(test_gltf_texture),

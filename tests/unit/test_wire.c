@@ -18,6 +18,7 @@ static size_t sample(int type, uint8_t *buf, size_t cap, const uint8_t *params, 
                   .config_hash = 0x1122334455667788ull, .checksum = 0xdeadbeefcafef00dull,
                   .timings = {0.5f, 1.5f, 2.5f, 3.5f}, .reason = 7, .params = params, .params_len = plen};
     strcpy(m.name, "n01");
+    strcpy(m.text, "scene x.gltf: no such file");
     return wire_encode(&m, buf, cap);
 }
 
@@ -155,6 +156,12 @@ static void test_round_trip_every_type(void **state)
         case WIRE_HEARTBEAT:
             assert_string_equal(m.name, "n01");
             break;
+        case WIRE_REFUSE:
+            assert_string_equal(m.name, "n01");
+            assert_int_equal(m.reason, 7);
+            assert_int_equal(m.version, 42);
+            assert_string_equal(m.text, "scene x.gltf: no such file");
+            break;
         }
     }
 }
@@ -190,6 +197,26 @@ static void test_oversized_and_bad_fields(void **state)
     assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
     m.type = (wire_type)99;
     assert_int_equal(wire_encode(&m, buf, sizeof buf), 0);
+    /* REFUSE's text: printable only (no forged log lines), at most WIRE_TEXT_MAX. */
+    wire_msg r = {.type = WIRE_REFUSE, .reason = WIRE_REFUSE_SCENE};
+    strcpy(r.name, "n01");
+    strcpy(r.text, "line\ncavelight-master: forged");
+    assert_int_equal(wire_encode(&r, buf, sizeof buf), 0);
+    memset(r.text, 'x', WIRE_TEXT_MAX);
+    r.text[WIRE_TEXT_MAX] = 0;
+    size_t rl = wire_encode(&r, buf, sizeof buf);
+    assert_true(rl > 0);
+    buf[rl - 1] = '\n'; /* a control character on the wire, CRC put right: refused */
+    uint32_t rcrc;
+    {
+        static uint8_t tmp[WIRE_MAX_MESSAGE];
+        memcpy(tmp, buf, 12);
+        memcpy(tmp + 12, buf + WIRE_HEADER_SIZE, rl - WIRE_HEADER_SIZE);
+        rcrc = wire_crc32(tmp, 12 + rl - WIRE_HEADER_SIZE);
+    }
+    memcpy(buf + 12, &rcrc, 4);
+    wire_msg rd;
+    assert_int_equal(wire_decode(buf, rl, &rd), WIRE_E_PAYLOAD);
 
     /* A header claiming a huge payload is refused before anything is read. */
     size_t len = sample(WIRE_SWAP, buf, sizeof buf, NULL, 0);
@@ -226,7 +253,7 @@ static void test_random_garbage_never_decodes(void **state)
             memcpy(buf, &magic, 4);
             buf[4] = WIRE_PROTOCOL;
             buf[5] = 0;
-            buf[6] = (uint8_t)(1 + rand() % 7);
+            buf[6] = (uint8_t)(1 + rand() % (WIRE_TYPE_END - 1));
             buf[7] = 0;
             memcpy(buf + 8, &payload, 4);
         }

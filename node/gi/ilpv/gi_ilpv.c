@@ -87,25 +87,6 @@ static int build_emitters(gi_ilpv *r)
     return 0;
 }
 
-static int fit_lattice(gi_ilpv *r, char *err, size_t errlen)
-{
-    const scene *s = r->scene;
-    int budget = r->settings.lattice_cells;
-    lattice_fit_desc fit = {
-        .bounds_min = {s->bounds_min[0], s->bounds_min[1], s->bounds_min[2]},
-        .bounds_max = {s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]},
-        .max_axis_cells = budget > 0 ? ILPV_FITTED_AXIS_MAX : r->settings.lattice,
-        .max_cells = budget > 0 ? budget : 0,
-        .margin_cells = -1.0f,
-    };
-    char why[160];
-    if (lattice_fit(&fit, &r->lattice, why, sizeof why) != 0) {
-        snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
-        return -1;
-    }
-    return 0;
-}
-
 /* The backend the settings ask for, with the blockers and pool the method owns. */
 static int make_driver(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
 {
@@ -139,7 +120,8 @@ static int init(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
     const scene *s = r->scene;
     if (r->settings.backend == ILPV_BACKEND_AUTO)
         r->settings.backend = d->software ? ILPV_BACKEND_CPU : ILPV_BACKEND_GL;
-    if (fit_lattice(r, err, errlen) != 0)
+    if (ilpv_settings_lattice(&r->settings, r->scene->bounds_min, r->scene->bounds_max, &r->lattice, err,
+                              errlen) != 0)
         return -1;
     double threshold = d->no_reuse ? -1.0 : r->settings.converge_threshold;
     /* The blockers of the scene as loaded; objects() follows what moves. */

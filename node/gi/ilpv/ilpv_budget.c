@@ -2,60 +2,81 @@
 #include "gi/ilpv/ilpv_budget.h"
 
 #include <math.h>
-#include <stdio.h>
+#include <string.h>
 
-#include "gi/ilpv/gi_ilpv.h"
-#include "lpv/lattice.h"
+#include "gi/ilpv/ilpv_settings.h"
 
 static const int axes[ILPV_BUDGET_CANDIDATES] = {16, 24, 32, 48, 64};
 
-static double median3(double v[3])
+void ilpv_budget_plan_init(ilpv_budget_plan *p, const frame_params *base, const float bounds_min[3],
+                           const float bounds_max[3])
+{
+    memset(p, 0, sizeof *p);
+    p->base = *base;
+    memcpy(p->bounds_min, bounds_min, sizeof p->bounds_min);
+    memcpy(p->bounds_max, bounds_max, sizeof p->bounds_max);
+}
+
+/* Within a candidate's frames: 0 builds it, then odd ones run 0 steps, even ones
+ * ILPV_BUDGET_STEPS. */
+static int steps_of(int j) { return j > 0 && j % 2 == 0 ? ILPV_BUDGET_STEPS : 0; }
+
+void ilpv_budget_plan_frame(const ilpv_budget_plan *p, int i, frame_params *out)
+{
+    *out = p->base;
+    gi_set(out, "gi", "ilpv");
+    gi_set_number(out, "lattice", axes[i / ILPV_BUDGET_FRAMES_EACH]);
+    gi_set(out, "lattice-cells", "0");
+    gi_set_number(out, "converge-threshold", -1);
+    out->lpv_steps = steps_of(i % ILPV_BUDGET_FRAMES_EACH);
+}
+
+void ilpv_budget_plan_record(ilpv_budget_plan *p, int i, double frame_ms)
+{
+    p->ms[i] = isfinite(frame_ms) && frame_ms > 0 ? frame_ms : 0;
+}
+
+static double median3(const double v[3])
 {
     double a = fmin(v[0], v[1]), b = fmax(v[0], v[1]);
     return fmax(a, fmin(b, v[2]));
 }
 
-int ilpv_budget_measure(const renderer_desc *base, const frame_params *fp,
-                        lpv_budget_candidate out[ILPV_BUDGET_CANDIDATES], char *err,
-                        size_t errlen)
+int ilpv_budget_plan_costs(const ilpv_budget_plan *p, lpv_budget_candidate out[ILPV_BUDGET_CANDIDATES],
+                           char *err, size_t errlen)
 {
+    _Static_assert(ILPV_BUDGET_TRIES == 3, "median3 takes three tries");
     for (int k = 0; k < ILPV_BUDGET_CANDIDATES; k++) {
-        frame_params none = *fp;
-        none.lpv_steps = 0;
-        const char *why = gi_set(&none, "gi", "ilpv");
-        if (!why)
-            why = gi_set_number(&none, "lattice", axes[k]);
-        if (!why)
-            why = gi_set(&none, "lattice-cells", "0");
-        if (why) {
-            snprintf(err, errlen, "--budget-ms: %s", why);
-            return -1;
+        const double *ms = p->ms + k * ILPV_BUDGET_FRAMES_EACH;
+        double fixed[ILPV_BUDGET_TRIES], step[ILPV_BUDGET_TRIES];
+        for (int t = 0; t < ILPV_BUDGET_TRIES; t++) {
+            fixed[t] = ms[1 + 2 * t];
+            step[t] = (ms[2 + 2 * t] - ms[1 + 2 * t]) / ILPV_BUDGET_STEPS;
         }
-        renderer_desc rd = *base;
-        rd.first = &none;
-        rd.no_reuse = 1;
-        renderer *r = renderer_create(&rd, err, errlen);
-        if (!r)
+        frame_params f;
+        ilpv_budget_plan_frame(p, k * ILPV_BUDGET_FRAMES_EACH, &f);
+        ilpv_settings s;
+        ilpv_settings_get(&f, &s);
+        lattice_desc lat;
+        if (ilpv_settings_lattice(&s, p->bounds_min, p->bounds_max, &lat, err, errlen) != 0)
             return -1;
-        gi_ilpv *l = gi_ilpv_of(renderer_gi(r));
-        double step_try[3], fixed_try[3];
-        renderer_frame_pass(r, &none); /* the first frame pays for first touches */
-        for (int i = 0; i < 3; i++) {
-            step_try[i] = gi_ilpv_measure_step_ms(l, 3);
-            renderer_frame_pass(r, &none);
-            renderer_timings t;
-            renderer_get_timings(r, &t);
-            fixed_try[i] = gi_stats_total_ms(&t.gi);
-        }
         out[k] = (lpv_budget_candidate){
             .axis_cells = axes[k],
-            .cells = lattice_cell_count(gi_ilpv_lattice(l)),
-            .step_ms = fmax(median3(step_try), 1e-6), /* a step is never free */
-            .fixed_ms = median3(fixed_try),
+            .cells = lattice_cell_count(&lat),
+            .step_ms = fmax(median3(step), 1e-6), /* a step is never free */
+            .fixed_ms = median3(fixed),
         };
-        renderer_destroy(r);
     }
     return 0;
+}
+
+const char *ilpv_budget_check(const frame_params *p, int lattice_given)
+{
+    if (lattice_given)
+        return "--budget-ms chooses --lattice and --steps: give either the budget or those two";
+    if (p->gi != gi_method_find("ilpv"))
+        return "--budget-ms chooses the ILPV lattice: it needs --gi ilpv";
+    return NULL;
 }
 
 int ilpv_budget_apply(double budget_ms, const lpv_budget_candidate *cand, int count,

@@ -1,8 +1,10 @@
 #include "gi/ilpv/ilpv_settings.h"
 
-#include <stddef.h>
+#include <stdio.h>
 
-#include "lpv/lattice.h"
+#include "gi/gi_cost.h"
+#include "lpv/ilpv.h"
+
 #include "lpv/lpv_converge.h"
 
 static const char *const backend_names[] = {"auto", "cpu", "gl"};
@@ -41,6 +43,20 @@ static const char *check(const frame_params *p)
     return NULL;
 }
 
+/* Work: every step touches every cell, and the frame's injection, merge and composition
+ * about one step's worth. */
+static void cost(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
+{
+    ilpv_settings s;
+    ilpv_settings_get(p, &s);
+    lattice_desc lat;
+    char err[256];
+    if (ilpv_settings_lattice(&s, bounds_min, bounds_max, &lat, err, sizeof err) != 0)
+        return; /* no lattice: the method is not built */
+    out->work = (double)lattice_cell_count(&lat) * (p->lpv_steps + 1);
+    out->memory_bytes = ilpv_state_bytes(&lat);
+}
+
 const gi_method_settings ilpv_settings_table = {
     .name = "ilpv",
     .summary = "incremental light propagation volumes",
@@ -48,9 +64,28 @@ const gi_method_settings ilpv_settings_table = {
     .count = (int)(sizeof rows / sizeof rows[0]),
     .struct_size = sizeof(ilpv_settings),
     .check = check,
+    .cost = cost,
 };
 
 void ilpv_settings_get(const frame_params *p, ilpv_settings *out)
 {
     gi_settings_read(gi_method_find("ilpv"), p, out);
+}
+
+int ilpv_settings_lattice(const ilpv_settings *s, const float bounds_min[3], const float bounds_max[3],
+                          lattice_desc *out, char *err, size_t errlen)
+{
+    lattice_fit_desc fit = {
+        .bounds_min = {bounds_min[0], bounds_min[1], bounds_min[2]},
+        .bounds_max = {bounds_max[0], bounds_max[1], bounds_max[2]},
+        .max_axis_cells = s->lattice_cells > 0 ? ILPV_FITTED_AXIS_MAX : s->lattice,
+        .max_cells = s->lattice_cells > 0 ? s->lattice_cells : 0,
+        .margin_cells = -1.0f,
+    };
+    char why[160];
+    if (lattice_fit(&fit, out, why, sizeof why) != 0) {
+        snprintf(err, errlen, "renderer: no light lattice for this scene: %s", why);
+        return -1;
+    }
+    return 0;
 }

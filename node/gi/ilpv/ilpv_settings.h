@@ -4,7 +4,10 @@
 #ifndef CAVELIGHT_ILPV_SETTINGS_H
 #define CAVELIGHT_ILPV_SETTINGS_H
 
+#include <stddef.h>
+
 #include "gi/gi_settings.h"
+#include "lpv/lattice.h"
 
 /* Where the propagation runs. */
 typedef enum ilpv_backend_choice {
@@ -47,5 +50,9 @@ extern const gi_method_settings ilpv_settings_table;
 
 /* The frame's ILPV settings. */
 void ilpv_settings_get(const frame_params *p, ilpv_settings *out);
+/* The lattice these settings give a scene with these bounds. Returns 0, or -1 with one line
+ * in err. */
+int ilpv_settings_lattice(const ilpv_settings *s, const float bounds_min[3], const float bounds_max[3],
+                          lattice_desc *out, char *err, size_t errlen);
 
 #endif

@@ -21,9 +21,7 @@
 #include "gltools.h"
 #include "lpv/lpv_converge.h"
 
-/* Shadow map budget: at most this many depth texels (16 bit) for all cube faces, 128 MB;
- * faces are VPL_FACE texels on a side while that fits (1365 VPLs), smaller beyond. */
-enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_ATLAS_SIDE = 2048, VPL_FACES = 6 };
+enum { VPL_ATLAS_SIDE = 2048 };
 /* The view rule evaluates the view term of about this many candidates (evenly spaced
  * among the texels and among the emitters, vpl_view_term()), so its cost is fixed whatever
  * the RSM size: every texel of a 256^2 map would take 65536 x VPL_VIEW_SAMPLES kernel
@@ -92,13 +90,6 @@ typedef struct gi_vpl {
     size_t assignments;      /* its (VPL, cluster) pairs */
 } gi_vpl;
 
-/* The face side for n VPLs: VPL_FACE while all faces fit the budget. */
-static int face_size(int n)
-{
-    int f = (int)sqrt((double)VPL_TEXEL_BUDGET / ((double)VPL_FACES * n));
-    return f < VPL_FACE ? f : VPL_FACE;
-}
-
 static void release_shadow(gi_vpl *v)
 {
     if (v->shadow_tex)
@@ -113,7 +104,7 @@ static void release_shadow(gi_vpl *v)
 static int reserve_shadow(gi_vpl *v, int n)
 {
     const gl_functions *gl = v->gl;
-    int face = face_size(n);
+    int face = vpl_shadow_face(n);
     int tiles_needed = (int)ceil(sqrt((double)VPL_FACES * n));
     int tiles = VPL_ATLAS_SIDE / face < tiles_needed ? VPL_ATLAS_SIDE / face : tiles_needed;
     int layers = (VPL_FACES * n + tiles * tiles - 1) / (tiles * tiles);
@@ -384,7 +375,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->never_reuse = d->no_reuse;
     memcpy(v->head_to_eye, d->head_to_eye, sizeof v->head_to_eye);
     int bad = init(v, err, errlen);
-    if (!bad)
+    if (!bad && v->settings.selection == VPL_SELECT_VIEW) /* Embree, loaded only for it */
         bad = !(v->viewer = vpl_view_create(d->scene, err, errlen));
     if (!bad && v->settings.visibility != VPL_VISIBILITY_EXACT) {
         vpl_ism_desc id = {.gl = d->gl, .scene = d->scene, .far = v->far,

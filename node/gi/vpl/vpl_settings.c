@@ -1,6 +1,9 @@
 #include "gi/vpl/vpl_settings.h"
 
+#include <math.h>
 #include <stddef.h>
+
+#include "gi/gi_cost.h"
 
 #include "vpl/vpl_cluster.h"
 
@@ -15,7 +18,7 @@ static const setting rows[] = {
     {"vpl-seed", "S", SETTING_INT, 0, 2147483647, 0, NULL, 0, 0, FIELD(seed),
      "vpl: seed of their random choice"},
     {"vpl-selection", NULL, SETTING_CHOICE, 0, 0, VPL_SELECT_FLUX, vpl_selection_names,
-     VPL_SELECT_COUNT, 0, FIELD(selection),
+     VPL_SELECT_COUNT, SETTING_REBUILD, FIELD(selection), /* view: the ray caster is built */
      "vpl: choose lights by flux, by flux and what the head\nsees (bidirectional), or on a "
      "regular pattern"},
     {"vpl-bound", NULL, SETTING_CHOICE, 0, 0, VPL_BOUND_DISK, bound_names, 2, 0, FIELD(bound),
@@ -41,12 +44,41 @@ static const setting rows[] = {
 };
 #undef FIELD
 
+int vpl_shadow_face(int n)
+{
+    int f = (int)sqrt((double)VPL_TEXEL_BUDGET / ((double)VPL_FACES * (n > 0 ? n : 1)));
+    return f < VPL_FACE ? f : VPL_FACE;
+}
+
+/* Work: the visibility maps' texels (and an imperfect map's points), and the gather's
+ * VPL-pixel pairs at 1920 x 1080. Memory: the maps (exact: 16-bit depth; imperfect: RGBA
+ * float for the pull-push). */
+static void cost(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
+{
+    (void)bounds_min, (void)bounds_max;
+    vpl_settings s;
+    vpl_settings_get(p, &s);
+    double n = s.count, texels, bytes_per_texel = 2, points = 0;
+    if (s.visibility == VPL_VISIBILITY_EXACT) {
+        double face = vpl_shadow_face(s.count);
+        texels = VPL_FACES * n * face * face;
+    } else {
+        texels = n * s.ism_size * s.ism_size;
+        bytes_per_texel = 16;
+        points = n * s.ism_points;
+    }
+    double k = s.interleave > 1 ? s.interleave : 1;
+    out->work = texels + points + 1920.0 * 1080.0 * n / (k * k);
+    out->memory_bytes = texels * bytes_per_texel;
+}
+
 const gi_method_settings vpl_settings_table = {
     .name = "vpl",
     .summary = "virtual point lights with a shadow map each",
     .rows = rows,
     .count = (int)(sizeof rows / sizeof rows[0]),
     .struct_size = sizeof(vpl_settings),
+    .cost = cost,
 };
 
 void vpl_settings_get(const frame_params *p, vpl_settings *out)

@@ -32,6 +32,13 @@ enum { VPL_INTERLEAVE_MAX = 8 };
 /* An imperfect map's side (a power of two) and points. */
 enum { VPL_ISM_SIZE_MIN = 8, VPL_ISM_SIZE_MAX = 256, VPL_ISM_POINTS_MIN = 64, VPL_ISM_POINTS_MAX = 16384 };
 
+/* Exact visibility's shadow maps: at most VPL_TEXEL_BUDGET depth texels (16 bit) for all
+ * cube faces, 128 MB; faces are VPL_FACE texels on a side while that fits (1365 VPLs),
+ * smaller beyond. */
+enum { VPL_FACE = 64, VPL_TEXEL_BUDGET = 1 << 26, VPL_FACES = 6 };
+/* The face side for n VPLs. */
+int vpl_shadow_face(int n);
+
 typedef struct vpl_settings {
     int count;                /* VPLs chosen per frame */
     int seed;                 /* which random numbers choose them (the same on every node) */
