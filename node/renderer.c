@@ -431,7 +431,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     renderer_rsm_render(r->rsm, r->mesh, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
+    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm, .mesh = r->mesh};
     rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
     r->checksum = gi_frame(r->gi, p, &rsm);
     gi_stats_get(r->gi, &r->timings.gi);

@@ -195,20 +195,51 @@ static void bind_material(const scene_gl *m, GLuint prog, uint32_t mi)
         gl->Uniform1f(ro, mat->roughness);
 }
 
+/* The ranges from i on that belong to range i's object: [first, *end). */
+static GLsizei object_run(const scene_gl *m, int i, int *end)
+{
+    int k = i;
+    while (k + 1 < m->range_count && m->ranges[k + 1].object == m->ranges[i].object)
+        k++;
+    *end = k + 1;
+    return m->ranges[k].first + m->ranges[k].count - m->ranges[i].first;
+}
+
+/* Sets the object's matrices for ranges[i]; 0 when the object is hidden. */
+static int place(const scene_gl *m, int i, GLint model, GLint normal)
+{
+    int o = m->ranges[i].object;
+    const scene_gl_place *pl = &m->places[o < 0 ? m->scene->object_count : o];
+    if (!pl->shown)
+        return 0;
+    m->gl->UniformMatrix4fv(model, 1, GL_FALSE, pl->model);
+    m->gl->UniformMatrix3fv(normal, 1, GL_FALSE, pl->normal);
+    return 1;
+}
+
 void scene_gl_draw(const scene_gl *m, GLuint prog)
 {
     const gl_functions *gl = m->gl;
     GLint model = gl->GetUniformLocation(prog, "u_model"), normal = gl->GetUniformLocation(prog, "u_normal_model");
     gl->BindVertexArray(m->vao);
     for (int i = 0; i < m->range_count; i++) {
-        int o = m->ranges[i].object;
-        const scene_gl_place *pl = &m->places[o < 0 ? m->scene->object_count : o];
-        if (!pl->shown)
+        if (!place(m, i, model, normal))
             continue;
-        gl->UniformMatrix4fv(model, 1, GL_FALSE, pl->model);
-        gl->UniformMatrix3fv(normal, 1, GL_FALSE, pl->normal);
         bind_material(m, prog, m->ranges[i].material);
         gl->DrawArrays(GL_TRIANGLES, m->ranges[i].first, m->ranges[i].count);
+    }
+    gl->BindVertexArray(0);
+}
+
+void scene_gl_draw_geometry(const scene_gl *m, GLuint prog)
+{
+    const gl_functions *gl = m->gl;
+    GLint model = gl->GetUniformLocation(prog, "u_model"), normal = gl->GetUniformLocation(prog, "u_normal_model");
+    gl->BindVertexArray(m->vao);
+    for (int i = 0, end; i < m->range_count; i = end) {
+        GLsizei count = object_run(m, i, &end);
+        if (place(m, i, model, normal))
+            gl->DrawArrays(GL_TRIANGLES, m->ranges[i].first, count);
     }
     gl->BindVertexArray(0);
 }

@@ -24,5 +24,7 @@ void scene_gl_destroy(scene_gl *m);
 void scene_gl_set_pose(scene_gl *m, const float (*model)[16], const uint8_t *shown);
 /* Every triangle, with prog bound (its vertex inputs: position, normal, uv at 0, 1, 2). */
 void scene_gl_draw(const scene_gl *m, GLuint prog);
+/* The same triangles without their materials (a shadow map's depth): one draw per object. */
+void scene_gl_draw_geometry(const scene_gl *m, GLuint prog);
 
 #endif

@@ -8,7 +8,7 @@
 
 #include "base/mat4.h"
 
-enum { REACH = 2 }; /* cells around a triangle's box its bits may touch */
+enum { REACH = 1 }; /* a segment crossing a triangle has both ends within one cell of its box */ /* cells around a triangle's box its bits may touch */
 
 static size_t cell_index(const lattice_desc *lat, int x, int y, int z)
 {

@@ -43,6 +43,7 @@
 #include "gl_functions.h"
 #include "renderer_rsm.h"
 #include "scene/scene.h"
+#include "scene_gl.h"
 
 typedef struct gi_desc {
     const gl_functions *gl;
@@ -64,6 +65,8 @@ typedef struct gi_rsm {
     const light_view *views;       /* per layer: the light and view it was rendered from */
     renderer_rsm *maps;            /* renderer_rsm_vpls(maps): the VPL source every method
                                       shares (read back from the maps, on request) */
+    const scene_gl *mesh;          /* the scene where the frame's objects are: a method's own
+                                      maps draw it with scene_gl_draw_geometry() */
 } gi_rsm;
 
 typedef struct gi_eye {
