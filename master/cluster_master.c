@@ -117,9 +117,9 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
     char note[96];
     if (msg->config_hash != m->hello_hash) {
         if (node_log(m, node, note, sizeof note))
-            fprintf(stderr, "cavelight-master: node %s runs another cluster config or another "
-                    "build (hash %016llx, master %s has %016llx): refused, give both the same "
-                    "file and the same cavelight version%s\n",
+            fprintf(stderr, "cavelight-master: node %s runs another cluster config, scene, application "
+                    "or build (hash %016llx, master %s has %016llx): refused, give both the same "
+                    "file, scene, --app and cavelight version%s\n",
                     m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
                     (unsigned long long)m->hello_hash, note);
         send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);

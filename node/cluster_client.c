@@ -479,8 +479,9 @@ static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
         return CLUSTER_EVENT_NONE;
     }
     if (m->reason == WIRE_BYE_CONFIG_MISMATCH) {
-        fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
-                "and nodes the same file\n", c->name, c->cfg->path);
+        fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash: the config, the "
+                "scene, the application or the build differ): give master and nodes the same file, scene "
+                "and --app\n", c->name, c->cfg->path);
         return CLUSTER_EVENT_REFUSED;
     }
     /* Acknowledge, so that the master knows its last messages arrived. A master that is

@@ -160,36 +160,37 @@ static int host_key_add(void *host, const char *name, app_key_kind kind, int n, 
     return h->key_count++;
 }
 
-/* The key if it is of the kind (and size) asked for; NULL after a refusal. */
+/* The key if it is of the kind (and size) asked for; NULL after a refusal. call is
+ * "set" or "get". */
 static app_key *typed(app_host *h, const char *call, int key, app_key_kind kind, int n)
 {
+    const char *what = kind_name(kind);
     if (key < 0 || key >= h->key_count || h->keys[key].store_key < 0 || !h->store) {
-        refusal(h, "%s: no key %d (this application registered %d)", call, key, h->key_count);
+        refusal(h, "cavelight_%s_%s(): no key %d (this application registered %d)", call, what, key,
+                h->key_count);
         return NULL;
     }
     app_key *k = &h->keys[key];
-    if (k->kind != kind || (kind == APP_KEY_VECTOR && k->n != n)) {
-        refusal(h, "%s(%s): the key is a %s%s, not a %s", call, k->name, kind_name(k->kind),
-                k->kind == APP_KEY_VECTOR ? (const char *[]){"", "", " of 2", " of 3", " of 4"}[k->n] : "",
-                kind_name(kind));
-        return NULL;
-    }
+    if (k->kind != kind)
+        return refusal(h, "cavelight_%s_%s(%s): the key is a %s", call, what, k->name, kind_name(k->kind)), NULL;
+    if (kind == APP_KEY_VECTOR && k->n != n)
+        return refusal(h, "cavelight_%s_vector(%s): %d floats, the key has %d", call, k->name, n, k->n), NULL;
     return k;
 }
 
-static int settable(app_host *h, const char *call)
+static int settable(app_host *h, const char *call, const char *what)
 {
+    static const char *const phases[] = {"no callback", "init", "update", "frame", "draw"};
     if (h->writable && h->phase == PHASE_UPDATE)
         return 1;
-    return refusal(h, "%s: keys and objects are set on the master in update only (this is %s, in %s)", call,
-                   h->app.process,
-                   (const char *[]){"no callback", "init", "update", "frame", "draw"}[h->phase]), 0;
+    return refusal(h, "%s%s: keys and objects are set on the master in update only (this is %s, in %s)", call,
+                   what, h->app.process, phases[h->phase]), 0;
 }
 
 static int host_key_set(void *host, int key, app_key_kind kind, int n, const void *data, size_t len)
 {
     app_host *h = host;
-    app_key *k = settable(h, "cavelight_set") ? typed(h, "cavelight_set", key, kind, n) : NULL;
+    app_key *k = settable(h, "cavelight_set_", kind_name(kind)) ? typed(h, "set", key, kind, n) : NULL;
     if (!k)
         return -1;
     if (kind == APP_KEY_STRING || kind == APP_KEY_BLOB) {
@@ -207,7 +208,7 @@ static int host_key_set(void *host, int key, app_key_kind kind, int n, const voi
 static const void *host_key_get(void *host, int key, app_key_kind kind, int n, size_t *len)
 {
     app_host *h = host;
-    app_key *k = typed(h, "cavelight_get", key, kind, n);
+    app_key *k = typed(h, "get", key, kind, n);
     if (!k)
         return NULL;
     if (kind == APP_KEY_STRING || kind == APP_KEY_BLOB) {
@@ -250,7 +251,7 @@ static int host_object_set(void *host, int o, const float *offset, int visible)
 {
     app_host *h = host;
     const char *call = offset ? "cavelight_object_set_offset" : "cavelight_object_set_visible";
-    if (!settable(h, call) || !object_ok(h, call, o))
+    if (!settable(h, call, "") || !object_ok(h, call, o))
         return -1;
     if (offset) {
         for (int i = 0; i < 16; i++)
