@@ -52,8 +52,9 @@ static node_keys *node_keys_create(const cluster_node_desc *d, cluster_view *vie
         k->sc = &k->own;
     }
     scene_pose_rest(k->sc, &k->pose);
-    if (d->app) {
-        app_host_desc ad = {.path = d->app, .role = CAVELIGHT_ROLE_NODE, .process = d->name, .scene = k->sc,
+    const char *app = d->app ? d->app : d->config->app[0] ? d->config->app : NULL;
+    if (app) {
+        app_host_desc ad = {.path = app, .role = CAVELIGHT_ROLE_NODE, .process = d->name, .scene = k->sc,
                             .quiet = d->quiet, .draw = view ? cluster_view_app_draw : NULL,
                             .gl_proc = view ? cluster_view_gl_proc : NULL, .user = view};
         if (!(k->app = app_host_load(&ad, err, errlen)) || app_host_init(k->app, err, errlen) != 0)
