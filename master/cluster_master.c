@@ -117,9 +117,9 @@ static void join(cluster_master *m, int node, const wire_msg *msg)
     char note[96];
     if (msg->config_hash != m->hello_hash) {
         if (node_log(m, node, note, sizeof note))
-            fprintf(stderr, "cavelight-master: node %s runs another cluster config or another "
-                    "build (hash %016llx, master %s has %016llx): refused, give both the same "
-                    "file and the same cavelight version%s\n",
+            fprintf(stderr, "cavelight-master: node %s runs another cluster config, scene, application "
+                    "or build (hash %016llx, master %s has %016llx): refused, give both the same "
+                    "file, scene, --app and cavelight version%s\n",
                     m->cfg->nodes[node].name, (unsigned long long)msg->config_hash, m->cfg->path,
                     (unsigned long long)m->hello_hash, note);
         send_bye(m, node, WIRE_BYE_CONFIG_MISMATCH);
@@ -544,7 +544,10 @@ cluster_master *cluster_master_create(const cluster_master_desc *desc, char *err
     m->cfg = desc->config;
     m->quiet = desc->quiet;
     m->barrier_timeout_ms = desc->barrier_timeout_ms > 0 ? desc->barrier_timeout_ms : m->cfg->barrier_timeout_ms;
-    gi_params_schema(&m->schema);
+    if (desc->schema)
+        m->schema = *desc->schema;
+    else
+        gi_params_schema(&m->schema);
     params_init(&m->params, &m->schema);
     m->hello_hash = params_session_hash(m->cfg->hash, &m->schema);
     m->ctx = zmq_ctx_new();

@@ -38,6 +38,7 @@ typedef struct cluster_master_desc {
     int insecure_anywhere;   /* 1: security "insecure" may bind outside the loopback range */
     int pending_max;         /* connections no node has spoken on yet, at most (conn_guard.h;
                                 0 = CONN_GUARD_DEFAULT); the oldest beyond it is shut down */
+    const params_schema *schema; /* the store's keys (copied); NULL: gi_params_schema() */
 } cluster_master_desc;
 
 typedef enum cluster_peer_state {

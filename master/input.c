@@ -118,7 +118,9 @@ int input_poll(input *in, input_state *out, char *err, size_t errlen)
     }
     in->polled = 1;
     in->last_time = out->time;
-    if (in->rec && input_playback_record(in->rec, out, e, sizeof e)) {
+    /* A stepped recording's end is no poll of its own: recorded, it would replay as a
+     * poll with no time elapsed, which playback refuses. */
+    if (in->rec && !out->finished && input_playback_record(in->rec, out, e, sizeof e)) {
         if (used < errlen)
             snprintf(err + used, errlen - used, "%s%s", used ? "; " : "", e);
         rc = -1;

@@ -33,7 +33,7 @@ void interaction_init(interaction *ia, const interaction_desc *desc)
         const float presets[INTERACTION_LAMBDA_PRESETS] = {0.0f, 0.5f, 0.8f, 0.9f};
         memcpy(d.lambda_presets, presets, sizeof presets);
     }
-    if ((unsigned)d.first_layout >= INTERACTION_LAYOUT_COUNT)
+    if ((unsigned)d.first_layout >= (d.grab ? INTERACTION_LAYOUT_COUNT : INTERACTION_GRAB))
         d.first_layout = INTERACTION_NAVIGATION;
     ia->desc = d;
     ia->layout = d.first_layout;
@@ -259,7 +259,8 @@ uint32_t interaction_update(interaction *ia, const input_state *in, double dt, f
             changed |= INTERACTION_CHANGED_WAND;
     }
     if (in->pressed & (1u << INPUT_BUTTON_R)) {
-        ia->layout = (interaction_layout)((ia->layout + 1) % INTERACTION_LAYOUT_COUNT);
+        int layouts = ia->desc.grab ? INTERACTION_LAYOUT_COUNT : INTERACTION_GRAB;
+        ia->layout = (interaction_layout)((ia->layout + 1) % layouts);
         ia->dragging = 0;
     }
     if (p->hud_layout != (int)ia->layout) {
@@ -277,7 +278,8 @@ uint32_t interaction_update(interaction *ia, const input_state *in, double dt, f
     switch (ia->layout) {
     case INTERACTION_NAVIGATION: navigation_update(ia, in, dt, p); break;
     case INTERACTION_LIGHTING: lighting_update(ia, in, dt, p); break;
-    default: settings_update(ia, in, dt, p); break;
+    case INTERACTION_SETTINGS: settings_update(ia, in, dt, p); break;
+    default: break; /* grab: the scene's objects, not the frame (grab.h) */
     }
     if (memcmp(nav, p->navigation, sizeof nav))
         changed |= INTERACTION_CHANGED_NAVIGATION;

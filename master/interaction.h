@@ -11,6 +11,8 @@
  *   settings    M/L: propagation steps up/down; X: absorption; Y: scattering;
  *               AUX: next lambda_incr preset; C: next GI method (the registry's order, round-robin:
  *               the paper's "switch pipeline", live on every node in the same frame).
+ *   grab        (only with desc.grab: a scene with objects) C: pick the object under the
+ *                  wand's ray and carry it while held (grab.h; the session does it).
  * CAVE space is Y up; navigation is the CAVE-to-world transform.
  *
  * interaction_update() applies one input state to the frame parameters and returns the
@@ -27,7 +29,8 @@ typedef enum interaction_layout {
     INTERACTION_NAVIGATION = 0,
     INTERACTION_LIGHTING = 1,
     INTERACTION_SETTINGS = 2,
-    INTERACTION_LAYOUT_COUNT = 3
+    INTERACTION_GRAB = 3,       /* after settings, with desc.grab only */
+    INTERACTION_LAYOUT_COUNT = 4
 } interaction_layout;
 
 enum {
@@ -59,6 +62,7 @@ typedef struct interaction_desc {
     int light;                /* index of the flashlight spot, default 0 */
     float lambda_presets[INTERACTION_LAMBDA_PRESETS]; /* all 0 = {0, 0.5, 0.8, 0.9} */
     interaction_layout first_layout;
+    int grab;                 /* 1: R cycles through the grab layout too */
 } interaction_desc;
 
 /* Plain state, owned by the caller; initialise with interaction_init(). */

@@ -14,8 +14,8 @@
 
 /* The node command line for one node: exe, its options, then --node-args split at spaces. */
 static int node_argv(const master_options *o, const char *config, const char *exe, const char *name,
-                     const char *connect, const char *out_dir, char *storage, size_t cap, char **argv,
-                     int max)
+                     const char *connect, const char *out_dir, const char *app, char *storage, size_t cap,
+                     char **argv, int max)
 {
     int n = 0;
     const char *fixed[] = {exe, "--cluster", config, "--name", name, "--exit-with-master"};
@@ -26,7 +26,7 @@ static int node_argv(const master_options *o, const char *config, const char *ex
         argv[n++] = (char *)connect;
     }
     const char *pairs[][2] = {{"--render", o->render}, {"--output", o->output}, {"--out", out_dir},
-                              {"--scene", o->scene},
+                              {"--scene", o->scene}, {"--app", app},
                               {"--scene-transform", o->scene_transform_text}};
     for (size_t i = 0; i < sizeof pairs / sizeof *pairs; i++)
         if (pairs[i][1]) {
@@ -68,8 +68,8 @@ static const char *connect_endpoint(const cluster_master *m, const char *bind, c
 int launch_nodes(const master_options *o, const cluster_config *cfg, cluster_master *m, launch_set *l)
 {
     spawn_set *children = &l->spawned;
-    char exe[PATH_MAX], config_abs[PATH_MAX], out_abs[PATH_MAX], logs[PATH_MAX], connect_buf[256],
-        err[1024];
+    char exe[PATH_MAX], config_abs[PATH_MAX], out_abs[PATH_MAX], app_abs[PATH_MAX], logs[PATH_MAX],
+        connect_buf[256], err[1024];
     if (o->node_exe) {
         snprintf(exe, sizeof exe, "%s", o->node_exe);
     } else {
@@ -88,6 +88,8 @@ int launch_nodes(const master_options *o, const cluster_config *cfg, cluster_mas
     /* Local nodes may run elsewhere (their workdir): they get the output folder whole. */
     if (!realpath(o->out_dir, out_abs))
         snprintf(out_abs, sizeof out_abs, "%s", o->out_dir);
+    /* The application too; remote hosts get the path as given (the same on every host). */
+    const char *app = o->app && o->spawn_local && realpath(o->app, app_abs) ? app_abs : o->app;
     if (!o->quiet)
         fprintf(stderr, "cavelight-master: node logs in %s/NODE.log\n", logs);
     const char *connect = connect_endpoint(m, o->bind, connect_buf, sizeof connect_buf);
@@ -97,8 +99,8 @@ int launch_nodes(const master_options *o, const cluster_config *cfg, cluster_mas
         snprintf(log, sizeof log, "%s/%s.log", logs, node->name);
         const char *node_exe = !o->node_exe && node->exe[0] ? node->exe : exe;
         const char *config = node->config[0] ? node->config : config_abs;
-        node_argv(o, config, node_exe, node->name, connect, o->spawn_local ? out_abs : o->out_dir, storage,
-                  sizeof storage, nargv, 64);
+        node_argv(o, config, node_exe, node->name, connect, o->spawn_local ? out_abs : o->out_dir, app,
+                  storage, sizeof storage, nargv, 64);
         int rc;
         if (o->spawn_local) {
             rc = spawn_local(children, node->name, nargv, node->workdir[0] ? node->workdir : NULL, log, err,

@@ -24,7 +24,7 @@ enum id {
     O_INPUT, O_RECORD,
     O_PATTERN, O_PATTERN_BLEND, O_PRINT_POSES,
     O_CHECK, O_STRICT, O_BUDGET,
-    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE, O_APP,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
 
@@ -54,6 +54,8 @@ static const cli_option options[] = {
      "how long to wait for the nodes to join"},
     {O_RENDER, "render", "gl|none", "gl", G_NODES, 0, "started nodes: none renders nothing (tests)"},
     {O_SCENE, "scene", "FILE|NAME", "the config's scene", G_NODES, 0, "the scene every node loads"},
+    {O_APP, "app", "FILE.so", NULL, G_NODES, 0,
+     "run an application (cavelight/app.h) on the master and\nevery started node (docs/app.md)"},
     {O_SCENE_TRANSFORM, "scene-transform", "JSON", "the config's scene_transform", G_NODES, 0,
      "where the scene stands in the CAVE, e.g. '{\"up\": \"z\",\n\"scale\": 0.01}' or '{\"fit\": true}' (docs/cluster.md)"},
     {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
@@ -134,6 +136,7 @@ static const char *set(void *user, int id, const char *v)
         o->render = v;
         break;
     case O_SCENE: o->scene = v; break;
+    case O_APP: o->app = v; break;
     case O_SCENE_TRANSFORM:
         if ((why = cluster_scene_transform_option(v, &o->scene_transform)) != NULL)
             break;

@@ -21,6 +21,7 @@ typedef struct master_options {
     int wait_ms;                /* for nodes to join; 0 = the config's timeouts.join_ms */
     int barrier_ms;             /* 0 = the config's */
     const char *node_exe, *render, *output, *node_args, *scene;
+    const char *app;            /* --app: an application's shared object, or NULL */
     const char *out_dir;        /* never NULL: --out or CLUSTER_DEFAULT_OUT */
     const char *report, *overview;
     int keep_frames, pattern, print_poses, preview;

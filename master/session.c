@@ -8,7 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/session_keys.h"
 #include "base/clock.h"
+#include "gi/gi_settings.h"
+#include "grab.h"
 #include "input.h"
 #include "input_config.h"
 #include "interaction.h"
@@ -45,6 +48,12 @@ struct session {
     int print_poses;
     double next_pose_print; /* clock_now_ms() */
     interaction ia;
+    scene scene;            /* its objects, their animations, what the grab picks */
+    params_schema schema;   /* the built-in keys, the objects', the application's */
+    scene_keys objects;
+    scene_pose pose;        /* where the objects are: animations, grab, application */
+    grab grab;
+    app_host *app;          /* NULL: no application */
     double dt, start_ms, created_ms;
     int frames;
     uint64_t last_version;
@@ -53,6 +62,25 @@ struct session {
     double budget_ms;                   /* > 0: the budget chose lattice and steps */
     lpv_budget_choice budget;
 };
+
+/* The scene as every node places it, the application (its init registers its keys) and
+ * the schema of both, before the store exists. */
+static int load_scene_and_app(session *s, const char *scene_path, const session_desc *d, char *err,
+                              size_t errlen)
+{
+    scene_load_desc sd;
+    cluster_config_scene_desc(s->cfg, &sd); /* as every node places it */
+    if (scene_load_with(scene_path, &sd, &s->scene, err, errlen) != 0)
+        return -1;
+    if (d->app) {
+        app_host_desc ad = {.path = d->app, .role = CAVELIGHT_ROLE_MASTER, .process = "master",
+                            .scene = &s->scene, .quiet = d->quiet};
+        if (!(s->app = app_host_load(&ad, err, errlen)) || app_host_init(s->app, err, errlen) != 0)
+            return -1;
+    }
+    gi_params_schema(&s->schema);
+    return session_keys_add(&s->schema, &s->scene, &s->objects, s->app, err, errlen);
+}
 
 /* The nodes' limits on what the GI settings cost (gi_cost.h), checked as they check them:
  * settings they would refuse are refused here, before any node starts. */
@@ -78,11 +106,7 @@ static int check_limits(session *s, char *err, size_t errlen)
 static int seed(session *s, const char *scene_path, const session_desc *d, char *err,
                 size_t errlen)
 {
-    scene sc;
-    scene_load_desc sd;
-    cluster_config_scene_desc(s->cfg, &sd); /* as every node places it */
-    if (scene_load_with(scene_path, &sd, &sc, err, errlen) != 0)
-        return -1;
+    const scene sc = s->scene;
     if (sc.warning[0]) /* the nodes load it too; the master says it once */
         fprintf(stderr, "cavelight-master: warning: scene %s: %s\n", scene_path, sc.warning);
     if (sc.light_added) {
@@ -108,7 +132,7 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     }
     memcpy(s->bounds_min, sc.bounds_min, sizeof s->bounds_min);
     memcpy(s->bounds_max, sc.bounds_max, sizeof s->bounds_max);
-    scene_free(&sc);
+    scene_pose_rest(&s->scene, &s->pose);
     params_set_from_frame(cluster_master_params(s->m), &s->frame);
     /* The nodes' own check, before any node is started: a scene no node can take is
      * refused here, not reported as a session of frames nobody rendered. */
@@ -134,10 +158,14 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
     s->print_poses = d->print_poses;
     cluster_master_desc md = {.config = d->config, .bind = d->bind,
                               .barrier_timeout_ms = d->barrier_ms, .quiet = d->quiet,
-                              .insecure_anywhere = d->insecure_anywhere};
+                              .insecure_anywhere = d->insecure_anywhere, .schema = &s->schema};
     const char *scene_path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
-    if (!(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
+    if (load_scene_and_app(s, scene_path, d, err, errlen) != 0 ||
+        !(s->m = cluster_master_create(&md, err, errlen)) || seed(s, scene_path, d, err, errlen) != 0)
         goto fail;
+    if (s->app)
+        app_host_bind(s->app, cluster_master_params(s->m), cluster_master_params(s->m), &s->pose);
+    grab_init(&s->grab);
     s->created_ms = clock_now_ms();
     s->rs.nodes_wait_ms = -1;
     if (d->input) {
@@ -147,7 +175,7 @@ session *session_create(const session_desc *d, char *err, size_t errlen)
                sizeof idesc.tracker_to_cave);
         if (!(s->in = input_open(&idesc, err, errlen)))
             goto fail;
-        interaction_init(&s->ia, &(interaction_desc){0});
+        interaction_init(&s->ia, &(interaction_desc){.grab = s->scene.object_count > 0});
         pose_guard_init(&s->guard, d->config);
     }
     return s;
@@ -164,6 +192,8 @@ void session_destroy(session *s)
         input_close(s->in);
     if (s->m)
         cluster_master_destroy(s->m);
+    app_host_destroy(s->app);
+    scene_free(&s->scene);
     free(s);
 }
 
@@ -230,11 +260,46 @@ static void publish(session *s, params_store *store)
 {
     s->frame.reset_epoch = params_get_u32(store, PARAMS_RESET_EPOCH); /* the master owns it */
     params_set_from_frame(store, &s->frame);
+    scene_keys_write(store, &s->objects, &s->pose);
 }
 
-/* Live or recorded input through the interaction layouts into the store. Returns
+/* What the application's update gets: the merged input, or the scripted head (no wand,
+ * no buttons) when there is none. */
+static void app_input(const session *s, const input_state *ist, cavelight_input *in)
+{
+    memset(in, 0, sizeof *in);
+    in->frame = (uint64_t)s->frames;
+    in->time = s->frame.time;
+    in->dt = s->in ? ist->dt : s->dt;
+    memcpy(in->head, s->frame.head, sizeof in->head);
+    memcpy(in->wand, s->frame.wand, sizeof in->wand);
+    memcpy(in->navigation, s->frame.navigation, sizeof in->navigation);
+    in->head_valid = !s->in || ist->head.valid;
+    in->wand_valid = s->in && ist->wand.valid;
+    if (s->in) {
+        in->buttons = ist->buttons;
+        in->pressed = ist->pressed;
+        memcpy(in->axes, ist->axes, sizeof in->axes);
+    }
+}
+
+/* The objects, in this order: the file's animations by the session's clock, the wand's
+ * grab, the application (which sees and may override both). */
+static void move_objects(session *s, const input_state *ist)
+{
+    scene_pose_animate(&s->scene, s->frame.time, &s->pose);
+    if (s->in)
+        grab_update(&s->grab, &s->scene, &s->pose, &s->frame, ist, s->ia.layout == INTERACTION_GRAB);
+    if (s->app) {
+        cavelight_input in;
+        app_input(s, ist, &in);
+        app_host_update(s->app, &in);
+    }
+}
+
+/* Live or recorded input through the interaction layouts into the session's frame. Returns
  * SESSION_FRAME_DONE (go on), SESSION_INPUT_ENDED or SESSION_INPUT_FAILED. */
-static session_step apply_input(session *s, params_store *store)
+static session_step apply_input(session *s, input_state *out)
 {
     input_state ist;
     char err[1024];
@@ -249,9 +314,12 @@ static session_step apply_input(session *s, params_store *store)
     pose_guard_apply(&s->guard, &s->guard.wand, &ist.wand, now);
     if (s->print_poses)
         print_poses(s, &ist);
-    interaction_update(&s->ia, &ist, ist.dt, &s->frame);
+    input_state layouts = ist; /* without the buttons the application takes */
+    layouts.buttons &= ~app_host_buttons(s->app);
+    layouts.pressed &= ~app_host_buttons(s->app);
+    interaction_update(&s->ia, &layouts, ist.dt, &s->frame);
     s->frame.time = ist.time;
-    publish(s, store);
+    *out = ist;
     return SESSION_FRAME_DONE;
 }
 
@@ -288,15 +356,18 @@ session_step session_frame(session *s, cluster_frame_result *result)
     params_store *store = cluster_master_params(s->m);
     if (s->frames == 0 && s->start_ms == 0)
         s->start_ms = clock_now_ms();
+    input_state ist;
+    memset(&ist, 0, sizeof ist);
     if (s->in) {
-        session_step step = apply_input(s, store);
+        session_step step = apply_input(s, &ist);
         if (step != SESSION_FRAME_DONE)
             return step;
     } else {
         double t = s->dt > 0 ? s->frames * s->dt : (clock_now_ms() - s->start_ms) / 1000.0;
         script_frame(&s->script, t, &s->frame);
-        publish(s, store);
     }
+    move_objects(s, &ist);
+    publish(s, store);
     if (cluster_master_frame(s->m, result) != 0)
         return SESSION_NO_NODES;
     s->frames++;

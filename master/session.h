@@ -14,8 +14,11 @@
  * standalone node with the same options starts from. Live or recorded input (docs/input.md), its head and wand
  * poses checked by pose_guard.h (a bad pose never reaches the nodes), drives the
  * interaction layouts; without it the scripted head and light path (script.h) moves at
- * desc.dt seconds per frame (or with the wall clock). No processes, no signals, no
- * command line: those are master/main.c's. */
+ * desc.dt seconds per frame (or with the wall clock). The scene's objects
+ * (scene_pose.h) move by the file's animations, the wand's grab layout (grab.h) and an
+ * application (desc.app: its update runs once per frame, after the interaction, and sets
+ * its keys and objects; app_host.h). No processes, no signals, no command line: those are
+ * master/main.c's. */
 #ifndef CAVELIGHT_SESSION_H
 #define CAVELIGHT_SESSION_H
 
@@ -44,6 +47,7 @@ typedef struct session_desc {
                                      (master_settings()); NULL: the defaults */
     int exposure_auto;      /* 1: exposure_from_light() of the scene (frame/exposure.h) */
     int strict;             /* 1: unknown keys in the input config are errors */
+    const char *app;        /* an application's shared object (cavelight/app.h), or NULL */
 } session_desc;
 
 typedef enum session_step {

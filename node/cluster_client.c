@@ -186,7 +186,10 @@ cluster_client *cluster_client_create(const cluster_client_desc *desc, char *err
     c->quiet = desc->quiet;
     c->refuse_only = desc->refuse_only;
     snprintf(c->name, sizeof c->name, "%s", desc->name);
-    gi_params_schema(&c->schema);
+    if (desc->schema)
+        c->schema = *desc->schema;
+    else
+        gi_params_schema(&c->schema);
     params_init(&c->params, &c->schema);
     c->ctx = zmq_ctx_new();
     c->endpoint = desc->endpoint ? desc->endpoint : c->cfg->master_connect;
@@ -476,8 +479,9 @@ static cluster_event_type on_bye(cluster_client *c, const wire_msg *m)
         return CLUSTER_EVENT_NONE;
     }
     if (m->reason == WIRE_BYE_CONFIG_MISMATCH) {
-        fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash): give master "
-                "and nodes the same file\n", c->name, c->cfg->path);
+        fprintf(stderr, "cavelight-node %s: the master refused %s (another config hash: the config, the "
+                "scene, the application or the build differ): give master and nodes the same file, scene "
+                "and --app\n", c->name, c->cfg->path);
         return CLUSTER_EVENT_REFUSED;
     }
     /* Acknowledge, so that the master knows its last messages arrived. A master that is

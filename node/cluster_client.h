@@ -32,6 +32,7 @@ typedef struct cluster_client_desc {
     int quiet;             /* 1: log only errors */
     int refuse_only;       /* 1: never say HELLO: a node that only tells the master why it
                               cannot take part (cluster_client_refuse) */
+    const params_schema *schema; /* the store's keys (copied); NULL: gi_params_schema() */
 } cluster_client_desc;
 
 typedef enum cluster_event_type {

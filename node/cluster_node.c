@@ -4,12 +4,83 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/session_keys.h"
 #include "base/clock.h"
 #include "base/ratelog.h"
+#include "base/xalloc.h"
+#include "scene/scene_load.h"
 #include "cluster_client.h"
 #include "cluster_view.h"
 #include "cluster/params.h"
 #include "gi/gi_settings.h"
+
+/* What the node adds to the built-in keys: the scene's objects and an application's. */
+typedef struct node_keys {
+    scene own;               /* the scene, when no view loaded it (render none) */
+    int own_loaded;
+    const scene *sc;
+    params_schema schema;
+    scene_keys objects;
+    scene_pose pose;         /* the frame's, read from the store */
+    app_host *app;
+} node_keys;
+
+static void node_keys_destroy(node_keys *k)
+{
+    if (!k)
+        return;
+    app_host_destroy(k->app);
+    if (k->own_loaded)
+        scene_free(&k->own);
+    free(k);
+}
+
+/* The scene (the view's, or loaded here as the master places it), the application (its
+ * init runs with the node's GL context current) and the schema of both. */
+static node_keys *node_keys_create(const cluster_node_desc *d, cluster_view *view, char *err, size_t errlen)
+{
+    node_keys *k = xcalloc(1, sizeof *k);
+    if (view) {
+        k->sc = cluster_view_scene(view);
+    } else {
+        const char *path = d->scene ? d->scene : d->config->scene[0] ? d->config->scene : "default";
+        scene_load_desc sd;
+        cluster_config_scene_desc(d->config, &sd);
+        if (scene_load_with(path, &sd, &k->own, err, errlen) != 0)
+            goto fail;
+        k->own_loaded = 1;
+        k->sc = &k->own;
+    }
+    scene_pose_rest(k->sc, &k->pose);
+    const char *app = d->app ? d->app : d->config->app[0] ? d->config->app : NULL;
+    if (app) {
+        app_host_desc ad = {.path = app, .role = CAVELIGHT_ROLE_NODE, .process = d->name, .scene = k->sc,
+                            .quiet = d->quiet, .draw = view ? cluster_view_app_draw : NULL,
+                            .gl_proc = view ? cluster_view_gl_proc : NULL, .user = view};
+        if (!(k->app = app_host_load(&ad, err, errlen)) || app_host_init(k->app, err, errlen) != 0)
+            goto fail;
+        if (view)
+            cluster_view_set_app(view, k->app);
+    }
+    gi_params_schema(&k->schema);
+    if (session_keys_add(&k->schema, k->sc, &k->objects, k->app, err, errlen) != 0)
+        goto fail;
+    return k;
+fail:
+    node_keys_destroy(k);
+    return NULL;
+}
+
+/* The frame's objects and the application's frame, before the node renders it. */
+static void node_keys_frame(node_keys *k, const params_store *ps, cluster_view *view)
+{
+    scene_pose_rest(k->sc, &k->pose);
+    scene_keys_read(ps, &k->objects, &k->pose);
+    if (k->app)
+        app_host_frame(k->app);
+    if (view)
+        cluster_view_set_pose(view, &k->pose);
+}
 
 /* Whatever the master sends is range-checked once, by the renderer (gi_frame_sanitize()),
  * never a reason to stop: the clamped fields are logged, rate-limited. */
@@ -25,12 +96,13 @@ static void log_clamped(const cluster_node_desc *d, uint64_t version, int fixed,
 
 /* FRAME v: the frame pass and every eye pass (or, without GL, the store's checksum), then
  * READY. */
-static int render_frame(const cluster_node_desc *d, cluster_view *view, cluster_client *client,
+static int render_frame(const cluster_node_desc *d, cluster_view *view, node_keys *keys, cluster_client *client,
                         const cluster_event *ev, ratelog *range_log, cluster_node_stats *st,
                         char *err, size_t errlen)
 {
     double t0 = clock_now_ms();
     const params_store *ps = cluster_client_params(client);
+    node_keys_frame(keys, ps, view);
     frame_params f;
     params_to_frame(ps, &f);
     uint64_t checksum = params_checksum(ps);
@@ -114,12 +186,22 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
             return 1;
         }
     }
-    cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet};
-    cluster_client *client = cluster_client_create(&cd, err, errlen);
-    if (!client) {
+    node_keys *keys = node_keys_create(d, view, err, errlen);
+    if (!keys) { /* no scene or application: the master hears why */
+        refuse_session(d, err);
         cluster_view_destroy(view);
         return 1;
     }
+    cluster_client_desc cd = {.config = d->config, .name = d->name, .endpoint = d->endpoint, .quiet = d->quiet,
+                              .schema = &keys->schema};
+    cluster_client *client = cluster_client_create(&cd, err, errlen);
+    if (!client) {
+        node_keys_destroy(keys);
+        cluster_view_destroy(view);
+        return 1;
+    }
+    if (keys->app)
+        app_host_bind(keys->app, cluster_client_params(client), NULL, &keys->pose);
     int rc = 0, lost_reported = 0;
     uint64_t pending_swap = 0;
     ratelog range_log = {0};
@@ -127,7 +209,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
         cluster_event ev;
         switch (cluster_client_poll(client, 100, &ev)) {
         case CLUSTER_EVENT_FRAME:
-            if (render_frame(d, view, client, &ev, &range_log, &st, err, errlen) != 0) {
+            if (render_frame(d, view, keys, client, &ev, &range_log, &st, err, errlen) != 0) {
                 rc = 1;
                 goto out;
             }
@@ -172,6 +254,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     }
 out:
     cluster_client_destroy(client);
+    node_keys_destroy(keys); /* the application's shutdown, with the GL context still there */
     cluster_view_destroy(view);
     if (stats)
         *stats = st;

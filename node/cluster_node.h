@@ -37,6 +37,7 @@ typedef struct cluster_node_desc {
     int keep_frames;            /* png output: also SCREEN-EYE-NNNNNN.png for every frame */
     int show_blend;             /* the pattern tints the projectors' blend regions */
     int quiet;
+    const char *app;            /* an application's shared object; NULL: the config's "app" */
     uint64_t fault_checksum_from; /* test hook: report a wrong checksum from this version */
     volatile sig_atomic_t *stop;  /* set to leave the loop, may be NULL */
 } cluster_node_desc;

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/app_host.h"
+#include "app_draw.h"
 #include "base/clock.h"
 #include "base/folder.h"
 #include "base/ratelog.h"
@@ -37,6 +39,9 @@ struct cluster_view {
     float display_gamma; /* of the last rendered frame */
     int pattern;
     char refusal[256];   /* the renderer's last refusal, said once */
+    app_host *app;       /* an application drawing into every eye pass, or NULL */
+    app_draw *app_draw;  /* its points and lines, made at their first call */
+    int screen, side;    /* the eye pass under way: config screen, eye side */
     ratelog eye_log;     /* eyes moved in front of a screen, screens without a projection */
 };
 
@@ -128,11 +133,25 @@ static int open_output(cluster_view *v, const cluster_view_desc *desc, char *err
     return v->out ? 0 : -1;
 }
 
+/* The application's draw for the eye pass under way (renderer_desc.gbuffer_draw). */
+static void gbuffer_draw(void *user, const frame_view *view, const float vp[16], GLuint fbo, GLuint depth)
+{
+    cluster_view *v = user;
+    cavelight_draw d = {.screen = v->cfg->screens[v->screen].name, .eye = v->side, .width = view->width,
+                        .height = view->height, .framebuffer = fbo, .depth_texture = depth};
+    memcpy(d.view, view->view, sizeof d.view);
+    memcpy(d.projection, view->projection, sizeof d.projection);
+    memcpy(d.view_projection, vp, sizeof d.view_projection);
+    memcpy(d.eye_position, view->eye_position, sizeof d.eye_position);
+    app_host_draw(v->app, &d);
+}
+
 /* A renderer built for the config's settings (the master's frames may change them). */
 static int make_renderer(cluster_view *v, char *err, size_t errlen)
 {
     renderer_desc rd = {.gl = glctx_gl(v->ctx), .scene = &v->sc, .first = &v->first,
-                        .threads = v->threads, .limits = &v->limits};
+                        .threads = v->threads, .limits = &v->limits,
+                        .gbuffer_draw = app_host_draws(v->app) ? gbuffer_draw : NULL, .gbuffer_user = v};
     memcpy(rd.head_to_eye, v->cfg->observer.head_to_eye, sizeof rd.head_to_eye);
     renderer *r = renderer_create(&rd, err, errlen);
     if (!r)
@@ -205,10 +224,43 @@ fail:
     return NULL;
 }
 
+const scene *cluster_view_scene(const cluster_view *v) { return &v->sc; }
+
+void cluster_view_set_pose(cluster_view *v, const scene_pose *pose) { renderer_set_pose(v->r, pose); }
+
+void cluster_view_set_app(cluster_view *v, app_host *app)
+{
+    v->app = app;
+    renderer_set_gbuffer_draw(v->r, app_host_draws(app) ? gbuffer_draw : NULL, v);
+    char err[300];
+    /* Its points' and lines' shaders compiled now, before the node joins (warm_up()). */
+    if (app_host_draws(app) && !v->app_draw && !(v->app_draw = app_draw_create(glctx_gl(v->ctx), err, sizeof err)))
+        fprintf(stderr, "cavelight-node %s: %s\n", v->cfg->nodes[v->node].name, err);
+}
+
+int cluster_view_app_draw(void *view, const cavelight_draw *d, int mode, const cavelight_vertex *vx, int count,
+                          float size)
+{
+    cluster_view *v = view;
+    char err[300];
+    if (!v->app_draw && !(v->app_draw = app_draw_create(glctx_gl(v->ctx), err, sizeof err))) {
+        fprintf(stderr, "cavelight-node %s: %s\n", v->cfg->nodes[v->node].name, err);
+        return -1;
+    }
+    app_draw_geometry(v->app_draw, d, mode, vx, count, size);
+    return 0;
+}
+
+void *cluster_view_gl_proc(void *view, const char *name)
+{
+    return (void *)glctx_proc(((cluster_view *)view)->ctx, name);
+}
+
 void cluster_view_destroy(cluster_view *v)
 {
     if (!v)
         return;
+    app_draw_destroy(v->app_draw);
     if (v->r)
         renderer_destroy(v->r);
     present_destroy(v->out);
@@ -285,6 +337,8 @@ int cluster_view_render(cluster_view *v, const frame_params *f, uint64_t *checks
                 report_eye(v, f->version, n->screens[s].screen, e, placed, distance);
             if (placed < 0)
                 continue; /* no projection at all: the screen keeps its last image */
+            v->screen = n->screens[s].screen;
+            v->side = eye_side(v->cfg, v->node, e);
             renderer_image out;
             if (renderer_eye_pass(v->r, &view, 0, &out) != 0) {
                 snprintf(err, errlen, "cluster node %s: eye pass failed", n->name);

@@ -23,6 +23,7 @@
 
 #include "cluster/cluster_config.h"
 #include "frame/frame_params.h"
+#include "app/app_host.h"
 #include "renderer.h"
 #include "cluster/wire.h"
 
@@ -54,6 +55,17 @@ int cluster_view_present(cluster_view *v, char *err, size_t errlen);
 const uint8_t *cluster_view_image(const cluster_view *v, int screen, int eye, int *width, int *height);
 int cluster_view_eye_count(const cluster_config *cfg, int node);
 const char *cluster_view_eye_name(const cluster_config *cfg, int node, int eye);
+
+/* The scene it loaded (its objects: the node's keys, cluster/scene_keys.h). */
+const scene *cluster_view_scene(const cluster_view *v);
+/* Where the objects are in the next cluster_view_render(). */
+void cluster_view_set_pose(cluster_view *v, const scene_pose *pose);
+/* An application whose draw runs in every eye pass, into the G-buffer (NULL: none). */
+void cluster_view_set_app(cluster_view *v, app_host *app);
+/* app_host_desc's draw and gl_proc for an application on this view (user: the view). */
+int cluster_view_app_draw(void *view, const cavelight_draw *d, int mode, const cavelight_vertex *v, int count,
+                          float size);
+void *cluster_view_gl_proc(void *view, const char *name);
 
 /* The view of one screen for one eye: side -1 left, 0 centre, +1 right. Pure maths,
  * no GL: the seam test and other tools use it too. Returns 0, 1 when the eye was nearer the

@@ -97,6 +97,7 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWELEMENTSPROC)(GLenum mode, GLsizei co
     X(PFNGLUNIFORM1FVPROC, Uniform1fv) \
     X(PFNGLUNIFORM1IVPROC, Uniform1iv) \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv) \
+    X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv) \
     X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute) \
     X(PFNGLGENQUERIESPROC, GenQueries) \
     X(PFNGLDELETEQUERIESPROC, DeleteQueries) \

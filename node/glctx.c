@@ -64,6 +64,7 @@ glctx *glctx_adopt(gl_functions_loader load, const char *describe, char *err, si
     glctx *ctx = xcalloc(1, sizeof *ctx);
     ctx->backend = GLCTX_GLFW;
     snprintf(ctx->describe, sizeof ctx->describe, "%s", describe);
+    ctx->load = load;
     if (gl_functions_load(&ctx->gl, load, err, errlen) != 0) {
         free(ctx);
         return NULL;
@@ -80,7 +81,13 @@ void glctx_destroy(glctx *ctx)
     free(ctx);
 }
 
+gl_functions_proc glctx_proc(const glctx *ctx, const char *name)
+{
+    return ctx->load ? ctx->load(name) : NULL;
+}
+
 const gl_functions *glctx_gl(const glctx *ctx) { return &ctx->gl; }
+
 glctx_backend glctx_get_backend(const glctx *ctx) { return ctx->backend; }
 const char *glctx_describe(const glctx *ctx) { return ctx->describe; }
 const char *glctx_renderer(const glctx *ctx) { return ctx->renderer; }

@@ -34,6 +34,8 @@ glctx *glctx_create(const glctx_desc *desc, char *err, size_t errlen);
 glctx *glctx_adopt(gl_functions_loader load, const char *describe, char *err, size_t errlen);
 void glctx_destroy(glctx *ctx);
 const gl_functions *glctx_gl(const glctx *ctx);
+/* Any GL entry point of the context by name (an application's own drawing), or NULL. */
+gl_functions_proc glctx_proc(const glctx *ctx, const char *name);
 glctx_backend glctx_get_backend(const glctx *ctx);
 /* Backend detail, e.g. "EGL surfaceless" or "OSMesa". */
 const char *glctx_describe(const glctx *ctx);

@@ -105,6 +105,7 @@ int glctx_egl_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errlen)
     ctx->native = s;
     ctx->destroy = egl_destroy;
     snprintf(ctx->describe, sizeof ctx->describe, "%s", platform);
+    ctx->load = egl_load;
     if (gl_functions_load(&ctx->gl, egl_load, err, errlen) != 0) {
         egl_destroy(ctx);
         return -1;

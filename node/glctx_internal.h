@@ -10,6 +10,7 @@ struct glctx {
     char describe[64];
     char renderer[128];
     void *native;                /* backend state */
+    gl_functions_loader load;    /* the backend's GetProcAddress (glctx_proc()) */
     void (*destroy)(glctx *ctx);  /* NULL: adopted, its owner ends it */
 };
 

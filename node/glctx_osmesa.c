@@ -69,6 +69,7 @@ int glctx_osmesa_open(glctx *ctx, const glctx_desc *desc, char *err, size_t errl
     ctx->native = s;
     ctx->destroy = osmesa_destroy;
     snprintf(ctx->describe, sizeof ctx->describe, "OSMesa");
+    ctx->load = osmesa_load;
     if (gl_functions_load(&ctx->gl, osmesa_load, err, errlen) != 0) {
         osmesa_destroy(ctx);
         return -1;

@@ -38,7 +38,7 @@ enum id {
     O_THREADS, O_CACHE_DIR, O_BUDGET, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
     O_FAULT_CHECKSUM,
-    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE,
+    O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE, O_APP,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
 
@@ -54,6 +54,8 @@ static const cli_option options[] = {
      "leave when the master ends the session"},
     {O_RENDER, "render", "gl|none", "gl", G_CLUSTER, C, "none: no GL, the checksum of the parameters (tests)"},
     {O_QUIET, "quiet", NULL, NULL, G_CLUSTER, C, "log only errors"},
+    {O_APP, "app", "FILE.so", NULL, G_CLUSTER, C,
+     "an application (cavelight/app.h): the master's --app\n(docs/app.md)"},
     {O_GL, "gl", "egl|osmesa|glfw", "egl", G_SCENE, S, "GL context: headless EGL, OSMesa, or a GLFW window"},
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
@@ -186,6 +188,7 @@ static const char *set(void *user, int id, const char *v)
     case O_EXIT_WITH_MASTER: d->exit_with_master = 1; break;
     case O_RENDER: CHOICE(d->render, render_names); break;
     case O_QUIET: d->quiet = 1; break;
+    case O_APP: d->app = v; break;
     case O_SCENE: o->scene = d->scene = v; break;
     case O_SCENE_TRANSFORM: {
         const char *why = cluster_scene_transform_option(v, &d->scene_transform);

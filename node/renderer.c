@@ -71,6 +71,10 @@ struct renderer {
     int view_dark[RENDERER_DARK_VIEWS];
     ratelog dark_log;
     renderer_queries frame_queries, eye_queries;
+    scene_pose pose;         /* where the passes draw the scene's objects */
+    scene_pose gi_pose;      /* where the GI method last saw them (rest: as built) */
+    float (*models)[16];     /* the pose's model matrices and shown flags */
+    uint8_t *shown;
     renderer_timings timings;
     char error[320];         /* why the last eye pass failed, or the last refusal */
 };
@@ -246,6 +250,7 @@ static int build_frame_state(renderer *r, const frame_params *p, char *err, size
     }
     gi_destroy(r->gi);
     r->gi = g;
+    scene_pose_rest(r->scene, &r->gi_pose); /* a fresh method has the scene as loaded */
     return 0;
 }
 
@@ -258,6 +263,10 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     renderer *r = xcalloc(1, sizeof *r);
     r->gl = desc->gl;
     r->scene = desc->scene;
+    scene_pose_rest(r->scene, &r->pose);
+    size_t objects = (size_t)(r->scene->object_count ? r->scene->object_count : 1);
+    r->models = xcalloc(objects, sizeof *r->models);
+    r->shown = xcalloc(objects, 1);
     r->desc = *desc;
     r->desc.first = NULL;
     r->desc.limits = NULL;
@@ -316,6 +325,8 @@ void renderer_destroy(renderer *r)
         gl->DeleteVertexArrays(1, &r->empty_vao);
     if (r->lit_query)
         gl->DeleteQueries(1, &r->lit_query);
+    free(r->models);
+    free(r->shown);
     for (int i = 0; i < RENDERER_QUERY_RING; i++) {
         if (r->frame_queries.id[i][0])
             gl->DeleteQueries(4, r->frame_queries.id[i]);
@@ -350,6 +361,41 @@ static void follow_frame(renderer *r, const frame_params *p)
         snprintf(r->error, sizeof r->error, "renderer: GI method %s with its settings not built "
                  "(%s); keeping %s", gi_method_at(p->gi)->name, err,
                  gi_method_at(gi_active(r->gi))->name);
+}
+
+void renderer_set_gbuffer_draw(renderer *r,
+                               void (*draw)(void *user, const frame_view *view, const float view_projection[16],
+                                            GLuint fbo, GLuint depth_texture),
+                               void *user)
+{
+    r->desc.gbuffer_draw = draw;
+    r->desc.gbuffer_user = user;
+}
+
+void renderer_set_pose(renderer *r, const scene_pose *pose)
+{
+    if (memcmp(&r->pose, pose, sizeof *pose) == 0)
+        return;
+    r->pose = *pose;
+    scene_pose_models(r->scene, &r->pose, r->models, r->shown);
+    scene_gl_set_pose(r->mesh, (const float (*)[16])r->models, r->shown);
+}
+
+/* Tells the GI method which objects moved since it last looked; 1 when any did (then
+ * nothing of the last frame is reused: its maps and light saw the old places). */
+static int objects_moved(renderer *r)
+{
+    uint8_t moved[SCENE_MAX_OBJECTS];
+    int any = 0;
+    for (int o = 0; o < r->scene->object_count; o++)
+        any |= moved[o] = (uint8_t)scene_pose_object_changed(r->scene, &r->pose, &r->gi_pose, o);
+    if (!any)
+        return 0;
+    gi_objects_moved(r->gi, &(gi_objects){.count = r->scene->object_count,
+                                          .model = (const float (*)[16])r->models, .shown = r->shown,
+                                          .moved = moved});
+    r->gi_pose = r->pose;
+    return 1;
 }
 
 /* A frame over a cluster node's limits (gi_cost.h) is rendered with the last settings
@@ -388,8 +434,12 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     r->eye_index = 0;
     const frame_params *p = &r->frame;
     follow_frame(r, p);
+<<<<<<< HEAD
     follow_ao(r, p);
     if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
+=======
+    if (!objects_moved(r) && gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
+>>>>>>> app
         r->timings.rsm_ms = 0;
         gi_stats_get(r->gi, &r->timings.gi);
         r->timings.frame_host_ms = clock_now_ms() - t0;
@@ -399,7 +449,7 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     renderer_rsm_render(r->rsm, r->mesh, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm};
+    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm, .mesh = r->mesh};
     rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
     renderer_rsm_textures(r->rsm, rsm.textures);
     r->checksum = gi_frame(r->gi, p, &rsm);
@@ -486,6 +536,20 @@ static float pixel_angle(const renderer_view *view)
     return 2.0f / (view->projection[5] * view->height);
 }
 
+/* The caller's own geometry into the G-buffer (renderer_desc.gbuffer_draw), then the
+ * state the next passes expect. */
+static void gbuffer_extra(renderer *r, const renderer_view *view, const float vp[16])
+{
+    if (!r->desc.gbuffer_draw)
+        return;
+    const gl_functions *gl = r->gl;
+    r->desc.gbuffer_draw(r->desc.gbuffer_user, view, vp, r->gbuffer_fbo, r->g_depth);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->gbuffer_fbo);
+    gl->Viewport(0, 0, view->width, view->height);
+    gl->UseProgram(0);
+    gl->BindVertexArray(0);
+}
+
 static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[16],
                          const float eye[4])
 {
@@ -502,6 +566,7 @@ static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
     gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
     scene_gl_draw(r->mesh, r->prog_gbuffer);
+    gbuffer_extra(r, view, vp);
     gl->Disable(GL_DEPTH_TEST);
 }
 

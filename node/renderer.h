@@ -14,6 +14,11 @@
  *                          method's indirect shading -> tone map + gamma -> HUD -> 8-bit RGB
  *                          (and optional linear floats).
  *
+ *   renderer_set_pose()    before a frame pass: where the scene's objects are
+ *                          (scene_pose.h); every pass draws them there, the GI method
+ *                          follows (gi_objects_moved()) and nothing of the last frame is
+ *                          reused when one moved.
+ *
  * The renderer loads nothing: the caller passes a loaded scene and owns it. */
 #ifndef CAVELIGHT_RENDERER_H
 #define CAVELIGHT_RENDERER_H
@@ -26,6 +31,7 @@
 #include "renderer_ao.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
+#include "scene/scene_pose.h"
 
 typedef struct renderer renderer;
 
@@ -58,6 +64,13 @@ typedef struct renderer_timings {
 /* Returns NULL with a one-line reason in err. */
 renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen);
 void renderer_destroy(renderer *r);
+/* Replaces renderer_desc's gbuffer_draw and its user (NULL: nothing drawn). */
+void renderer_set_gbuffer_draw(renderer *r,
+                               void (*draw)(void *user, const frame_view *view, const float view_projection[16],
+                                            GLuint fbo, GLuint depth_texture),
+                               void *user);
+/* The objects' pose for the next frame passes (until called: as loaded). */
+void renderer_set_pose(renderer *r, const scene_pose *pose);
 /* Takes the frame's parameters as sent (gi_frame_sanitize() runs here, once). A method
  * that cannot be built (memory) leaves the current one in place and says why in
  * renderer_last_error(); the checksums then tell the master whether the nodes disagree. */

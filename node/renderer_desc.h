@@ -9,6 +9,7 @@
 #define CAVELIGHT_RENDERER_DESC_H
 
 #include "frame/frame_params.h"
+#include "frame/frame_view.h"
 #include "gi/gi_cost.h"
 #include "gl_functions.h"
 #include "scene/scene.h"
@@ -25,6 +26,12 @@ typedef struct renderer_desc {
                                   (frame_view_head_centre()): a cluster config's observer */
     const gi_limits *limits;   /* a cluster node's bounds on the frames' GI settings
                                   (gi_cost.h); NULL: none */
+    /* Drawn into the G-buffer after the scene in every eye pass (an application's own
+     * geometry: depth-tested against the scene's, then lit and tone-mapped like it), with
+     * the G-buffer bound, its viewport set and depth test and writes on; NULL: nothing. */
+    void (*gbuffer_draw)(void *user, const frame_view *view, const float view_projection[16], GLuint fbo,
+                         GLuint depth_texture);
+    void *gbuffer_user;
 } renderer_desc;
 
 #endif

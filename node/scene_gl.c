@@ -10,9 +10,17 @@
 
 typedef struct scene_gl_range {
     uint32_t material;
+    int object;              /* -1: static */
     GLint first;
     GLsizei count;
 } scene_gl_range;
+
+/* Where an object is: its model, its normals' matrix, shown or not. */
+typedef struct scene_gl_place {
+    float model[16];
+    float normal[9];
+    int shown;
+} scene_gl_place;
 
 struct scene_gl {
     const gl_functions *gl;
@@ -21,33 +29,45 @@ struct scene_gl {
     scene_gl_range *ranges;
     int range_count;
     GLuint *textures;        /* one per scene texture */
+    scene_gl_place *places;  /* per object, and the static triangles' last */
 };
 
-/* Triangles grouped by material (stable), one draw per group: position, normal, uv. */
+static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+/* A triangle's group: static triangles first, then by object, each by material. */
+static size_t group_of(const scene *s, size_t t)
+{
+    int o = s->triangle_object ? s->triangle_object[t] : -1;
+    return (size_t)(o + 1) * s->material_count + s->triangle_material[t];
+}
+
+/* Triangles grouped by object and material (stable), one draw per group: position,
+ * normal, uv. */
 static int upload_triangles(scene_gl *m, char *err, size_t errlen)
 {
     const gl_functions *gl = m->gl;
     const scene *s = m->scene;
-    size_t nt = s->triangle_count;
+    size_t nt = s->triangle_count, groups = (size_t)(s->object_count + 1) * s->material_count;
     float *v = malloc(nt * 3 * 8 * sizeof(float));
     size_t *order = malloc(nt * sizeof *order);
-    size_t *start = calloc(s->material_count + 1, sizeof *start);
-    m->ranges = calloc(s->material_count, sizeof *m->ranges);
+    size_t *start = calloc(groups + 1, sizeof *start);
+    m->ranges = calloc(groups, sizeof *m->ranges);
     if (!v || !order || !start || !m->ranges) {
         free(v); free(order); free(start);
         snprintf(err, errlen, "renderer: out of memory for %zu triangles", nt);
         return -1;
     }
     for (size_t t = 0; t < nt; t++)
-        start[s->triangle_material[t] + 1]++;
-    for (size_t i = 0; i < s->material_count; i++)
+        start[group_of(s, t) + 1]++;
+    for (size_t i = 0; i < groups; i++)
         start[i + 1] += start[i];
-    for (size_t i = 0; i < s->material_count; i++)
+    for (size_t i = 0; i < groups; i++)
         if (start[i + 1] > start[i])
             m->ranges[m->range_count++] = (scene_gl_range){
-                (uint32_t)i, (GLint)(3 * start[i]), (GLsizei)(3 * (start[i + 1] - start[i]))};
+                (uint32_t)(i % s->material_count), (int)(i / s->material_count) - 1, (GLint)(3 * start[i]),
+                (GLsizei)(3 * (start[i + 1] - start[i]))};
     for (size_t t = 0; t < nt; t++)
-        order[start[s->triangle_material[t]]++] = t;
+        order[start[group_of(s, t)]++] = t;
     for (size_t i = 0; i < nt; i++)
         for (int k = 0; k < 3; k++) {
             float *d = v + (i * 3 + k) * 8;
@@ -96,11 +116,41 @@ static int upload_textures(scene_gl *m, char *err, size_t errlen)
     return 0;
 }
 
+/* The cofactor matrix of m's 3x3: normals through it stay perpendicular to the surface
+ * under any invertible model (proportional to the inverse transpose). */
+static void normal_matrix(const float *m, float out[9])
+{
+    out[0] = m[5] * m[10] - m[6] * m[9];
+    out[1] = m[6] * m[8] - m[4] * m[10];
+    out[2] = m[4] * m[9] - m[5] * m[8];
+    out[3] = m[9] * m[2] - m[10] * m[1];
+    out[4] = m[10] * m[0] - m[8] * m[2];
+    out[5] = m[8] * m[1] - m[9] * m[0];
+    out[6] = m[1] * m[6] - m[2] * m[5];
+    out[7] = m[2] * m[4] - m[0] * m[6];
+    out[8] = m[0] * m[5] - m[1] * m[4];
+}
+
+void scene_gl_set_pose(scene_gl *m, const float (*model)[16], const uint8_t *shown)
+{
+    for (int o = 0; o < m->scene->object_count; o++) {
+        memcpy(m->places[o].model, model[o], sizeof m->places[o].model);
+        normal_matrix(model[o], m->places[o].normal);
+        m->places[o].shown = shown[o];
+    }
+}
+
 scene_gl *scene_gl_create(const gl_functions *gl, const scene *s, char *err, size_t errlen)
 {
     scene_gl *m = xcalloc(1, sizeof *m);
     m->gl = gl;
     m->scene = s;
+    m->places = xcalloc((size_t)s->object_count + 1, sizeof *m->places);
+    for (int o = 0; o <= s->object_count; o++) { /* as loaded; the last: static */
+        memcpy(m->places[o].model, identity, sizeof identity);
+        normal_matrix(identity, m->places[o].normal);
+        m->places[o].shown = 1;
+    }
     if (upload_triangles(m, err, errlen) != 0 || upload_textures(m, err, errlen) != 0) {
         scene_gl_destroy(m);
         return NULL;
@@ -121,6 +171,7 @@ void scene_gl_destroy(scene_gl *m)
         gl->DeleteVertexArrays(1, &m->vao);
     free(m->textures);
     free(m->ranges);
+    free(m->places);
     free(m);
 }
 
@@ -144,13 +195,51 @@ static void bind_material(const scene_gl *m, GLuint prog, uint32_t mi)
         gl->Uniform1f(ro, mat->roughness);
 }
 
+/* The ranges from i on that belong to range i's object: [first, *end). */
+static GLsizei object_run(const scene_gl *m, int i, int *end)
+{
+    int k = i;
+    while (k + 1 < m->range_count && m->ranges[k + 1].object == m->ranges[i].object)
+        k++;
+    *end = k + 1;
+    return m->ranges[k].first + m->ranges[k].count - m->ranges[i].first;
+}
+
+/* Sets the object's matrices for ranges[i]; 0 when the object is hidden. */
+static int place(const scene_gl *m, int i, GLint model, GLint normal)
+{
+    int o = m->ranges[i].object;
+    const scene_gl_place *pl = &m->places[o < 0 ? m->scene->object_count : o];
+    if (!pl->shown)
+        return 0;
+    m->gl->UniformMatrix4fv(model, 1, GL_FALSE, pl->model);
+    m->gl->UniformMatrix3fv(normal, 1, GL_FALSE, pl->normal);
+    return 1;
+}
+
 void scene_gl_draw(const scene_gl *m, GLuint prog)
 {
     const gl_functions *gl = m->gl;
+    GLint model = gl->GetUniformLocation(prog, "u_model"), normal = gl->GetUniformLocation(prog, "u_normal_model");
     gl->BindVertexArray(m->vao);
     for (int i = 0; i < m->range_count; i++) {
+        if (!place(m, i, model, normal))
+            continue;
         bind_material(m, prog, m->ranges[i].material);
         gl->DrawArrays(GL_TRIANGLES, m->ranges[i].first, m->ranges[i].count);
+    }
+    gl->BindVertexArray(0);
+}
+
+void scene_gl_draw_geometry(const scene_gl *m, GLuint prog)
+{
+    const gl_functions *gl = m->gl;
+    GLint model = gl->GetUniformLocation(prog, "u_model"), normal = gl->GetUniformLocation(prog, "u_normal_model");
+    gl->BindVertexArray(m->vao);
+    for (int i = 0, end; i < m->range_count; i = end) {
+        GLsizei count = object_run(m, i, &end);
+        if (place(m, i, model, normal))
+            gl->DrawArrays(GL_TRIANGLES, m->ranges[i].first, count);
     }
     gl->BindVertexArray(0);
 }

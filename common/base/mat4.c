@@ -16,6 +16,43 @@ void mat4_mul(const float a[16], const float b[16], float out[16])
     memcpy(out, t, sizeof t);
 }
 
+int mat4_affine_inverse_d(const double m[16], double out[16])
+{
+    /* The 3x3 part by its cofactors over the determinant, the translation by -R^-1 t. */
+    double c[9] = {
+        m[5] * m[10] - m[6] * m[9], m[2] * m[9] - m[1] * m[10], m[1] * m[6] - m[2] * m[5],
+        m[6] * m[8] - m[4] * m[10], m[0] * m[10] - m[2] * m[8], m[2] * m[4] - m[0] * m[6],
+        m[4] * m[9] - m[5] * m[8], m[1] * m[8] - m[0] * m[9], m[0] * m[5] - m[1] * m[4],
+    };
+    double det = m[0] * c[0] + m[4] * c[1] + m[8] * c[2];
+    if (!(fabs(det) > 1e-30) || !isfinite(det))
+        return -1;
+    double r[16] = {0};
+    for (int col = 0; col < 3; col++)
+        for (int row = 0; row < 3; row++)
+            r[col * 4 + row] = c[col * 3 + row] / det;
+    for (int row = 0; row < 3; row++)
+        r[12 + row] = -(r[row] * m[12] + r[4 + row] * m[13] + r[8 + row] * m[14]);
+    r[15] = 1;
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(r[i]))
+            return -1;
+    memcpy(out, r, sizeof r);
+    return 0;
+}
+
+int mat4_affine_inverse(const float m[16], float out[16])
+{
+    double d[16], r[16];
+    for (int i = 0; i < 16; i++)
+        d[i] = m[i];
+    if (mat4_affine_inverse_d(d, r) != 0)
+        return -1;
+    for (int i = 0; i < 16; i++)
+        out[i] = (float)r[i];
+    return 0;
+}
+
 void mat4_transform_point(const float m[16], const float p[3], float out[3])
 {
     for (int r = 0; r < 3; r++)

@@ -10,6 +10,12 @@
 /* out = a * b; out may alias a or b. */
 void mat4_mul(const float a[16], const float b[16], float out[16]);
 
+/* out = the inverse of the affine m (last row 0 0 0 1: rotation, scale, shear and a
+ * translation), computed in double; returns -1 (out untouched) when m is singular or not
+ * finite. The _d form works on doubles throughout. */
+int mat4_affine_inverse(const float m[16], float out[16]);
+int mat4_affine_inverse_d(const double m[16], double out[16]);
+
 /* out = the affine point p transformed by m (w = 1, no division). */
 void mat4_transform_point(const float m[16], const float p[3], float out[3]);
 

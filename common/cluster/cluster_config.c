@@ -661,6 +661,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     }
     get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
     get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
+    get_string(&c, root, "app", "app", cfg->app, sizeof cfg->app, "");
     get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
     const cJSON *st = json_keys_get(c.keys, root, "scene_transform");
     cfg->has_scene_transform = st != NULL;

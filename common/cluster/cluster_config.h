@@ -16,7 +16,9 @@
  *               file's path on the node's host, for --spawn-remote and scripts/
  *               install_nodes.py; default: the master's), "display" (X display for window
  *               output when DISPLAY is unset, default ":0")}]
- *   optional  "name", "scene", "launch" ("ssh -n {host} {command}"),
+ *   optional  "name", "scene", "app" (an application's shared object, cavelight/app.h: the
+ *             master and every node load it unless --app says otherwise; the path as every
+ *             host sees it), "launch" ("ssh -n {host} {command}"),
  *             "scene_transform": {"scale", "up": "y|z", "anchor": "auto|camera|centre|none",
  *                                 "fit": bool, "rotation_deg": [x,y,z], "translation":
  *                                 [x,y,z]} (scene/scene_transform.h; --scene-transform),
@@ -181,6 +183,7 @@ typedef struct cluster_config {
     char path[CLUSTER_TEXT_MAX];
     char name[CLUSTER_TEXT_MAX];
     char scene[CLUSTER_TEXT_MAX];          /* "" = the built-in default scene */
+    char app[CLUSTER_TEXT_MAX];            /* "" = no application */
     int has_scene_transform;               /* 0: the scene as modelled */
     scene_transform scene_transform;       /* "scene_transform", or --scene-transform */
     int scene_outside_paths;               /* --allow-outside-paths (never from the file) */

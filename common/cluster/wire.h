@@ -31,7 +31,7 @@ enum {
     WIRE_HEADER_SIZE = 16,
     WIRE_NAME_MAX = 32,
     WIRE_TEXT_MAX = 300,      /* REFUSE's why */
-    WIRE_MAX_PAYLOAD = 8192,
+    WIRE_MAX_PAYLOAD = 65536, /* a snapshot of a full store (PARAMS_ENCODED_MAX) fits */
     WIRE_MAX_MESSAGE = WIRE_HEADER_SIZE + WIRE_MAX_PAYLOAD,
     /* The longest a connection may take to finish its ZMTP (and CURVE) handshake, on both
      * ends (ZMQ_HANDSHAKE_IVL): a node's takes milliseconds, and libzmq's default of 30 s

@@ -9,7 +9,10 @@
 // has only that), the emissive factor (times KHR_materials_emissive_strength),
 // KHR_lights_punctual lights (`range` is a hint the spec lets renderers ignore, and we do)
 // and cameras with their nodes' transforms. extensions[] lists what it honours, what it
-// draws differently and what it cannot.
+// draws differently and what it cannot. Every node whose subtree holds a mesh becomes a
+// scene object (scene.h: movable, by the node's name), and the animations' translation,
+// rotation and scale channels of those nodes become the scene's animation channels
+// (CUBICSPLINE keys by their values, linearly; morph weights are not drawn).
 //
 // A scene file is untrusted input that every node loads. Before tinygltf sees it: glTF 1.0
 // is named as such, and every field the import follows must have its JSON type (rules[]);
@@ -334,6 +337,14 @@ const rule rules[] = {
     {"cameras[].orthographic", kind::object, 0, false}, {"cameras[].orthographic.xmag", kind::number, 0, true},
     {"cameras[].orthographic.ymag", kind::number, 0, true}, {"cameras[].orthographic.znear", kind::number, 0, true},
     {"cameras[].orthographic.zfar", kind::number, 0, true},
+    {"animations", kind::objects, 0, false}, {"animations[].channels", kind::objects, 0, true},
+    {"animations[].channels[].sampler", kind::index, 0, true},
+    {"animations[].channels[].target", kind::object, 0, true},
+    {"animations[].channels[].target.node", kind::index, 0, false},
+    {"animations[].channels[].target.path", kind::string, 0, true},
+    {"animations[].samplers", kind::objects, 0, true}, {"animations[].samplers[].input", kind::index, 0, true},
+    {"animations[].samplers[].output", kind::index, 0, true},
+    {"animations[].samplers[].interpolation", kind::string, 0, false},
     {"extensions", kind::object, 0, false}, {"extensions.KHR_lights_punctual", kind::object, 0, false},
     {LIGHTS, kind::objects, 0, false}, {LIGHTS "[].type", kind::string, 0, true},
     {LIGHTS "[].color", kind::numbers, 3, false}, {LIGHTS "[].intensity", kind::number, 0, false},
@@ -982,6 +993,10 @@ struct importer {
     int default_material = -1;
     bool vertex_colours = false;
     int lights_dropped = 0;
+    std::vector<int> node_object;    // glTF node -> its scene object, -1: none of its own
+    std::vector<signed char> holds;  // glTF node -> its subtree holds a mesh (-1: not known yet)
+    int objects_dropped = 0;
+    int channels_ignored = 0;
 
     const unsigned char *element(int accessor, size_t i) const
     {
@@ -1214,10 +1229,51 @@ struct importer {
             refuse("out of memory");
     }
 
-    void node(int index, const mat4 &parent)
+    bool holds_mesh(int index)
+    {
+        if (holds[index] < 0) {
+            const tinygltf::Node &n = model.nodes[index];
+            bool any = n.mesh >= 0;
+            for (int child : n.children)
+                any = holds_mesh(child) || any;
+            holds[index] = any;
+        }
+        return holds[index] != 0;
+    }
+
+    // The node's own object (when its subtree holds a mesh): named as in the file, with its
+    // rest transform; past SCENE_MAX_OBJECTS its triangles stay with its parent's object.
+    int begin_object(int index, const mat4 &world, int parent_object)
+    {
+        const tinygltf::Node &n = model.nodes[index];
+        if (!holds_mesh(index))
+            return parent_object;
+        std::string name = n.name.empty() ? "node" + std::to_string(index) : n.name;
+        int o = scene_begin_object(out, name.c_str(), parent_object);
+        if (o < 0) {
+            objects_dropped++;
+            scene_end_object(out, parent_object);
+            return parent_object;
+        }
+        scene_object *ob = &out->objects[o];
+        for (int k = 0; k < 3 && n.translation.size() == 3; k++)
+            ob->rest_translation[k] = (float)n.translation[k];
+        for (int k = 0; k < 4 && n.rotation.size() == 4; k++)
+            ob->rest_rotation[k] = (float)n.rotation[k];
+        for (int k = 0; k < 3 && n.scale.size() == 3; k++)
+            ob->rest_scale[k] = (float)n.scale[k];
+        for (int k = 0; k < 16; k++)
+            ob->rest_world[k] = (float)world.m[k];
+        node_object[index] = o;
+        return o;
+    }
+
+    void node(int index, const mat4 &parent, int parent_object)
     {
         const tinygltf::Node &n = model.nodes[index];
         mat4 world = mul(parent, node_local(n));
+        int object = begin_object(index, world, parent_object);
+        scene_end_object(out, object); /* this node's triangles are its object's */
         if (n.mesh >= 0) {
             const tinygltf::Mesh &m = model.meshes[n.mesh];
             for (size_t p = 0; p < m.primitives.size(); p++)
@@ -1229,7 +1285,7 @@ struct importer {
         if (n.camera >= 0)
             camera(n, world, item("nodes", (size_t)index));
         for (int child : n.children)
-            node(child, world);
+            node(child, world, object);
     }
 
     // Decodes one image to RGBA8 (sRGB-encoded, as glTF stores base colour).
@@ -1388,10 +1444,102 @@ struct importer {
             refuse("out of memory");
     }
 
+    // A sampler's keyframe times: float, finite, increasing.
+    std::vector<float> key_times(int accessor, const std::string &at)
+    {
+        const tinygltf::Accessor &a = used(accessor, at, false);
+        if (a.type != TINYGLTF_TYPE_SCALAR || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+            refuse(at + ": accessors[" + std::to_string(accessor) + "] must be SCALAR floats (keyframe times)");
+        std::vector<float> t;
+        read_floats(accessor, 1, &t);
+        for (size_t i = 0; i < t.size(); i++)
+            if (!std::isfinite(t[i]) || t[i] < 0 || (i && !(t[i] > t[i - 1])))
+                refuse(at + ": keyframe time " + std::to_string(i) + " is not finite, negative or not after the last");
+        return t;
+    }
+
+    const tinygltf::Accessor &used(int accessor, const std::string &at, bool draco)
+    {
+        check_index(accessor, model.accessors.size(), at, "accessors", false);
+        const tinygltf::Accessor &a = model.accessors[accessor];
+        if (!draco && a.bufferView < 0)
+            refuse(at + ": accessors[" + std::to_string(accessor) + "].bufferView missing");
+        return a;
+    }
+
+    // One channel of a translation, rotation or scale into the scene; false: ignored.
+    bool channel(const tinygltf::Animation &anim, const tinygltf::AnimationChannel &ch, const std::string &at)
+    {
+        check_index(ch.sampler, anim.samplers.size(), at + ".sampler", "samplers", false);
+        if (ch.target_node < 0)
+            return false;
+        check_index(ch.target_node, model.nodes.size(), at + ".target.node", "nodes", false);
+        int object = node_object[ch.target_node];
+        const std::string &path = ch.target_path;
+        int comps = path == "rotation" ? 4 : 3;
+        if (object < 0 || model.nodes[ch.target_node].matrix.size() == 16 ||
+            (path != "translation" && path != "rotation" && path != "scale"))
+            return false;
+        const tinygltf::AnimationSampler &sm = anim.samplers[ch.sampler];
+        std::string sat = at + ".sampler";
+        std::vector<float> times = key_times(sm.input, sat + ".input"), values;
+        const tinygltf::Accessor &o = used(sm.output, sat + ".output", false);
+        bool cubic = sm.interpolation == "CUBICSPLINE";
+        if (o.type != (comps == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3) || o.count != times.size() * (cubic ? 3 : 1))
+            refuse(sat + ".output: accessors[" + std::to_string(sm.output) + "] must hold " +
+                   std::to_string(times.size() * (cubic ? 3 : 1)) + (comps == 4 ? " VEC4" : " VEC3") + " values");
+        read_floats(sm.output, comps, &values);
+        scene_anim_channel c = {object, path == "translation" ? SCENE_ANIM_TRANSLATION
+                                        : comps == 4        ? SCENE_ANIM_ROTATION
+                                                            : SCENE_ANIM_SCALE,
+                                sm.interpolation == "STEP", times.size(), nullptr, nullptr};
+        c.times = (float *)std::malloc(times.size() * sizeof(float));
+        c.values = (float *)std::malloc(times.size() * (size_t)comps * sizeof(float));
+        if (!c.times || !c.values) {
+            std::free(c.times);
+            std::free(c.values);
+            refuse("out of memory");
+        }
+        std::memcpy(c.times, times.data(), times.size() * sizeof(float));
+        for (size_t k = 0; k < times.size(); k++) // a cubic key: in-tangent, value, out-tangent
+            for (int j = 0; j < comps; j++) {
+                float v = values[(cubic ? 3 * k + 1 : k) * (size_t)comps + (size_t)j];
+                if (!std::isfinite(v))
+                    refuse(sat + ".output: value " + std::to_string(k) + " is not finite");
+                c.values[k * (size_t)comps + (size_t)j] = v;
+            }
+        if (scene_add_anim_channel(out, &c) != 0) {
+            std::free(c.times);
+            std::free(c.values);
+            refuse("out of memory");
+        }
+        return true;
+    }
+
+    void animations()
+    {
+        for (size_t a = 0; a < model.animations.size(); a++) {
+            const tinygltf::Animation &anim = model.animations[a];
+            for (size_t c = 0; c < anim.channels.size(); c++)
+                if (!channel(anim, anim.channels[c], item(item("animations", a) + ".channels", c)))
+                    channels_ignored++;
+        }
+    }
+
     void run()
     {
         materials();
+        node_object.assign(model.nodes.size(), -1);
+        holds.assign(model.nodes.size(), -1);
         roots();
+        scene_end_object(out, -1);
+        animations();
+        if (objects_dropped)
+            notes.push_back("more than " + std::to_string(SCENE_MAX_OBJECTS) + " nodes with meshes: " +
+                            std::to_string(objects_dropped) + " move with their parents only");
+        if (channels_ignored)
+            notes.push_back(std::to_string(channels_ignored) + " animation channels ignored (morph weights, "
+                            "nodes without meshes or given by a matrix)");
         if (out->camera_count > 0) // the file's first camera is the view
             out->camera = out->cameras[0];
         if (vertex_colours)
@@ -1410,11 +1558,11 @@ struct importer {
                     child[c] = true;
             for (size_t n = 0; n < model.nodes.size(); n++)
                 if (!child[n])
-                    node((int)n, identity());
+                    node((int)n, identity(), -1);
             return;
         }
         for (int n : model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes)
-            node(n, identity());
+            node(n, identity(), -1);
     }
 };
 
@@ -1538,7 +1686,7 @@ extern "C" int gltf_import(const char *path, int allow_outside_paths, scene *out
         tinygltf::Model model;
         load(bytes, path, root, allow_outside_paths != 0, &model);
         validator{model}.run();
-        importer{model, out, notes, {}, {}}.run();
+        importer{model, out, notes, {}, {}, -1, false, 0, {}, {}, 0, 0}.run();
         std::snprintf(out->warning, sizeof out->warning, "%s", joined(notes).c_str());
     } catch (const std::exception &e) {
         std::snprintf(err, errlen, "scene %s: %s", path, e.what());

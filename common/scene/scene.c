@@ -43,13 +43,14 @@ long scene_add_triangle(scene *s, const float p[9], const float *normals, const 
                         uint32_t material)
 {
     size_t n = s->triangle_count, cap = s->triangle_capacity;
-    size_t c1 = cap, c2 = cap, c3 = cap, c4 = cap;
+    size_t c1 = cap, c2 = cap, c3 = cap, c4 = cap, c5 = cap;
     if (grow((void **)&s->positions, 9 * sizeof(float), n, &c1) ||
         grow((void **)&s->normals, 9 * sizeof(float), n, &c2) ||
         grow((void **)&s->uvs, 6 * sizeof(float), n, &c3) ||
-        grow((void **)&s->triangle_material, sizeof(uint32_t), n, &c4))
+        grow((void **)&s->triangle_material, sizeof(uint32_t), n, &c4) ||
+        grow((void **)&s->triangle_object, sizeof(int32_t), n, &c5))
         return -1;
-    s->triangle_capacity = c4;
+    s->triangle_capacity = c5;
     memcpy(s->positions + 9 * n, p, 9 * sizeof(float));
     float *nn = s->normals + 9 * n;
     if (normals) {
@@ -74,6 +75,7 @@ long scene_add_triangle(scene *s, const float p[9], const float *normals, const 
     else
         memset(s->uvs + 6 * n, 0, 6 * sizeof(float));
     s->triangle_material[n] = material;
+    s->triangle_object[n] = s->adding_object - 1;
     s->triangle_count = n + 1;
     return (long)n;
 }
@@ -227,6 +229,13 @@ void scene_free(scene *s)
     free(s->normals);
     free(s->uvs);
     free(s->triangle_material);
+    free(s->triangle_object);
+    free(s->objects);
+    for (size_t i = 0; i < s->anim_channel_count; i++) {
+        free(s->anim_channels[i].times);
+        free(s->anim_channels[i].values);
+    }
+    free(s->anim_channels);
     free(s->materials);
     for (size_t i = 0; i < s->texture_count; i++)
         free(s->textures[i].rgba);

@@ -20,6 +20,9 @@
 #include <stdint.h>
 
 enum { SCENE_MAX_LIGHTS = 8 };
+/* Movable parts (scene_object): at most this many per scene, each named in at most
+ * SCENE_NAME_MAX - 1 bytes (a parameter-store key each, cluster/scene_keys.h). */
+enum { SCENE_MAX_OBJECTS = 128, SCENE_NAME_MAX = 48 };
 
 typedef struct scene_material {
     float base_color[4];    /* linear RGBA factor */
@@ -68,13 +71,54 @@ typedef struct scene_camera {
     char camera_name[64];   /* the glTF camera's own name */
 } scene_camera;
 
+/* A part of the scene that can move (scene_pose.h): a glTF node whose subtree holds
+ * triangles, or a built-in scene's named part. Its own triangles are those whose
+ * triangle_object is its index; it moves with its parent. */
+typedef struct scene_object {
+    char name[SCENE_NAME_MAX];  /* the node's name (printable ASCII), "nodeN" when it has
+                                   none, "NAME#2" for a second node of that name */
+    int parent;                 /* object index, -1: none */
+    /* The node's own transform as loaded, in the file's space, for its animations:
+     * translation, rotation (unit quaternion x, y, z, w), scale; rest_world is the node's
+     * world matrix in the file's space (column-major). Identity for built-in parts. */
+    float rest_translation[3], rest_rotation[4], rest_scale[3];
+    float rest_world[16];
+} scene_object;
+
+/* One glTF animation channel: keyframes of an object's translation, rotation or scale,
+ * played by the master's clock (scene_pose_animate()). */
+typedef enum scene_anim_path {
+    SCENE_ANIM_TRANSLATION = 0,
+    SCENE_ANIM_ROTATION,
+    SCENE_ANIM_SCALE,
+} scene_anim_path;
+
+typedef struct scene_anim_channel {
+    int object;
+    scene_anim_path path;
+    int step;                   /* 1: STEP (hold each key), 0: linear (slerp for rotations) */
+    size_t count;               /* keyframes, times increasing */
+    float *times;               /* seconds */
+    float *values;              /* 3 floats a key (4 for a rotation) */
+} scene_anim_channel;
+
 typedef struct scene {
     size_t triangle_count;
     float *positions;       /* 9 floats per triangle */
     float *normals;         /* 9 floats per triangle, unit */
     float *uvs;             /* 6 floats per triangle */
     uint32_t *triangle_material;
+    int32_t *triangle_object;   /* per triangle: its object, -1 static (NULL: all static) */
     size_t triangle_capacity;
+    int object_count;
+    scene_object *objects;
+    int adding_object;          /* scene_add_triangle()'s object + 1, 0: static (set by
+                                   scene_begin_object(), scene_end_object()) */
+    size_t anim_channel_count;
+    scene_anim_channel *anim_channels;
+    float anim_duration;        /* the longest channel's last key time: the loop */
+    int placed;                 /* 1: placement holds scene_transform_apply()'s matrix */
+    float placement[16];        /* file space to the scene's (column-major) */
     size_t material_count;
     scene_material *materials;
     size_t texture_count;
@@ -119,6 +163,16 @@ int scene_add_rect(scene *s, const float lo[3], const float hi[3], int facing,
 /* Appends an axis-aligned box with outward (or inward, for a room) faces: six rectangles. */
 int scene_add_box(scene *s, const float min[3], const float max[3], int inward, uint32_t material);
 int scene_add_light(scene *s, const scene_light *l);
+/* A new object (name as given: made printable, cut to SCENE_NAME_MAX - 1, made unique),
+ * and the object the next triangles belong to. Returns its index, or -1 when there are
+ * SCENE_MAX_OBJECTS already (the triangles then stay static) or out of memory. */
+int scene_begin_object(scene *s, const char *name, int parent);
+/* The next triangles are static (or parent's: scene_begin_object()'s again). */
+void scene_end_object(scene *s, int object);
+/* The object named name, or -1. */
+int scene_object_find(const scene *s, const char *name);
+/* Adds a channel (takes ownership of times and values, malloc'ed). -1 when out of memory. */
+int scene_add_anim_channel(scene *s, const scene_anim_channel *c);
 /* Points the light's axis from its position at target (unchanged if they coincide). */
 void scene_light_aim(scene_light *l, const float target[3]);
 /* Computes the bounds; returns -1 with a reason when the scene has no triangles. */

@@ -3,7 +3,9 @@
  * x in [-2, 2] (left wall red, right wall green), y in [0, 3] (floor to ceiling),
  * z in [-2, 2] (back wall at -2). A tall blue box and a low yellow box stand on the floor,
  * a small warm emissive panel hangs on the back wall, and a spotlight near the ceiling
- * points at the floor beside the red wall, so colour bleeding is easy to see. */
+ * points at the floor beside the red wall, so colour bleeding is easy to see. The boxes are
+ * the objects "tall_box" and "low_box" (scene_object: an application or the wand's grab
+ * moves them). */
 #include <stdio.h>
 
 #include "scene/scene.h"
@@ -39,8 +41,10 @@ int scene_default_build(scene *s, char *err, size_t errlen)
 
     const float tall_lo[3] = {0.5f, 0.0f, -1.4f}, tall_hi[3] = {1.2f, 1.6f, -0.7f};
     const float low_lo[3] = {-0.6f, 0.0f, 0.2f}, low_hi[3] = {0.0f, 0.5f, 0.8f};
-    if (scene_add_box(s, tall_lo, tall_hi, 0, 3) || scene_add_box(s, low_lo, low_hi, 0, 4))
+    if (scene_begin_object(s, "tall_box", -1) < 0 || scene_add_box(s, tall_lo, tall_hi, 0, 3) ||
+        scene_begin_object(s, "low_box", -1) < 0 || scene_add_box(s, low_lo, low_hi, 0, 4))
         goto oom;
+    scene_end_object(s, -1);
     /* Emissive panel 2 cm in front of the back wall, facing the room. */
     const float e0[3] = {-0.4f, 2.1f, -1.98f}, e1[3] = {0.4f, 2.1f, -1.98f},
                 e2[3] = {0.4f, 2.5f, -1.98f}, e3[3] = {-0.4f, 2.5f, -1.98f};

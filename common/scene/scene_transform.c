@@ -36,7 +36,7 @@ static void rotate(const float m[16], const double v[3], double out[3])
     memcpy(out, r, sizeof r);
 }
 
-static void point(const placement *pl, const float p[3], float out[3])
+static void point_d(const placement *pl, const float p[3], double out[3])
 {
     double q[3];
     up(pl, p, q);
@@ -47,7 +47,33 @@ static void point(const placement *pl, const float p[3], float out[3])
         q[k] += pl->target[k];
     rotate(pl->rotation, q, q);
     for (int k = 0; k < 3; k++)
-        out[k] = (float)(q[k] + pl->translation[k]);
+        out[k] = q[k] + pl->translation[k];
+}
+
+static void point(const placement *pl, const float p[3], float out[3])
+{
+    double q[3];
+    point_d(pl, p, q);
+    for (int k = 0; k < 3; k++)
+        out[k] = (float)q[k];
+}
+
+/* The placement as one matrix (it is affine): the images of the origin and the axes. The
+ * scene keeps it (scene.placement) for what is given in the file's space: animations. */
+static void placement_matrix(const placement *pl, float out[16])
+{
+    static const float basis[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}};
+    double o[3], c[3];
+    point_d(pl, basis[3], o);
+    for (int a = 0; a < 3; a++) {
+        point_d(pl, basis[a], c);
+        for (int r = 0; r < 3; r++)
+            out[4 * a + r] = (float)(c[r] - o[r]);
+        out[4 * a + 3] = 0;
+    }
+    for (int r = 0; r < 3; r++)
+        out[12 + r] = (float)o[r];
+    out[15] = 1;
 }
 
 /* A direction (unit again; rotations and a uniform scale keep normals normal). */
@@ -191,5 +217,11 @@ int scene_transform_apply(scene *s, const scene_transform *t, const scene_stage 
     move_camera(&pl, &s->camera);
     for (size_t i = 0; i < s->camera_count; i++)
         move_camera(&pl, &s->cameras[i]);
+    float m[16];
+    placement_matrix(&pl, m);
+    if (s->placed)
+        mat4_mul(m, s->placement, m);
+    memcpy(s->placement, m, sizeof m);
+    s->placed = 1;
     return 0;
 }

@@ -77,6 +77,12 @@ uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm) { return g->m
 GLuint gi_shade_program(const gi *g) { return g->shade; }
 void gi_eye_bind(gi *g, const gi_eye *eye) { g->m->eye_bind(g->state, eye); }
 
+void gi_objects_moved(gi *g, const gi_objects *o)
+{
+    if (g->m->objects)
+        g->m->objects(g->state, o);
+}
+
 void gi_screen(gi *g, const frame_view *views, int n)
 {
     if (g->m->screen)

@@ -35,6 +35,8 @@ int gi_needs_rebuild(const gi *g, const frame_params *p);
 int gi_reuse(gi *g, const frame_params *p);
 uint64_t gi_frame(gi *g, const frame_params *p, const gi_rsm *rsm);
 void gi_screen(gi *g, const frame_view *views, int n);
+/* Objects that moved (gi_method.h's objects()); nothing for a method without it. */
+void gi_objects_moved(gi *g, const gi_objects *o);
 /* The shading program: fullscreen.vert, and shade.frag with the method's snippet. */
 GLuint gi_shade_program(const gi *g);
 void gi_eye_bind(gi *g, const gi_eye *eye);

@@ -15,6 +15,11 @@
  *   eye_bind()  eye pass, per screen and eye, with the shading program bound: the
  *               method's uniforms and textures for its shading snippet
  *   stats()     the last frame's stages and figures
+ *   objects()   optional (NULL: none), before frame() when scene objects moved or were
+ *               hidden (scene_pose.h), and after create() when any is not where it was
+ *               loaded: a method that keeps geometry of its own (ILPV's blockers) follows
+ *               them here; the renderer's passes (RSMs, shadow maps, G-buffer) draw them
+ *               where they are without it
  *
  * The shading snippet (shade: files of the method's folder) defines
  *   vec3 gi_irradiance(vec3 p, vec3 n)
@@ -38,6 +43,7 @@
 #include "gl_functions.h"
 #include "renderer_rsm.h"
 #include "scene/scene.h"
+#include "scene_gl.h"
 
 typedef struct gi_desc {
     const gl_functions *gl;
@@ -61,6 +67,8 @@ typedef struct gi_rsm {
     const light_view *views;       /* per layer: the light and view it was rendered from */
     renderer_rsm *maps;            /* renderer_rsm_vpls(maps): the VPL source every method
                                       shares (read back from the maps, on request) */
+    const scene_gl *mesh;          /* the scene where the frame's objects are: a method's own
+                                      maps draw it with scene_gl_draw_geometry() */
 } gi_rsm;
 
 typedef struct gi_eye {
@@ -75,6 +83,14 @@ typedef struct gi_eye {
     float pixel_angle;             /* a pixel's width over its distance from the eye
                                       (w 0: the pixel's width) */
 } gi_eye;
+
+/* The scene's objects in this frame (renderer.c), for objects(). */
+typedef struct gi_objects {
+    int count;                     /* the scene's object_count */
+    const float (*model)[16];      /* where each object's triangles are (column-major) */
+    const uint8_t *shown;          /* 0: hidden */
+    const uint8_t *moved;          /* 1: model or visibility changed since the last call */
+} gi_objects;
 
 enum { GI_STATS_MAX = 12 };
 
@@ -110,6 +126,7 @@ typedef struct gi_method {
     void (*screen)(void *state, const frame_view *views, int n);
     void (*eye_bind)(void *state, const gi_eye *eye);
     void (*stats)(const void *state, gi_stats *out);
+    void (*objects)(void *state, const gi_objects *o);
 } gi_method;
 
 #endif

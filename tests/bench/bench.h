@@ -39,5 +39,6 @@ int bench_frame(int argc, char **argv);
 int bench_input(int argc, char **argv);
 int bench_accuracy(int argc, char **argv);
 int bench_reference(int argc, char **argv);
+int bench_move(int argc, char **argv);
 
 #endif

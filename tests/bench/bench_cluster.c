@@ -3,6 +3,10 @@
  * mode over TCP loopback, next to a raw TCP ping-pong of the same message size measured
  * in the same run; and the bytes of a head-tracked FRAME versus a full SNAPSHOT.
  * --transport ipc uses a Unix socket instead of TCP loopback (the baseline stays TCP).
+ * --app FILE runs an application (cavelight/app.h) on the master and every node: its
+ * update each frame, then the FRAME's bytes beyond the head-tracked ones are split into
+ * the values of the application's and the objects' changed keys and what each key costs
+ * on top (app_key_overhead_bytes).
  * Nodes are threads running the real node loop (cluster_node_run), each with its own
  * ZeroMQ context, as separate processes would have. */
 #define _DEFAULT_SOURCE
@@ -20,9 +24,12 @@
 #include "bench.h"
 
 #if defined(CAVELIGHT_HAVE_MASTER) && defined(CAVELIGHT_HAVE_NODE)
+#include "app/session_keys.h"
 #include "base/clock.h"
 #include "cluster_master.h"
 #include "cluster_node.h"
+#include "gi/gi_settings.h"
+#include "scene/scene_load.h"
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -118,14 +125,104 @@ static int tcp_ping_pong(int bytes, int rounds, double *median, double *p99)
     return 0;
 }
 
+/* The master's side of the keys: the nodes' scene (its objects), the application. */
+typedef struct bench_keys {
+    scene sc;
+    params_schema schema;
+    scene_keys objects;
+    scene_pose pose;
+    app_host *app;
+    int first_app_key;      /* keys from here on are the objects' and the application's */
+} bench_keys;
+
+static int bench_keys_make(bench_keys *k, const cluster_config *cfg, const char *app, char *err, size_t errlen)
+{
+    scene_load_desc sd;
+    cluster_config_scene_desc(cfg, &sd);
+    if (scene_load_with(cfg->scene[0] ? cfg->scene : "default", &sd, &k->sc, err, errlen) != 0)
+        return -1;
+    scene_pose_rest(&k->sc, &k->pose);
+    if (app) {
+        app_host_desc ad = {.path = app, .role = CAVELIGHT_ROLE_MASTER, .process = "master", .scene = &k->sc,
+                            .quiet = 1};
+        if (!(k->app = app_host_load(&ad, err, errlen)) || app_host_init(k->app, err, errlen) != 0)
+            return -1;
+    }
+    gi_params_schema(&k->schema);
+    k->first_app_key = k->schema.count;
+    return session_keys_add(&k->schema, &k->sc, &k->objects, k->app, err, errlen);
+}
+
+/* The application's update of frame f (the head-tracked input and time), its keys and
+ * objects into the store. Returns the value bytes of the keys it changed, *changed their
+ * count. */
+static size_t bench_keys_frame(bench_keys *k, params_store *p, int f, const float head[16], int *changed)
+{
+    cavelight_input in = {.frame = (uint64_t)(f + 100), .time = f / 60.0, .dt = 1 / 60.0, .head_valid = 1};
+    memcpy(in.head, head, sizeof in.head);
+    for (int i = 0; i < 16; i += 5)
+        in.wand[i] = in.navigation[i] = 1.0f;
+    if (k->app)
+        app_host_update(k->app, &in);
+    scene_keys_write(p, &k->objects, &k->pose);
+    size_t bytes = 0;
+    *changed = 0;
+    for (int key = k->first_app_key; key < k->schema.count; key++)
+        if (p->stamp[key] == p->version + 1) {
+            size_t len = params_key_size(p, key);
+            if (!len)
+                params_get_bytes(p, key, &len);
+            bytes += len;
+            ++*changed;
+        }
+    return bytes;
+}
+
+typedef struct bench_run {
+    int frames, nodes, incomplete;
+    size_t head_bytes, frame_bytes, value_bytes;
+    int changed_keys;
+    double *rt;
+} bench_run;
+
+/* Head-tracked frames (100 unmeasured first); with an application, its keys too. */
+static void run_frames(cluster_master *m, bench_keys *k, bench_run *b)
+{
+    params_store *p = cluster_master_params(m);
+    for (int f = -100; f < b->frames; f++) {
+        /* A head-tracked frame: the head pose and the time change, nothing else. */
+        float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.1f * sinf(f * 0.01f), 1.7f, 0, 1};
+        params_set_mat4(p, PARAMS_HEAD, head);
+        params_set_f64(p, PARAMS_TIME, f / 60.0);
+        int changed = 0;
+        size_t values = bench_keys_frame(k, p, f, head, &changed);
+        /* The same frame without the application's keys: what they add. */
+        uint8_t delta[PARAMS_ENCODED_MAX];
+        cluster_frame_result r;
+        size_t all = params_encode_delta(p, p->version, delta, sizeof delta);
+        if (cluster_master_frame(m, &r) != 0)
+            break;
+        b->incomplete += r.ready != b->nodes;
+        if (f >= 0) {
+            b->rt[f] = r.round_trip_ms;
+            b->frame_bytes = r.frame_bytes;
+            b->head_bytes = r.frame_bytes - (all - (2 + 64 + 2 + 8)); /* head (mat4) and time (f64) only */
+            b->value_bytes = values;
+            b->changed_keys = changed;
+        }
+    }
+}
+
 int bench_cluster(int argc, char **argv)
 {
     int nodes = 10, frames = 2000, transport_index = 0;
+    const char *app = NULL;
     static const char *const transports[] = {"tcp", "ipc"};
     const bench_option opts[] = {
         BENCH_INT("nodes", "N", "stub nodes (threads, no GL)", &nodes, 1, CLUSTER_MAX_NODES),
         BENCH_INT("frames", "F", "frames through the barrier", &frames, 10, 10000000),
         BENCH_CHOICE("transport", "tcp|ipc", "ZeroMQ transport", &transport_index, transports),
+        BENCH_TEXT("app", "FILE.so", "an application on the master and every node", &app),
     };
     int pr = BENCH_PARSE("cluster", "frame round trips of a master and stub nodes", opts, argc, argv);
     if (pr)
@@ -144,48 +241,38 @@ int bench_cluster(int argc, char **argv)
                       i ? "," : "", i);
     snprintf(json + n, sizeof json - (size_t)n, "]}");
     static cluster_config cfg;
+    static bench_keys keys;
     char err[512], ep[256];
-    if (cluster_config_parse(json, strlen(json), "(bench)", &cfg, err, sizeof err)) {
+    if (cluster_config_parse(json, strlen(json), "(bench)", &cfg, err, sizeof err) ||
+        bench_keys_make(&keys, &cfg, app, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         return 1;
     }
     char ipc[128];
     snprintf(ipc, sizeof ipc, "ipc:///tmp/cavelight-bench-%d", (int)getpid());
     int use_ipc = strcmp(transport, "ipc") == 0;
-    cluster_master_desc md = {.config = &cfg, .quiet = 1, .bind = use_ipc ? ipc : NULL};
+    cluster_master_desc md = {.config = &cfg, .quiet = 1, .bind = use_ipc ? ipc : NULL, .schema = &keys.schema};
     cluster_master *m = cluster_master_create(&md, err, sizeof err);
     if (!m) {
         fprintf(stderr, "%s\n", err);
         return 1;
     }
+    if (keys.app)
+        app_host_bind(keys.app, cluster_master_params(m), cluster_master_params(m), &keys.pose);
     cluster_master_endpoint(m, ep, sizeof ep);
     static volatile sig_atomic_t stop;
     static node_thread th[CLUSTER_MAX_NODES];
     for (int i = 0; i < nodes; i++) {
         snprintf(th[i].name, sizeof th[i].name, "n%d", i);
         th[i].d = (cluster_node_desc){.config = &cfg, .name = th[i].name, .endpoint = ep,
-                                      .render = CLUSTER_RENDER_NONE, .output = -1, .quiet = 1, .stop = &stop};
+                                      .render = CLUSTER_RENDER_NONE, .output = -1, .quiet = 1, .stop = &stop,
+                                      .app = app};
         pthread_create(&th[i].t, NULL, node_main, &th[i]);
     }
     int live = cluster_master_wait_nodes(m, nodes, 10000);
     params_store *p = cluster_master_params(m);
-    double *rt = malloc(sizeof *rt * (size_t)frames);
-    size_t head_bytes = 0;
-    int incomplete = 0;
-    for (int f = -100; f < frames; f++) {
-        /* A head-tracked frame: the head pose and the time change, nothing else. */
-        float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.1f * sinf(f * 0.01f), 1.7f, 0, 1};
-        params_set_mat4(p, PARAMS_HEAD, head);
-        params_set_f64(p, PARAMS_TIME, f / 60.0);
-        cluster_frame_result r;
-        if (cluster_master_frame(m, &r) != 0)
-            break;
-        incomplete += r.ready != nodes;
-        if (f >= 0) {
-            rt[f] = r.round_trip_ms;
-            head_bytes = r.frame_bytes;
-        }
-    }
+    bench_run b = {.frames = frames, .nodes = nodes, .rt = malloc(sizeof *b.rt * (size_t)frames)};
+    run_frames(m, &keys, &b);
     static uint8_t snap[PARAMS_ENCODED_MAX], msg[WIRE_MAX_MESSAGE];
     wire_msg sm = {.type = WIRE_SNAPSHOT, .version = p->version, .params = snap};
     sm.params_len = params_encode_snapshot(p, snap, sizeof snap);
@@ -196,22 +283,29 @@ int bench_cluster(int argc, char **argv)
     for (int i = 0; i < nodes; i++)
         pthread_join(th[i].t, NULL);
     cluster_master_destroy(m);
+    app_host_destroy(keys.app);
+    scene_free(&keys.sc);
 
     double tcp_med = 0, tcp_p99 = 0;
-    if (tcp_ping_pong((int)head_bytes, frames, &tcp_med, &tcp_p99) != 0)
+    if (tcp_ping_pong((int)b.head_bytes, frames, &tcp_med, &tcp_p99) != 0)
         fprintf(stderr, "cavelight-bench cluster: raw TCP baseline failed\n");
-    double med = pct(rt, frames, 0.5), p99 = pct(rt, frames, 0.99);
+    double med = pct(b.rt, frames, 0.5), p99 = pct(b.rt, frames, 0.99);
     if (use_ipc)
         unlink(ipc + 6);
+    size_t extra = b.frame_bytes - b.head_bytes;
     printf("{\"bench\": \"cluster\", \"transport\": \"%s\", \"nodes\": %d, \"nodes_live\": %d, \"frames\": %d, \"incomplete_frames\": %d, "
            "\"desyncs\": %llu, \"round_trip_ms\": {\"median\": %.4f, \"p99\": %.4f}, "
            "\"tcp_ping_pong_ms\": {\"median\": %.4f, \"p99\": %.4f, \"bytes\": %zu}, "
            "\"round_trip_over_tcp\": %.2f, \"bytes_per_frame_head_tracked\": %zu, "
-           "\"bytes_per_frame_all_nodes\": %zu, \"snapshot_bytes\": %zu}\n",
-           use_ipc ? "ipc" : "tcp", nodes, live, frames, incomplete, (unsigned long long)st.desyncs, med, p99, tcp_med, tcp_p99, head_bytes,
-           tcp_med > 0 ? med / tcp_med : 0, head_bytes, head_bytes * (size_t)nodes, snap_bytes);
-    free(rt);
-    return incomplete || live != nodes ? 1 : 0;
+           "\"bytes_per_frame_all_nodes\": %zu, \"snapshot_bytes\": %zu, \"app\": \"%s\", "
+           "\"bytes_per_frame\": %zu, \"app_keys_changed_per_frame\": %d, \"app_value_bytes\": %zu, "
+           "\"app_key_overhead_bytes\": %.2f}\n",
+           use_ipc ? "ipc" : "tcp", nodes, live, frames, b.incomplete, (unsigned long long)st.desyncs, med, p99, tcp_med,
+           tcp_p99, b.head_bytes, tcp_med > 0 ? med / tcp_med : 0, b.head_bytes, b.head_bytes * (size_t)nodes, snap_bytes,
+           app ? app : "", b.frame_bytes, b.changed_keys, b.value_bytes,
+           b.changed_keys ? (double)(extra - b.value_bytes) / b.changed_keys : 0.0);
+    free(b.rt);
+    return b.incomplete || live != nodes ? 1 : 0;
 }
 #else
 int bench_cluster(int argc, char **argv)

@@ -11,6 +11,7 @@ static const struct {
 } benches[] = {
     {"lpv", bench_lpv}, {"cluster", bench_cluster}, {"frame", bench_frame},
     {"input", bench_input}, {"accuracy", bench_accuracy}, {"reference", bench_reference},
+    {"move", bench_move},
 };
 enum { BENCH_COUNT = sizeof benches / sizeof benches[0] };
 
@@ -41,8 +42,8 @@ int main(int argc, char **argv)
             if (strcmp(argv[1], benches[i].name) == 0)
                 return benches[i].run(argc - 1, argv + 1);
     if (argc < 2) {
-        fprintf(stderr, "cavelight-bench: name a benchmark: lpv, cluster, frame, input, accuracy or "
-                "reference (see --help)\n");
+        fprintf(stderr, "cavelight-bench: name a benchmark: lpv, cluster, frame, input, accuracy, "
+                "reference or move (see --help)\n");
         return 2;
     }
     const char *names[BENCH_COUNT];

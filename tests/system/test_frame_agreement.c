@@ -12,7 +12,9 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "app/session_keys.h"
 #include "gi/gi_settings.h"
+#include "scene/scene_load.h"
 
 #include "cluster_client.h"
 #include "session.h"
@@ -50,7 +52,17 @@ static void cluster_node_frame(const char *scene_name, frame_params *out)
     if (!s)
         fail_msg("%s", err);
     assert_int_equal(cluster_master_endpoint(session_master(s), endpoint, sizeof endpoint), 0);
-    cluster_client_desc cd = {.config = &cfg, .name = "n", .endpoint = endpoint, .quiet = 1};
+    /* A node's keys: the built-in ones and the scene's objects, as cluster_node_run() has. */
+    static params_schema schema;
+    static scene_keys objects;
+    scene sc;
+    scene_load_desc sld;
+    cluster_config_scene_desc(&cfg, &sld);
+    assert_int_equal(scene_load_with(scene_name, &sld, &sc, err, sizeof err), 0);
+    gi_params_schema(&schema);
+    assert_int_equal(session_keys_add(&schema, &sc, &objects, NULL, err, sizeof err), 0);
+    scene_free(&sc);
+    cluster_client_desc cd = {.config = &cfg, .name = "n", .endpoint = endpoint, .quiet = 1, .schema = &schema};
     cluster_client *c = cluster_client_create(&cd, err, sizeof err);
     if (!c)
         fail_msg("%s", err);

@@ -26,6 +26,7 @@
 #include "lpv/lpv_converge.h"
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_inject.h"
+#include "lpv/lpv_objects.h"
 #include "lpv/lpv_receive.h"
 #include "lpv/lpv_transfer.h"
 #include "vpl/vpl_source.h"
@@ -35,7 +36,11 @@ struct gi_ilpv {
     const scene *scene;
     ilpv_settings settings;  /* backend resolved */
     lattice_desc lattice;
-    lpv_blockers blockers;   /* built once from the scene (lpv_geometry.h) */
+    lpv_blockers blockers;   /* from the scene, following its objects (lpv_objects.h) */
+    lpv_objects objects;
+    ilpv_gl *gl_backend;     /* the GL backend's, to upload moved blockers; NULL: CPU */
+    lpv_objects_stats moved; /* the last objects() call's */
+    double objects_ms;
     ilpv driver;             /* the frame's sequence, on its backend */
     lpv_converge converge;
     uint64_t checksum;       /* of the last computed result */
@@ -92,6 +97,7 @@ static int make_driver(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
         ilpv_gl *g = ilpv_gl_create(r->gl, &r->lattice, &r->blockers, tiles, err, errlen);
         if (!g)
             return -1;
+        r->gl_backend = g;
         b = ilpv_gl_backend(g);
     } else {
         ilpv_cpu *c = ilpv_cpu_create(&r->lattice, &r->blockers, r->pool);
@@ -118,8 +124,9 @@ static int init(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
                               errlen) != 0)
         return -1;
     double threshold = d->no_reuse ? -1.0 : r->settings.converge_threshold;
-    /* Static scene: the blockers are built once, here. */
+    /* The blockers of the scene as loaded; objects() follows what moves. */
     if (lpv_blockers_init(&r->blockers, r->lattice.n) != 0 || build_emitters(r) != 0 ||
+        lpv_objects_init(&r->objects, &r->blockers, &r->lattice, s) != 0 ||
         lpv_converge_init(&r->converge, r->lattice.n, threshold) != 0 ||
         !(r->pool = workpool_create(d->threads)) ||
         !(r->scratch = malloc(lattice_cell_count(&r->lattice) * 4 * sizeof(float)))) {
@@ -127,8 +134,6 @@ static int init(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
                  r->lattice.n[0], r->lattice.n[1], r->lattice.n[2]);
         return -1;
     }
-    lpv_geometry_add_triangles(&r->blockers, &r->lattice, s->positions, 3 * s->triangle_count,
-                               NULL, s->triangle_count, NULL);
     if (make_driver(r, d, err, errlen) != 0)
         return -1;
     for (int c = 0; c < 3; c++)
@@ -148,6 +153,7 @@ static void release(gi_ilpv *r)
     if (r->converge.previous.cells)
         lpv_converge_free(&r->converge);
     lpv_blockers_free(&r->blockers);
+    lpv_objects_free(&r->objects);
     free(r->emitters);
     free(r->vpls);
     free(r->scratch);
@@ -215,6 +221,20 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     r->propagate_ms = clock_now_ms() - t1;
     r->frames++;
     return r->checksum;
+}
+
+/* Moved objects block light where they are now: their cells are redone (lpv_objects.h),
+ * the GL backend gets the blockers again, and the next frame is computed. */
+static void objects(void *state, const gi_objects *o)
+{
+    gi_ilpv *r = state;
+    double t0 = clock_now_ms();
+    lpv_objects_update(&r->objects, &r->blockers, &r->lattice, r->scene, o->model, o->shown, o->moved,
+                       &r->moved);
+    if (r->gl_backend && r->moved.cells_redone)
+        ilpv_gl_update_blockers(r->gl_backend, &r->blockers);
+    lpv_converge_forget(&r->converge);
+    r->objects_ms = clock_now_ms() - t0;
 }
 
 static int reuse(void *state, const frame_params *p)
@@ -319,6 +339,8 @@ static void stats(const void *state, gi_stats *out)
         {"skipped", r->converge.skipped},
         {"frames_skipped", (double)r->converge.frames_skipped},
         {"residual", r->converge.residual},
+        {"objects_ms", r->objects_ms},
+        {"objects_cells", (double)r->moved.cells_redone},
     };
     out->figure_count = (int)(sizeof figures / sizeof figures[0]);
     memcpy(out->figure, figures, sizeof figures);
@@ -333,4 +355,5 @@ const gi_method gi_ilpv_method = {
     .frame = frame,
     .eye_bind = eye_bind,
     .stats = stats,
+    .objects = objects,
 };

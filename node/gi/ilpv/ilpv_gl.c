@@ -71,6 +71,15 @@ static GLuint blockers_texture(const gl_functions *gl, const int n[3], const lpv
     return t;
 }
 
+void ilpv_gl_update_blockers(ilpv_gl *g, const lpv_blockers *b)
+{
+    const gl_functions *gl = g->gl;
+    const int *n = g->lattice.n;
+    gl->BindTexture(GL_TEXTURE_3D, g->blockers);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, n[0], n[1], n[2], GL_RED_INTEGER, GL_UNSIGNED_INT, b->mask);
+}
+
 static void dispatch(ilpv_gl *g)
 {
     const gl_functions *gl = g->gl;

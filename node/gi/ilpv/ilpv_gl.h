@@ -20,6 +20,8 @@ typedef struct ilpv_gl ilpv_gl;
  * with one line in err. */
 ilpv_gl *ilpv_gl_create(const gl_functions *gl, const lattice_desc *lat,
                         const lpv_blockers *blockers, int tiles, char *err, size_t errlen);
+/* The blockers again (objects moved), as create() took them. */
+void ilpv_gl_update_blockers(ilpv_gl *g, const lpv_blockers *blockers);
 /* As a backend; ilpv_free() destroys it. */
 ilpv_backend ilpv_gl_backend(ilpv_gl *g);
 

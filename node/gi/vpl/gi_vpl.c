@@ -65,8 +65,7 @@ typedef struct gi_vpl {
     uint64_t checksum;
     float near, far;         /* shadow maps: clip plane, distance stored as depth 1 */
 
-    GLuint prog_shadow, vao, vbo;
-    GLsizei vertices;
+    GLuint prog_shadow;
     struct { GLint view_projection, position, far; } loc;
     GLuint vpl_tex;          /* 3 x VPL_COUNT_MAX RGBA32F: position + area, normal, flux */
     float upload[VPL_COUNT_MAX * 12];
@@ -154,10 +153,6 @@ static void release(gi_vpl *v)
     if (v->list_tex)
         gl->DeleteTextures(1, &v->list_tex);
     vpl_clusters_free(&v->lists);
-    if (v->vbo)
-        gl->DeleteBuffers(1, &v->vbo);
-    if (v->vao)
-        gl->DeleteVertexArrays(1, &v->vao);
     if (v->prog_shadow)
         gl->DeleteProgram(v->prog_shadow);
     for (int i = 0; i < 3; i++)
@@ -201,17 +196,6 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     v->loc.view_projection = gl->GetUniformLocation(v->prog_shadow, "u_view_projection");
     v->loc.position = gl->GetUniformLocation(v->prog_shadow, "u_vpl_position");
     v->loc.far = gl->GetUniformLocation(v->prog_shadow, "u_far");
-    /* Positions only: the shadow maps need no material. */
-    v->vertices = (GLsizei)(3 * s->triangle_count);
-    gl->GenVertexArrays(1, &v->vao);
-    gl->BindVertexArray(v->vao);
-    gl->GenBuffers(1, &v->vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, v->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(s->triangle_count * 9 * sizeof(float)),
-                   s->positions, GL_STATIC_DRAW);
-    gl->EnableVertexAttribArray(0);
-    gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
-    gl->BindVertexArray(0);
     v->vpl_tex = gltools_texture2d(gl, GL_RGBA32F, 3, VPL_COUNT_MAX, GL_NEAREST);
     gl->GenFramebuffers(1, &v->shadow_fbo);
     return 0;
@@ -304,7 +288,7 @@ static int face_behind(const float n[3], int f)
 }
 
 /* 0, or -1 when there is nothing to render or no room. */
-static int render_shadows(gi_vpl *v)
+static int render_shadows(gi_vpl *v, const scene_gl *mesh)
 {
     const gl_functions *gl = v->gl;
     if (v->count == 0 || reserve_shadow(v, v->count) != 0)
@@ -312,7 +296,6 @@ static int render_shadows(gi_vpl *v)
     int per_layer = v->tiles * v->tiles, layer = -1;
     const float one = 1.0f;
     gl->UseProgram(v->prog_shadow);
-    gl->BindVertexArray(v->vao);
     gl->BindFramebuffer(GL_FRAMEBUFFER, v->shadow_fbo);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
@@ -334,9 +317,8 @@ static int render_shadows(gi_vpl *v)
         face_view_projection(v, f, l->position, vp);
         gl->UniformMatrix4fv(v->loc.view_projection, 1, GL_FALSE, vp);
         gl->Uniform3fv(v->loc.position, 1, l->position);
-        gl->DrawArrays(GL_TRIANGLES, 0, v->vertices);
+        scene_gl_draw_geometry(mesh, v->prog_shadow); /* where the frame's objects are */
     }
-    gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     return 0;
 }
@@ -462,7 +444,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     if (v->ism)
         v->have_maps = vpl_ism_render(v->ism, v->vpl_tex, v->count) == 0;
     else
-        v->have_maps = render_shadows(v) == 0;
+        v->have_maps = render_shadows(v, rsm->mesh) == 0;
     v->gl->Finish();
     v->select_ms = t1 - t0;
     v->shadow_ms = clock_now_ms() - t1;
