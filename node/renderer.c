@@ -434,12 +434,8 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     r->eye_index = 0;
     const frame_params *p = &r->frame;
     follow_frame(r, p);
-<<<<<<< HEAD
     follow_ao(r, p);
-    if (gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
-=======
     if (!objects_moved(r) && gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
->>>>>>> app
         r->timings.rsm_ms = 0;
         gi_stats_get(r->gi, &r->timings.gi);
         r->timings.frame_host_ms = clock_now_ms() - t0;
