@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "base/mat4.h"
+#include "frame/frame_view.h"
 #include "base/xalloc.h"
 #include "scene_rt.h"
 
@@ -85,4 +86,11 @@ int view_samples_cast(view_samples *v, const float viewer[3], int count, const f
     }
     *samples = v->sample;
     return n;
+}
+
+void view_samples_viewer(const frame_params *p, const float head_to_eye[3], float out[3])
+{
+    float centre[3];
+    frame_view_head_centre(p->head, head_to_eye, centre);
+    mat4_transform_point(p->navigation, centre, out);
 }

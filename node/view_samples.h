@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+#include "frame/frame_params.h"
 #include "scene/scene.h"
 
 enum { VIEW_SAMPLES_MAX = 1024 };
@@ -28,6 +29,8 @@ view_samples *view_samples_create(const scene *s, int count, char *err, size_t e
 void view_samples_destroy(view_samples *v);
 /* Its BVH, for other rays of the same scene (read-only, any thread). */
 const struct scene_rt *view_samples_rt(const view_samples *v);
+/* The viewer of frame p: navigation x frame_view_head_centre() for the eyes' head_to_eye. */
+void view_samples_viewer(const frame_params *p, const float head_to_eye[3], float out[3]);
 /* Casts the first count rays (at most the created count) from viewer; *samples gets the
  * hits (6 floats each: point, unit normal turned to the viewer), valid until the next
  * call. Returns how many rays hit. */

@@ -22,6 +22,28 @@
 #include "renderer.h"
 #include "scene/scene.h"
 
+/* The built-in scenes' white. */
+#define STAB_WHITE_ALBEDO 0.75
+
+/* Closed-form radiance of a white (STAB_WHITE_ALBEDO) Lambertian surface with normal n at point x
+ * lit by spot l, unshadowed: albedo/pi I spot cos / r^2. */
+static inline double stab_spot_radiance(const frame_light *l, const float x[3], const float n[3])
+{
+    double d[3], r2 = 0, axis = 0, cos_i = 0;
+    for (int a = 0; a < 3; a++) {
+        d[a] = l->position[a] - x[a];
+        r2 += d[a] * d[a];
+    }
+    double r = sqrt(r2);
+    for (int a = 0; a < 3; a++) {
+        axis -= d[a] / r * l->direction[a];
+        cos_i += d[a] / r * n[a];
+    }
+    double spot = (axis - cos(l->outer_angle)) / (cos(l->inner_angle) - cos(l->outer_angle));
+    spot = spot < 0 ? 0 : spot > 1 ? 1 : spot;
+    return STAB_WHITE_ALBEDO / 3.14159265358979323846 * l->intensity * spot * cos_i / r2;
+}
+
 typedef struct stab_gl {
     glctx *ctx;
     renderer *r;

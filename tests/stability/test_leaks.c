@@ -48,7 +48,7 @@
 enum { W = 160, H = 120, FRAMES = 31, REF_SAMPLES = 8 };
 
 static const double PI = 3.14159265358979323846;
-static const float ALBEDO = 0.75f;
+static const float ALBEDO = (float)STAB_WHITE_ALBEDO;
 
 typedef struct leak_view {
     scene s;
@@ -124,25 +124,6 @@ static double image_max(const float *img)
     return m;
 }
 
-/* Closed-form radiance of a white Lambertian surface with normal n at point x lit by the
- * frame's first spot, unshadowed: albedo/pi I spot cos / r^2. */
-static double lit_radiance(const frame_light *l, const float x[3], const float n[3])
-{
-    double d[3], r2 = 0, axis = 0, cos_i = 0;
-    for (int a = 0; a < 3; a++) {
-        d[a] = l->position[a] - x[a];
-        r2 += d[a] * d[a];
-    }
-    double r = sqrt(r2);
-    for (int a = 0; a < 3; a++) {
-        axis -= d[a] / r * l->direction[a];
-        cos_i += d[a] / r * n[a];
-    }
-    double spot = (axis - cos(l->outer_angle)) / (cos(l->inner_angle) - cos(l->outer_angle));
-    spot = spot < 0 ? 0 : spot > 1 ? 1 : spot;
-    return ALBEDO / PI * l->intensity * spot * cos_i / r2;
-}
-
 typedef struct leak_figures {
     double direct_mean, direct_max, indirect_mean; /* over the lit level */
     double ref_direct_max, ref_indirect1_mean;     /* the reference's, same scale */
@@ -178,7 +159,7 @@ static void test_lid(void **state)
     leak_open(&lv, "leak-lid", 1, 1);
     leak_render(&lv);
     const float top[3] = {0, 2, 0}, up[3] = {0, 1, 0};
-    leak_figures f = dark_view("lid", &lv, lit_radiance(&lv.p.lights[0], top, up));
+    leak_figures f = dark_view("lid", &lv, stab_spot_radiance(&lv.p.lights[0], top, up));
     assert_true(f.direct_mean <= 1e-6 && f.direct_max <= 1e-3);
     assert_true(f.indirect_mean <= 1e-4);
     leak_close(&lv);
@@ -205,7 +186,7 @@ static void test_room_under_spot_above(void **state)
     lv.p.light_count = 1;
     leak_render(&lv);
     const float top[3] = {0, 3, 0}, up[3] = {0, 1, 0};
-    leak_figures f = dark_view("room under a spot above it", &lv, lit_radiance(l, top, up));
+    leak_figures f = dark_view("room under a spot above it", &lv, stab_spot_radiance(l, top, up));
     assert_true(f.direct_mean <= 1e-6 && f.direct_max <= 2e-3);
     assert_true(f.indirect_mean <= 1e-4);
     leak_close(&lv);
@@ -224,7 +205,7 @@ static void test_wall(void **state)
     float t = -l->position[1] / l->direction[1];
     for (int a = 0; a < 3; a++)
         aim[a] = l->position[a] + t * l->direction[a];
-    leak_figures f = dark_view("wall", &lv, lit_radiance(l, aim, up));
+    leak_figures f = dark_view("wall", &lv, stab_spot_radiance(l, aim, up));
     /* A line along the wall's foot: the 3x3 filter's texels across the wall see the lit
      * floor, the same plane as the receiver (shade.frag), so it is no wider than the
      * filter's reach, 2 sqrt(2) RSM texels. */

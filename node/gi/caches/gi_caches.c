@@ -9,7 +9,6 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "base/mat4.h"
 #include "base/xalloc.h"
 #include "gi/caches/caches_exact.h"
 #include "gltools.h"
@@ -218,22 +217,14 @@ static void destroy(void *state)
     free(state);
 }
 
-/* Where the importance sees from: the head's eye centre in the world. */
-static void viewer(const gi_caches *c, const frame_params *p, float out[3])
-{
-    float centre[3];
-    frame_view_head_centre(p->head, c->head_to_eye, centre);
-    mat4_transform_point(p->navigation, centre, out);
-}
-
 static int reuse(void *state, const frame_params *p)
 {
     gi_caches *c = state;
     caches_settings now;
     caches_settings_get(p, &now);
     float eye[3], before[3];
-    viewer(c, p, eye);
-    viewer(c, &c->last, before);
+    view_samples_viewer(p, c->head_to_eye, eye);
+    view_samples_viewer(&c->last, c->head_to_eye, before);
     int same = c->have_last && !c->never_reuse && lpv_converge_inputs_equal(p, &c->last) &&
                memcmp(&now, &c->settings, sizeof now) == 0 &&
                (now.selection == CACHES_SELECT_ALL || memcmp(eye, before, sizeof eye) == 0);
@@ -290,7 +281,7 @@ static int upload_samples(gi_caches *c, const frame_params *p)
 {
     float eye[3], v[VIEW_SAMPLES_MAX * 8];
     const float *s;
-    viewer(c, p, eye);
+    view_samples_viewer(p, c->head_to_eye, eye);
     int n = view_samples_cast(c->viewer, eye, c->settings.view_samples, &s);
     for (int i = 0; i < n; i++) {
         memcpy(v + 8 * i, s + 6 * i, 3 * sizeof *v);

@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "base/mat4.h"
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "vpl/vpl_cluster.h"
@@ -383,14 +382,6 @@ static void destroy(void *state)
     free(state);
 }
 
-/* Where the view rule sees from: the head's eye centre in the world. */
-static void viewer(const gi_vpl *v, const frame_params *p, float out[3])
-{
-    float centre[3];
-    frame_view_head_centre(p->head, v->head_to_eye, centre);
-    mat4_transform_point(p->navigation, centre, out);
-}
-
 /* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
  * only (lpv_converge_inputs_equal() and vpl_settings), and under the view rule on the
  * viewer: a frame that changes none of them keeps last frame's (the flux and regular
@@ -401,8 +392,8 @@ static int reuse(void *state, const frame_params *p)
     vpl_settings now;
     vpl_settings_get(p, &now);
     float eye[3], before[3];
-    viewer(v, p, eye);
-    viewer(v, &v->last, before);
+    view_samples_viewer(p, v->head_to_eye, eye);
+    view_samples_viewer(&v->last, v->head_to_eye, before);
     int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
                memcmp(&now, &v->settings, sizeof now) == 0 &&
                (now.selection != VPL_SELECT_VIEW || memcmp(eye, before, sizeof eye) == 0);
@@ -423,7 +414,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     if (st->selection == VPL_SELECT_VIEW && candidates) {
         float eye[3];
         const float *samples;
-        viewer(v, p, eye);
+        view_samples_viewer(p, v->head_to_eye, eye);
         int n = view_samples_cast(v->viewer, eye, VPL_VIEW_SAMPLES, &samples);
         size_t stride = (candidates + VIEW_TERM_EVALS - 1) / VIEW_TERM_EVALS;
         vpl_view_term(v->candidates, candidates, texels, samples, n, stride, v->view);
