@@ -154,6 +154,11 @@ double ldm_gl_build(ldm_gl *m)
     gl->Disable(GL_CULL_FACE);
     gl->UseProgram(m->prog);
     set_uniforms(m, m->prog);
+    /* The maps hold the scene as loaded: scene.vert's object model is the identity here. */
+    static const float identity4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    static const float identity3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    gl->UniformMatrix4fv(gl->GetUniformLocation(m->prog, "u_model"), 1, GL_FALSE, identity4);
+    gl->UniformMatrix3fv(gl->GetUniformLocation(m->prog, "u_normal_model"), 1, GL_FALSE, identity3);
     GLint map_loc = gl->GetUniformLocation(m->prog, "u_ldm_map");
     GLint vp_loc = gl->GetUniformLocation(m->prog, "u_view_projection");
     gl->BindVertexArray(m->vao);

@@ -38,11 +38,13 @@
 #include <unistd.h>
 #include <zmq.h>
 
+#include "app/session_keys.h"
 #include "base/clock.h"
 #include "cluster/cluster_config.h"
 #include "cluster/cluster_keys.h"
 #include "cluster/params.h"
 #include "gi/gi_settings.h"
+#include "scene/scene_load.h"
 #include "cluster/wire.h"
 
 typedef struct stranger {
@@ -98,13 +100,32 @@ static void send_wire(void *sock, const wire_msg *m)
     zmq_send(sock, buf, len, ZMQ_DONTWAIT);
 }
 
-static void hello(stranger *s, void *sock, int bad_hash)
+/* The node's schema: the built-in keys and the config's scene's objects (no application),
+ * so that its HELLO's hash is a real node's. */
+static const params_schema *node_schema(const stranger *s)
 {
     static params_schema schema;
-    if (!schema.count)
-        gi_params_schema(&schema);
+    static scene sc;
+    static scene_keys objects;
+    char err[256];
+    if (schema.count)
+        return &schema;
+    scene_load_desc sd;
+    cluster_config_scene_desc(&s->cfg, &sd);
+    gi_params_schema(&schema);
+    if (scene_load_with(s->cfg.scene[0] ? s->cfg.scene : "default", &sd, &sc, err, sizeof err) != 0 ||
+        session_keys_add(&schema, &sc, &objects, NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "cluster_stranger: %s\n", err);
+        exit(1);
+    }
+    return &schema;
+}
+
+static void hello(stranger *s, void *sock, int bad_hash)
+{
+    const params_schema *schema = node_schema(s);
     wire_msg m = {.type = WIRE_HELLO,
-                  .config_hash = params_session_hash(s->cfg.hash, &schema) ^ (bad_hash ? 1u : 0u)};
+                  .config_hash = params_session_hash(s->cfg.hash, schema) ^ (bad_hash ? 1u : 0u)};
     snprintf(m.name, sizeof m.name, "%s", s->victim);
     send_wire(sock, &m);
 }

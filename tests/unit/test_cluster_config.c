@@ -183,7 +183,7 @@ static void test_unknown_keys(void **state)
     assert_non_null(strstr(l, "field master.conect: unknown key \"conect\" (did you mean \"connect\"?)"));
     assert_non_null(strstr(l, "field observer.tracker_to_cave.scael: unknown key \"scael\" (did you mean \"scale\"?)"));
     assert_non_null(strstr(l, "field screens[0].resolution: unknown key \"resolution\" (keys here: name, "));
-    assert_non_null(strstr(l, "field zzzzzz: unknown key \"zzzzzz\" (keys here: name, scene, launch, scene_transform, master"));
+    assert_non_null(strstr(l, "field zzzzzz: unknown key \"zzzzzz\" (keys here: name, scene, app, launch, scene_transform, master"));
 }
 
 /* The display keys: a node's window (monitor by index or name, placement, vsync, swap group)
