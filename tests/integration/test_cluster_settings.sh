@@ -4,7 +4,8 @@
 # on its command line renders each screen as a standalone node with the same options and
 # that screen's view does (the same checksum, the same pixels), both nodes with equal
 # checksums in every frame; first the vpl method's fastest chart rows (imperfect shadow
-# maps, 4 x 4 interleaving), then ILPV with a fitted lattice, lambda and steps. The same
+# maps, 4 x 4 interleaving), then ILPV with a fitted lattice, lambda and steps, on either
+# transport (--lpv-transport). The same
 # settings from the config's "settings" give the same frames. --budget-ms measures every
 # node and takes one choice for all. And the master refuses a bad value or name in one
 # line, before any node starts.
@@ -72,6 +73,10 @@ done
 
 same_as_standalone vpl --gi vpl --vpl-count 64 --vpl-visibility ism --vpl-interleave 4
 same_as_standalone ilpv --gi ilpv --lattice-cells 4096 --lambda 0.5 --steps 4
+# The thesis's transport: one value on every node, not the beams' frames.
+same_as_standalone paper --gi ilpv --lpv-transport paper --lattice-cells 4096 --lambda 0.5 --steps 4
+[ "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/paper.json")" != \
+  "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/ilpv.json")" ] || fail "--lpv-transport paper gives beams' frames"
 
 # The same ILPV settings from the config's "settings": the same frames.
 SETTINGS='"rsm": 64, "gi": "ilpv", "lattice-cells": 4096, "lambda": 0.5, "steps": 4' \
