@@ -2,10 +2,11 @@
 # Speed against accuracy of the GI methods (ILPV, vpl, caches, ldm) on the built-in chart
 # scenes (default room, corridor, doorway, courtyard, arcades, street block) and any glTF
 # file given with --scene: sweeps lattice size, steps per frame, lambda_incr, the CPU and GL
-# backends and the classic accumulating LPV, the vpl method's VPL counts, the caches
-# method's VALs and occlusion and the ldm method's maps, against a
-# path-traced (Embree) reference, every scene with the same settings; and the layered depth
-# maps' ambient occlusion against the screen-space baseline at several distance limits. Accuracy is the
+# backends, the classic accumulating LPV and both LPV transports (beams, ours; paper, the
+# thesis's), the vpl method's VPL counts, the caches method's VALs and occlusion and the
+# ldm method's maps, against a path-traced (Embree) reference, every scene with the same
+# settings; and the layered depth maps' ambient occlusion against the screen-space baseline
+# at several distance limits. Accuracy is the
 # indirect image's relative RMSE and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
@@ -86,10 +87,19 @@ for budget in 5 10 20 40; do
   "$root/build/cavelight-node" --standalone --budget-ms $budget --frames 12 \
     --converge-threshold -1 "${size[@]}" --out "$out/budget_$budget" > /dev/null
 done
+# The thesis's Table 4.2: ms of 8 steps at 32^3 and 64^3, CPU (2 threads) and GL compute.
+echo "chart: steps of both transports" >&2
+for t in paper beams; do
+  for b in cpu gl; do
+    for res in 32 64; do
+      "$bench" lpv --res $res --steps 8 --threads 2 --naive-repeats 1 --transport $t --backend $b
+    done
+  done
+done > "$out/steps.json"
 echo "chart: measured in $((SECONDS - start)) s" >&2
 
 # Charts. Columns of sweep_*.csv: see the header line (11 propagate_ms, 14 frame_ms,
-# 16 rmse_rel_indirect, 24 mae_self32, 25 pareto); of vpl_*.csv (2 vpl_count, 7 gi_ms,
+# 16 rmse_rel_indirect, 24 mae_self32, 25 pareto, 26 transport); of vpl_*.csv (2 vpl_count, 7 gi_ms,
 # 8 frame_ms, 9 rmse_rel_indirect, 16 visibility, 17 ism_size, 18 ism_points, 19
 # interleave, 28 selection); of caches_*.csv (2 vals, 3 selection, 4 occlusion, 13 gi_ms,
 # 14 frame_ms, 15 rmse_rel_indirect); of ldm_*.csv (2 directions, 3 resolution, 9 gi_ms,
@@ -111,7 +121,9 @@ set logscale x
 set xlabel "GI ms per frame (median): ILPV propagation, vpl selection + shadow maps + gather, caches stages, ldm all"
 set ylabel "indirect relative RMSE vs the path-traced one-bounce image"
 set logscale y
-sel(b,m,l) = "< awk -F, 'NR>1 && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
+selt(t,b,m,l) = "< awk -F, 'NR>1 && \$26==\"" . t . "\" && \$2==\"" . b . "\" && \$3==\"" . m . "\" && (\"" . l . "\"==\"any\" || \$9==\"" . l . "\")' $csv"
+sel(b,m,l) = selt("beams",b,m,l)
+selp(b,m,l) = selt("paper",b,m,l)
 front = "< awk -F, 'NR>1 && \$25==1' $csv | sort -t, -k11,11g"
 vis(v) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"flux\" && \$16==\"" . v . "\"' $vcsv"
 rule(r) = "< awk -F, 'NR>1 && \$19==0 && \$28==\"" . r . "\"' $vcsv"
@@ -129,6 +141,11 @@ plot front using 11:16 with lines lw 2 lc rgb "black" title "Pareto front", \
      sel("gl","incremental","0") using 11:16 with points pt 6 ps 1.2 lc rgb "#999999" title "GL ILPV lambda 0", \
      sel("gl","incremental","0.8") using 11:16 with points pt 6 lc rgb "#e76f51" title "GL ILPV lambda 0.8", \
      sel("gl","classic","any") using 11:16 with points pt 4 lc rgb "#264653" title "GL classic LPV", \
+     selp("cpu","incremental","0") using 11:16 with points pt 1 ps 1.4 lc rgb "#999999" title "paper CPU lambda 0 (the thesis's plain LPV)", \
+     selp("cpu","incremental","0.8") using 11:16 with points pt 1 ps 1.4 lc rgb "#e76f51" title "paper CPU lambda 0.8", \
+     selp("cpu","incremental","0.9") using 11:16 with points pt 1 ps 1.4 lc rgb "#9b2226" title "paper CPU lambda 0.9", \
+     selp("cpu","classic","any") using 11:16 with points pt 8 ps 1.2 lc rgb "#264653" title "paper CPU classic", \
+     selp("gl","incremental","any") using 11:16 with points pt 10 ps 1.2 lc rgb "#457b9d" title "paper GL (all)", \
      vis("exact") using 7:9 with linespoints pt 9 ps 1.3 lc rgb "#6a4c93" title "vpl, exact maps (labels: VPLs)", \
      vis("ism") using 7:9 with points pt 11 ps 1.3 lc rgb "#1d7874" title "vpl, ISM pull-push (labels: VPLs/size/points)", \
      vis("ism-splat") using 7:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
@@ -152,6 +169,9 @@ plot sel("cpu","incremental","0") using 14:16 with points pt 7 lc rgb "#999999" 
      sel("cpu","incremental","0.9") using 14:16 with points pt 7 lc rgb "#9b2226" title "ILPV lambda 0.9", \
      sel("cpu","classic","any") using 14:16 with points pt 5 lc rgb "#264653" title "classic LPV", \
      sel("gl","incremental","any") using 14:16 with points pt 6 lc rgb "#457b9d" title "GL ILPV (all)", \
+     selp("cpu","incremental","0") using 14:16 with points pt 1 ps 1.4 lc rgb "#999999" title "paper lambda 0", \
+     selp("cpu","incremental","0.8") using 14:16 with points pt 1 ps 1.4 lc rgb "#e76f51" title "paper lambda 0.8", \
+     selp("cpu","classic","any") using 14:16 with points pt 8 ps 1.2 lc rgb "#264653" title "paper classic", \
      vis("exact") using 8:9 with linespoints pt 9 ps 1.3 lc rgb "#6a4c93" title "vpl, exact maps", \
      vis("ism") using 8:9 with points pt 11 ps 1.3 lc rgb "#1d7874" title "vpl, ISM pull-push", \
      vis("ism-splat") using 8:9 with points pt 13 ps 1.3 lc rgb "#b5838d" title "vpl, ISM splats", \
@@ -175,11 +195,12 @@ unset logscale y
 set logscale x 2
 set xlabel "propagation steps per frame"
 set ylabel "MAE of the displayed image vs 32 plain steps"
-set title "$scene: the paper's Fig. 2 (CPU, 32 cells along the longest axis)"
+set title "$scene: the paper's Fig. 2 (CPU, 32 cells along the longest axis), both transports"
 lat = 32
-sl(l) = "< awk -F, 'NR>1 && \$2==\"cpu\" && \$3==\"incremental\" && \$4==" . lat . " && \$9==\"" . l . "\"' $csv"
+sl(t,l) = "< awk -F, 'NR>1 && \$26==\"" . t . "\" && \$2==\"cpu\" && \$3==\"incremental\" && \$4==" . lat . " && \$9==\"" . l . "\"' $csv"
 set output "$out/self32_$scene.png"
-plot for [l in "0 0.5 0.8 0.9"] sl(l) using 8:24 with linespoints pt 7 title "lambda ".l
+plot for [l in "0 0.5 0.8 0.9"] sl("beams",l) using 8:24 with linespoints pt 7 title "beams, lambda ".l, \
+     for [l in "0 0.5 0.8 0.9"] sl("paper",l) using 8:24 with linespoints dt 2 pt 1 title "paper, lambda ".l
 EOF
   gnuplot <<EOF
 set datafile separator ","

@@ -70,7 +70,7 @@ const lpv_paper_transfer *lpv_paper_transfer_default(void);
  * prints sigma^(d_mean), which tends to 1, everything absorbed, as cells shrink). */
 float lpv_paper_step_probability(float sigma_per_metre, float cell);
 
-/* The GL shader's body (shaders/paper_propagate.comp's @BODY@ line): 26 gather() calls
+/* The GL shader's body (node/gi/ilpv/paper_propagate.comp's @BODY@ line): 26 gather() calls
  * with the offsets, transfer vectors and outscattering fractions as constants. Returns the
  * length written, or 0 when n is too small. */
 size_t lpv_paper_shader_body(const lpv_paper_transfer *t, char *out, size_t n);

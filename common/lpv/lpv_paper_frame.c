@@ -55,6 +55,14 @@ void lpv_paper_merge_run(lpv_paper_merge m, const lpv_volume *history,
     workpool_run(pool, out->n[2], merge_slice, &j);
 }
 
+/* The injection and the two volumes of the merge and the ping-pong. */
+enum { PAPER_VOLUMES = 3 };
+
+double lpv_paper_state_bytes(const lattice_desc *lat)
+{
+    return (double)lattice_cell_count(lat) * PAPER_VOLUMES * LPV_LIGHT_CHANNELS * sizeof(float);
+}
+
 int lpv_paper_init(lpv_paper_lpv *s, const lattice_desc *lat)
 {
     memset(s, 0, sizeof *s);

@@ -15,7 +15,7 @@
  * injection. lambda_incr's range [0, 1) is the caller's (frame_params_sanitize()).
  * lpv_paper_merge_factors() and lpv_paper_history_advance() are the rule, once, for this
  * core and a GL path (which runs the merge with node/gi/ilpv/accumulate.comp and the steps
- * with shaders/paper_propagate.comp). Deterministic: the same bits for any thread count. */
+ * with node/gi/ilpv/paper_propagate.comp). Deterministic: the same bits for any thread count. */
 #ifndef CAVELIGHT_LPV_PAPER_FRAME_H
 #define CAVELIGHT_LPV_PAPER_FRAME_H
 
@@ -59,6 +59,9 @@ void lpv_paper_history_advance(lpv_paper_history *h, double emitted_energy);
 void lpv_paper_merge_run(lpv_paper_merge m, const lpv_volume *history,
                          const lpv_volume *injected, lpv_volume *out, workpool *pool);
 
+/* Bytes of the volumes lpv_paper_init() allocates for this lattice (a GL path holds as
+ * many textures). */
+double lpv_paper_state_bytes(const lattice_desc *lat);
 /* Returns 0, or -1 for a bad lattice or no memory. */
 int lpv_paper_init(lpv_paper_lpv *s, const lattice_desc *lat);
 void lpv_paper_free(lpv_paper_lpv *s);

@@ -3,7 +3,8 @@
  *   accuracy sweep    every (backend, lattice, steps, lambda_incr) of the lists, plus the
  *                     classic accumulating LPV, each run to its steady state: propagation
  *                     and whole-frame ms against the error versus the path-traced
- *                     reference and versus 32 plain steps (the paper's Fig. 2). Accuracy is
+ *                     reference and versus 32 plain steps (the paper's Fig. 2), for each
+ *                     transport of --transports (beams, the thesis's paper). Accuracy is
  *                     the indirect image's relative RMSE against the reference's one-bounce
  *                     image over the pixels that meet geometry; the Pareto front is chosen
  *                     on it. The issue's goal configuration (GOAL_* below, with the frame
@@ -40,6 +41,7 @@ enum { GOAL_LATTICE = 32, GOAL_MAX_STEPS = 4 };
 static const int goal_lattices[3] = {16, 32, 64};
 
 typedef struct sweep_row {
+    lpv_transport transport;
     ilpv_backend_choice backend;
     int classic, lattice, n[3], steps, frames;
     float lambda;
@@ -143,28 +145,29 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
     for (int i = 0; i < n; i++) {
         const sweep_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d," FMT_MS ",%.4f,%.4f,%.4f,"
-                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d\n",
+                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d,%s\n",
                 s->opt.scene, r->backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                 r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
                 r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
                 r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
                 r->indirect.relmse, r->indirect.ssim, r->indirect.best_scale,
                 r->indirect.mae_scaled, r->final.mae, r->final.ssim, r->display_mae, r->self_mae,
-                r->pareto);
+                r->pareto, lpv_transport_names[r->transport]);
     }
 }
 
-static const sweep_row *find_row(const sweep_row *rows, int n, ilpv_backend_choice b,
-                                 int lattice, int classic, int steps, float lambda)
+static const sweep_row *find_row(const sweep_row *rows, int n, lpv_transport t,
+                                 ilpv_backend_choice b, int lattice, int classic, int steps,
+                                 float lambda)
 {
     for (int i = 0; i < n; i++)
-        if (rows[i].backend == b && rows[i].lattice == lattice && rows[i].classic == classic &&
+        if (rows[i].transport == t && rows[i].backend == b && rows[i].lattice == lattice && rows[i].classic == classic &&
             rows[i].steps == steps && fabsf(rows[i].lambda - lambda) < 1e-6f)
             return &rows[i];
     return NULL;
 }
 
-/* The rows of one renderer (backend, lattice, mode): the paper's yardstick (32 plain
+/* The rows of one renderer (transport, backend, lattice, mode): the paper's yardstick (32 plain
  * steps) first, then every steps x lambda (classic: steps only), appended at rows[*n]. */
 typedef struct sweep_run {
     acc_setup *s;
@@ -176,10 +179,12 @@ typedef struct sweep_run {
     uint8_t *display, *self;
 } sweep_run;
 
-static int sweep_renderer(sweep_run *run, ilpv_backend_choice backend, int lattice, int mode,
-                          const double *steps, int ns, const double *lambdas, int nlam)
+static int sweep_renderer(sweep_run *run, lpv_transport transport, ilpv_backend_choice backend,
+                          int lattice, int mode, const double *steps, int ns,
+                          const double *lambdas, int nlam)
 {
-    acc_renderer_desc d = {.backend = backend, .lattice = lattice, .classic = mode};
+    acc_renderer_desc d = {.backend = backend, .lattice = lattice, .classic = mode,
+                           .transport = transport};
     renderer *r = acc_renderer_create(run->s, &d, run->fp);
     if (!r)
         return 1;
@@ -187,20 +192,22 @@ static int sweep_renderer(sweep_run *run, ilpv_backend_choice backend, int latti
     size_t px = (size_t)run->s->opt.width * run->s->opt.height;
     int rc = 0;
     if (!mode) {
-        sweep_row base = {.backend = backend, .lattice = lattice, .steps = SELF_STEPS};
+        sweep_row base = {.transport = transport, .backend = backend, .lattice = lattice,
+                          .steps = SELF_STEPS};
         rc = run_config(run->s, r, run->fp, run->ref, 1, &base, run->self);
     }
     for (int st = 0; st < ns && rc == 0; st++)
         for (int k = 0; k < (mode ? 1 : nlam) && rc == 0; k++) {
             sweep_row *row = &run->rows[run->n++];
-            *row = (sweep_row){.backend = backend, .classic = mode, .lattice = lattice,
+            *row = (sweep_row){.transport = transport, .backend = backend, .classic = mode, .lattice = lattice,
                                .steps = (int)steps[st],
                                .lambda = mode ? 0.0f : (float)lambdas[k]};
             memcpy(row->n, lat->n, sizeof row->n);
             rc = run_config(run->s, r, run->fp, run->ref, run->timing, row, run->display);
             row->self_mae = mode ? NAN : acc_display_mae(run->display, run->self, px);
-            fprintf(stderr, "  %s %s lattice %d steps %d lambda %.2f: %.2f ms, indirect "
-                    "relRMSE %.3f\n", backend == ILPV_BACKEND_GL ? "gl" : "cpu",
+            fprintf(stderr, "  %s %s %s lattice %d steps %d lambda %.2f: %.2f ms, indirect "
+                    "relRMSE %.3f\n", lpv_transport_names[transport],
+                    backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                     mode ? "classic" : "ilpv", lattice, row->steps, row->lambda,
                     row->propagate_ms, row->indirect.rmse_rel);
         }
@@ -224,7 +231,8 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
 {
     const sweep_row *g[3];
     for (int i = 0; i < 3; i++)
-        g[i] = find_row(rows, n, ILPV_BACKEND_CPU, goal_lattices[i], 0, steps, lambda);
+        g[i] = find_row(rows, n, LPV_TRANSPORT_BEAMS, ILPV_BACKEND_CPU, goal_lattices[i], 0,
+                        steps, lambda);
     const sweep_row *at = g[1];
     int never_worse = 1;
     for (int i = 1; i < 3; i++)
@@ -264,6 +272,7 @@ typedef struct sweep_options {
     acc_options o;
     double lattices[MAX_LIST], steps[MAX_LIST], lambdas[MAX_LIST], backends[2];
     int nl, ns, nlam, nb, gl_max_lattice, timing, classic, goal;
+    int transports; /* bit t: transport t */
 } sweep_options;
 
 /* 0, 1 after --help (exit 0), -1 after one line on stderr (exit 2). */
@@ -272,6 +281,8 @@ static int sweep_parse(int argc, char **argv, sweep_options *w)
     *w = (sweep_options){.o = {.scene = "default", .out = "out/chart", .width = 160, .height = 120,
                                .ref_samples = 64},
                          .gl_max_lattice = 32, .timing = 3, .classic = 1, .goal = 1};
+    static const char *const transport_names[] = {"beams", "paper", "beams,paper"};
+    int transport_choice = 2;
     const char *lattice_text = "16,32,64,fit", *steps_text = "1,2,4,8,16,32", *lambda_text = "0,0.5,0.8,0.9";
     int backend_choice = 2;
     static const char *const backend_names[] = {"cpu", "gl", "cpu,gl"};
@@ -282,6 +293,8 @@ static int sweep_parse(int argc, char **argv, sweep_options *w)
         BENCH_TEXT("steps", "S,S,..", "propagation steps per frame", &steps_text),
         BENCH_TEXT("lambdas", "L,L,..", "lambda_incr values, each in [0, 1)", &lambda_text),
         BENCH_CHOICE("backends", "cpu|gl|cpu,gl", "the LPV backends to sweep", &backend_choice, backend_names),
+        BENCH_CHOICE("transports", "beams|paper|beams,paper", "the transports to sweep (--lpv-transport)",
+                     &transport_choice, transport_names),
         BENCH_INT("gl-max-lattice", "N", "the GL backend only up to this lattice", &w->gl_max_lattice, 2, 1024),
         BENCH_INT("timing-frames", "N", "frames timed after the steady state", &w->timing, 1, 32),
         BENCH_INT("classic", "0|1", "also the classic accumulating LPV", &w->classic, 0, 1),
@@ -298,6 +311,7 @@ static int sweep_parse(int argc, char **argv, sweep_options *w)
     w->backends[0] = backend_choice == 1; /* cpu, gl or both (cpu first) */
     w->backends[1] = 1;
     w->nb = backend_choice == 2 ? 2 : 1;
+    w->transports = transport_choice == 2 ? 3 : 1 << transport_choice;
     return w->nlam ? 0 : -1;
 }
 
@@ -324,32 +338,34 @@ static int accuracy_sweep(int argc, char **argv)
     double goal_steps = fp.lpv_steps < GOAL_MAX_STEPS ? fp.lpv_steps : GOAL_MAX_STEPS;
     double goal_lambda = fp.lambda_incr;
     sweep_run run = {.s = &s, .ref = &ref, .fp = &fp, .timing = timing,
-                     .rows = calloc((size_t)(nb * nl * (ns * nlam + ns) + 3), sizeof *run.rows),
+                     .rows = calloc((size_t)(2 * nb * nl * (ns * nlam + ns) + 3), sizeof *run.rows),
                      .display = malloc(px * 3), .self = malloc(px * 3)};
     int rc = run.rows && run.display && run.self ? 0 : 1;
-    for (int b = 0; b < nb && rc == 0; b++) {
-        ilpv_backend_choice backend = backends[b] ? ILPV_BACKEND_GL : ILPV_BACKEND_CPU;
-        for (int l = 0; l < nl && rc == 0; l++) {
-            int lattice = (int)lattices[l];
-            int axis = lattice == ACC_FITTED ? 32 : lattice; /* about a 32^3 cost */
-            if (backend == ILPV_BACKEND_GL && axis > gl_max_lattice)
-                continue;
-            for (int mode = 0; mode <= classic && rc == 0; mode++)
-                rc = sweep_renderer(&run, backend, lattice, mode, steps, ns, lambdas, nlam);
+    for (int t = 0; t < LPV_TRANSPORT_COUNT && rc == 0; t++)
+        for (int b = 0; b < nb && rc == 0 && (w.transports >> t & 1); b++) {
+            ilpv_backend_choice backend = backends[b] ? ILPV_BACKEND_GL : ILPV_BACKEND_CPU;
+            for (int l = 0; l < nl && rc == 0; l++) {
+                int lattice = (int)lattices[l];
+                int axis = lattice == ACC_FITTED ? 32 : lattice; /* about a 32^3 cost */
+                if (backend == ILPV_BACKEND_GL && axis > gl_max_lattice)
+                    continue;
+                for (int mode = 0; mode <= classic && rc == 0; mode++)
+                    rc = sweep_renderer(&run, (lpv_transport)t, backend, lattice, mode, steps, ns,
+                                        lambdas, nlam);
+            }
         }
-    }
     for (int i = 0; i < 3 && rc == 0 && goal; i++)
-        if (!find_row(run.rows, run.n, ILPV_BACKEND_CPU, goal_lattices[i], 0, (int)goal_steps,
-                      (float)goal_lambda))
-            rc = sweep_renderer(&run, ILPV_BACKEND_CPU, goal_lattices[i], 0, &goal_steps, 1,
-                                &goal_lambda, 1);
+        if (!find_row(run.rows, run.n, LPV_TRANSPORT_BEAMS, ILPV_BACKEND_CPU, goal_lattices[i], 0,
+                      (int)goal_steps, (float)goal_lambda))
+            rc = sweep_renderer(&run, LPV_TRANSPORT_BEAMS, ILPV_BACKEND_CPU, goal_lattices[i], 0,
+                                &goal_steps, 1, &goal_lambda, 1);
     if (rc == 0) {
         mark_pareto(run.rows, run.n);
         FILE *f = acc_open_csv(&s, "sweep",
             "scene,backend,mode,lattice,nx,ny,nz,steps,lambda,frames,propagate_ms,"
             "frame_pass_ms,eye_ms,frame_ms,mae_indirect,rmse_rel_indirect,relmse_indirect,"
             "ssim_indirect,best_scale_indirect,mae_scaled_indirect,mae_final,ssim_final,"
-            "mae_display,mae_self32,pareto");
+            "mae_display,mae_self32,pareto,transport");
         rc = f ? 0 : 1;
         if (f) {
             write_rows(f, &s, run.rows, run.n);
@@ -357,10 +373,7 @@ static int accuracy_sweep(int argc, char **argv)
         }
     }
     if (rc == 0) {
-        /* The paper's comparison: 8 steps with lambda 0.8 against 8 plain steps, 32 cells. */
         int lat = 32;
-        const sweep_row *inc = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.8f);
-        const sweep_row *plain = find_row(run.rows, run.n, ILPV_BACKEND_CPU, lat, 0, 8, 0.0f);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
                "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
                "\"reference_seconds\":%.4g,\"reference_cached\":%s,"
@@ -369,10 +382,22 @@ static int accuracy_sweep(int argc, char **argv)
                o.scene, o.width, o.height, run.n, 2 * o.ref_samples, ref.seconds,
                ref.cached ? "true" : "false", ref.noise_indirect1, ref.mean_indirect1,
                run.n ? run.rows[0].indirect.pixels : 0);
-        if (inc && plain)
-            printf(",\"paper_lattice\":%d,\"self32_mae_8_0.8\":%.4f,\"self32_mae_8_0\":%.4f,"
-                   "\"reference_mae_8_0.8\":%.4f,\"reference_mae_8_0\":%.4f",
-                   lat, inc->self_mae, plain->self_mae, inc->display_mae, plain->display_mae);
+        /* The paper's comparison per transport: 8 steps with lambda 0.8 against 8 plain
+         * steps, 32 cells. */
+        printf(",\"paper_lattice\":%d,\"fig2\":{", lat);
+        for (int t = 0, first = 1; t < LPV_TRANSPORT_COUNT; t++) {
+            const sweep_row *inc = find_row(run.rows, run.n, (lpv_transport)t, ILPV_BACKEND_CPU, lat, 0, 8, 0.8f);
+            const sweep_row *plain = find_row(run.rows, run.n, (lpv_transport)t, ILPV_BACKEND_CPU, lat, 0, 8, 0.0f);
+            if (!inc || !plain)
+                continue;
+            printf("%s\"%s\":{\"self32_mae_8_0.8\":%.4f,\"self32_mae_8_0\":%.4f,"
+                   "\"reference_mae_8_0.8\":%.4f,\"reference_mae_8_0\":%.4f,"
+                   "\"rmse_rel_8_0.8\":%.4f,\"rmse_rel_8_0\":%.4f}", first ? "" : ",",
+                   lpv_transport_names[t], inc->self_mae, plain->self_mae, inc->display_mae,
+                   plain->display_mae, inc->indirect.rmse_rel, plain->indirect.rmse_rel);
+            first = 0;
+        }
+        printf("}");
         if (goal)
             print_goal(run.rows, run.n, (int)goal_steps, (float)goal_lambda);
         printf("}\n");

@@ -71,6 +71,7 @@ typedef struct acc_renderer_desc {
     int lattice;            /* cells along the longest axis; ACC_FITTED: a cube's worth of
                                cells (ACC_FITTED_CELLS) spent on the scene's shape */
     int classic;            /* sum every step into an accumulation lattice (KD10) */
+    lpv_transport transport; /* --lpv-transport (0: beams) */
     int skip_converged;     /* let the renderer skip work once converged */
     const char *gi;         /* the method ("ilpv" when NULL) */
     int vpl_point;          /* vpl: VPLs as points, unbounded (vpl-bound point) */

@@ -222,6 +222,7 @@ static const char *settings(const acc_renderer_desc *d, frame_params *fp)
         {"gi", d->gi ? d->gi : "ilpv", 0},
         {"lpv", backends[d->backend], 0},
         {"lpv-mode", d->classic ? "classic" : "incremental", 0},
+        {"lpv-transport", lpv_transport_names[d->transport], 0},
         {"lattice", NULL, d->lattice == ACC_FITTED ? 32 : d->lattice},
         {"lattice-cells", NULL, d->lattice == ACC_FITTED ? ACC_FITTED_CELLS : 0},
         {"vpl-bound", d->vpl_point ? "point" : "disk", 0},

@@ -48,8 +48,8 @@ static inline void gltest_seti(frame_params *p, const char *name, int index)
 
 /* The default room's frame with small sizes (llvmpipe is slow): a 64 RSM, a 20-cell
  * lattice on the given LPV backend and tiles. Returns 0 or prints why and returns -1. */
-static inline int gltest_open_tiles(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,
-                                    int threads, ilpv_tiles tiles)
+static inline int gltest_open_transport(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,
+                                        int threads, ilpv_tiles tiles, lpv_transport transport)
 {
     char err[512];
     memset(t, 0, sizeof *t);
@@ -65,6 +65,7 @@ static inline int gltest_open_tiles(gltest *t, glctx_backend backend, ilpv_backe
     gltest_setn(&t->params, "lattice", 20);
     gltest_seti(&t->params, "lpv", lpv);
     gltest_seti(&t->params, "gl-tiles", tiles);
+    gltest_seti(&t->params, "lpv-transport", transport);
     renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = &t->scene, .first = &t->params,
                         .threads = threads};
     if (!(t->r = renderer_create(&rd, err, sizeof err))) {
@@ -72,6 +73,12 @@ static inline int gltest_open_tiles(gltest *t, glctx_backend backend, ilpv_backe
         return -1;
     }
     return 0;
+}
+
+static inline int gltest_open_tiles(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,
+                                    int threads, ilpv_tiles tiles)
+{
+    return gltest_open_transport(t, backend, lpv, threads, tiles, LPV_TRANSPORT_BEAMS);
 }
 
 static inline int gltest_open(gltest *t, glctx_backend backend, ilpv_backend_choice lpv,

@@ -1,4 +1,4 @@
-/* shaders/paper_propagate.comp on llvmpipe, run directly (tests/reference/lpv_gl_steps.h):
+/* node/gi/ilpv/paper_propagate.comp on llvmpipe, run directly (tests/reference/lpv_gl_steps.h):
  * one step agrees with the CPU's paper step (lpv_propagate_step()) with and without
  * blocking, absorption and scattering, on a lattice that is no multiple of the work group;
  * and the thesis's incremental frames -- the merge in shaders/accumulate.comp, S steps with

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # cavelight-bench accuracy (the measuring half of scripts/chart.sh) at a tiny size: every
-# experiment writes its CSV and JSON line, the Pareto marks (on the indirect relative RMSE
+# experiment writes its CSV and JSON line, both transports are swept alike (--transports),
+# the Pareto marks (on the indirect relative RMSE
 # the CSV prints) are right, the goal's rows are run and summarised, the metrics are
 # masked to geometry (the open courtyard's sky is left out), the reference cache is
 # reused, the caches method's rows (one with every RSM texel, one selected, against it), and
@@ -17,7 +18,8 @@ command -v python3 >/dev/null || { echo "python3 missing: skipped"; exit 77; }
 small=(--width 40 --height 30 --out "$out" --threads 1)
 
 "$bench" accuracy sweep --scene default "${small[@]}" --ref-samples 4 --lattices 8,12 \
-    --steps 1,4 --lambdas 0,0.8 --backends cpu --timing-frames 2 > "$out/sweep.json" \
+    --steps 1,4,8 --lambdas 0,0.8 --backends cpu --transports beams,paper --timing-frames 2 \
+    > "$out/sweep.json" \
     2> "$out/sweep.log" || { cat "$out/sweep.log" >&2; fail "sweep failed"; }
 ls "$out"/ref_default_a_40x30_4_direct.pfm "$out"/ref_default_a_40x30_4_noise.txt \
     "$out"/ref_default_a_40x30_4_coverage.pfm >/dev/null || fail "reference not cached"
@@ -25,9 +27,13 @@ python3 - "$out" <<'PY' || fail "sweep CSV or summary wrong"
 import csv, json, math, sys
 out = sys.argv[1]
 rows = list(csv.DictReader(open(f"{out}/sweep_default.csv")))
-# 2 lattices x (2 steps x 2 lambdas + 2 classic) configurations, then the goal's: 4 steps
-# at the default lambda_incr 0.8 on 16, 32 and 64 cells.
-assert len(rows) == 15, len(rows)
+# 2 transports x 2 lattices x (3 steps x 2 lambdas + 3 classic) configurations, then the
+# goal's (beams): 4 steps at the default lambda_incr 0.8 on 16, 32 and 64 cells.
+assert len(rows) == 39, len(rows)
+for t in ("beams", "paper"):
+    mine = [(r["lattice"], r["mode"], r["steps"], r["lambda"]) for r in rows
+            if r["transport"] == t and r["lattice"] in ("8", "12")]
+    assert len(mine) == 18 and len(set(mine)) == 18, (t, mine)
 for r in rows:
     assert r["backend"] == "cpu" and r["mode"] in ("incremental", "classic")
     for k in ("propagate_ms", "frame_ms", "mae_display", "mae_indirect", "ssim_indirect",
@@ -37,6 +43,7 @@ for r in rows:
     assert (r["mode"] == "classic") == (r["mae_self32"] == "nan")
     assert r["frames"] == ("33" if r["lambda"] == "0.8" else "3"), r  # 31 to steady state, 2 timed
 goal = [r for r in rows if r["lattice"] in ("16", "32", "64")]
+assert all(r["transport"] == "beams" for r in goal)
 assert [(r["lattice"], r["steps"], r["lambda"]) for r in goal] == \
     [("16", "4", "0.8"), ("32", "4", "0.8"), ("64", "4", "0.8")], goal
 def dominated(a, b):  # b at least as fast and as accurate, and better in one
@@ -47,7 +54,7 @@ for a in rows:
     on_front = not any(dominated(a, b) for b in rows if b is not a)
     assert on_front == (a["pareto"] == "1"), a
 j = json.loads(open(f"{out}/sweep.json").read())
-assert j["configs"] == 15 and j["reference_noise_indirect1"] > 0 and j["reference_seconds"] > 0
+assert j["configs"] == 39 and j["reference_noise_indirect1"] > 0 and j["reference_seconds"] > 0
 assert j["reference_cached"] is False and j["pixels_compared"] == 40 * 30  # a closed room
 g = j["goal"]
 assert (g["lattice"], g["steps"], g["lambda"], g["lattices"]) == (32, 4, 0.8, [16, 32, 64]), g

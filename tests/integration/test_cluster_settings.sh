@@ -5,10 +5,11 @@
 # that screen's view does (the same checksum, the same pixels), both nodes with equal
 # checksums in every frame; first the vpl method's fastest chart rows (imperfect shadow
 # maps, 4 x 4 interleaving), the caches method with 512 VALs and exact occlusion, ILPV with
-# a fitted lattice, lambda and steps, the layered depth maps' indirect light with their
-# ambient occlusion of an ambient term. The same settings from the config's "settings"
-# give the same frames. --budget-ms measures every node and takes one choice for all. And
-# the master refuses a bad value or name in one line, before any node starts.
+# a fitted lattice, lambda and steps on either transport (--lpv-transport), the layered
+# depth maps' indirect light with their ambient occlusion of an ambient term. The same
+# settings from the config's "settings" give the same frames. --budget-ms measures every
+# node and takes one choice for all. And the master refuses a bad value or name in one
+# line, before any node starts.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
 
@@ -74,6 +75,10 @@ done
 same_as_standalone vpl --gi vpl --vpl-count 64 --vpl-visibility ism --vpl-interleave 4
 same_as_standalone caches --gi caches --caches-vals 512 --caches-occlusion exact
 same_as_standalone ilpv --gi ilpv --lattice-cells 4096 --lambda 0.5 --steps 4
+# The thesis's transport: one value on every node, not the beams' frames.
+same_as_standalone paper --gi ilpv --lpv-transport paper --lattice-cells 4096 --lambda 0.5 --steps 4
+[ "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/paper.json")" != \
+  "$(json 'r["per_node"][0]["last_checksum"]' "$tmp/ilpv.json")" ] || fail "--lpv-transport paper gives beams' frames"
 same_as_standalone ldm --gi ldm --ldm-directions 16 --ldm-resolution 64 --ldm-photons 8 \
   --ao ldm --ao-directions 16 --ao-resolution 64 --ambient 0.5
 

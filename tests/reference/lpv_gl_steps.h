@@ -2,7 +2,7 @@
  * GL tests and cavelight-bench lpv --backend gl: volumes to and from three RGBA32F 3D
  * textures (one per colour, 4 SH coefficients each), the blockers as one R32UI word per
  * cell, one propagation step of either transport (node/gi/ilpv/propagate.comp,
- * shaders/paper_propagate.comp), and node/gi/ilpv/accumulate.comp's
+ * node/gi/ilpv/paper_propagate.comp), and node/gi/ilpv/accumulate.comp's
  * dst = a dst + b src (the paper merge). The GL side of what lpv_propagate_step() and
  * lpv_paper_merge_run() do on the CPU; header only, a GL context must be current. */
 #ifndef CAVELIGHT_LPV_GL_STEPS_H
@@ -83,7 +83,7 @@ static inline int lpv_gl_steps_init(lpv_gl_steps *s, const gl_functions *gl, con
 
     if (!lpv_paper_shader_body(t ? t : lpv_paper_transfer_default(), body, sizeof body))
         return -1;
-    s->prog[LPV_TRANSPORT_PAPER] = gltools_program(gl, NULL, NULL, "paper_propagate.comp", NULL,
+    s->prog[LPV_TRANSPORT_PAPER] = gltools_program(gl, NULL, NULL, "ilpv/paper_propagate.comp", NULL,
                                                    body, err, errlen);
     s->prog_accumulate = gltools_program(gl, NULL, NULL, "ilpv/accumulate.comp", NULL, NULL, err,
                                          errlen);

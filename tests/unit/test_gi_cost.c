@@ -126,6 +126,23 @@ static void test_memory(void **state)
     assert_true(r.memory_bytes == 6 * 256.0 * 256 * 48);
 }
 
+/* The paper transport holds its own volumes: the injection and two for the merge and the
+ * steps, 12 floats per cell each; the same work per step. */
+static void test_paper_memory(void **state)
+{
+    gi_limits l = limits();
+    gi_cost beams, paper;
+    frame_params p = FRAME({"lattice", "64"});
+    gi_cost_method(&p, l.bounds_min, l.bounds_max, &beams);
+    p = (frame_params)FRAME({"lattice", "64"}, {"lpv-transport", "paper"});
+    gi_cost_method(&p, l.bounds_min, l.bounds_max, &paper);
+    printf("lattice 64: beams %.1f MB, paper %.1f MB\n", beams.memory_bytes / 1048576.0,
+           paper.memory_bytes / 1048576.0);
+    assert_true(paper.memory_bytes >= 64.0 * 32 * 64 * 3 * 12 * 4);
+    assert_true(paper.memory_bytes < beams.memory_bytes);
+    assert_true(paper.work == beams.work);
+}
+
 static void test_budget_plan_within(void **state)
 {
     gi_limits l = limits();
@@ -148,6 +165,7 @@ int main(void)
         cmocka_unit_test(test_caches_work),
         cmocka_unit_test(test_ldm_cost),
         cmocka_unit_test(test_memory),
+        cmocka_unit_test(test_paper_memory),
         cmocka_unit_test(test_budget_plan_within),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -21,6 +21,7 @@
 #include "frame/light_view.h"
 #include "gi/ilpv/gi_ilpv.h"
 #include "gi/ilpv/ilpv_gl.h"
+#include "gi/ilpv/ilpv_paper_driver.h"
 #include "gltools.h"
 #include "lpv/ilpv.h"
 #include "lpv/lpv_converge.h"
@@ -41,7 +42,8 @@ struct gi_ilpv {
     ilpv_gl *gl_backend;     /* the GL backend's, to upload moved blockers; NULL: CPU */
     lpv_objects_stats moved; /* the last objects() call's */
     double objects_ms;
-    ilpv driver;             /* the frame's sequence, on its backend */
+    ilpv driver;             /* beams: the frame's sequence, on its backend */
+    ilpv_paper_driver paper; /* paper: the thesis's frame (ilpv_paper_driver.h) */
     lpv_converge converge;
     uint64_t checksum;       /* of the last computed result */
     workpool *pool;
@@ -90,11 +92,20 @@ static int build_emitters(gi_ilpv *r)
 /* The backend the settings ask for, with the blockers and pool the method owns. */
 static int make_driver(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
 {
+    int on_gl = r->settings.backend == ILPV_BACKEND_GL;
+    if (r->settings.transport == LPV_TRANSPORT_PAPER) {
+        int bad = ilpv_paper_driver_init(&r->paper, on_gl ? r->gl : NULL, &r->lattice, &r->blockers,
+                                         r->pool, err, errlen);
+        r->gl_backend = bad ? NULL : r->paper.gl;
+        return bad;
+    }
     ilpv_backend b;
-    if (r->settings.backend == ILPV_BACKEND_GL) {
-        int tiles = r->settings.gl_tiles == ILPV_TILES_AUTO ? !d->software
-                                                            : r->settings.gl_tiles == ILPV_TILES_ON;
-        ilpv_gl *g = ilpv_gl_create(r->gl, &r->lattice, &r->blockers, tiles, err, errlen);
+    if (on_gl) {
+        ilpv_gl_variant v = {
+            .transport = LPV_TRANSPORT_BEAMS,
+            .tiles = r->settings.gl_tiles == ILPV_TILES_AUTO ? !d->software
+                                                             : r->settings.gl_tiles == ILPV_TILES_ON};
+        ilpv_gl *g = ilpv_gl_create(r->gl, &r->lattice, &r->blockers, &v, err, errlen);
         if (!g)
             return -1;
         r->gl_backend = g;
@@ -148,6 +159,8 @@ static void release(gi_ilpv *r)
             r->gl->DeleteTextures(1, &r->shown[c]);
     if (r->driver.injected.cells)
         ilpv_free(&r->driver);
+    if (r->paper.lpv.injected.cells)
+        ilpv_paper_driver_free(&r->paper);
     if (r->pool)
         workpool_destroy(r->pool);
     if (r->converge.previous.cells)
@@ -194,29 +207,61 @@ static double emitted_energy(const gi_ilpv *r, const frame_params *p)
     return e;
 }
 
-static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
+static int is_paper(const gi_ilpv *r)
 {
-    gi_ilpv *r = state;
-    if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
-        ilpv_reset(&r->driver);
-        r->reset_epoch = p->reset_epoch;
-    }
-    double t0 = clock_now_ms();
-    size_t count;
-    const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
+    return r->settings.transport == LPV_TRANSPORT_PAPER;
+}
+
+/* The thesis's frame: its injection without origins or splat, classic as lambda 0. */
+static void frame_paper(gi_ilpv *r, const frame_params *p, const lpv_vpl *vpls, size_t count,
+                        double *t1)
+{
+    lpv_inject_vpls(ilpv_paper_driver_injection(&r->paper), NULL, &r->lattice, vpls, count, NULL);
+    *t1 = clock_now_ms();
+    int classic = r->settings.mode == ILPV_MODE_CLASSIC;
+    ilpv_paper_driver_run(&r->paper, &(ilpv_paper_driver_frame){
+        .steps = p->lpv_steps, .lambda_incr = classic ? 0.0f : p->lambda_incr,
+        .emitted_energy = emitted_energy(r, p), .absorption = p->absorption,
+        .scattering = p->scattering});
+}
+
+static void frame_beams(gi_ilpv *r, const frame_params *p, const lpv_vpl *vpls, size_t count,
+                        double *t1)
+{
     ilpv_begin_frame(&r->driver);
     lpv_inject_vpls(ilpv_injection(&r->driver), ilpv_origin(&r->driver), &r->lattice, vpls,
                     count, NULL);
-    double t1 = clock_now_ms();
+    *t1 = clock_now_ms();
     ilpv_frame(&r->driver, &(ilpv_frame_desc){
         .steps = p->lpv_steps, .lambda_incr = p->lambda_incr,
         .emitted_energy = emitted_energy(r, p), .classic = r->settings.mode == ILPV_MODE_CLASSIC,
         .absorption = lpv_transfer_step_probability(p->absorption, r->lattice.cell),
         .scattering = lpv_transfer_step_probability(p->scattering, r->lattice.cell)});
-    const lpv_volume *result = ilpv_result(&r->driver);
+}
+
+static void reset(gi_ilpv *r)
+{
+    if (is_paper(r))
+        ilpv_paper_driver_reset(&r->paper);
+    else
+        ilpv_reset(&r->driver);
+}
+
+static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
+{
+    gi_ilpv *r = state;
+    if (r->frames == 0 || p->reset_epoch != r->reset_epoch) {
+        reset(r);
+        r->reset_epoch = p->reset_epoch;
+    }
+    double t0 = clock_now_ms(), t1;
+    size_t count;
+    const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
+    (is_paper(r) ? frame_paper : frame_beams)(r, p, vpls, count, &t1);
+    const lpv_volume *result = gi_ilpv_volume(r);
     r->checksum = lpv_volume_checksum(result);
     ilpv_gl_upload(r->gl, result, r->shown, r->scratch);
-    lpv_converge_end(&r->converge, result, ilpv_pending(&r->driver), r->pool);
+    lpv_converge_end(&r->converge, result, is_paper(r) ? 0 : ilpv_pending(&r->driver), r->pool);
     r->inject_ms = t1 - t0;
     r->propagate_ms = clock_now_ms() - t1;
     r->frames++;
@@ -251,7 +296,12 @@ gi_ilpv *gi_ilpv_of(gi *g)
     return g && gi_active(g) == gi_method_find("ilpv") ? gi_state(g) : NULL;
 }
 
-const lpv_volume *gi_ilpv_volume(const gi_ilpv *r) { return ilpv_result(&r->driver); }
+const lpv_volume *gi_ilpv_volume(const gi_ilpv *r)
+{
+    return is_paper(r) ? ilpv_paper_driver_result(&r->paper) : ilpv_result(&r->driver);
+}
+
+lpv_transport gi_ilpv_transport(const gi_ilpv *r) { return r->settings.transport; }
 ilpv_mode gi_ilpv_mode(const gi_ilpv *r) { return r->settings.mode; }
 ilpv_backend_choice gi_ilpv_backend(const gi_ilpv *r) { return r->settings.backend; }
 const lattice_desc *gi_ilpv_lattice(const gi_ilpv *r) { return &r->lattice; }
@@ -261,19 +311,26 @@ void gi_ilpv_stats_get(const gi_ilpv *r, gi_ilpv_stats *out)
     out->frames_skipped = r->converge.frames_skipped;
     out->last_residual = r->converge.residual;
     out->skipped_this_frame = r->converge.skipped;
-    lpv_volume_energy(&r->driver.injected, out->injected_energy);
+    lpv_volume_energy(is_paper(r) ? &r->paper.lpv.injected : &r->driver.injected,
+                      out->injected_energy);
 }
 
 double gi_ilpv_measure_step_ms(gi_ilpv *r, int steps)
 {
     ilpv_backend *b = &r->driver.backend;
-    b->steps(b->state, 1, 0u, 0.0f, 0.0f);
-    r->gl->Finish();
-    double t0 = clock_now_ms();
-    b->steps(b->state, steps, 1u, 0.0f, 0.0f);
-    r->gl->Finish();
+    double t0 = 0;
+    for (int timed = 0; timed < 2; timed++) { /* one untimed step, then `steps` */
+        int n = timed ? steps : 1;
+        if (is_paper(r))
+            ilpv_paper_driver_steps(&r->paper, n);
+        else
+            b->steps(b->state, n, (unsigned)timed, 0.0f, 0.0f);
+        r->gl->Finish();
+        if (!timed)
+            t0 = clock_now_ms();
+    }
     double ms = steps > 0 ? (clock_now_ms() - t0) / steps : 0.0;
-    ilpv_reset(&r->driver);
+    reset(r);
     lpv_converge_forget(&r->converge);
     return ms;
 }
@@ -315,6 +372,7 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->Uniform3fv(gl->GetUniformLocation(prog, "u_lpv_origin"), 1, r->lattice.origin);
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_lpv_cell"), r->lattice.cell);
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_lpv_behind"), LPV_RECEIVE_BEHIND);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_lpv_paper"), is_paper(r));
     gl->Uniform3i(gl->GetUniformLocation(prog, "u_lpv_size"), r->lattice.n[0], r->lattice.n[1],
                   r->lattice.n[2]);
 }

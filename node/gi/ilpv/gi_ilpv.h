@@ -38,6 +38,7 @@ typedef struct gi_ilpv_stats {
 gi_ilpv *gi_ilpv_of(gi *g);
 ilpv_backend_choice gi_ilpv_backend(const gi_ilpv *l); /* resolved: never AUTO */
 ilpv_mode gi_ilpv_mode(const gi_ilpv *l);
+lpv_transport gi_ilpv_transport(const gi_ilpv *l);
 const lattice_desc *gi_ilpv_lattice(const gi_ilpv *l);
 /* The propagated light after the last frame (12 channels, host memory). */
 const lpv_volume *gi_ilpv_volume(const gi_ilpv *l);

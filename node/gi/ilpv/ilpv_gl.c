@@ -6,12 +6,14 @@
 
 #include "base/xalloc.h"
 #include "gltools.h"
+#include "lpv/lpv_paper.h"
 #include "lpv/lpv_transfer.h"
+#include "lpv/sh.h"
 
 struct ilpv_gl {
     const gl_functions *gl;
     lattice_desc lattice;
-    GLuint prog_propagate, prog_accumulate;
+    GLuint prog_propagate, prog_accumulate; /* paper: prog_propagate is paper_propagate.comp */
     GLuint near[3], shell[3], front[2][3], sum[3], blockers;
     int current;              /* index of the front textures */
     lpv_volume host_sum;      /* the sum, read back */
@@ -149,6 +151,47 @@ static void combine(ilpv_gl *g, const GLuint dst[3], float a, const GLuint src[3
     dispatch(g);
 }
 
+/* One paper step src -> dst (lpv_paper.h; the uniforms as lpv_propagate_step() reads its
+ * desc). */
+static void paper_step(ilpv_gl *g, const GLuint src[3], const GLuint dst[3], float absorption,
+                       float scattering, int use_blockers)
+{
+    const gl_functions *gl = g->gl;
+    const int *n = g->lattice.n;
+    GLuint prog = g->prog_propagate;
+    float keep = absorption + scattering < 1.0f ? 1.0f - absorption - scattering : 0.0f;
+    gl->UseProgram(prog);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_size"), n[0], n[1], n[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_use_blockers"), use_blockers);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_keep"), keep);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_scatter"), scattering * (float)SH_ENERGY);
+    bind_samplers(g, prog, "u_src", src, 0);
+    gl->ActiveTexture(GL_TEXTURE6);
+    gl->BindTexture(GL_TEXTURE_3D, g->blockers);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blockers"), 6);
+    bind_images(g, dst, 0, GL_WRITE_ONLY);
+    dispatch(g);
+}
+
+void ilpv_gl_paper_steps(ilpv_gl *g, int steps, int block_first, float absorption, float scattering)
+{
+    for (int s = 0; s < steps; s++) {
+        int dst = 1 - g->current;
+        paper_step(g, g->front[g->current], g->front[dst], absorption, scattering,
+                   s > 0 || block_first);
+        g->current = dst;
+    }
+}
+
+void ilpv_gl_paper_frame(ilpv_gl *g, const lpv_volume *injected, lpv_paper_merge m, int steps,
+                         float absorption, float scattering, lpv_volume *result)
+{
+    ilpv_gl_upload(g->gl, injected, g->near, g->scratch);
+    combine(g, g->front[g->current], m.a, g->near, m.b);
+    ilpv_gl_paper_steps(g, steps, 0, absorption, scattering);
+    ilpv_gl_download(g->gl, g->front[g->current], result, g->scratch);
+}
+
 static void gl_start(void *state, const lpv_volume *near, const lpv_volume *shell)
 {
     ilpv_gl *g = state;
@@ -177,9 +220,8 @@ static const lpv_volume *gl_sum(void *state)
     return &g->host_sum;
 }
 
-static void gl_destroy(void *state)
+void ilpv_gl_destroy(ilpv_gl *g)
 {
-    ilpv_gl *g = state;
     const gl_functions *gl = g->gl;
     GLuint *all[] = {g->near, g->shell, g->front[0], g->front[1], g->sum};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
@@ -197,32 +239,47 @@ static void gl_destroy(void *state)
     free(g);
 }
 
+static void gl_destroy(void *state)
+{
+    ilpv_gl_destroy(state);
+}
+
 ilpv_gl *ilpv_gl_create(const gl_functions *gl, const lattice_desc *lat,
-                        const lpv_blockers *blockers, int tiles, char *err, size_t errlen)
+                        const lpv_blockers *blockers, const ilpv_gl_variant *v, char *err,
+                        size_t errlen)
 {
     ilpv_gl *g = xcalloc(1, sizeof *g);
     g->gl = gl;
     g->lattice = *lat;
-    char body[4096];
-    gather_body(body, sizeof body);
-    g->prog_propagate = gltools_program(gl, NULL, NULL, "ilpv/propagate.comp",
-                                        tiles ? "#define LPV_TILES 1\n" : NULL, body, err, errlen);
+    char body[8192];
+    if (v->transport == LPV_TRANSPORT_PAPER) {
+        lpv_paper_shader_body(lpv_paper_transfer_default(), body, sizeof body);
+        g->prog_propagate = gltools_program(gl, NULL, NULL, "ilpv/paper_propagate.comp", NULL,
+                                            body, err, errlen);
+    } else {
+        gather_body(body, sizeof body);
+        g->prog_propagate = gltools_program(gl, NULL, NULL, "ilpv/propagate.comp",
+                                            v->tiles ? "#define LPV_TILES 1\n" : NULL, body, err,
+                                            errlen);
+    }
     g->prog_accumulate = g->prog_propagate ? gltools_program(gl, NULL, NULL, "ilpv/accumulate.comp",
                                                              NULL, NULL, err, errlen)
                                            : 0;
     if (!g->prog_accumulate) {
-        gl_destroy(g);
+        ilpv_gl_destroy(g);
         return NULL;
     }
     if (lpv_volume_init(&g->host_sum, lat->n, LPV_LIGHT_CHANNELS) != 0 ||
         !(g->scratch = malloc(lattice_cell_count(lat) * 4 * sizeof(float)))) {
         snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d GL lattice", lat->n[0],
                  lat->n[1], lat->n[2]);
-        gl_destroy(g);
+        ilpv_gl_destroy(g);
         return NULL;
     }
     GLuint *all[] = {g->near, g->shell, g->front[0], g->front[1], g->sum};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+        if (v->transport == LPV_TRANSPORT_PAPER && (all[i] == g->shell || all[i] == g->sum))
+            continue; /* paper: the injection (near) and the ping-pong only */
         for (int c = 0; c < 3; c++)
             all[i][c] = gltools_texture3d(gl, lat->n);
         ilpv_gl_upload(gl, &g->host_sum, all[i], g->scratch); /* defined contents: zeros */

@@ -6,6 +6,7 @@
 #include "lpv/ilpv.h"
 
 #include "lpv/lpv_converge.h"
+#include "lpv/lpv_paper_frame.h"
 
 static const char *const backend_names[] = {"auto", "cpu", "gl"};
 static const char *const tiles_names[] = {"auto", "on", "off"};
@@ -24,6 +25,10 @@ static const setting rows[] = {
      "every node must resolve it alike)"},
     {"gl-tiles", NULL, SETTING_CHOICE, 0, 0, ILPV_TILES_AUTO, tiles_names, 3, SETTING_REBUILD,
      FIELD(gl_tiles), "ilpv: GL propagation through shared-memory tiles"},
+    {"lpv-transport", NULL, SETTING_CHOICE, 0, 0, LPV_TRANSPORT_BEAMS, lpv_transport_names,
+     LPV_TRANSPORT_COUNT, SETTING_REBUILD, FIELD(transport),
+     "ilpv: the propagation: beams (two beams per cell) or paper\n(the thesis's transfer "
+     "vectors, merge and receiver)"},
     {"lpv-mode", NULL, SETTING_CHOICE, 0, 0, ILPV_MODE_INCREMENTAL, mode_names, 2,
      SETTING_REBUILD, FIELD(mode), "ilpv: ILPV, or classic LPV accumulation"},
     {"converge-threshold", "R", SETTING_FLOAT, -1, 1, LPV_CONVERGE_DEFAULT_THRESHOLD, NULL, 0,
@@ -44,7 +49,7 @@ static const char *check(const frame_params *p)
 }
 
 /* Work: every step touches every cell, and the frame's injection, merge and composition
- * about one step's worth. */
+ * about one step's worth; memory: the transport's own volumes. */
 static void cost(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
 {
     ilpv_settings s;
@@ -54,7 +59,8 @@ static void cost(const frame_params *p, const float bounds_min[3], const float b
     if (ilpv_settings_lattice(&s, bounds_min, bounds_max, &lat, err, sizeof err) != 0)
         return; /* no lattice: the method is not built */
     out->work = (double)lattice_cell_count(&lat) * (p->lpv_steps + 1);
-    out->memory_bytes = ilpv_state_bytes(&lat);
+    out->memory_bytes = s.transport == LPV_TRANSPORT_PAPER ? lpv_paper_state_bytes(&lat)
+                                                           : ilpv_state_bytes(&lat);
 }
 
 const gi_method_settings ilpv_settings_table = {

@@ -8,6 +8,7 @@
 
 #include "gi/gi_settings.h"
 #include "lpv/lattice.h"
+#include "lpv/lpv_propagate.h"
 
 /* Where the propagation runs. */
 typedef enum ilpv_backend_choice {
@@ -41,6 +42,8 @@ typedef struct ilpv_settings {
     int lattice_cells;    /* > 0: instead, as many cells in all, spent on the scene's shape */
     ilpv_backend_choice backend;
     ilpv_tiles gl_tiles;
+    lpv_transport transport; /* beams: the ILPV driver (ilpv.h); paper: the thesis's
+                                 (lpv_paper_frame.h) */
     ilpv_mode mode;
     float converge_threshold; /* skip a frame below this residual with unchanged inputs;
                                  negative: never */

@@ -9,6 +9,7 @@ uniform float u_lpv_cell;
 uniform ivec3 u_lpv_size;            // cells per axis
 uniform float u_lpv_behind;          // LPV_RECEIVE_BEHIND (lpv_receive.h): cells behind
                                      // the surface that still count
+uniform int u_lpv_paper;             // 1: the `paper` transport's receiver
 
 // What one colour's SH coefficients L of a cell give a surface with normal n, per unit
 // area (lpv_receive.h, the same rule): energy E and mean direction d with mean cosine q,
@@ -69,7 +70,28 @@ vec3 lpv_irradiance(vec3 p, vec3 n)
            (u_lpv_cell * u_lpv_cell);
 }
 
+// The thesis's receiver (its algorithm 3, `paper`): the lattice sampled trilinearly half a
+// cell out along the normal, each colour projected on SH_cos(-n), per cell area.
+vec3 lpv_irradiance_paper(vec3 p, vec3 n)
+{
+    vec3 q = (p + 0.5 * u_lpv_cell * n - u_lpv_origin) / u_lpv_cell - 0.5;
+    vec3 i0 = floor(q), f = q - i0;
+    vec4 c = sh_cosine_lobe(-n);
+    vec3 e = vec3(0.0);
+    for (int k = 0; k < 8; k++) {
+        ivec3 o = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+        vec3 w3 = mix(1.0 - f, f, vec3(o));
+        ivec3 t = clamp(ivec3(i0) + o, ivec3(0), u_lpv_size - 1);
+        e += (w3.x * w3.y * w3.z) * vec3(dot(c, texelFetch(u_lpv_r, t, 0)),
+                                         dot(c, texelFetch(u_lpv_g, t, 0)),
+                                         dot(c, texelFetch(u_lpv_b, t, 0)));
+    }
+    return max(e, vec3(0.0)) / (u_lpv_cell * u_lpv_cell);
+}
+
 vec3 gi_irradiance(vec3 p, vec3 n)
 {
-    return u_lpv_enabled != 0 ? lpv_irradiance(p, n) : vec3(0.0);
+    if (u_lpv_enabled == 0)
+        return vec3(0.0);
+    return u_lpv_paper != 0 ? lpv_irradiance_paper(p, n) : lpv_irradiance(p, n);
 }
