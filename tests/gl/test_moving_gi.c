@@ -1,7 +1,7 @@
 /* GI follows moved objects: a renderer that saw the default room's tall box where it was
  * loaded and is then told it moved computes, in its next frame, exactly what a renderer
  * of a room whose file had the box there computes (the same checksum: ILPV's blockers
- * redone around the box on the CPU and the GL backend, vpl's maps and shadow maps drawn
+ * redone around the box on the CPU and the GL backend, with either transport, vpl's maps and shadow maps drawn
  * with the box where it is), and that differs from the frame with the box where it was
  * loaded. */
 #include <setjmp.h>
@@ -58,18 +58,22 @@ static void test_moved_equals_built_there(void **state)
     there.object_count = 0;
     scene_pose none;
     scene_pose_rest(&there, &none);
-    const char *methods[][2] = {{"ilpv", "cpu"}, {"ilpv", "gl"}, {"vpl", NULL}};
-    for (int i = 0; i < 3; i++) {
+    /* method, LPV backend, LPV transport */
+    const char *methods[][3] = {{"ilpv", "cpu", "beams"}, {"ilpv", "gl", "beams"}, {"ilpv", "cpu", "paper"},
+                                {"ilpv", "gl", "paper"}, {"vpl", NULL, NULL}};
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
         frame_params f = t.params;
         gltest_set(&f, "gi", methods[i][0]);
-        if (methods[i][1])
+        if (methods[i][1]) {
             gltest_set(&f, "lpv", methods[i][1]);
+            gltest_set(&f, "lpv-transport", methods[i][2]);
+        }
         uint64_t followed = first_frame(&t, &t.scene, &f, &rest, &moved),
                  built = first_frame(&t, &there, &f, NULL, &none),
                  at_rest = first_frame(&t, &t.scene, &f, NULL, &rest);
-        printf("%s%s%s: moved %016llx, built there %016llx, at rest %016llx\n", methods[i][0],
-               methods[i][1] ? " " : "", methods[i][1] ? methods[i][1] : "", (unsigned long long)followed,
-               (unsigned long long)built, (unsigned long long)at_rest);
+        printf("%s %s %s: moved %016llx, built there %016llx, at rest %016llx\n", methods[i][0],
+               methods[i][1] ? methods[i][1] : "", methods[i][2] ? methods[i][2] : "",
+               (unsigned long long)followed, (unsigned long long)built, (unsigned long long)at_rest);
         assert_true(followed == built);
         assert_true(followed != at_rest);
     }
