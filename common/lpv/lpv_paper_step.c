@@ -148,21 +148,9 @@ static void tile(void *ctx, int item)
                     else if (gi == 0)
                         zero_row(jb, y, z, x0);
                 }
-    if (jb->accum) {
-        size_t lo = (size_t)z0 * ny * nx, count = (size_t)(z1 - z0) * ny * nx;
-        for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
-            float *a = jb->accum->ch[k] + lo;
-            const float *d = jb->dst->ch[k] + lo;
-            for (size_t i = 0; i < count; i++)
-                a[i] += d[i];
-        }
-    }
+    if (jb->accum)
+        lpv_volume_add_slab(jb->accum, jb->dst, z0, z1);
     fpmode_leave(mode);
-}
-
-static float unit_clamp(float x)
-{
-    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
 }
 
 void lpv_paper_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst)
@@ -173,7 +161,7 @@ void lpv_paper_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_v
     jb.dst = dst;
     jb.accum = desc->accum;
     jb.blockers = desc->blockers && desc->blockers->mask ? desc->blockers : NULL;
-    float la = unit_clamp(desc->absorption), ls = unit_clamp(desc->scattering);
+    float la = lpv_probability_clamp(desc->absorption), ls = lpv_probability_clamp(desc->scattering);
     float keep = la + ls < 1.0f ? 1.0f - la - ls : 0.0f;
     for (int j = 0; j < LPV_NEIGHBOURS; j++) {
         for (int s = 0; s < 4; s++) {

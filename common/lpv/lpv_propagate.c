@@ -265,21 +265,9 @@ static void tile(void *ctx, int item)
                     for (int z = z0; z < z1; z++)
                         dst_row(jb, rg, y, z, z0, z1, x0, c);
             }
-    if (jb->accum) {
-        size_t lo = (size_t)z0 * ny * nx, count = (size_t)(z1 - z0) * ny * nx;
-        for (int k = 0; k < LPV_LIGHT_CHANNELS; k++) {
-            float *a = jb->accum->ch[k] + lo;
-            const float *d = jb->dst->ch[k] + lo;
-            for (size_t i = 0; i < count; i++)
-                a[i] += d[i];
-        }
-    }
+    if (jb->accum)
+        lpv_volume_add_slab(jb->accum, jb->dst, z0, z1);
     fpmode_leave(mode);
-}
-
-static float unit_clamp(float x)
-{
-    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
 }
 
 static int same_light(const lpv_volume *a, const lpv_volume *b)
@@ -306,7 +294,7 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
     jb.dst = dst;
     jb.accum = desc->accum;
     jb.blockers = desc->blockers && desc->blockers->mask ? desc->blockers : NULL;
-    float la = unit_clamp(desc->absorption), ls = unit_clamp(desc->scattering);
+    float la = lpv_probability_clamp(desc->absorption), ls = lpv_probability_clamp(desc->scattering);
     jb.keep = 1.0f - la;
     jb.keep_flux = (1.0f - la) * (1.0f - ls);
     jb.step = desc->step;

@@ -49,4 +49,10 @@ void lpv_propagate_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
  * counted for the benchmark's GFLOP/s. */
 double lpv_propagate_flops(lpv_transport t, size_t cells);
 
+/* A per-step probability (absorption, scattering) into [0, 1]; NaN -> 0. */
+static inline float lpv_probability_clamp(float x)
+{
+    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
+}
+
 #endif

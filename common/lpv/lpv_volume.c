@@ -76,6 +76,17 @@ void lpv_volume_add(lpv_volume *dst, const lpv_volume *src)
     lpv_volume_add_scaled(dst, src, 1.0f); /* 1 x s is s exactly: the same sums */
 }
 
+void lpv_volume_add_slab(lpv_volume *dst, const lpv_volume *src, int z0, int z1)
+{
+    size_t plane = (size_t)src->n[0] * src->n[1], lo = (size_t)z0 * plane, count = (size_t)(z1 - z0) * plane;
+    for (int k = 0; k < src->channels; k++) {
+        float *a = dst->ch[k] + lo;
+        const float *d = src->ch[k] + lo;
+        for (size_t i = 0; i < count; i++)
+            a[i] += d[i];
+    }
+}
+
 void lpv_volume_add_scaled(lpv_volume *dst, const lpv_volume *src, float a)
 {
     if (dst == src || dst->cells != src->cells || dst->channels != src->channels)

@@ -31,6 +31,8 @@ void lpv_volume_clear(lpv_volume *v);
 void lpv_volume_copy(lpv_volume *dst, const lpv_volume *src); /* same shape required */
 void lpv_volume_add(lpv_volume *dst, const lpv_volume *src);  /* dst += src, same shape */
 void lpv_volume_add_scaled(lpv_volume *dst, const lpv_volume *src, float a); /* dst += a src */
+/* dst += src over the cells of z in [z0, z1) (a propagation job's slab), same shape. */
+void lpv_volume_add_slab(lpv_volume *dst, const lpv_volume *src, int z0, int z1);
 void lpv_volume_scale(lpv_volume *v, float a);                /* v *= a */
 
 /* Total energy per colour, <L|1> = 2 sqrt(pi) L0 summed over cells, in double. */
