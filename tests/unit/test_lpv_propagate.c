@@ -17,27 +17,6 @@
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
 
-/* Light of every kind: beams, isotropic light, mixtures; a few cells negative or empty. */
-static void fill_random(lpv_volume *light, lpv_blockers *b, uint64_t seed)
-{
-    uint64_t rng = seed;
-    for (size_t i = 0; i < light->cells; i++)
-        for (int c = 0; c < 3; c++) {
-            float d[3] = {testutil_rand(&rng) - 0.5f, testutil_rand(&rng) - 0.5f,
-                          testutil_rand(&rng) - 0.5f}, L[4];
-            sh_eval(d, L);
-            float beam = testutil_rand(&rng), iso = testutil_rand(&rng);
-            if (testutil_rand(&rng) < 0.05f)
-                beam = iso = -1.0f;
-            for (int s = 0; s < 4; s++)
-                light->ch[4 * c + s][i] = beam * L[s] + (s == 0 ? iso * (float)SH_Y0 : 0.0f);
-        }
-    if (b)
-        for (size_t i = 0; i < b->cells; i++)
-            b->mask[i] = testutil_rand(&rng) < 0.7f ? 0u
-                                                    : (uint32_t)(testutil_rand(&rng) * 67108863.0f);
-}
-
 static void test_fast_path_matches_reference(void **state)
 {
     (void)state;
@@ -55,8 +34,8 @@ static void test_fast_path_matches_reference(void **state)
         assert_int_equal(lpv_volume_init(&acc_fast, shapes[k], LPV_LIGHT_CHANNELS), 0);
         assert_int_equal(lpv_volume_init(&acc_ref, shapes[k], LPV_LIGHT_CHANNELS), 0);
         assert_int_equal(lpv_blockers_init(&b, shapes[k]), 0);
-        fill_random(&src, &b, 17 + k);
-        fill_random(&source, NULL, 99 + k);
+        testutil_fill_light(&src, &b, 17 + k);
+        testutil_fill_light(&source, NULL, 99 + k);
         for (int blocking = 0; blocking < 2; blocking++)
             for (int c = 0; c < 3; c++)
                 for (unsigned step = 0; step < 3; step++) {
@@ -96,7 +75,7 @@ static void test_bit_identical_for_any_thread_count(void **state)
     lpv_blockers b;
     assert_int_equal(lpv_volume_init(&src, n, LPV_LIGHT_CHANNELS), 0);
     assert_int_equal(lpv_blockers_init(&b, n), 0);
-    fill_random(&src, &b, 3);
+    testutil_fill_light(&src, &b, 3);
     const int threads[3] = {1, 2, 7};
     for (int t = 0; t < 3; t++) {
         assert_int_equal(lpv_volume_init(&out[t], n, LPV_LIGHT_CHANNELS), 0);
