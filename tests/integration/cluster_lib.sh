@@ -25,7 +25,7 @@ make_config() {
   cat > "$file" <<JSON
 {"name": "test", "master": {"bind": "tcp://127.0.0.1:1", "connect": "tcp://127.0.0.1:1"},
  "security": {"mode": "${CLUSTER_SECURITY:-insecure}"},
- "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100,${master_ms} "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
+ "timeouts": {"barrier_ms": $barrier, "heartbeat_ms": 100, "join_ms": ${JOIN_MS:-60000},${master_ms} "stall_min_ms": ${STALL_MIN_MS:-$barrier}},
  "observer": {"eye_separation": 0.064, "home": [0, 1.7, 0]},
  "settings": {${SETTINGS-\"lattice\": 16, \"rsm\": 64}},
  "screens": [
