@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/byteorder.h"
@@ -113,9 +114,15 @@ int cache_file_read(const char *path, const cache_key *key, cache_set *out, char
         return -1;
     }
     uint8_t *buf = NULL;
-    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    struct stat st;
+    /* Only a regular file: a folder of that name opens too, and its "size" is LONG_MAX. */
+    long size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     int rc = -1;
-    if (size < HEADER + TRAILER) {
+    if (size < 0) {
+        snprintf(why, cap, "not a regular file");
+    } else if ((uint64_t)size > HEADER + RECORD * MAX_COUNT + TRAILER) {
+        snprintf(why, cap, "%ld bytes, more than any light cache file", size);
+    } else if (size < HEADER + TRAILER) {
         snprintf(why, cap, "truncated: %ld bytes, less than a header", size < 0 ? 0 : size);
     } else if (!(buf = malloc((size_t)size)) || fseek(f, 0, SEEK_SET) != 0 ||
                fread(buf, 1, (size_t)size, f) != (size_t)size) {
