@@ -197,7 +197,7 @@ static void run_frames(cluster_master *m, bench_keys *k, bench_run *b)
         int changed = 0;
         size_t values = bench_keys_frame(k, p, f, head, &changed);
         /* The same frame without the application's keys: what they add. */
-        uint8_t delta[PARAMS_ENCODED_MAX];
+        static uint8_t delta[PARAMS_ENCODED_MAX]; /* too large for a stack frame */
         cluster_frame_result r;
         size_t all = params_encode_delta(p, p->version, delta, sizeof delta);
         if (cluster_master_frame(m, &r) != 0)
