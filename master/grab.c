@@ -6,37 +6,13 @@
 #include <string.h>
 
 #include "base/mat4.h"
+#include "base/vec3.h"
 #include "base/xalloc.h"
 
 void grab_init(grab *g)
 {
     memset(g, 0, sizeof *g);
     g->object = -1;
-}
-
-/* Distance along the ray to triangle abc, or -1 (Moller-Trumbore, both sides). */
-static double ray_triangle(const double o[3], const double d[3], const double a[3], const double b[3],
-                           const double c[3])
-{
-    double e1[3], e2[3], p[3], t[3], q[3];
-    for (int k = 0; k < 3; k++) {
-        e1[k] = b[k] - a[k];
-        e2[k] = c[k] - a[k];
-        t[k] = o[k] - a[k];
-    }
-    p[0] = d[1] * e2[2] - d[2] * e2[1];
-    p[1] = d[2] * e2[0] - d[0] * e2[2];
-    p[2] = d[0] * e2[1] - d[1] * e2[0];
-    double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
-    if (fabs(det) < 1e-12)
-        return -1;
-    double u = (t[0] * p[0] + t[1] * p[1] + t[2] * p[2]) / det;
-    q[0] = t[1] * e1[2] - t[2] * e1[1];
-    q[1] = t[2] * e1[0] - t[0] * e1[2];
-    q[2] = t[0] * e1[1] - t[1] * e1[0];
-    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
-    double dist = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
-    return u < 0 || v < 0 || u + v > 1 || dist <= 0 ? -1 : dist;
 }
 
 /* Brute force over the objects' triangles in their frame's models: a pick happens once per
@@ -62,7 +38,7 @@ int grab_pick(const scene *s, const scene_pose *pose, const float origin[3], con
             for (int a = 0; a < 3; a++)
                 v[k][a] = p[a];
         }
-        double dist = ray_triangle(o, d, v[0], v[1], v[2]);
+        double dist = vec3d_ray_triangle(o, d, v[0], v[1], v[2]);
         if (dist > 0 && dist < best) {
             best = dist;
             hit = ob;

@@ -97,4 +97,28 @@ static inline void vec3d_cross(const double a[3], const double b[3], double out[
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Distance along d from o to triangle abc, either side (Moeller-Trumbore), or INFINITY;
+ * d need not be unit (the distance is then in units of |d|). */
+static inline double vec3d_ray_triangle(const double o[3], const double d[3], const double a[3],
+                                        const double b[3], const double c[3])
+{
+    double e1[3], e2[3], s[3], h[3], q[3];
+    vec3d_sub(b, a, e1);
+    vec3d_sub(c, a, e2);
+    vec3d_sub(o, a, s);
+    vec3d_cross(d, e2, h);
+    double det = vec3d_dot(e1, h);
+    if (fabs(det) < 1e-30)
+        return INFINITY;
+    double u = vec3d_dot(s, h) / det;
+    if (u < 0 || u > 1)
+        return INFINITY;
+    vec3d_cross(s, e1, q);
+    double v = vec3d_dot(d, q) / det;
+    if (v < 0 || u + v > 1)
+        return INFINITY;
+    double t = vec3d_dot(e2, q) / det;
+    return t > 0 ? t : INFINITY;
+}
+
 #endif

@@ -19,32 +19,17 @@ static const float probe_dir[PROBES][3] = {
     {-D3, D3, D3}, {-D3, D3, -D3}, {-D3, -D3, D3}, {-D3, -D3, -D3},
 };
 
-/* Distance along unit d from o to triangle t (Moeller-Trumbore), or INFINITY. */
+/* Distance along unit d from o to triangle t, or INFINITY. */
 static double ray_triangle(const float *p, const float o[3], const float d[3])
 {
-    double e1[3], e2[3], s[3], h[3], q[3];
+    double v[3][3], od[3], dd[3];
+    for (int k = 0; k < 9; k++)
+        v[k / 3][k % 3] = p[k];
     for (int k = 0; k < 3; k++) {
-        e1[k] = (double)p[3 + k] - p[k];
-        e2[k] = (double)p[6 + k] - p[k];
-        s[k] = (double)o[k] - p[k];
+        od[k] = o[k];
+        dd[k] = d[k];
     }
-    h[0] = d[1] * e2[2] - d[2] * e2[1];
-    h[1] = d[2] * e2[0] - d[0] * e2[2];
-    h[2] = d[0] * e2[1] - d[1] * e2[0];
-    double a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
-    if (fabs(a) < 1e-30)
-        return INFINITY;
-    double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / a;
-    if (u < 0 || u > 1)
-        return INFINITY;
-    q[0] = s[1] * e1[2] - s[2] * e1[1];
-    q[1] = s[2] * e1[0] - s[0] * e1[2];
-    q[2] = s[0] * e1[1] - s[1] * e1[0];
-    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / a;
-    if (v < 0 || u + v > 1)
-        return INFINITY;
-    double t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / a;
-    return t > 0 ? t : INFINITY;
+    return vec3d_ray_triangle(od, dd, v[0], v[1], v[2]);
 }
 
 /* scene_point_is_free(), and the distance to the nearest surface a probe met. */
