@@ -53,6 +53,7 @@ struct cluster_master {
     double last_heartbeat;   /* last time every live node was sent something */
     uint8_t buf[WIRE_MAX_MESSAGE];
     uint8_t params_buf[PARAMS_ENCODED_MAX];
+    uint8_t common_buf[PARAMS_ENCODED_MAX]; /* the delta shared by nodes at v-1 (50 KB: not on the stack) */
 };
 
 static int send_to(cluster_master *m, int node, const wire_msg *msg)
@@ -692,8 +693,8 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
     out->epoch = params_get_u32(&m->params, PARAMS_RESET_EPOCH);
 
     /* Nodes at v-1 (the usual case) share one encoded delta. */
-    uint8_t common[PARAMS_ENCODED_MAX];
-    size_t common_len = params_encode_delta(&m->params, v - 1, common, sizeof common);
+    uint8_t *common = m->common_buf;
+    size_t common_len = params_encode_delta(&m->params, v - 1, common, sizeof m->common_buf);
     for (int i = 0; i < m->cfg->node_count; i++) {
         peer *p = &m->peers[i];
         p->in_barrier = p->ready = 0;

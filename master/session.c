@@ -465,7 +465,7 @@ static cJSON *stat_obj(double *v, int n)
 /* What a joining node receives: one SNAPSHOT message of the whole store. */
 static size_t snapshot_bytes(session *s)
 {
-    uint8_t snap[PARAMS_ENCODED_MAX], msg[WIRE_MAX_MESSAGE];
+    static uint8_t snap[PARAMS_ENCODED_MAX], msg[WIRE_MAX_MESSAGE]; /* 115 KB: not on the stack */
     wire_msg sm = {.type = WIRE_SNAPSHOT, .version = s->last_version, .params = snap};
     sm.params_len = params_encode_snapshot(cluster_master_params(s->m), snap, sizeof snap);
     return wire_encode(&sm, msg, sizeof msg);

@@ -178,7 +178,7 @@ static void fake_master(stranger *s)
     params_set_f32(&p, params_light_key(0, PARAMS_LIGHT_INTENSITY), s->nonfinite ? INFINITY : 1e30f);
     params_set_i32(&p, params_schema_find(&schema, "steps"), 1 << 30);
     uint64_t v = params_commit(&p) + 1000000;
-    uint8_t enc[PARAMS_ENCODED_MAX];
+    static uint8_t enc[PARAMS_ENCODED_MAX];
     size_t n = params_encode_snapshot(&p, enc, sizeof enc);
     double end = clock_now_ms() + s->listen_ms;
     while (clock_now_ms() < end) {

@@ -95,7 +95,7 @@ static void test_client_against_fake_master(void **state)
     float head[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3f, 1.7f, 0, 1};
     params_set_mat4(&master, PARAMS_HEAD, head);
     params_commit(&master);
-    uint8_t snap[PARAMS_ENCODED_MAX], buf[WIRE_MAX_MESSAGE];
+    static uint8_t snap[PARAMS_ENCODED_MAX], buf[WIRE_MAX_MESSAGE];
     wire_msg sm = {.type = WIRE_SNAPSHOT, .version = 1, .params = snap};
     sm.params_len = params_encode_snapshot(&master, snap, sizeof snap);
     size_t snap_len = wire_encode(&sm, buf, sizeof buf);
@@ -153,7 +153,7 @@ static void test_client_against_fake_master(void **state)
     head[12] = 0.5f;
     params_set_mat4(&master, PARAMS_HEAD, head);
     params_commit(&master);
-    uint8_t delta[PARAMS_ENCODED_MAX];
+    static uint8_t delta[PARAMS_ENCODED_MAX];
     wire_msg fm = {.type = WIRE_FRAME, .version = 2, .base_version = 1, .params = delta};
     fm.params_len = params_encode_delta(&master, 1, delta, sizeof delta);
     send_wire(&fm);

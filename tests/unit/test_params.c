@@ -66,7 +66,7 @@ static void test_delta_carries_only_changes(void **state)
     assert_int_equal(params_commit(&m), 1);
     assert_int_equal(params_changed_count(&m, 0), 2);
 
-    uint8_t buf[PARAMS_ENCODED_MAX];
+    static uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_delta(&m, 0, buf, sizeof buf);
     assert_int_equal(len, (2 + 64) + (2 + 8));
     assert_int_equal(params_apply(&n, 1, buf, len), 0);
@@ -105,7 +105,7 @@ static void test_snapshot_joins_late(void **state)
     /* A late store gets everything, whatever it held before. */
     params_init(&late, &schema);
     params_set_i32(&late, key("steps"), 99);
-    uint8_t buf[PARAMS_ENCODED_MAX];
+    static uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_snapshot(&m, buf, sizeof buf);
     size_t expect = 0;
     for (int k = 0; k < schema.count; k++)
@@ -141,7 +141,7 @@ static void test_bad_deltas_leave_store_unchanged(void **state)
     params_set_mat4(&m, PARAMS_HEAD, head);
     params_set_f32(&m, key("exposure"), 2.0f);
     params_commit(&m);
-    uint8_t buf[PARAMS_ENCODED_MAX];
+    static uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_delta(&m, 0, buf, sizeof buf);
     uint64_t before = params_checksum(&n);
 
@@ -218,7 +218,7 @@ static void test_gi_settings_travel(void **state)
     assert_null(gi_set(&f, "vpl-interleave", "4"));
     params_set_from_frame(&m, &f);
     params_commit(&m);
-    uint8_t buf[PARAMS_ENCODED_MAX];
+    static uint8_t buf[PARAMS_ENCODED_MAX];
     size_t len = params_encode_delta(&m, 0, buf, sizeof buf);
     assert_int_equal(len, 2 + 4); /* only the changed setting */
     assert_int_equal(params_apply(&n, 1, buf, len), 0);

@@ -98,7 +98,7 @@ static void test_encoding_unchanged(void **state)
     const float color[3] = {0.5f, 0.25f, 1};
     params_set(&s, params_light_key(0, PARAMS_LIGHT_COLOR), color, sizeof color);
     uint64_t v = params_commit(&s);
-    uint8_t delta[PARAMS_ENCODED_MAX];
+    static uint8_t delta[PARAMS_ENCODED_MAX];
     size_t dn = params_encode_delta(&s, v - 1, delta, sizeof delta);
     wire_msg f = {.type = WIRE_FRAME, .version = v, .base_version = v - 1, .params = delta,
                   .params_len = dn};
