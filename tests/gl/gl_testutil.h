@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/vec3.h"
 #include "frame/frame_params.h"
 #include "gi/gi_settings.h"
 #include "gi/ilpv/gi_ilpv.h"
@@ -134,35 +135,21 @@ static inline void gltest_window_mean(const float *img, int w, int h, int cx, in
         out[c] /= n > 0 ? n : 1;
 }
 
-/* Distance from o along unit d to the nearest triangle of s (Moeller-Trumbore); INFINITY
- * when none. */
+/* Distance from o along unit d to the nearest triangle of s (vec3d_ray_triangle());
+ * INFINITY when none. */
 static inline float gltest_cast(const scene *s, const float o[3], const float d[3])
 {
-    float best = INFINITY;
+    double best = INFINITY, od[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]};
     for (size_t j = 0; j < s->triangle_count; j++) {
         const float *p = s->positions + 9 * j;
-        float e1[3], e2[3], q[3], t[3], h[3];
-        for (int c = 0; c < 3; c++) {
-            e1[c] = p[3 + c] - p[c];
-            e2[c] = p[6 + c] - p[c];
-            t[c] = o[c] - p[c];
-        }
-        h[0] = d[1] * e2[2] - d[2] * e2[1];
-        h[1] = d[2] * e2[0] - d[0] * e2[2];
-        h[2] = d[0] * e2[1] - d[1] * e2[0];
-        float det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
-        if (fabsf(det) < 1e-12f)
-            continue;
-        float u = (t[0] * h[0] + t[1] * h[1] + t[2] * h[2]) / det;
-        q[0] = t[1] * e1[2] - t[2] * e1[1];
-        q[1] = t[2] * e1[0] - t[0] * e1[2];
-        q[2] = t[0] * e1[1] - t[1] * e1[0];
-        float v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
-        float dist = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
-        if (u >= 0 && v >= 0 && u + v <= 1 && dist > 0 && dist < best)
-            best = dist;
+        double v[3][3];
+        for (int k = 0; k < 9; k++)
+            v[k / 3][k % 3] = p[k];
+        double t = vec3d_ray_triangle(od, dd, v[0], v[1], v[2]);
+        if (t < best)
+            best = t;
     }
-    return best;
+    return (float)best;
 }
 
 #endif

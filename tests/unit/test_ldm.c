@@ -15,6 +15,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "base/vec3.h"
+
 #include "ldm/ldm_cpu.h"
 #include "ldm/ldm_directions.h"
 #include "ldm/ldm_map.h"
@@ -134,33 +136,17 @@ static void test_scene(scene *s)
 /* Brute force: the nearest t > 0 where o + t dir meets a triangle (either side), or -1. */
 static double ray_cast(const scene *s, const double o[3], const double dir[3])
 {
-    double best = -1;
+    double best = INFINITY;
     for (size_t tri = 0; tri < s->triangle_count; tri++) {
         const float *p = s->positions + 9 * tri;
-        double e1[3], e2[3], pv[3], tv[3], qv[3];
-        for (int a = 0; a < 3; a++) {
-            e1[a] = p[3 + a] - p[a];
-            e2[a] = p[6 + a] - p[a];
-            tv[a] = o[a] - p[a];
-        }
-        pv[0] = dir[1] * e2[2] - dir[2] * e2[1];
-        pv[1] = dir[2] * e2[0] - dir[0] * e2[2];
-        pv[2] = dir[0] * e2[1] - dir[1] * e2[0];
-        double det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
-        if (fabs(det) < 1e-12)
-            continue;
-        double u = (tv[0] * pv[0] + tv[1] * pv[1] + tv[2] * pv[2]) / det;
-        qv[0] = tv[1] * e1[2] - tv[2] * e1[1];
-        qv[1] = tv[2] * e1[0] - tv[0] * e1[2];
-        qv[2] = tv[0] * e1[1] - tv[1] * e1[0];
-        double v = (dir[0] * qv[0] + dir[1] * qv[1] + dir[2] * qv[2]) / det;
-        double t = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) / det;
-        if (u < 0 || v < 0 || u + v > 1 || t <= 0)
-            continue;
-        if (best < 0 || t < best)
+        double v[3][3];
+        for (int k = 0; k < 9; k++)
+            v[k / 3][k % 3] = p[k];
+        double t = vec3d_ray_triangle(o, dir, v[0], v[1], v[2]);
+        if (t < best)
             best = t;
     }
-    return best;
+    return isinf(best) ? -1 : best;
 }
 
 static uint32_t lcg(uint32_t *x)
