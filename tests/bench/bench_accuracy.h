@@ -89,6 +89,10 @@ double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels);
 /* Mean absolute difference of two linear float images. */
 double acc_linear_mae(const float *a, const float *b, size_t pixels);
 double acc_median(double *v, int n);
+/* One frame of fp: r's frame pass, its eye pass of the first view into img (indirect kept)
+ * and its timings into t; -1 after one line that names the bench (what). */
+int acc_frame(acc_setup *s, renderer *r, const frame_params *fp, const char *what,
+              renderer_image *img, renderer_timings *t);
 FILE *acc_open_csv(const acc_setup *s, const char *name, const char *header);
 /* Frames until the history's weight lambda^k falls below 1e-3: the steady state. */
 int acc_warm_frames(float lambda);

@@ -69,13 +69,9 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, int frames,
     double stage[STAGES][MAX_FRAMES], gi_ms[MAX_FRAMES], frame[MAX_FRAMES];
     renderer_image img = {0};
     for (int f = 0; f < frames; f++) {
-        renderer_frame_pass(r, fp);
-        if (renderer_eye_pass(r, &s->view, 1, &img) != 0) {
-            fprintf(stderr, "bench accuracy caches: %s\n", renderer_last_error(r));
-            return -1;
-        }
         renderer_timings t;
-        renderer_get_timings(r, &t);
+        if (acc_frame(s, r, fp, "caches", &img, &t) != 0)
+            return -1;
         for (int k = 0; k < STAGES; k++)
             stage[k][f] = gi_stats_value(&t.gi, STAGE_NAMES[k], NULL);
         gi_ms[f] = gi_stats_total_ms(&t.gi);

@@ -73,13 +73,9 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, float *indirec
     double gims[TIMED], frame[TIMED], aoms[TIMED];
     renderer_image img = {0};
     for (int f = 0; f < TIMED; f++) {
-        renderer_frame_pass(r, fp);
-        if (renderer_eye_pass(r, &s->view, 1, &img) != 0) {
-            fprintf(stderr, "bench accuracy ldm: %s\n", renderer_last_error(r));
-            return -1;
-        }
         renderer_timings rt;
-        renderer_get_timings(r, &rt);
+        if (acc_frame(s, r, fp, "ldm", &img, &rt) != 0)
+            return -1;
         gims[f] = gi_stats_total_ms(&rt.gi) + gi_stats_value(&rt.gi, "splat_ms", NULL);
         frame[f] = rt.frame_host_ms + rt.eye_host_ms;
         aoms[f] = rt.ao.eye_ms;

@@ -292,6 +292,18 @@ double acc_median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+int acc_frame(acc_setup *s, renderer *r, const frame_params *fp, const char *what,
+              renderer_image *img, renderer_timings *t)
+{
+    renderer_frame_pass(r, fp);
+    if (renderer_eye_pass(r, &s->view, 1, img) != 0) {
+        fprintf(stderr, "bench accuracy %s: %s\n", what, renderer_last_error(r));
+        return -1;
+    }
+    renderer_get_timings(r, t);
+    return 0;
+}
+
 FILE *acc_open_csv(const acc_setup *s, const char *name, const char *header)
 {
     char path[4200];

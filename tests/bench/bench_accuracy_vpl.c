@@ -84,13 +84,9 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, const acc_refe
     double sel[TIMED], sh[TIMED], eye[TIMED], frame[TIMED];
     renderer_image img = {0};
     for (int f = 0; f < TIMED; f++) {
-        renderer_frame_pass(r, fp);
-        if (renderer_eye_pass(r, &s->view, 1, &img) != 0) {
-            fprintf(stderr, "bench accuracy vpl: %s\n", renderer_last_error(r));
-            return -1;
-        }
         renderer_timings rt;
-        renderer_get_timings(r, &rt);
+        if (acc_frame(s, r, fp, "vpl", &img, &rt) != 0)
+            return -1;
         sel[f] = gi_stats_value(&rt.gi, "select", NULL);
         sh[f] = gi_stats_value(&rt.gi, "shadow", NULL);
         eye[f] = rt.eye_host_ms;
