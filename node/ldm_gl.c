@@ -14,8 +14,7 @@ struct ldm_gl {
     const gl_functions *gl;
     ldm_layout layout;
     ldm_map maps[LDM_DIRECTIONS_MAX];
-    GLuint prog, vao, vbo, fbo;
-    GLsizei vertices;
+    GLuint prog, fbo;
     GLuint depth, bases, overflow;  /* shader storage buffers */
     uint64_t checksum;
     size_t overflowed;
@@ -38,8 +37,7 @@ static GLuint storage(const gl_functions *gl, size_t bytes, const void *data)
     return b;
 }
 
-ldm_gl *ldm_gl_create(const gl_functions *gl, const scene *s, const ldm_layout *l, char *err,
-                      size_t errlen)
+ldm_gl *ldm_gl_create(const gl_functions *gl, const ldm_layout *l, char *err, size_t errlen)
 {
     ldm_gl *m = xcalloc(1, sizeof *m);
     m->gl = gl;
@@ -50,16 +48,6 @@ ldm_gl *ldm_gl_create(const gl_functions *gl, const scene *s, const ldm_layout *
         ldm_gl_destroy(m);
         return NULL;
     }
-    m->vertices = (GLsizei)(3 * s->triangle_count);
-    gl->GenVertexArrays(1, &m->vao);
-    gl->BindVertexArray(m->vao);
-    gl->GenBuffers(1, &m->vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(s->triangle_count * 9 * sizeof(float)),
-                   s->positions, GL_STATIC_DRAW);
-    gl->EnableVertexAttribArray(0);
-    gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
-    gl->BindVertexArray(0);
     float bases[LDM_DIRECTIONS_MAX * 12] = {0};
     for (int i = 0; i < l->directions; i++)
         for (int a = 0; a < 3; a++) {
@@ -94,12 +82,10 @@ void ldm_gl_destroy(ldm_gl *m)
     if (!m)
         return;
     const gl_functions *gl = m->gl;
-    GLuint buffers[] = {m->vbo, m->depth, m->bases, m->overflow};
-    for (int i = 0; i < 4; i++)
+    GLuint buffers[] = {m->depth, m->bases, m->overflow};
+    for (int i = 0; i < 3; i++)
         if (buffers[i])
             gl->DeleteBuffers(1, &buffers[i]);
-    if (m->vao)
-        gl->DeleteVertexArrays(1, &m->vao);
     if (m->fbo)
         gl->DeleteFramebuffers(1, &m->fbo);
     if (m->prog)
@@ -135,7 +121,7 @@ static void set_uniforms(const ldm_gl *m, GLuint prog)
     gl->Uniform1f(gl->GetUniformLocation(prog, "u_ldm_radius"), l->radius);
 }
 
-double ldm_gl_build(ldm_gl *m)
+double ldm_gl_build(ldm_gl *m, const scene_gl *mesh)
 {
     const gl_functions *gl = m->gl;
     const ldm_layout *l = &m->layout;
@@ -154,22 +140,15 @@ double ldm_gl_build(ldm_gl *m)
     gl->Disable(GL_CULL_FACE);
     gl->UseProgram(m->prog);
     set_uniforms(m, m->prog);
-    /* The maps hold the scene as loaded: scene.vert's object model is the identity here. */
-    static const float identity4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    static const float identity3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    gl->UniformMatrix4fv(gl->GetUniformLocation(m->prog, "u_model"), 1, GL_FALSE, identity4);
-    gl->UniformMatrix3fv(gl->GetUniformLocation(m->prog, "u_normal_model"), 1, GL_FALSE, identity3);
     GLint map_loc = gl->GetUniformLocation(m->prog, "u_ldm_map");
     GLint vp_loc = gl->GetUniformLocation(m->prog, "u_view_projection");
-    gl->BindVertexArray(m->vao);
     for (int i = 0; i < l->directions; i++) {
         float vp[16];
         map_projection(l, &m->maps[i], vp);
         gl->UniformMatrix4fv(vp_loc, 1, GL_FALSE, vp);
         gl->Uniform1i(map_loc, i);
-        gl->DrawArrays(GL_TRIANGLES, 0, m->vertices);
+        scene_gl_draw_geometry(mesh, m->prog); /* every object where it is now */
     }
-    gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gl->Finish();

@@ -17,8 +17,9 @@
  * it costs: a texel with more than `layers` surfaces keeps the nearest only (the map
  * looks from the +d side), which `overflow` counts.
  *
- * The scene is static (its triangles never move after loading), so its owner builds the
- * maps once; ldm_gl_build() can be called again. */
+ * The maps hold the scene's triangles where scene_gl draws them (its objects' poses) when
+ * ldm_gl_build() runs: its owner builds them again when objects move. Their bounding
+ * sphere is the scene's as loaded (ldm_layout_init()): what moves outside it is clipped. */
 #ifndef CAVELIGHT_LDM_GL_H
 #define CAVELIGHT_LDM_GL_H
 
@@ -27,18 +28,17 @@
 
 #include "gl_functions.h"
 #include "ldm/ldm_map.h"
-#include "scene/scene.h"
+#include "scene_gl.h"
 
 typedef struct ldm_gl ldm_gl;
 
 /* The maps' buffers for layout l (its memory checked by the caller); NULL with one line in
  * err. */
-ldm_gl *ldm_gl_create(const gl_functions *gl, const scene *s, const ldm_layout *l, char *err,
-                      size_t errlen);
+ldm_gl *ldm_gl_create(const gl_functions *gl, const ldm_layout *l, char *err, size_t errlen);
 void ldm_gl_destroy(ldm_gl *m);
-/* Renders every map; GL finished. Returns the host ms it took (the checksum's read-back
- * after it not counted). */
-double ldm_gl_build(ldm_gl *m);
+/* Renders every map from mesh (scene_gl_draw_geometry(): hidden objects left out); GL
+ * finished. Returns the host ms it took (the checksum's read-back after it not counted). */
+double ldm_gl_build(ldm_gl *m, const scene_gl *mesh);
 const ldm_layout *ldm_gl_layout(const ldm_gl *m);
 /* The bases of its maps (layout.directions). */
 const ldm_map *ldm_gl_maps(const ldm_gl *m);

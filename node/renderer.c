@@ -416,10 +416,10 @@ static void keep_within_limits(renderer *r)
 
 /* The ambient occlusion's maps for frame p; a refusal (memory) is said in
  * renderer_last_error() and leaves AO off. */
-static void follow_ao(renderer *r, const frame_params *p)
+static void follow_ao(renderer *r, const frame_params *p, int moved)
 {
     char err[256];
-    if (renderer_ao_frame(r->ao, p, err, sizeof err) != 0)
+    if (renderer_ao_frame(r->ao, p, r->mesh, moved, err, sizeof err) != 0)
         snprintf(r->error, sizeof r->error, "renderer: no ambient occlusion: %s", err);
 }
 
@@ -434,8 +434,9 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     r->eye_index = 0;
     const frame_params *p = &r->frame;
     follow_frame(r, p);
-    follow_ao(r, p);
-    if (!objects_moved(r) && gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
+    int moved = objects_moved(r);
+    follow_ao(r, p, moved);
+    if (!moved && gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
         r->timings.rsm_ms = 0;
         gi_stats_get(r->gi, &r->timings.gi);
         r->timings.frame_host_ms = clock_now_ms() - t0;

@@ -67,15 +67,25 @@ void renderer_ao_destroy(renderer_ao *ao)
     free(ao);
 }
 
-int renderer_ao_frame(renderer_ao *ao, const frame_params *p, char *err, size_t errlen)
+static void build(renderer_ao *ao, const scene_gl *mesh)
+{
+    ao->stats.build_ms = ldm_gl_build(ao->maps, mesh);
+    ao->stats.overflow = ldm_gl_overflow(ao->maps);
+}
+
+int renderer_ao_frame(renderer_ao *ao, const frame_params *p, const scene_gl *mesh, int moved,
+                      char *err, size_t errlen)
 {
     ao->frame = *p;
     if (p->ao != FRAME_AO_LDM)
         return 0;
     ldm_layout want;
     ldm_layout_init(&want, ao->scene, p->ao_directions, p->ao_resolution, p->ldm_layers);
-    if ((ao->maps || ao->refused) && memcmp(&want, &ao->built, sizeof want) == 0)
+    if ((ao->maps || ao->refused) && memcmp(&want, &ao->built, sizeof want) == 0) {
+        if (ao->maps && moved)
+            build(ao, mesh);
         return 0;
+    }
     ldm_gl_destroy(ao->maps);
     ao->maps = NULL;
     ao->built = want;
@@ -86,11 +96,10 @@ int renderer_ao_frame(renderer_ao *ao, const frame_params *p, char *err, size_t 
         snprintf(err, errlen, "%s", why);
         return -1;
     }
-    if (!(ao->maps = ldm_gl_create(ao->gl, ao->scene, &want, err, errlen)))
+    if (!(ao->maps = ldm_gl_create(ao->gl, &want, err, errlen)))
         return -1;
     ao->refused = 0;
-    ao->stats.build_ms = ldm_gl_build(ao->maps);
-    ao->stats.overflow = ldm_gl_overflow(ao->maps);
+    build(ao, mesh);
     ao->stats.memory_mb = ldm_memory_bytes(&want) / (1024.0 * 1024.0);
     return 0;
 }

@@ -4,8 +4,8 @@
  *   ldm   against layered depth maps of the whole scene (ldm_gl.h: ao-directions maps of
  *         ao-resolution^2 texels, ldm-layers deep), one ray per map from each pixel
  *         (shaders/ao_ldm.frag): sees what is off screen and behind the first surface;
- *         the maps are built when the settings ask for them (the scene never moves) and
- *         refused, with one line, when they exceed ldm-memory
+ *         the maps are built when the settings ask for them and again when objects
+ *         move, and refused, with one line, when they exceed ldm-memory
  *   ssao  horizons in the G-buffer (shaders/ao_hbao.frag), the screen-space baseline
  *   off   no pass; the shading takes AO as 1
  *
@@ -21,6 +21,7 @@
 #include "frame/frame_view.h"
 #include "gl_functions.h"
 #include "scene/scene.h"
+#include "scene_gl.h"
 
 typedef struct renderer_ao renderer_ao;
 
@@ -28,10 +29,12 @@ typedef struct renderer_ao renderer_ao;
 renderer_ao *renderer_ao_create(const gl_functions *gl, const scene *s, char *err,
                                 size_t errlen);
 void renderer_ao_destroy(renderer_ao *ao);
-/* Follows frame p (sanitized): builds the maps `ao ldm` asks for when their settings
- * changed. 0, or -1 with one line in err (over ldm-memory, no GL memory): AO is then off
- * until the settings change. */
-int renderer_ao_frame(renderer_ao *ao, const frame_params *p, char *err, size_t errlen);
+/* Follows frame p (sanitized): builds the maps `ao ldm` asks for from mesh when their
+ * settings changed, or when objects moved (moved 1) since they were built. 0, or -1 with
+ * one line in err (over ldm-memory, no GL memory): AO is then off until the settings
+ * change. */
+int renderer_ao_frame(renderer_ao *ao, const frame_params *p, const scene_gl *mesh, int moved,
+                      char *err, size_t errlen);
 
 /* One eye's G-buffer, as renderer_ao_eye() reads it. */
 typedef struct renderer_ao_eye_desc {

@@ -78,11 +78,12 @@ static void build_and_compare(int layers, double allowed)
     ldm_layout_init(&l, &f.s, 16, 48, layers);
     ldm_cpu c;
     assert_int_equal(ldm_cpu_build(&f.s, &l, &c), 0);
-    ldm_gl *m = ldm_gl_create(glctx_gl(f.ctx), &f.s, &l, err, sizeof err);
+    scene_gl *mesh = scene_gl_create(glctx_gl(f.ctx), &f.s, err, sizeof err);
+    ldm_gl *m = mesh ? ldm_gl_create(glctx_gl(f.ctx), &l, err, sizeof err) : NULL;
     if (!m)
         fprintf(stderr, "%s\n", err);
     assert_non_null(m);
-    double ms = ldm_gl_build(m);
+    double ms = ldm_gl_build(m, mesh);
     size_t words = (size_t)(ldm_memory_bytes(&l) / 4);
     uint32_t *gl = malloc(words * 4);
     ldm_gl_read(m, gl);
@@ -95,10 +96,11 @@ static void build_and_compare(int layers, double allowed)
     /* Overflow: only texels on a triangle edge may count otherwise (a centre exactly on it). */
     assert_true(labs((long)ldm_gl_overflow(m) - (long)c.overflow) <= (long)(allowed * filled) + 2);
     uint64_t first = ldm_gl_checksum(m);
-    ldm_gl_build(m);
+    ldm_gl_build(m, mesh);
     assert_true(ldm_gl_checksum(m) == first);
     free(gl);
     ldm_gl_destroy(m);
+    scene_gl_destroy(mesh);
     ldm_cpu_free(&c);
     close_room(&f);
 }

@@ -2,12 +2,13 @@
  * loaded and is then told it moved computes, in its next frame, exactly what a renderer
  * of a room whose file had the box there computes (the same checksum: ILPV's blockers
  * redone around the box on the CPU and the GL backend, with either transport, vpl's maps and shadow maps drawn
- * with the box where it is), and that differs from the frame with the box where it was
+ * with the box where it is, ldm's layered depth maps drawn again, and so are the ldm AO's), and that differs from the frame with the box where it was
  * loaded. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "base/mat4.h"
@@ -31,6 +32,40 @@ static uint64_t first_frame(gltest *t, const scene *sc, const frame_params *f, c
     uint64_t sum = renderer_frame_pass(r, &g);
     renderer_destroy(r);
     return sum;
+}
+
+enum { AO_W = 64, AO_H = 48 };
+
+/* The ldm AO image of the first eye pass after the frame with the pose (first_frame()'s
+ * order), gi none. */
+static void first_ao(gltest *t, const scene *sc, const scene_pose *before, const scene_pose *pose,
+                     float *out)
+{
+    char err[300];
+    frame_params f = t->params;
+    gltest_set(&f, "gi", "none");
+    gltest_set(&f, "ao", "ldm");
+    gltest_set(&f, "ao-directions", "32");
+    gltest_set(&f, "ao-resolution", "64");
+    renderer_desc rd = {.gl = glctx_gl(t->ctx), .scene = sc, .first = &f, .threads = 1};
+    renderer *r = renderer_create(&rd, err, sizeof err);
+    if (!r)
+        fail_msg("%s", err);
+    renderer_view v;
+    const float eye[3] = {0.0f, 1.7f, 1.8f}, target[3] = {0.0f, 0.5f, -1.0f};
+    gltest_look_at(&v, eye, target, 1.2f, AO_W, AO_H);
+    renderer_image img;
+    if (before) {
+        renderer_set_pose(r, before);
+        renderer_frame_pass(r, &f);
+        assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
+    }
+    renderer_set_pose(r, pose);
+    renderer_frame_pass(r, &f);
+    assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
+    assert_non_null(img.ao);
+    memcpy(out, img.ao, AO_W * AO_H * 3 * sizeof *out);
+    renderer_destroy(r);
 }
 
 static void test_moved_equals_built_there(void **state)
@@ -60,7 +95,7 @@ static void test_moved_equals_built_there(void **state)
     scene_pose_rest(&there, &none);
     /* method, LPV backend, LPV transport */
     const char *methods[][3] = {{"ilpv", "cpu", "beams"}, {"ilpv", "gl", "beams"}, {"ilpv", "cpu", "paper"},
-                                {"ilpv", "gl", "paper"}, {"vpl", NULL, NULL}};
+                                {"ilpv", "gl", "paper"}, {"vpl", NULL, NULL}, {"ldm", NULL, NULL}};
     for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
         frame_params f = t.params;
         gltest_set(&f, "gi", methods[i][0]);
@@ -77,6 +112,13 @@ static void test_moved_equals_built_there(void **state)
         assert_true(followed == built);
         assert_true(followed != at_rest);
     }
+    /* The ldm AO's maps are drawn again too. */
+    static float ao[3][AO_W * AO_H * 3];
+    first_ao(&t, &t.scene, &rest, &moved, ao[0]);
+    first_ao(&t, &there, NULL, &none, ao[1]);
+    first_ao(&t, &t.scene, NULL, &rest, ao[2]);
+    assert_memory_equal(ao[0], ao[1], sizeof ao[0]);
+    assert_memory_not_equal(ao[0], ao[2], sizeof ao[0]);
     scene_free(&there);
     gltest_close(&t);
 }

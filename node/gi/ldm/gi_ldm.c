@@ -25,6 +25,7 @@ typedef struct gi_ldm {
     frame_params last;
     int have_last;
     ldm_gl *maps;
+    int maps_stale;              /* not built yet, or objects moved since: build in frame() */
     ldm_photon *photons;         /* this frame's primary photons */
     size_t photon_count, photon_capacity;
     vpl_emitter *emitters;
@@ -58,8 +59,9 @@ static void release(gi_ldm *g)
     free(g->emitters);
 }
 
-/* The maps for settings s and the frame's layers: built fresh. 0, or -1 with one line. */
-static int build_maps(gi_ldm *g, const frame_params *p, char *err, size_t errlen)
+/* The maps' buffers for the settings and the frame's layers, built in the next frame().
+ * 0, or -1 with one line. */
+static int new_maps(gi_ldm *g, const frame_params *p, char *err, size_t errlen)
 {
     const ldm_settings *s = &g->settings;
     const char *why = ldm_memory_check(s->directions, s->resolution, p->ldm_layers,
@@ -68,12 +70,12 @@ static int build_maps(gi_ldm *g, const frame_params *p, char *err, size_t errlen
         return -1;
     ldm_layout l;
     ldm_layout_init(&l, g->scene, s->directions, s->resolution, p->ldm_layers);
-    ldm_gl *maps = ldm_gl_create(g->gl, g->scene, &l, err, errlen);
+    ldm_gl *maps = ldm_gl_create(g->gl, &l, err, errlen);
     if (!maps)
         return -1;
     ldm_gl_destroy(g->maps);
     g->maps = maps;
-    g->construct_ms = ldm_gl_build(maps);
+    g->maps_stale = 1;
     return 0;
 }
 
@@ -89,7 +91,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     g->emitter_count = vpl_emitters(d->scene, NULL);
     g->emitters = xmalloc((g->emitter_count ? g->emitter_count : 1) * sizeof *g->emitters);
     vpl_emitters(d->scene, g->emitters);
-    if (build_maps(g, d->frame, err, errlen) != 0 ||
+    if (new_maps(g, d->frame, err, errlen) != 0 ||
         !(g->prog_split = gltools_compute_parts(d->gl, split, 2, NULL, err, errlen)) ||
         !(g->prog_splat = gltools_program_parts(d->gl, "ldm/ldm_splat.vert", splat, 2, NULL,
                                                 err, errlen))) {
@@ -220,8 +222,11 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     char err[256];
     const ldm_layout *lay = ldm_gl_layout(g->maps);
     g->construct_ms = 0;
-    if ((g->never_reuse || lay->layers != p->ldm_layers) && build_maps(g, p, err, sizeof err) != 0)
+    if (lay->layers != p->ldm_layers && new_maps(g, p, err, sizeof err) != 0)
         fprintf(stderr, "cavelight-node: %s; the last maps stay\n", err);
+    if (g->maps_stale || g->never_reuse) /* never_reuse: a moving scene's cost is measured */
+        g->construct_ms = ldm_gl_build(g->maps, rsm->mesh);
+    g->maps_stale = 0;
     double t0 = clock_now_ms();
     collect(g, p, rsm);
     double t1 = clock_now_ms();
@@ -326,6 +331,13 @@ static void stats(const void *state, gi_stats *out)
     out->figure[4] = (gi_stat){"splits", (double)g->splits};
 }
 
+/* Moved or hidden objects: the maps are drawn again, where the objects are now. */
+static void objects(void *state, const gi_objects *o)
+{
+    (void)o;
+    ((gi_ldm *)state)->maps_stale = 1;
+}
+
 const gi_method gi_ldm_method = {
     .name = "ldm",
     .shade = {"ldm/ldm_shade.glsl"},
@@ -335,4 +347,5 @@ const gi_method gi_ldm_method = {
     .frame = frame,
     .eye_bind = eye_bind,
     .stats = stats,
+    .objects = objects,
 };
