@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/vec3.h"
 #include "frame/frame_params.h"
 #include "gi/gi_settings.h"
 #include "gi/ilpv/gi_ilpv.h"
@@ -16,6 +15,7 @@
 #include "frame/offaxis.h"
 #include "renderer.h"
 #include "scene/scene.h"
+#include "scene_testutil.h"
 
 typedef struct gltest {
     glctx *ctx;
@@ -135,21 +135,11 @@ static inline void gltest_window_mean(const float *img, int w, int h, int cx, in
         out[c] /= n > 0 ? n : 1;
 }
 
-/* Distance from o along unit d to the nearest triangle of s (vec3d_ray_triangle());
- * INFINITY when none. */
+/* testutil_ray_cast() in floats: INFINITY when no triangle is met. */
 static inline float gltest_cast(const scene *s, const float o[3], const float d[3])
 {
-    double best = INFINITY, od[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]};
-    for (size_t j = 0; j < s->triangle_count; j++) {
-        const float *p = s->positions + 9 * j;
-        double v[3][3];
-        for (int k = 0; k < 9; k++)
-            v[k / 3][k % 3] = p[k];
-        double t = vec3d_ray_triangle(od, dd, v[0], v[1], v[2]);
-        if (t < best)
-            best = t;
-    }
-    return (float)best;
+    double od[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]};
+    return (float)testutil_ray_cast(s, od, dd);
 }
 
 #endif

@@ -15,11 +15,11 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "base/vec3.h"
 
 #include "ldm/ldm_cpu.h"
 #include "ldm/ldm_directions.h"
 #include "ldm/ldm_map.h"
+#include "scene_testutil.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -133,22 +133,6 @@ static void test_scene(scene *s)
     assert_int_equal(scene_finish(s, err, sizeof err), 0);
 }
 
-/* Brute force: the nearest t > 0 where o + t dir meets a triangle (either side), or -1. */
-static double ray_cast(const scene *s, const double o[3], const double dir[3])
-{
-    double best = INFINITY;
-    for (size_t tri = 0; tri < s->triangle_count; tri++) {
-        const float *p = s->positions + 9 * tri;
-        double v[3][3];
-        for (int k = 0; k < 9; k++)
-            v[k / 3][k % 3] = p[k];
-        double t = vec3d_ray_triangle(o, dir, v[0], v[1], v[2]);
-        if (t < best)
-            best = t;
-    }
-    return isinf(best) ? -1 : best;
-}
-
 static uint32_t lcg(uint32_t *x)
 {
     *x = *x * 1664525u + 1013904223u;
@@ -186,7 +170,9 @@ static void test_trace_meets_what_rays_meet(void **state)
             dir[a] = sign * mp->d[a];
             of[a] = (float)o[a];
         }
-        double want = ray_cast(&s, o, dir);
+        double want = testutil_ray_cast(&s, o, dir);
+        if (isinf(want))
+            want = -1; /* ldm_cpu_trace()'s miss */
         float got = ldm_cpu_trace(&c, m, sign, of, 1e-4f, 0);
         if (want >= 0 && want < 1e-3) /* starts on a surface: either answer is right */
             continue;
