@@ -4,7 +4,7 @@
 #ifndef CAVELIGHT_LPV_PAPER_STEP_H
 #define CAVELIGHT_LPV_PAPER_STEP_H
 
-#include "lpv/lpv_propagate.h"
+#include "lpv/lpv_step.h"
 
 /* Arguments already checked: same shapes, 12 channels, distinct volumes. */
 void lpv_paper_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);
