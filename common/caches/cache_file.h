@@ -25,7 +25,9 @@
 #include "scene/scene.h"
 
 /* Raised whenever the placement or the file's layout changes: older files are then stale. */
-enum { CACHE_FILE_VERSION = 1 };
+enum { CACHE_FILE_VERSION = 2 };
+/* Floats per cache in a file: position, normal, area, roughness (light_cache). */
+enum { CACHE_RECORD_FLOATS = 8 };
 
 typedef struct cache_key {
     uint32_t version;

@@ -263,7 +263,7 @@ static void test_interpolation(void **state)
         plane[i] = (int)(nrm[0] * 3 + 4) * 100000 + (int)(nrm[1] * 3 + 4) * 10000 +
                    (int)(nrm[2] * 3 + 4) * 1000 + (int)floorf(vec3_dot(nrm, p) * 50 + 500);
         float e[3], host[3], shaded[3];
-        light_cache at = {{p[0], p[1], p[2]}, {nrm[0], nrm[1], nrm[2]}, 0};
+        light_cache at = {{p[0], p[1], p[2]}, {nrm[0], nrm[1], nrm[2]}, 0, 1};
         cache_proxy g;
         cache_proxy_gather(&at, vals, n, NULL, &g);
         cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_hidden(c),
