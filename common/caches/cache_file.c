@@ -36,7 +36,10 @@ uint64_t cache_scene_hash(const scene *s)
     le_put(b, s->triangle_count, 8);
     uint64_t h = fnv(0xcbf29ce484222325ull, b, 8);
     h = val_hash_words(h, s->positions, 9 * s->triangle_count);
-    return val_hash_words(h, s->normals, 9 * s->triangle_count);
+    h = val_hash_words(h, s->normals, 9 * s->triangle_count);
+    for (size_t t = 0; t < s->triangle_count; t++) /* the caches' roughness */
+        h = val_hash_words(h, &s->materials[s->triangle_material[t]].roughness, 1);
+    return h;
 }
 
 cache_key cache_key_of(const scene *s, const cache_place_desc *d)

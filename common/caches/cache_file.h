@@ -3,8 +3,8 @@
  * share a folder place them once between them.
  *
  * A file holds one placement and says what it was made from: its key (the format version,
- * a hash of the scene's triangles and normals, the cube edge and angle tolerance) and a
- * checksum of every byte before it. Its name is the key's hash, so another scene or other
+ * a hash of the scene's triangles, normals and their materials' roughness, the cube edge
+ * and angle tolerance) and a checksum of every byte before it. Its name is the key's hash, so another scene or other
  * settings never meet it; a file whose key, size or checksum does not match (damaged,
  * truncated, another build's format) is never trusted: the caches are placed again and the
  * file rewritten. Files are written to a temporary name in the same folder and renamed, so

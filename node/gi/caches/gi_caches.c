@@ -625,6 +625,8 @@ const cache_set *gi_caches_set(const gi_caches *c) { return &c->set; }
 const cache_grid *gi_caches_grid(const gi_caches *c) { return &c->grid; }
 const cache_store_report *gi_caches_store(const gi_caches *c) { return &c->store; }
 const cache_proxy *gi_caches_proxies(const gi_caches *c) { return c->proxies; }
+const cache_proxy *gi_caches_glossy(const gi_caches *c) { return c->glossy; }
+const float *gi_caches_viewer(const gi_caches *c) { return c->eye; }
 const uint8_t *gi_caches_hidden(const gi_caches *c) { return c->hidden; }
 
 int gi_caches_picks(const gi_caches *c, const val_pick **picks)
