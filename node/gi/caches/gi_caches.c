@@ -600,7 +600,8 @@ static void stats(const void *state, gi_stats *out)
     out->stage_count = STAGES;
     for (int i = 0; i < STAGES; i++)
         out->stage[i] = (gi_stat){STAGE_NAMES[i], c->ms[i]};
-    size_t cache_bytes = c->set.count * (sizeof(light_cache) + sizeof(cache_proxy));
+    /* a cache, its diffuse and glossy proxies (the glossy ones are kept even when off) */
+    size_t cache_bytes = c->set.count * (sizeof(light_cache) + 2 * sizeof(cache_proxy));
     size_t bytes = 2 * (cache_bytes + cache_grid_bytes(&c->grid)); /* host and GPU copies */
     const gi_stat figures[] = {
         {"caches", (double)c->set.count},
