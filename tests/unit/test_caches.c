@@ -438,6 +438,40 @@ static void test_unbiased_on_emitter_square(void **state)
     assert_true(se < 0.01 * exact);
 }
 
+/* ---- glossy proxies ------------------------------------------------------------------ */
+
+/* The glossy proxy (equation 7) reproduces its VALs where the lobe cannot tell them apart:
+ * at roughness 1 (a constant lobe) it is the diffuse proxy, and of one VAL it is that VAL's
+ * irradiance at any roughness. On a smooth cache it moves to the VAL in the mirror
+ * direction of the viewer, where the diffuse proxy lies between the two. */
+static void test_glossy_proxy(void **state)
+{
+    (void)state;
+    const vpl vals[2] = {{{1, 1, 0}, {-0.7071f, -0.7071f, 0}, {1, 1, 1}, 0.01f},
+                         {{-1, 1, 0}, {0.7071f, -0.7071f, 0}, {1, 1, 1}, 0.01f}};
+    const float eye[3] = {-3, 3, 0}; /* mirrors onto vals[0] */
+    light_cache c = {{0, 0, 0}, {0, 1, 0}, 0.01f, 1};
+    cache_proxy d, g;
+    cache_proxy_gather(&c, vals, 2, NULL, &d);
+    cache_glossy_gather(&c, eye, vals, 2, NULL, &g);
+    for (int k = 0; k < 3; k++) {
+        assert_float_equal(g.position[k], d.position[k], 1e-5);
+        assert_float_equal(g.irradiance[k], d.irradiance[k], 1e-5 * d.irradiance[k]);
+    }
+    c.roughness = 0.3f;
+    for (int j = 0; j < 2; j++) {
+        cache_proxy_gather(&c, vals + j, 1, NULL, &d);
+        cache_glossy_gather(&c, eye, vals + j, 1, NULL, &g);
+        assert_float_equal(g.irradiance[0], d.irradiance[0], 1e-5 * d.irradiance[0]);
+    }
+    cache_proxy_gather(&c, vals, 2, NULL, &d);
+    cache_glossy_gather(&c, eye, vals, 2, NULL, &g);
+    print_message("smooth cache: diffuse proxy at x %.3f, glossy at x %.3f (the mirrored VAL "
+                  "at 1)\n", d.position[0], g.position[0]);
+    assert_float_equal(d.position[0], 0, 1e-5);
+    assert_true(g.position[0] > 0.99f);
+}
+
 /* ---- occlusion ----------------------------------------------------------------------- */
 
 static void test_occlusion_by_a_wall(void **state)
@@ -472,6 +506,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_unwritable, setup_dir, teardown_dir),
         cmocka_unit_test(test_sat_against_brute_force),
         cmocka_unit_test(test_unbiased_on_emitter_square),
+        cmocka_unit_test(test_glossy_proxy),
         cmocka_unit_test(test_occlusion_by_a_wall),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

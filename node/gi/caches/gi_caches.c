@@ -32,8 +32,12 @@ enum { CHUNK = 8192 };
 /* Floats per cache in each part of B_PROXIES: the proxy (8), the running sums of the proxy
  * pass (12) and of the occlusion (1), rounded up to vec4s. The glossy part follows the
  * diffuse one, the same, its last vec4 the cache's lobe exponent (uploaded once). */
-enum { PROXY_FLOATS = 24, PARTS = 2 };
-#define GLOSSY_DEFINES "#define GLOSSY 1\n#define GLOSSY_PART 6\n" /* PROXY_FLOATS / 4 */
+#define PROXY_VEC4S 6
+#define TEXT_OF(x) #x
+#define TEXT(x) TEXT_OF(x)
+enum { PROXY_FLOATS = 4 * PROXY_VEC4S, PARTS = 2 };
+/* the shaders' switch to the glossy proxies, and where their part starts (vec4s per cache) */
+#define GLOSSY_DEFINES "#define GLOSSY 1\n#define GLOSSY_PART " TEXT(PROXY_VEC4S) "\n"
 
 struct gi_caches {
     const gl_functions *gl;
@@ -153,7 +157,9 @@ static void upload_static(gi_caches *c)
     float *lobe = xcalloc(n ? n : 1, 4 * sizeof *lobe);
     for (size_t i = 0; i < n; i++)
         lobe[4 * i] = cache_specular_exponent(c->set.caches[i].roughness);
-    gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(n * (2 * PROXY_FLOATS - 4) * sizeof *lobe),
+    /* the glossy part's last vec4 per cache */
+    gl->BufferSubData(GL_SHADER_STORAGE_BUFFER,
+                      (GLintptr)(n * (PARTS * PROXY_FLOATS - 4) * sizeof *lobe),
                       (GLsizeiptr)(n * 4 * sizeof *lobe), lobe);
     free(lobe);
     size_t cells = (size_t)c->grid.dims[0] * c->grid.dims[1] * c->grid.dims[2];
