@@ -359,29 +359,23 @@ static void test_glossy_proxies_match_host(void **state)
     }
 }
 
-/* Each pixel's indirect light is the host's diffuse interpolation times albedo / pi plus
- * its glossy interpolation, for the eye of view(). */
-static void test_glossy_pixels(void **state)
+/* Each pixel's indirect light (img) is the host's diffuse interpolation times albedo / pi
+ * plus its glossy interpolation, for the eye of view(). */
+static void glossy_pixels_match(gltest *t, gi_caches *c, const float *img)
 {
-    (void)state;
-    gltest t;
-    open_caches(&t, "off");
-    gltest_set(&t.params, "caches-glossy", "on");
-    static float img[W * H * 3];
-    gi_caches *c = frame(&t, img);
     scene_rt rt;
     char err[256];
-    assert_int_equal(scene_rt_build(&rt, &t.scene, 0, err, sizeof err), 0);
+    assert_int_equal(scene_rt_build(&rt, &t->scene, 0, err, sizeof err), 0);
     renderer_view v;
     view(&v);
     int agree = 0, agree_glossy = 0, hits = 0;
     double glossy = 0, diffuse = 0;
     for (int i = 0; i < W * H; i++) {
         float p[3], nrm[3], albedo[3], e[3], g[3], to_eye[3];
-        int hit = pixel_hit(&rt, &t.scene, i % W, i / W, p, nrm, albedo);
+        int hit = pixel_hit(&rt, &t->scene, i % W, i / W, p, nrm, albedo);
         if (!hit)
             continue;
-        float rough = t.scene.materials[t.scene.triangle_material[hit - 1]].roughness;
+        float rough = t->scene.materials[t->scene.triangle_material[hit - 1]].roughness;
         vec3_sub(v.eye_position, p, to_eye);
         vec3_normalize(to_eye);
         cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_hidden(c),
@@ -408,9 +402,20 @@ static void test_glossy_pixels(void **state)
                   "%d their glossy term within 3%% (glossy %.1f%% of the indirect light)\n",
                   agree, hits, agree_glossy, 100 * glossy / (glossy + diffuse));
     assert_true(agree >= hits * 95 / 100);
-    assert_true(agree_glossy >= hits * 95 / 100);
+    /* all but 0.2%: equation 8's reflection weight, taken as the diffuse one, leaves 0.7% */
+    assert_true(agree_glossy >= hits - hits / 500);
     assert_true(glossy > 0.01 * diffuse);
     scene_rt_release(&rt);
+}
+
+static void test_glossy_pixels(void **state)
+{
+    (void)state;
+    gltest t;
+    open_caches(&t, "off");
+    gltest_set(&t.params, "caches-glossy", "on");
+    static float img[W * H * 3];
+    glossy_pixels_match(&t, frame(&t, img), img);
     gltest_close(&t);
 }
 
@@ -454,6 +459,7 @@ static void test_glossy_view_dependent(void **state)
     for (int k = 0; k < 2; k++) {
         t.params.head[12] = k ? -1.2f : 0.8f; /* the head 2 m to the side */
         c = frame(&t, on[k]);
+        glossy_pixels_match(&t, c, on[k]); /* smooth: the caches' proxies differ more */
         diffuse[k] = malloc(count * sizeof **diffuse);
         glossy[k] = malloc(count * sizeof **glossy);
         memcpy(diffuse[k], gi_caches_proxies(c), count * sizeof **diffuse);
