@@ -1,9 +1,10 @@
 // Deferred shading (paper 3.3.3 and 3.3.4): direct light of every light with normalized
 // Blinn-Phong (spots: the D3D cone; spots and point lights: inverse-square falloff;
 // directional lights: parallel) and 3x3 PCF against the light's RSM;
-// indirect light from the active GI method (gi_irradiance()); emitted radiance of surface
-// lights; the ambient light times its occlusion (node/renderer_ao.h), counted as direct
-// light (it reaches the surface from its source without a reflection). HDR out, linear.
+// indirect light from the active GI method (gi_irradiance(), and gi_glossy() where the
+// method has it); emitted radiance of surface lights; the ambient light times its
+// occlusion (node/renderer_ao.h), counted as direct light (it reaches the surface from its
+// source without a reflection). HDR out, linear.
 in vec2 v_uv;
 
 uniform sampler2D u_position;
