@@ -14,6 +14,30 @@ vec4 sh_cosine_lobe(vec3 n)
     return vec4(SH_C0, -SH_C1 * n.y, SH_C1 * n.z, -SH_C1 * n.x);
 }
 
+// The specular lobe every pass shades with (normalized Blinn-Phong, a dielectric's
+// reflectance SPECULAR_F0): exponent m = 2 / alpha^2 - 2 from roughness (alpha = roughness^2,
+// bounded so that a mirror stays finite), f_s = (m + 8) / (8 pi) F0 (n . h)^m for half
+// vector h. common/caches/cache_light.c has the host's copy.
+const float SPECULAR_F0 = 0.04;
+
+float specular_exponent(float roughness)
+{
+    float alpha = roughness * roughness;
+    return 2.0 / max(alpha * alpha, 1e-3) - 2.0;
+}
+
+float specular_brdf(float m, vec3 n, vec3 h)
+{
+    return (m + 8.0) / (8.0 * PI) * SPECULAR_F0 * pow(max(dot(n, h), 0.0), m);
+}
+
+// f_s between unit directions wo and wi (0 when they are opposite).
+float specular_between(float m, vec3 n, vec3 wo, vec3 wi)
+{
+    vec3 h = wo + wi;
+    return dot(h, h) > 0.0 ? specular_brdf(m, n, normalize(h)) : 0.0;
+}
+
 // Direct3D-style spot cone: 1 inside the inner angle, 0 outside the outer, linear between.
 float spot_factor(vec3 to_surface, vec3 axis, float cos_outer, float cos_inner)
 {

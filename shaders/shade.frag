@@ -1,9 +1,10 @@
 // Deferred shading (paper 3.3.3 and 3.3.4): direct light of every light with normalized
 // Blinn-Phong (spots: the D3D cone; spots and point lights: inverse-square falloff;
 // directional lights: parallel) and 3x3 PCF against the light's RSM;
-// indirect light from the active GI method (gi_irradiance()); emitted radiance of surface
-// lights; the ambient light times its occlusion (node/renderer_ao.h), counted as direct
-// light (it reaches the surface from its source without a reflection). HDR out, linear.
+// indirect light from the active GI method (gi_irradiance(), and gi_glossy() where the
+// method has it); emitted radiance of surface lights; the ambient light times its
+// occlusion (node/renderer_ao.h), counted as direct light (it reaches the surface from its
+// source without a reflection). HDR out, linear.
 in vec2 v_uv;
 
 uniform sampler2D u_position;
@@ -37,6 +38,11 @@ uniform float u_ambient;             // the ambient light's radiance, W/(m^2 sr)
 // The active GI method's irradiance at p (normal n), W/m^2 before the albedo: defined by
 // the method's shading snippet, compiled after this file (node/gi/gi_method.h).
 vec3 gi_irradiance(vec3 p, vec3 n);
+#ifdef GI_GLOSSY
+// a method with gi_method.glossy also defines the indirect light that p reflects towards
+// the eye (unit v), as radiance: its specular term (node/gi/gi_method.h)
+vec3 gi_glossy(vec3 p, vec3 n, vec3 v);
+#endif
 
 layout(location = 0) out vec4 out_final;
 layout(location = 1) out vec4 out_direct;
@@ -110,9 +116,7 @@ void main()
     vec3 n = normalize(nr.xyz);
     vec3 albedo = texture(u_albedo, v_uv).rgb;
     vec3 v = normalize(u_eye.xyz - p * u_eye.w);
-    float alpha = nr.w * nr.w;
-    float m = 2.0 / max(alpha * alpha, 1e-3) - 2.0;    // Blinn-Phong exponent from roughness
-    const float spec = 0.04;                          // dielectric reflectance
+    float m = specular_exponent(nr.w);
 
     vec3 direct = texture(u_emissive, v_uv).rgb;
     for (int i = 0; i < u_light_count; i++) {
@@ -138,7 +142,7 @@ void main()
             continue;
         irradiance *= cos_i * shadow(i, p, n);
         vec3 h = normalize(l + v);
-        vec3 brdf = albedo / PI + (m + 8.0) / (8.0 * PI) * spec * pow(max(dot(n, h), 0.0), m);
+        vec3 brdf = albedo / PI + specular_brdf(m, n, h);
         direct += brdf * irradiance;
     }
 
@@ -147,6 +151,9 @@ void main()
         direct += albedo * u_ambient * ao;
     }
     vec3 indirect = albedo / PI * gi_irradiance(p, n);
+#ifdef GI_GLOSSY
+    indirect += gi_glossy(p, n, v);
+#endif
     direct *= u_exposure;
     indirect *= u_exposure;
     out_direct = vec4(direct, 1.0);

@@ -16,7 +16,7 @@
  * hash u64, count u64, count records of 7 floats (position, normal, area), FNV-1a u64 of
  * everything before it. */
 static const char MAGIC[8] = {'C', 'V', 'L', 'C', 'A', 'C', 'H', 'E'};
-enum { HEADER = 40, RECORD = 28, TRAILER = 8 };
+enum { HEADER = 40, RECORD = 4 * CACHE_RECORD_FLOATS, TRAILER = 8 };
 /* More caches than this is a damaged count, not a scene. */
 #define MAX_COUNT ((uint64_t)1 << 26)
 
@@ -36,7 +36,10 @@ uint64_t cache_scene_hash(const scene *s)
     le_put(b, s->triangle_count, 8);
     uint64_t h = fnv(0xcbf29ce484222325ull, b, 8);
     h = val_hash_words(h, s->positions, 9 * s->triangle_count);
-    return val_hash_words(h, s->normals, 9 * s->triangle_count);
+    h = val_hash_words(h, s->normals, 9 * s->triangle_count);
+    for (size_t t = 0; t < s->triangle_count; t++) /* the caches' roughness */
+        h = val_hash_words(h, &s->materials[s->triangle_material[t]].roughness, 1);
+    return h;
 }
 
 cache_key cache_key_of(const scene *s, const cache_place_desc *d)
@@ -89,8 +92,8 @@ static int decode(const uint8_t *buf, uint64_t count, const cache_key *key, cach
     if (!out->caches)
         return -1;
     for (uint64_t i = 0; i < count; i++) {
-        float f[7];
-        for (int k = 0; k < 7; k++) {
+        float f[CACHE_RECORD_FLOATS];
+        for (int k = 0; k < CACHE_RECORD_FLOATS; k++) {
             uint32_t bits = (uint32_t)le_get(buf + HEADER + RECORD * i + 4 * k, 4);
             memcpy(&f[k], &bits, 4);
         }
@@ -98,6 +101,7 @@ static int decode(const uint8_t *buf, uint64_t count, const cache_key *key, cach
         memcpy(c->position, f, sizeof c->position);
         memcpy(c->normal, f + 3, sizeof c->normal);
         c->area = f[6];
+        c->roughness = f[7];
     }
     out->count = count;
     out->edge = key->edge;
@@ -166,9 +170,10 @@ int cache_file_write(const char *path, const cache_key *key, const cache_set *se
     put_header(buf, key, set->count);
     for (size_t i = 0; i < set->count; i++) {
         const light_cache *c = &set->caches[i];
-        const float f[7] = {c->position[0], c->position[1], c->position[2], c->normal[0],
-                            c->normal[1], c->normal[2], c->area};
-        for (int k = 0; k < 7; k++) {
+        const float f[CACHE_RECORD_FLOATS] = {c->position[0], c->position[1], c->position[2],
+                                              c->normal[0], c->normal[1], c->normal[2],
+                                              c->area, c->roughness};
+        for (int k = 0; k < CACHE_RECORD_FLOATS; k++) {
             uint32_t bits;
             memcpy(&bits, &f[k], 4);
             le_put(buf + HEADER + RECORD * i + 4 * k, bits, 4);

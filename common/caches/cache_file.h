@@ -3,8 +3,8 @@
  * share a folder place them once between them.
  *
  * A file holds one placement and says what it was made from: its key (the format version,
- * a hash of the scene's triangles and normals, the cube edge and angle tolerance) and a
- * checksum of every byte before it. Its name is the key's hash, so another scene or other
+ * a hash of the scene's triangles, normals and their materials' roughness, the cube edge
+ * and angle tolerance) and a checksum of every byte before it. Its name is the key's hash, so another scene or other
  * settings never meet it; a file whose key, size or checksum does not match (damaged,
  * truncated, another build's format) is never trusted: the caches are placed again and the
  * file rewritten. Files are written to a temporary name in the same folder and renamed, so
@@ -25,7 +25,9 @@
 #include "scene/scene.h"
 
 /* Raised whenever the placement or the file's layout changes: older files are then stale. */
-enum { CACHE_FILE_VERSION = 1 };
+enum { CACHE_FILE_VERSION = 2 };
+/* Floats per cache in a file: position, normal, area, roughness (light_cache). */
+enum { CACHE_RECORD_FLOATS = 8 };
 
 typedef struct cache_key {
     uint32_t version;

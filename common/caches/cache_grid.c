@@ -7,16 +7,21 @@
 
 #include "base/vec3.h"
 
-float cache_weight(const light_cache *c, const float x[3], const float n[3], float reach)
+float cache_falloff(const light_cache *c, const float x[3], const float n[3], float reach)
 {
     float d[3];
     vec3_sub(x, c->position, d);
     float off = vec3_dot(c->normal, d);
     float d2 = vec3_dot(d, d) + CACHE_PLANE_WEIGHT * off * off;
-    float facing = vec3_dot(n, c->normal);
-    if (!(d2 < reach * reach) || !(facing > 0))
+    if (!(d2 < reach * reach) || !(vec3_dot(n, c->normal) > 0))
         return 0.0f;
-    return (1.0f - sqrtf(d2) / reach) * sqrtf(facing);
+    return 1.0f - sqrtf(d2) / reach;
+}
+
+float cache_weight(const light_cache *c, const float x[3], const float n[3], float reach)
+{
+    float falloff = cache_falloff(c, x, n, reach);
+    return falloff > 0.0f ? falloff * sqrtf(vec3_dot(n, c->normal)) : 0.0f;
 }
 
 size_t cache_grid_cell(const cache_grid *g, const float p[3])

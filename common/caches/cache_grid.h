@@ -44,6 +44,9 @@ void cache_grid_free(cache_grid *g);
 size_t cache_grid_cell(const cache_grid *g, const float p[3]);
 /* w(x, c) above, 0 beyond the reach or behind. */
 float cache_weight(const light_cache *c, const float x[3], const float n[3], float reach);
+/* Its first factor, 1 - d / R (0 beyond the reach or behind): the glossy proxies' weight
+ * takes it with the reflections' cosine in place of the normals' (cache_light.h). */
+float cache_falloff(const light_cache *c, const float x[3], const float n[3], float reach);
 /* Bytes the lists take (first and index). */
 size_t cache_grid_bytes(const cache_grid *g);
 

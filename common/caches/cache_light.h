@@ -24,6 +24,22 @@
  * cache's light rather than to averaged proxy parameters: two caches' proxies on opposite
  * sides do not average to a light between them).
  *
+ * Glossy proxy (caches-glossy on; the paper's equations 4, 6, 7 with our lobe): the same
+ * sums with each VAL's weight times the cache's specular BRDF f_s(w, w_j) towards the
+ * viewer w (the head-derived eye every node shares) from VAL direction w_j, so that
+ *   L_g = sum_j f_s(w, w_j) E_j        the cache's glossy radiance (before occlusion)
+ *   x_g = p + sum_j w'_j (x_j - p) / sum_j w'_j,  w'_j = f_s(w, w_j) w_j
+ * and its irradiance E_g = L_g / f_s(w, w_g), w_g towards x_g: the point light at x_g that
+ * gives the cache the glossy radiance it has (equation 7). A proxy far down the lobe (a
+ * tiny f_s(w, w_g)) would blow E_g up: the denominator is at least sum_j w'_j / sum_j w_j,
+ * the lobe's mean, which bounds E_g by about the VALs' whole irradiance. f_s is
+ * shaders/common.glsl's specular_brdf(), the lobe shade.frag lights direct light with, at
+ * the cache's roughness. At a point x it is interpolated with equation 8's glossy weight
+ *   w_g(x, c) = (1 - d / R) sqrt(max(r_x . r_c, 0))
+ * (r the direction to the glossy proxy mirrored at the normal, at x and at c), E_g times
+ * cache_proxy_at()'s ratio and x_g averaged (equation 9), and lit by x's own lobe towards
+ * the averaged x_g: radiance, not irradiance.
+ *
  * Occlusion, the paper's approximation after Bunnell: seen from p, the proxy's sphere and
  * the disk of every other cache k nearer than the sphere (area A_k, normal n_k) are
  * projected onto the unit sphere (solid angles 2 pi (1 - cos asin(radius / d)) and
@@ -55,6 +71,13 @@ typedef struct cache_proxy {
 /* The proxy of c from n VALs; visible (n flags, or NULL: all) leaves some out. */
 void cache_proxy_gather(const light_cache *c, const vpl *vals, size_t n,
                         const uint8_t *visible, cache_proxy *out);
+/* The glossy proxy of c (above) seen from eye, from n VALs; visible as above. */
+void cache_glossy_gather(const light_cache *c, const float eye[3], const vpl *vals, size_t n,
+                         const uint8_t *visible, cache_proxy *out);
+/* shaders/common.glsl's specular_exponent() of a roughness and specular_brdf() of
+ * exponent m at normal n between unit directions wo and wi. */
+float cache_specular_exponent(float roughness);
+float cache_specular(float m, const float n[3], const float wo[3], const float wi[3]);
 /* The approximated visibility of proxy p of cache self among all count caches. */
 float cache_occlusion(const light_cache *caches, size_t count, size_t self,
                       const cache_proxy *p);
@@ -66,5 +89,11 @@ void cache_proxy_at(const light_cache *c, const cache_proxy *p, const float x[3]
 void cache_interpolate(const cache_grid *g, const light_cache *caches, const uint8_t *hidden,
                        const cache_proxy *proxies, const float x[3], const float n[3],
                        float out[3]);
+/* The glossy radiance at x (normal n, roughness, unit direction v to the eye) from the
+ * glossy proxies as above; 0 when no cache reaches it. */
+void cache_interpolate_glossy(const cache_grid *g, const light_cache *caches,
+                              const uint8_t *hidden, const cache_proxy *glossy,
+                              const float x[3], const float n[3], float roughness,
+                              const float v[3], float out[3]);
 
 #endif

@@ -10,7 +10,7 @@
 
 /* Points per cube face area: (e / POINT_STEPS)^2 each. At most MAX_POINTS in all (a fine
  * density on a large scene): beyond, the points are spread thinner. */
-enum { POINT_STEPS = 3, MAX_POINTS = 1 << 22, POINT_FLOATS = 7 };
+enum { POINT_STEPS = 3, MAX_POINTS = 1 << 22, POINT_FLOATS = CACHE_POINT_FLOATS };
 /* A cube's best normal is sought among at most this many of its points' normals. */
 enum { MAX_CANDIDATES = 64 };
 /* Points farther than this many edges off a candidate's plane make a cache of their own. */
@@ -82,6 +82,7 @@ size_t cache_surface_points(const scene *s, float edge, float *out)
         }
         const float *p = s->positions + 9 * t, *vn = s->normals + 9 * t;
         float share = vec3_triangle_area(p) / (float)k;
+        float roughness = s->materials[s->triangle_material[t]].roughness;
         for (size_t j = 0; j < k; j++, n++) {
             double u = fmod(0.5 + a1 * (double)j, 1.0), v = fmod(0.5 + a2 * (double)j, 1.0);
             if (k == 1)
@@ -97,6 +98,7 @@ size_t cache_surface_points(const scene *s, float edge, float *out)
             if (vec3_normalize(o + 3) == 0) /* opposite vertex normals: the face's */
                 vec3_triangle_normal(p, o + 3), vec3_normalize(o + 3);
             o[6] = share;
+            o[7] = roughness;
         }
     }
     return n;
@@ -163,7 +165,7 @@ static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned ch
     }
     float centre[POINT_FLOATS];
     memcpy(centre, pts + POINT_FLOATS * cube[best].point, sizeof centre);
-    double pos[3] = {0, 0, 0}, nrm[3] = {0, 0, 0}, area = 0;
+    double pos[3] = {0, 0, 0}, nrm[3] = {0, 0, 0}, area = 0, rough = 0;
     for (size_t i = 0; i < n; i++) {
         const float *q = pts + POINT_FLOATS * cube[i].point;
         if (!left[i] || !joins(centre, q, cos_eps, plane_tol))
@@ -174,6 +176,7 @@ static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned ch
             nrm[k] += (double)q[6] * q[3 + k];
         }
         area += q[6];
+        rough += (double)q[6] * q[7];
     }
     for (int k = 0; k < 3; k++) {
         out->position[k] = (float)(pos[k] / area);
@@ -182,6 +185,7 @@ static int take_cache(const float *pts, const keyed *cube, size_t n, unsigned ch
     if (vec3_normalize(out->normal) == 0)
         memcpy(out->normal, centre + 3, 3 * sizeof *centre);
     out->area = (float)area;
+    out->roughness = (float)(rough / area);
     return 1;
 }
 

@@ -44,6 +44,7 @@ typedef struct light_cache {
     float position[3];
     float normal[3];       /* unit */
     float area;            /* m^2 of surface it stands for */
+    float roughness;       /* its points' material roughness, area-weighted mean, [0, 1] */
 } light_cache;
 
 typedef struct cache_place_desc {
@@ -67,7 +68,10 @@ int cache_place(const scene *s, const cache_place_desc *d, cache_set *out, char 
                 size_t errlen);
 void cache_set_free(cache_set *set);
 
-/* The surface points of step 1 for edge e: position, normal (unit), area, 7 floats each,
+/* Floats per surface point: position, normal (unit), area, material roughness. */
+enum { CACHE_POINT_FLOATS = 8 };
+
+/* The surface points of step 1 for edge e: CACHE_POINT_FLOATS each,
  * into out (NULL: only counted). Returns how many. The placement's own sampling, for the
  * tests that check every point is reached. */
 size_t cache_surface_points(const scene *s, float edge, float *out);

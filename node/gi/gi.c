@@ -46,7 +46,9 @@ gi *gi_create(const gi_desc *desc, char *err, size_t errlen)
     int files = 1;
     for (int i = 0; i < 3 && g->m->shade[i]; i++)
         frags[files++] = g->m->shade[i];
-    g->shade = gltools_program_parts(g->gl, "fullscreen.vert", frags, files, NULL, err, errlen);
+    const char *defines = g->m->glossy ? "#define GI_GLOSSY 1\n" : NULL;
+    g->shade = gltools_program_parts(g->gl, "fullscreen.vert", frags, files, defines, err,
+                                     errlen);
     if (!g->shade || !(g->state = g->m->create(desc, err, errlen))) {
         gi_destroy(g);
         return NULL;

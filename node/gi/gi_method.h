@@ -24,8 +24,12 @@
  * The shading snippet (shade: files of the method's folder) defines
  *   vec3 gi_irradiance(vec3 p, vec3 n)
  * the irradiance that reaches surface point p with unit normal n by the method's light
- * (W/m^2, before the albedo); the renderer's shade.frag is compiled with it, once per
- * method, so the program holds no other method's samplers. Texture units from
+ * (W/m^2, before the albedo), and, when the method sets glossy,
+ *   vec3 gi_glossy(vec3 p, vec3 n, vec3 v)
+ * the radiance p reflects towards the eye (unit v) by the method's light through the
+ * specular lobe, added to the indirect term (shade.frag is compiled with GI_GLOSSY
+ * defined then; a method without it shades exactly as before). shade.frag is compiled
+ * with the snippet once per method, so the program holds no other method's samplers. Texture units from
  * gi_eye.first_unit on are the method's to number.
  *
  * Not here: which method runs (the frame's gi), when it is rebuilt (gi.h), its settings'
@@ -118,6 +122,7 @@ typedef struct gi_method {
     const char *name;
     const char *shade[3];          /* its shading snippet: shader files, in order, after
                                       shade.frag (unused entries NULL) */
+    int glossy;                    /* 1: the snippet also defines gi_glossy() */
     /* Returns the method's state, or NULL with one line in err. */
     void *(*create)(const gi_desc *desc, char *err, size_t errlen);
     void (*destroy)(void *state);

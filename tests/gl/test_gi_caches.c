@@ -10,7 +10,12 @@
  *     pixel sees, and it has no visible cache structure: against the same VALs gathered at
  *     every pixel (a cache at every pixel), the high-frequency part of the difference
  *     (difference less its 5 x 5 mean, inside flat regions) is a few percent of the light;
- *   the disk cache: a second renderer reads the caches the first placed. */
+ *   the disk cache: a second renderer reads the caches the first placed;
+ *   glossy (caches-glossy on): the GPU's glossy proxies are cache_glossy_gather() of its
+ *     VALs for its viewer, each pixel's glossy term is cache_interpolate_glossy(); moving
+ *     the head changes the glossy proxies and image of smooth surfaces but not the diffuse
+ *     ones (every RSM texel a VAL: no view-dependent selection), turning glossy off again
+ *     gives the image of before bit for bit, and rough surfaces' glossy term is small. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -263,7 +268,7 @@ static void test_interpolation(void **state)
         plane[i] = (int)(nrm[0] * 3 + 4) * 100000 + (int)(nrm[1] * 3 + 4) * 10000 +
                    (int)(nrm[2] * 3 + 4) * 1000 + (int)floorf(vec3_dot(nrm, p) * 50 + 500);
         float e[3], host[3], shaded[3];
-        light_cache at = {{p[0], p[1], p[2]}, {nrm[0], nrm[1], nrm[2]}, 0};
+        light_cache at = {{p[0], p[1], p[2]}, {nrm[0], nrm[1], nrm[2]}, 0, 1};
         cache_proxy g;
         cache_proxy_gather(&at, vals, n, NULL, &g);
         cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_hidden(c),
@@ -311,6 +316,191 @@ static void test_interpolation(void **state)
     gltest_close(&t);
 }
 
+/* The GPU's glossy proxies against the host's for the same VALs and viewer; occluded (approx):
+ * times the host's diffuse proxy's visibility. */
+static void compare_glossy(gi_caches *c, int occluded)
+{
+    const vpl *vals;
+    size_t n = gi_caches_vals(c, &vals);
+    const cache_set *set = gi_caches_set(c);
+    const cache_proxy *gpu = gi_caches_glossy(c);
+    size_t off = 0, moved = 0, lit = 0, apart = 0;
+    for (size_t i = 0; i < set->count; i++) {
+        cache_proxy host, diffuse;
+        cache_glossy_gather(&set->caches[i], gi_caches_viewer(c), vals, n, NULL, &host);
+        cache_proxy_gather(&set->caches[i], vals, n, NULL, &diffuse);
+        float vis = occluded ? cache_occlusion(set->caches, set->count, i, &diffuse) : 1.0f;
+        float e0 = host.irradiance[0] * vis, e1 = gpu[i].irradiance[0], d[3], s[3];
+        off += fabsf(e0 - e1) > 2e-3f * fabsf(e0) + 1e-6f;
+        vec3_sub(host.position, gpu[i].position, d);
+        vec3_sub(host.position, diffuse.position, s);
+        moved += vec3_length(d) > 1e-3f;
+        apart += vec3_length(s) > 0.05f;
+        lit += e0 > 0;
+    }
+    print_message("%zu caches (%zu lit, %zu glossy proxies 5 cm or more from the diffuse "
+                  "one): %zu glossy irradiances and %zu positions off the host's\n",
+                  set->count, lit, apart, off, moved);
+    assert_true(lit > set->count / 2);
+    assert_true(apart > set->count / 10);
+    assert_true(off <= set->count / 100);
+    assert_true(moved <= set->count / 100);
+}
+
+static void test_glossy_proxies_match_host(void **state)
+{
+    (void)state;
+    for (int occluded = 0; occluded < 2; occluded++) {
+        gltest t;
+        open_caches(&t, occluded ? "approx" : "off");
+        gltest_set(&t.params, "caches-glossy", "on");
+        compare_glossy(frame(&t, NULL), occluded);
+        gltest_close(&t);
+    }
+}
+
+/* Each pixel's indirect light (img) is the host's diffuse interpolation times albedo / pi
+ * plus its glossy interpolation, for the eye of view(). */
+static void glossy_pixels_match(gltest *t, gi_caches *c, const float *img)
+{
+    scene_rt rt;
+    char err[256];
+    assert_int_equal(scene_rt_build(&rt, &t->scene, 0, err, sizeof err), 0);
+    renderer_view v;
+    view(&v);
+    int agree = 0, agree_glossy = 0, hits = 0;
+    double glossy = 0, diffuse = 0;
+    for (int i = 0; i < W * H; i++) {
+        float p[3], nrm[3], albedo[3], e[3], g[3], to_eye[3];
+        int hit = pixel_hit(&rt, &t->scene, i % W, i / W, p, nrm, albedo);
+        if (!hit)
+            continue;
+        float rough = t->scene.materials[t->scene.triangle_material[hit - 1]].roughness;
+        vec3_sub(v.eye_position, p, to_eye);
+        vec3_normalize(to_eye);
+        cache_interpolate(gi_caches_grid(c), gi_caches_set(c)->caches, gi_caches_hidden(c),
+                          gi_caches_proxies(c), p, nrm, e);
+        cache_interpolate_glossy(gi_caches_grid(c), gi_caches_set(c)->caches,
+                                 gi_caches_hidden(c), gi_caches_glossy(c), p, nrm, rough,
+                                 to_eye, g);
+        float want[3];
+        for (int k = 0; k < 3; k++)
+            want[k] = albedo[k] / 3.14159265f * e[k] + g[k];
+        hits++;
+        glossy += lum(g);
+        diffuse += lum(want) - lum(g);
+        agree += fabsf(lum(img + 3 * i) - lum(want)) <= 0.01f * lum(want) + 1e-6f;
+        /* the glossy term alone: the image less the host's diffuse term, with the albedo
+         * as the G-buffer holds it (8 bits) */
+        float gpu = lum(img + 3 * i);
+        for (int k = 0; k < 3; k++)
+            gpu -= roundf(albedo[k] * 255) / 255 / 3.14159265f * e[k];
+        /* 3% of it, and what the diffuse term leaves (its half-float inputs: ~0.2%) */
+        agree_glossy += fabsf(gpu - lum(g)) <= 0.03f * lum(g) + 3e-3f * lum(want) + 1e-6f;
+    }
+    print_message("%d of %d pixels are the host's diffuse and glossy interpolation within 1%%, "
+                  "%d their glossy term within 3%% (glossy %.1f%% of the indirect light)\n",
+                  agree, hits, agree_glossy, 100 * glossy / (glossy + diffuse));
+    assert_true(agree >= hits * 95 / 100);
+    /* all but 0.2%: equation 8's reflection weight, taken as the diffuse one, leaves 0.7% */
+    assert_true(agree_glossy >= hits - hits / 500);
+    assert_true(glossy > 0.01 * diffuse);
+    scene_rt_release(&rt);
+}
+
+static void test_glossy_pixels(void **state)
+{
+    (void)state;
+    gltest t;
+    open_caches(&t, "off");
+    gltest_set(&t.params, "caches-glossy", "on");
+    static float img[W * H * 3];
+    glossy_pixels_match(&t, frame(&t, img), img);
+    gltest_close(&t);
+}
+
+/* Every material at roughness r, placed again (another density: a rebuild); every RSM
+ * texel a VAL, so that only the glossy proxies follow the head. */
+static void open_rough(gltest *t, float r)
+{
+    open_caches(t, "off");
+    for (size_t i = 0; i < t->scene.material_count; i++)
+        t->scene.materials[i].roughness = r;
+    gltest_set(&t->params, "caches-selection", "all");
+    gltest_setn(&t->params, "caches-density", 12);
+}
+
+/* The glossy term (image with glossy on less the one with it off) into out; its luminance
+ * sum, and the diffuse one's into *diffuse. */
+static double glossy_term(const float *on, const float *off, float *out, double *diffuse)
+{
+    double sum = 0;
+    *diffuse = 0;
+    for (int i = 0; i < W * H * 3; i++) {
+        out[i] = on[i] - off[i];
+        sum += out[i];
+        *diffuse += off[i];
+    }
+    return sum;
+}
+
+static void test_glossy_view_dependent(void **state)
+{
+    (void)state;
+    gltest t;
+    open_rough(&t, 0.3f);
+    static float off[W * H * 3], again[W * H * 3], on[2][W * H * 3], g[2][W * H * 3];
+    gi_caches *c = frame(&t, off);
+    size_t count = gi_caches_set(c)->count;
+    assert_true(fabsf(gi_caches_set(c)->caches[0].roughness - 0.3f) < 1e-5f);
+    cache_proxy *diffuse[2], *glossy[2];
+    double sum[2], dsum = 0, change = 0, peak = 0;
+    gltest_set(&t.params, "caches-glossy", "on");
+    for (int k = 0; k < 2; k++) {
+        t.params.head[12] = k ? -1.2f : 0.8f; /* the head 2 m to the side */
+        c = frame(&t, on[k]);
+        glossy_pixels_match(&t, c, on[k]); /* smooth: the caches' proxies differ more */
+        diffuse[k] = malloc(count * sizeof **diffuse);
+        glossy[k] = malloc(count * sizeof **glossy);
+        memcpy(diffuse[k], gi_caches_proxies(c), count * sizeof **diffuse);
+        memcpy(glossy[k], gi_caches_glossy(c), count * sizeof **glossy);
+        sum[k] = glossy_term(on[k], off, g[k], &dsum);
+    }
+    for (int i = 0; i < W * H * 3; i++) {
+        change += fabs(g[1][i] - g[0][i]);
+        peak = fmax(peak, g[0][i] / fmax(off[i], 1e-6));
+    }
+    gltest_set(&t.params, "caches-glossy", "off");
+    frame(&t, again);
+    print_message("roughness 0.3: glossy %.1f%% of the diffuse light, at most %.2f times it; "
+                  "moving the head changes it by %.1f%%\n", 100 * sum[0] / dsum, peak,
+                  100 * change / sum[0]);
+    assert_memory_equal(diffuse[0], diffuse[1], count * sizeof **diffuse);
+    assert_true(memcmp(glossy[0], glossy[1], count * sizeof **glossy) != 0);
+    assert_true(change > 0.2 * sum[0]);
+    assert_true(peak > 0.5);
+    assert_memory_equal(off, again, sizeof off);
+    for (int k = 0; k < 2; k++)
+        free(diffuse[k]), free(glossy[k]);
+    gltest_close(&t);
+}
+
+static void test_glossy_rough_is_small(void **state)
+{
+    (void)state;
+    gltest t;
+    open_rough(&t, 1.0f);
+    static float off[W * H * 3], on[W * H * 3], g[W * H * 3];
+    frame(&t, off);
+    gltest_set(&t.params, "caches-glossy", "on");
+    frame(&t, on);
+    double diffuse, glossy = glossy_term(on, off, g, &diffuse);
+    print_message("roughness 1: glossy %.1f%% of the diffuse light\n", 100 * glossy / diffuse);
+    assert_true(glossy > 0);
+    assert_true(glossy < 0.1 * diffuse);
+    gltest_close(&t);
+}
+
 static void test_disk_cache(void **state)
 {
     (void)state;
@@ -342,6 +532,10 @@ int main(void)
         cmocka_unit_test(test_proxies_match_host),
         cmocka_unit_test(test_interpolation),
         cmocka_unit_test(test_disk_cache),
+        cmocka_unit_test(test_glossy_proxies_match_host),
+        cmocka_unit_test(test_glossy_pixels),
+        cmocka_unit_test(test_glossy_view_dependent),
+        cmocka_unit_test(test_glossy_rough_is_small),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -4,7 +4,8 @@
 # on its command line renders each screen as a standalone node with the same options and
 # that screen's view does (the same checksum, the same pixels), both nodes with equal
 # checksums in every frame; first the vpl method's fastest chart rows (imperfect shadow
-# maps, 4 x 4 interleaving), the caches method with 512 VALs and exact occlusion, ILPV with
+# maps, 4 x 4 interleaving), the caches method with 512 VALs, exact occlusion and glossy
+# proxies (the head-derived viewer: both walls the same), ILPV with
 # a fitted lattice, lambda and steps on either transport (--lpv-transport), the layered
 # depth maps' indirect light with their ambient occlusion of an ambient term. The same
 # settings from the config's "settings" give the same frames. --budget-ms measures every
@@ -73,7 +74,7 @@ for m in $methods; do
 done
 
 same_as_standalone vpl --gi vpl --vpl-count 64 --vpl-visibility ism --vpl-interleave 4
-same_as_standalone caches --gi caches --caches-vals 512 --caches-occlusion exact
+same_as_standalone caches --gi caches --caches-vals 512 --caches-occlusion exact --caches-glossy on
 same_as_standalone ilpv --gi ilpv --lattice-cells 4096 --lambda 0.5 --steps 4
 # The thesis's transport: one value on every node, not the beams' frames.
 same_as_standalone paper --gi ilpv --lpv-transport paper --lattice-cells 4096 --lambda 0.5 --steps 4

@@ -83,19 +83,19 @@ static void test_density_and_area(void **state)
     scene_free(&s);
 }
 
-/* Every point of points (7 floats each) has weight > 0 from some cache. */
+/* Every surface point has weight > 0 from some cache. */
 static void check_reach(const scene *s, const cache_set *set, const char *what)
 {
     cache_grid g;
     char err[128];
     assert_int_equal(cache_grid_build(set, s->bounds_min, s->bounds_max, &g, err, sizeof err), 0);
     size_t n = cache_surface_points(s, 0.37f * set->edge, NULL);
-    float *pts = malloc(n * 7 * sizeof *pts);
+    float *pts = malloc(n * CACHE_POINT_FLOATS * sizeof *pts);
     cache_surface_points(s, 0.37f * set->edge, pts);
     size_t missed = 0;
     double least = INFINITY;
     for (size_t i = 0; i < n; i++) {
-        const float *x = pts + 7 * i;
+        const float *x = pts + CACHE_POINT_FLOATS * i;
         size_t cell = cache_grid_cell(&g, x);
         double w = 0;
         for (uint32_t k = g.first[cell]; k < g.first[cell + 1]; k++)
@@ -212,13 +212,13 @@ static void test_file_cases(void **state)
     assert_int_equal(get(&s, &d, dir, &placed, &rep), 0); /* absent: placed, written */
     assert_string_equal(rep.note, "");
     long size = file_size(rep.path);
-    assert_int_equal(size, 40 + 28 * (long)placed.count + 8);
+    assert_int_equal(size, 40 + 4 * CACHE_RECORD_FLOATS * (long)placed.count + 8);
     assert_int_equal(get(&s, &d, dir, &got, &rep), 1);   /* read back whole */
     assert_int_equal(got.count, placed.count);
     assert_memory_equal(got.caches, placed.caches, got.count * sizeof *got.caches);
     cache_set_free(&got);
     /* truncated, one byte flipped in a record, in the trailer, in the header's count */
-    const long cut[4][2] = {{size - 5, 1}, {40 + 28 * 3 + 2, 0}, {size - 3, 0}, {33, 0}};
+    const long cut[4][2] = {{size - 5, 1}, {40 + 4 * CACHE_RECORD_FLOATS * 3 + 2, 0}, {size - 3, 0}, {33, 0}};
     for (int k = 0; k < 4; k++) {
         damage(rep.path, cut[k][0], (int)cut[k][1]);
         assert_int_equal(get(&s, &d, dir, &got, &rep), 0);
@@ -412,7 +412,7 @@ static void test_unbiased_on_emitter_square(void **state)
             val_importance(v, samples, 2, imp + 2 * (x * SIDE + y));
         }
     val_sat_build(imp, SIDE, SIDE, row);
-    light_cache c = {{0, 0, 0}, {0, 1, 0}, 0.01f};
+    light_cache c = {{0, 0, 0}, {0, 1, 0}, 0.01f, 1};
     cache_proxy all;
     cache_proxy_gather(&c, texel, SIDE * SIDE, NULL, &all);
     double sum = 0, sum2 = 0;
@@ -438,6 +438,40 @@ static void test_unbiased_on_emitter_square(void **state)
     assert_true(se < 0.01 * exact);
 }
 
+/* ---- glossy proxies ------------------------------------------------------------------ */
+
+/* The glossy proxy (equation 7) reproduces its VALs where the lobe cannot tell them apart:
+ * at roughness 1 (a constant lobe) it is the diffuse proxy, and of one VAL it is that VAL's
+ * irradiance at any roughness. On a smooth cache it moves to the VAL in the mirror
+ * direction of the viewer, where the diffuse proxy lies between the two. */
+static void test_glossy_proxy(void **state)
+{
+    (void)state;
+    const vpl vals[2] = {{{1, 1, 0}, {-0.7071f, -0.7071f, 0}, {1, 1, 1}, 0.01f},
+                         {{-1, 1, 0}, {0.7071f, -0.7071f, 0}, {1, 1, 1}, 0.01f}};
+    const float eye[3] = {-3, 3, 0}; /* mirrors onto vals[0] */
+    light_cache c = {{0, 0, 0}, {0, 1, 0}, 0.01f, 1};
+    cache_proxy d, g;
+    cache_proxy_gather(&c, vals, 2, NULL, &d);
+    cache_glossy_gather(&c, eye, vals, 2, NULL, &g);
+    for (int k = 0; k < 3; k++) {
+        assert_float_equal(g.position[k], d.position[k], 1e-5);
+        assert_float_equal(g.irradiance[k], d.irradiance[k], 1e-5 * d.irradiance[k]);
+    }
+    c.roughness = 0.3f;
+    for (int j = 0; j < 2; j++) {
+        cache_proxy_gather(&c, vals + j, 1, NULL, &d);
+        cache_glossy_gather(&c, eye, vals + j, 1, NULL, &g);
+        assert_float_equal(g.irradiance[0], d.irradiance[0], 1e-5 * d.irradiance[0]);
+    }
+    cache_proxy_gather(&c, vals, 2, NULL, &d);
+    cache_glossy_gather(&c, eye, vals, 2, NULL, &g);
+    print_message("smooth cache: diffuse proxy at x %.3f, glossy at x %.3f (the mirrored VAL "
+                  "at 1)\n", d.position[0], g.position[0]);
+    assert_float_equal(d.position[0], 0, 1e-5);
+    assert_true(g.position[0] > 0.99f);
+}
+
 /* ---- occlusion ----------------------------------------------------------------------- */
 
 static void test_occlusion_by_a_wall(void **state)
@@ -445,11 +479,11 @@ static void test_occlusion_by_a_wall(void **state)
     (void)state;
     enum { SIDE = 21 };
     static light_cache caches[1 + SIDE * SIDE];
-    caches[0] = (light_cache){{0, 0, 0}, {0, 1, 0}, 0.04f};
+    caches[0] = (light_cache){{0, 0, 0}, {0, 1, 0}, 0.04f, 1};
     /* a horizontal wall of caches at y = 1, 4 x 4 m, facing down, 0.2 m apart */
     for (int i = 0; i < SIDE * SIDE; i++)
         caches[1 + i] = (light_cache){{-2.0f + 0.2f * (i % SIDE), 1, -2.0f + 0.2f * (i / SIDE)},
-                                      {0, -1, 0}, 0.04f};
+                                      {0, -1, 0}, 0.04f, 1};
     cache_proxy p = {{0.1f, 2, 0.1f}, 0.3f, {1, 1, 1}, 1};
     float blocked = cache_occlusion(caches, 1 + SIDE * SIDE, 0, &p);
     float open = cache_occlusion(caches, 1, 0, &p);
@@ -472,6 +506,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_unwritable, setup_dir, teardown_dir),
         cmocka_unit_test(test_sat_against_brute_force),
         cmocka_unit_test(test_unbiased_on_emitter_square),
+        cmocka_unit_test(test_glossy_proxy),
         cmocka_unit_test(test_occlusion_by_a_wall),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -24,6 +24,7 @@ typedef struct job {
     const vpl *vals;
     size_t n;
     uint8_t *visible;          /* count x n */
+    const caches_exact_glossy *glossy; /* or NULL */
     cache_proxy *out;
 } job;
 
@@ -72,8 +73,13 @@ static void gather(void *ctx, int item)
 {
     job *j = ctx;
     size_t end = (size_t)(item + 1) * CACHES_PER_ITEM;
-    for (size_t c = (size_t)item * CACHES_PER_ITEM; c < end && c < j->count; c++)
-        cache_proxy_gather(&j->caches[c], j->vals, j->n, j->visible + c * j->n, &j->out[c]);
+    for (size_t c = (size_t)item * CACHES_PER_ITEM; c < end && c < j->count; c++) {
+        const uint8_t *seen = j->visible + c * j->n;
+        cache_proxy_gather(&j->caches[c], j->vals, j->n, seen, &j->out[c]);
+        if (j->glossy)
+            cache_glossy_gather(&j->caches[c], j->glossy->eye, j->vals, j->n, seen,
+                                &j->glossy->out[c]);
+    }
 }
 
 void caches_hidden(const scene_rt *rt, const light_cache *caches, size_t count, float distance,
@@ -110,10 +116,10 @@ void caches_exact_destroy(caches_exact *x)
 }
 
 int caches_exact_proxies(caches_exact *x, const light_cache *caches, size_t count,
-                         const vpl *vals, size_t n, cache_proxy *out, double *rays_ms,
-                         double *gather_ms)
+                         const vpl *vals, size_t n, const caches_exact_glossy *glossy,
+                         cache_proxy *out, double *rays_ms, double *gather_ms)
 {
-    job j = {x, caches, count, vals, n, malloc(count * (n ? n : 1)), out};
+    job j = {x, caches, count, vals, n, malloc(count * (n ? n : 1)), glossy, out};
     if (!j.visible)
         return -1;
     int items = (int)((count + CACHES_PER_ITEM - 1) / CACHES_PER_ITEM);

@@ -23,11 +23,18 @@ typedef struct caches_exact caches_exact;
 /* offset: how far rays start and end off the surfaces along their normals (m). */
 caches_exact *caches_exact_create(const scene_rt *rt, int threads, float offset);
 void caches_exact_destroy(caches_exact *x);
-/* The proxies of all count caches from n VALs into out; *rays_ms and *gather_ms the two
- * steps' times. -1 when memory is short (out untouched). */
+/* The glossy proxies to make too: the viewer and where they go (count of them). */
+typedef struct caches_exact_glossy {
+    const float *eye;
+    cache_proxy *out;
+} caches_exact_glossy;
+
+/* The proxies of all count caches from n VALs into out, and the glossy ones (glossy NULL:
+ * none, cache_glossy_gather()) with the same rays; *rays_ms and *gather_ms the two steps'
+ * times. -1 when memory is short (out untouched). */
 int caches_exact_proxies(caches_exact *x, const light_cache *caches, size_t count,
-                         const vpl *vals, size_t n, cache_proxy *out, double *rays_ms,
-                         double *gather_ms);
+                         const vpl *vals, size_t n, const caches_exact_glossy *glossy,
+                         cache_proxy *out, double *rays_ms, double *gather_ms);
 
 /* hidden[i] = 1 for each of count caches whose normal meets a surface within distance. */
 void caches_hidden(const scene_rt *rt, const light_cache *caches, size_t count, float distance,

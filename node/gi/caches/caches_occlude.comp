@@ -3,7 +3,8 @@
 // onto the unit disk around the cache's normal, as squares of the same area; the overlaps
 // over the proxy's square is the share blocked. Scales the proxy's irradiance. Caches
 // [u_begin, u_end) per dispatch, the sum kept after the proxies' running sums (see
-// caches_proxy.comp); the last applies it.
+// caches_proxy.comp); the last applies it, with GLOSSY defined to the glossy proxy too (its
+// own position is not tested: the diffuse proxy's visibility stands for it).
 #define TILE 64
 layout(local_size_x = TILE) in;
 
@@ -74,4 +75,8 @@ void main()
     float visibility = max(0.0, 1.0 - blocked / square_p);
     vec4 e = proxies[2 * c + 1];
     proxies[2 * c + 1] = vec4(e.rgb * visibility, visibility);
+#ifdef GLOSSY
+    int g = GLOSSY_PART * u_caches + 2 * c + 1;
+    proxies[g] = vec4(proxies[g].rgb * visibility, visibility);
+#endif
 }

@@ -8,6 +8,7 @@
 
 static const char *const selection_names[] = {"importance", "all"};
 static const char *const occlusion_names[] = {"approx", "exact", "off"};
+static const char *const glossy_names[] = {"off", "on"};
 
 #define FIELD(f) offsetof(caches_settings, f)
 static const setting rows[] = {
@@ -30,6 +31,9 @@ static const setting rows[] = {
      "(the ceiling), or none"},
     {"caches-seed", "S", SETTING_INT, 0, 2147483647, 0, NULL, 0, 0, FIELD(seed),
      "caches: seed of the selection's jitter"},
+    {"caches-glossy", NULL, SETTING_CHOICE, 0, 0, CACHES_GLOSSY_OFF, glossy_names, 2, 0,
+     FIELD(glossy), "caches: a glossy proxy light per cache too (the specular\nindirect "
+     "term, view dependent)"},
 };
 #undef FIELD
 

@@ -19,6 +19,12 @@ typedef enum caches_occlusion {
     CACHES_OCCLUSION_OFF,         /* none: to measure what occlusion does */
 } caches_occlusion;
 
+/* Whether each cache also makes a glossy proxy light (cache_light.h). */
+typedef enum caches_glossy {
+    CACHES_GLOSSY_OFF = 0,        /* diffuse indirect light only */
+    CACHES_GLOSSY_ON,             /* and a view-dependent specular indirect term */
+} caches_glossy;
+
 /* caches-vals: the paper selects 2048 to 8192 VALs; 16384 is the upper end. */
 enum { CACHES_VALS_MIN = 256, CACHES_VALS_MAX = 16384, CACHES_VALS_DEFAULT = 2048 };
 /* caches-view-samples: the paper uses 512 and found 256 enough. */
@@ -33,6 +39,7 @@ typedef struct caches_settings {
     float angle;                  /* the angle tolerance, degrees */
     caches_occlusion occlusion;
     int seed;                     /* the selection's fixed jitter */
+    caches_glossy glossy;
 } caches_settings;
 
 extern const gi_method_settings caches_settings_table;

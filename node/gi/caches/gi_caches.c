@@ -22,15 +22,22 @@ enum { STAGE_IMPORTANCE = 0, STAGE_SELECT, STAGE_PROXY, STAGE_OCCLUSION, STAGE_I
        STAGES };
 static const char *const STAGE_NAMES[STAGES] = {"importance", "sat_select", "proxy", "occlusion",
                                                 "interpolate"};
-enum { P_IMPORTANCE = 0, P_COLUMNS, P_ROW, P_SELECT, P_PROXY, P_PROXY_ALL, P_OCCLUDE, P_INTERP,
+enum { P_IMPORTANCE = 0, P_COLUMNS, P_ROW, P_SELECT, P_PROXY, P_PROXY_ALL, P_OCCLUDE,
+       P_PROXY_GLOSSY, P_PROXY_ALL_GLOSSY, P_OCCLUDE_GLOSSY, P_INTERP, P_INTERP_GLOSSY,
        PROGRAMS };
 enum { TILE = 64 }; /* the compute shaders' local size */
 /* VALs or caches one dispatch loops over (caches_proxy.comp: llvmpipe stops a shader loop
  * after 65535 iterations, and a GPU's watchdog a long dispatch). */
 enum { CHUNK = 8192 };
-/* Floats per cache in B_PROXIES: the proxy (8), the running sums of the proxy pass (12)
- * and of the occlusion (1), rounded up to vec4s. */
-enum { PROXY_FLOATS = 24 };
+/* Floats per cache in each part of B_PROXIES: the proxy (8), the running sums of the proxy
+ * pass (12) and of the occlusion (1), rounded up to vec4s. The glossy part follows the
+ * diffuse one, the same, its last vec4 the cache's lobe exponent (uploaded once). */
+#define PROXY_VEC4S 6
+#define TEXT_OF(x) #x
+#define TEXT(x) TEXT_OF(x)
+enum { PROXY_FLOATS = 4 * PROXY_VEC4S, PARTS = 2 };
+/* the shaders' switch to the glossy proxies, and where their part starts (vec4s per cache) */
+#define GLOSSY_DEFINES "#define GLOSSY 1\n#define GLOSSY_PART " TEXT(PROXY_VEC4S) "\n"
 
 struct gi_caches {
     const gl_functions *gl;
@@ -53,6 +60,8 @@ struct gi_caches {
     float pick_read[CACHES_VALS_MAX * 4]; /* the picks as the GPU wrote them */
     int pick_count;
     cache_proxy *proxies;      /* read back each frame (or computed here: exact) */
+    cache_proxy *glossy;       /* the glossy proxies, as proxies (caches-glossy on) */
+    float eye[3];              /* the viewer the glossy proxies were made for */
     uint8_t *hidden;           /* per cache: under another surface (caches_hidden()) */
     size_t hidden_count;
     uint64_t checksum;
@@ -62,7 +71,7 @@ struct gi_caches {
     GLuint buffer[BUFFERS];
     size_t sums_texels;        /* room in B_SUMS */
     int row_columns;           /* room in B_ROW */
-    GLuint vao, fbo, irradiance;
+    GLuint vao, fbo, irradiance, glossy_texture;
     int eye_w, eye_h;
 };
 
@@ -77,6 +86,8 @@ static void release(gi_caches *c)
             gl->DeleteBuffers(1, &c->buffer[i]);
     if (c->irradiance)
         gl->DeleteTextures(1, &c->irradiance);
+    if (c->glossy_texture)
+        gl->DeleteTextures(1, &c->glossy_texture);
     if (c->fbo)
         gl->DeleteFramebuffers(1, &c->fbo);
     if (c->vao)
@@ -87,6 +98,7 @@ static void release(gi_caches *c)
     caches_exact_destroy(c->exact);
     free(c->vals);
     free(c->proxies);
+    free(c->glossy);
     free(c->hidden);
 }
 
@@ -101,20 +113,27 @@ static void buffer_data(const gl_functions *gl, GLuint b, size_t size, const voi
 static int programs(gi_caches *c, char *err, size_t errlen)
 {
     const gl_functions *gl = c->gl;
-    static const char *const comp[PROGRAMS] = {
+    static const char *const comp[P_INTERP] = {
         "caches/caches_importance.comp", "caches/caches_sat_columns.comp",
         "caches/caches_sat_row.comp", "caches/caches_select.comp", "caches/caches_proxy.comp",
-        "caches/caches_proxy.comp", "caches/caches_occlude.comp", NULL};
+        "caches/caches_proxy.comp", "caches/caches_occlude.comp", "caches/caches_proxy.comp",
+        "caches/caches_proxy.comp", "caches/caches_occlude.comp"};
+    static const char *const defines[P_INTERP] = {
+        [P_PROXY_ALL] = "#define ALL_TEXELS 1\n", [P_PROXY_GLOSSY] = GLOSSY_DEFINES,
+        [P_PROXY_ALL_GLOSSY] = "#define ALL_TEXELS 1\n" GLOSSY_DEFINES,
+        [P_OCCLUDE_GLOSSY] = GLOSSY_DEFINES};
     for (int i = 0; i < P_INTERP; i++) {
         const char *parts[2] = {"caches/caches_val.glsl", comp[i]};
-        const char *defines = i == P_PROXY_ALL ? "#define ALL_TEXELS 1\n" : NULL;
-        if (!(c->program[i] = gltools_compute_parts(gl, parts, 2, defines, err, errlen)))
+        if (!(c->program[i] = gltools_compute_parts(gl, parts, 2, defines[i], err, errlen)))
             return -1;
     }
-    c->program[P_INTERP] = gltools_program(gl, "fullscreen.vert",
-                                           "caches/caches_interpolate.frag", NULL, NULL, NULL,
-                                           err, errlen);
-    return c->program[P_INTERP] ? 0 : -1;
+    for (int i = P_INTERP; i <= P_INTERP_GLOSSY; i++)
+        if (!(c->program[i] = gltools_program(gl, "fullscreen.vert",
+                                              "caches/caches_interpolate.frag", NULL,
+                                              i == P_INTERP_GLOSSY ? GLOSSY_DEFINES : NULL,
+                                              NULL, err, errlen)))
+            return -1;
+    return 0;
 }
 
 /* The caches, the grid and the emitters into their buffers (they never change). */
@@ -134,7 +153,15 @@ static void upload_static(gi_caches *c)
     }
     buffer_data(gl, c->buffer[B_CACHES], n * 8 * sizeof *caches, caches);
     free(caches);
-    buffer_data(gl, c->buffer[B_PROXIES], n * PROXY_FLOATS * sizeof(float), NULL);
+    buffer_data(gl, c->buffer[B_PROXIES], n * PARTS * PROXY_FLOATS * sizeof(float), NULL);
+    float *lobe = xcalloc(n ? n : 1, 4 * sizeof *lobe);
+    for (size_t i = 0; i < n; i++)
+        lobe[4 * i] = cache_specular_exponent(c->set.caches[i].roughness);
+    /* the glossy part's last vec4 per cache */
+    gl->BufferSubData(GL_SHADER_STORAGE_BUFFER,
+                      (GLintptr)(n * (PARTS * PROXY_FLOATS - 4) * sizeof *lobe),
+                      (GLsizeiptr)(n * 4 * sizeof *lobe), lobe);
+    free(lobe);
     size_t cells = (size_t)c->grid.dims[0] * c->grid.dims[1] * c->grid.dims[2];
     uint32_t *grid = xmalloc((cells + 1 + c->grid.listed) * sizeof *grid);
     memcpy(grid, c->grid.first, (cells + 1) * sizeof *grid);
@@ -181,6 +208,7 @@ static int place(gi_caches *c, char *err, size_t errlen)
         c->vals[i] = vpl_from_emitter(&raw[i]);
     free(raw);
     c->proxies = xcalloc(c->set.count ? c->set.count : 1, sizeof *c->proxies);
+    c->glossy = xcalloc(c->set.count ? c->set.count : 1, sizeof *c->glossy);
     c->hidden = xcalloc(c->set.count ? c->set.count : 1, 1);
     /* a quarter edge: what the placement keeps apart as two parallel surfaces */
     caches_hidden(view_samples_rt(c->viewer), c->set.caches, c->set.count, 0.25f * c->set.edge,
@@ -227,7 +255,8 @@ static int reuse(void *state, const frame_params *p)
     view_samples_viewer(&c->last, c->head_to_eye, before);
     int same = c->have_last && !c->never_reuse && lpv_converge_inputs_equal(p, &c->last) &&
                memcmp(&now, &c->settings, sizeof now) == 0 &&
-               (now.selection == CACHES_SELECT_ALL || memcmp(eye, before, sizeof eye) == 0);
+               ((now.selection == CACHES_SELECT_ALL && now.glossy == CACHES_GLOSSY_OFF) ||
+                memcmp(eye, before, sizeof eye) == 0);
     c->last = *p;
     c->settings = now;
     c->have_last = 1;
@@ -365,30 +394,38 @@ static void read_vals(gi_caches *c)
     free(v);
 }
 
-static void upload_proxies(gi_caches *c)
+/* The proxies of part (0 diffuse, 1 glossy) of B_PROXIES: cache_proxy's 8 floats each. */
+static GLintptr part_offset(const gi_caches *c, int part)
+{
+    return (GLintptr)((size_t)part * c->set.count * PROXY_FLOATS * sizeof(float));
+}
+
+static void upload_proxies(gi_caches *c, int part, const cache_proxy *proxies)
 {
     size_t n = c->set.count;
     float *v = xmalloc((n ? n : 1) * 8 * sizeof *v);
     for (size_t i = 0; i < n; i++) {
-        const cache_proxy *p = &c->proxies[i];
+        const cache_proxy *p = &proxies[i];
         memcpy(v + 8 * i, p->position, 3 * sizeof *v);
         v[8 * i + 3] = p->radius;
         memcpy(v + 8 * i + 4, p->irradiance, 3 * sizeof *v);
         v[8 * i + 7] = p->visibility;
     }
     c->gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, c->buffer[B_PROXIES]);
-    c->gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(n * 8 * sizeof *v), v);
+    c->gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, part_offset(c, part),
+                         (GLsizeiptr)(n * 8 * sizeof *v), v);
     free(v);
 }
 
-static void read_proxies(gi_caches *c)
+static void read_proxies(gi_caches *c, int part, cache_proxy *proxies)
 {
     size_t n = c->set.count;
     float *v = xmalloc((n ? n : 1) * 8 * sizeof *v);
     c->gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, c->buffer[B_PROXIES]);
-    c->gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(n * 8 * sizeof *v), v);
+    c->gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, part_offset(c, part),
+                            (GLsizeiptr)(n * 8 * sizeof *v), v);
     for (size_t i = 0; i < n; i++) {
-        cache_proxy *p = &c->proxies[i];
+        cache_proxy *p = &proxies[i];
         memcpy(p->position, v + 8 * i, sizeof p->position);
         p->radius = v[8 * i + 3];
         memcpy(p->irradiance, v + 8 * i + 4, sizeof p->irradiance);
@@ -416,10 +453,15 @@ static void dispatch_chunks(gi_caches *c, int prog, int count)
  * settings' check refuses, is approximated). */
 static void gpu_proxies(gi_caches *c, const gi_rsm *rsm)
 {
-    int all = c->settings.selection == CACHES_SELECT_ALL, prog = all ? P_PROXY_ALL : P_PROXY;
+    int all = c->settings.selection == CACHES_SELECT_ALL;
+    int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
+    int prog = glossy ? (all ? P_PROXY_ALL_GLOSSY : P_PROXY_GLOSSY) : all ? P_PROXY_ALL : P_PROXY;
+    int occlude = glossy ? P_OCCLUDE_GLOSSY : P_OCCLUDE;
     int texels = rsm->layers * rsm->size * rsm->size;
     double t0 = clock_now_ms();
     bind_rsm(c, prog, rsm);
+    if (glossy)
+        c->gl->Uniform3fv(c->gl->GetUniformLocation(c->program[prog], "u_eye"), 1, c->eye);
     uniform1i(c, prog, "u_caches", (int)c->set.count);
     uniform1i(c, prog, "u_vals", (int)(all ? c->emitters : c->val_count));
     uniform1i(c, prog, "u_texels", texels);
@@ -427,9 +469,9 @@ static void gpu_proxies(gi_caches *c, const gi_rsm *rsm)
     c->ms[STAGE_PROXY] = finish(c, t0);
     double t1 = clock_now_ms();
     if (c->settings.occlusion != CACHES_OCCLUSION_OFF) {
-        use_program(c, P_OCCLUDE);
-        uniform1i(c, P_OCCLUDE, "u_caches", (int)c->set.count);
-        dispatch_chunks(c, P_OCCLUDE, (int)c->set.count);
+        use_program(c, occlude);
+        uniform1i(c, occlude, "u_caches", (int)c->set.count);
+        dispatch_chunks(c, occlude, (int)c->set.count);
     }
     c->ms[STAGE_OCCLUSION] = finish(c, t1);
 }
@@ -441,14 +483,19 @@ static void exact_proxies(gi_caches *c)
         c->exact = caches_exact_create(view_samples_rt(c->viewer), c->threads,
                                        1e-4f * scene_diagonal(c->scene));
     read_vals(c);
+    int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
+    caches_exact_glossy g = {c->eye, c->glossy};
     if (!c->exact || caches_exact_proxies(c->exact, c->set.caches, c->set.count, c->vals,
-                                          c->val_count, c->proxies, &c->ms[STAGE_OCCLUSION],
-                                          &c->ms[STAGE_PROXY]) != 0) {
+                                          c->val_count, glossy ? &g : NULL, c->proxies,
+                                          &c->ms[STAGE_OCCLUSION], &c->ms[STAGE_PROXY]) != 0) {
         fprintf(stderr, "cavelight-node: light caches: out of memory for the exact "
                 "occlusion's rays: no indirect light this frame\n");
         memset(c->proxies, 0, c->set.count * sizeof *c->proxies);
+        memset(c->glossy, 0, c->set.count * sizeof *c->glossy);
     }
-    upload_proxies(c);
+    upload_proxies(c, 0, c->proxies);
+    if (glossy)
+        upload_proxies(c, 1, c->glossy);
 }
 
 static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
@@ -457,6 +504,8 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     memset(c->ms, 0, sizeof c->ms);
     c->pick_count = 0;
     c->val_count = c->emitters;
+    int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
+    view_samples_viewer(p, c->head_to_eye, c->eye);
     int importance = c->settings.selection == CACHES_SELECT_IMPORTANCE && rsm->layers > 0;
     if (importance)
         select_vals(c, p, rsm);
@@ -464,22 +513,48 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         exact_proxies(c);
     else
         gpu_proxies(c, rsm);
-    read_proxies(c);
+    read_proxies(c, 0, c->proxies);
     uint64_t h = val_pick_checksum(c->picks, c->pick_count, 0xcbf29ce484222325ull);
     /* cache_proxy: 8 floats, no padding */
-    return c->checksum = val_hash_words(h, c->proxies, c->set.count * 8);
+    h = val_hash_words(h, c->proxies, c->set.count * 8);
+    if (glossy) {
+        read_proxies(c, 1, c->glossy);
+        h = val_hash_words(h, c->glossy, c->set.count * 8);
+    }
+    return c->checksum = h;
 }
 
-/* The irradiance texture at the eye's size. */
-static void reserve_eye(gi_caches *c, int w, int h)
+/* The irradiance texture at the eye's size, and the glossy one when glossy. */
+static void reserve_eye(gi_caches *c, int w, int h, int glossy)
 {
-    if (w == c->eye_w && h == c->eye_h)
-        return;
-    if (c->irradiance)
-        c->gl->DeleteTextures(1, &c->irradiance);
-    c->irradiance = gltools_texture2d(c->gl, GL_RGBA32F, w, h, GL_NEAREST);
-    c->eye_w = w;
-    c->eye_h = h;
+    if (w != c->eye_w || h != c->eye_h) {
+        GLuint old[2] = {c->irradiance, c->glossy_texture};
+        c->gl->DeleteTextures(2, old);
+        c->irradiance = gltools_texture2d(c->gl, GL_RGBA32F, w, h, GL_NEAREST);
+        c->glossy_texture = 0;
+        c->eye_w = w;
+        c->eye_h = h;
+    }
+    if (glossy && !c->glossy_texture)
+        c->glossy_texture = gltools_texture2d(c->gl, GL_RGBA32F, w, h, GL_NEAREST);
+}
+
+/* The interpolation program's uniforms (the grid's, the eye's). */
+static void interpolate_uniforms(gi_caches *c, GLuint prog, const gi_eye *e)
+{
+    const gl_functions *gl = c->gl;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_position"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normal"), 1);
+    const cache_grid *g = &c->grid;
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_grid_origin"), 1, g->origin);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_grid_cell"), g->cell);
+    gl->Uniform3i(gl->GetUniformLocation(prog, "u_grid_dims"), g->dims[0], g->dims[1], g->dims[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_grid_cells"), g->dims[0] * g->dims[1] * g->dims[2]);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_caches"), (int)c->set.count);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_reach"), g->reach);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_plane_weight"), CACHE_PLANE_WEIGHT);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_min_cos"), CACHE_PROXY_MIN_COS);
+    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_eye"), 1, e->eye);
 }
 
 static void eye_bind(void *state, const gi_eye *e)
@@ -491,25 +566,18 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
     gl->GetIntegerv(GL_VIEWPORT, viewport);
     gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
-    reserve_eye(c, e->width, e->height);
-    GLuint prog = c->program[P_INTERP];
+    int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
+    reserve_eye(c, e->width, e->height, glossy);
+    GLuint prog = c->program[glossy ? P_INTERP_GLOSSY : P_INTERP];
     gl->UseProgram(prog);
     for (int i = 0; i < BUFFERS; i++)
         gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)i, c->buffer[i]);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_position"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normal"), 1);
-    const cache_grid *g = &c->grid;
-    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_grid_origin"), 1, g->origin);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_grid_cell"), g->cell);
-    gl->Uniform3i(gl->GetUniformLocation(prog, "u_grid_dims"), g->dims[0], g->dims[1], g->dims[2]);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_grid_cells"), g->dims[0] * g->dims[1] * g->dims[2]);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_reach"), g->reach);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_plane_weight"), CACHE_PLANE_WEIGHT);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_min_cos"), CACHE_PROXY_MIN_COS);
+    interpolate_uniforms(c, prog, e);
     gl->BindFramebuffer(GL_FRAMEBUFFER, c->fbo);
     gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, c->irradiance, 0);
-    const GLenum color = GL_COLOR_ATTACHMENT0;
-    gl->DrawBuffers(1, &color);
+    gl->FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, glossy ? c->glossy_texture : 0, 0);
+    const GLenum color[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl->DrawBuffers(glossy ? 2 : 1, color);
     gl->Viewport(0, 0, e->width, e->height);
     gl->BindVertexArray(c->vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
@@ -520,6 +588,13 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit));
     gl->BindTexture(GL_TEXTURE_2D, c->irradiance);
     gl->Uniform1i(gl->GetUniformLocation(e->program, "u_caches_irradiance"), e->first_unit);
+    gl->Uniform1i(gl->GetUniformLocation(e->program, "u_caches_glossy_on"), glossy);
+    /* a unit of the method's even when off: no other sampler type may share it */
+    gl->Uniform1i(gl->GetUniformLocation(e->program, "u_caches_glossy"), e->first_unit + 1);
+    if (glossy) {
+        gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + 1));
+        gl->BindTexture(GL_TEXTURE_2D, c->glossy_texture);
+    }
     /* measured with GL finished only when the renderer measures every frame: a node's eye
      * pass does not wait for it */
     c->ms[STAGE_INTERPOLATE] = c->never_reuse ? finish(c, t0) : clock_now_ms() - t0;
@@ -531,7 +606,8 @@ static void stats(const void *state, gi_stats *out)
     out->stage_count = STAGES;
     for (int i = 0; i < STAGES; i++)
         out->stage[i] = (gi_stat){STAGE_NAMES[i], c->ms[i]};
-    size_t cache_bytes = c->set.count * (sizeof(light_cache) + sizeof(cache_proxy));
+    /* a cache, its diffuse and glossy proxies (the glossy ones are kept even when off) */
+    size_t cache_bytes = c->set.count * (sizeof(light_cache) + 2 * sizeof(cache_proxy));
     size_t bytes = 2 * (cache_bytes + cache_grid_bytes(&c->grid)); /* host and GPU copies */
     const gi_stat figures[] = {
         {"caches", (double)c->set.count},
@@ -556,6 +632,8 @@ const cache_set *gi_caches_set(const gi_caches *c) { return &c->set; }
 const cache_grid *gi_caches_grid(const gi_caches *c) { return &c->grid; }
 const cache_store_report *gi_caches_store(const gi_caches *c) { return &c->store; }
 const cache_proxy *gi_caches_proxies(const gi_caches *c) { return c->proxies; }
+const cache_proxy *gi_caches_glossy(const gi_caches *c) { return c->glossy; }
+const float *gi_caches_viewer(const gi_caches *c) { return c->eye; }
 const uint8_t *gi_caches_hidden(const gi_caches *c) { return c->hidden; }
 
 int gi_caches_picks(const gi_caches *c, const val_pick **picks)
@@ -574,6 +652,7 @@ size_t gi_caches_vals(gi_caches *c, const vpl **vals)
 const gi_method gi_caches_method = {
     .name = "caches",
     .shade = {"caches/caches_shade.glsl"},
+    .glossy = 1,
     .create = create,
     .destroy = destroy,
     .reuse = reuse,

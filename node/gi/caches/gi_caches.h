@@ -57,6 +57,10 @@ const cache_store_report *gi_caches_store(const gi_caches *c);
 int gi_caches_picks(const gi_caches *c, const val_pick **picks);
 size_t gi_caches_vals(gi_caches *c, const vpl **vals);
 const cache_proxy *gi_caches_proxies(const gi_caches *c);
+/* The glossy proxies (caches-glossy on; stale when off) and the viewer they were made for
+ * (view_samples_viewer() of the last frame). */
+const cache_proxy *gi_caches_glossy(const gi_caches *c);
+const float *gi_caches_viewer(const gi_caches *c);
 /* Per cache 1 when it lies under another surface (caches_exact.h): not interpolated. */
 const uint8_t *gi_caches_hidden(const gi_caches *c);
 
