@@ -75,7 +75,8 @@ static void test_vpl_and_rsm_work(void **state)
 }
 
 /* The caches method: more VALs within the tenfold; every RSM texel as a VAL, or caches
- * ten times as dense, beyond it (unless the config sets the wall up for them). */
+ * ten times as dense, beyond it (unless the config sets the wall up for them); glossy
+ * proxies count in its memory. */
 static void test_caches_work(void **state)
 {
     gi_limits l = limits();
@@ -87,6 +88,13 @@ static void test_caches_work(void **state)
     assert_false(within(&l, FRAME({"gi", "caches"}, {"caches-density", "1000"}), why));
     assert_null(gi_set(&l.base, "caches-selection", "all"));
     assert_true(within(&l, FRAME({"gi", "caches"}, {"caches-selection", "all"}), why));
+    /* Glossy proxies: a second proxy per cache and a second 1080p texture (16 floats each). */
+    gi_cost off, on;
+    frame_params p = FRAME({"gi", "caches"});
+    gi_cost_method(&p, l.bounds_min, l.bounds_max, &off);
+    p = FRAME({"gi", "caches"}, {"caches-glossy", "on"});
+    gi_cost_method(&p, l.bounds_min, l.bounds_max, &on);
+    assert_true(on.memory_bytes - off.memory_bytes >= 1920.0 * 1080 * 16);
 }
 
 /* The ldm method: more photons within the tenfold, 64 x 64 of them beyond it; the maps'

@@ -53,7 +53,8 @@ static const char *check(const frame_params *p)
  * here; a limit compares the same scene's settings, so the box's factor cancels), or
  * CACHE_AUTO_COUNT. Work: every cache gathers every VAL (every RSM texel with selection
  * all), plus its occlusion (approx: every other cache's disk; exact: a ray per VAL).
- * Memory: the caches, their proxies, the VALs and a 1080p irradiance texture. */
+ * Memory: the caches, their proxies, the VALs and a 1080p irradiance texture (with glossy on,
+ * a second proxy per cache and a second texture). */
 static void cost(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
 {
     caches_settings s;
@@ -69,8 +70,9 @@ static void cost(const frame_params *p, const float bounds_min[3], const float b
     double occlusion = s.occlusion == CACHES_OCCLUSION_APPROX ? caches * caches
                      : s.occlusion == CACHES_OCCLUSION_EXACT  ? caches * vals : 0;
     out->work = caches * vals + occlusion;
-    out->memory_bytes = caches * (sizeof(light_cache) + sizeof(cache_proxy)) + vals * 12 * sizeof(float) +
-                        1920.0 * 1080.0 * 4 * sizeof(float);
+    int proxies = s.glossy == CACHES_GLOSSY_ON ? 2 : 1; /* glossy: a second proxy and texture */
+    out->memory_bytes = caches * (sizeof(light_cache) + proxies * sizeof(cache_proxy)) +
+                        vals * 12 * sizeof(float) + proxies * 1920.0 * 1080.0 * 4 * sizeof(float);
 }
 
 const gi_method_settings caches_settings_table = {
