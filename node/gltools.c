@@ -213,3 +213,19 @@ int gltools_fbo_complete(const gl_functions *gl, const char *what, char *err, si
     }
     return 0;
 }
+
+void gltools_draw_state_save(const gl_functions *gl, gltools_draw_state *s)
+{
+    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->framebuffer);
+    gl->GetIntegerv(GL_VIEWPORT, s->viewport);
+    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vertex_array);
+}
+
+void gltools_draw_state_restore(const gl_functions *gl, const gltools_draw_state *s,
+                                GLuint program)
+{
+    gl->BindVertexArray((GLuint)s->vertex_array);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)s->framebuffer);
+    gl->Viewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    gl->UseProgram(program);
+}

@@ -8,7 +8,8 @@
  * "// @BODY@" line in a compute shader replaced by generated code; a compile or link
  * failure is one line naming the file and the driver's first message. Immutable textures
  * (2D, 2D array, 3D RGBA32F with linear filtering) clamped to their edges, and the check
- * that a framebuffer is complete. Holds no state. */
+ * that a framebuffer is complete, and the draw state a nested pass borrows. Holds no
+ * state. */
 #ifndef CAVELIGHT_GLTOOLS_H
 #define CAVELIGHT_GLTOOLS_H
 
@@ -36,5 +37,14 @@ GLuint gltools_texture_array(const gl_functions *gl, GLenum format, int size, in
 GLuint gltools_texture3d(const gl_functions *gl, const int n[3]);
 /* Of the bound GL_FRAMEBUFFER: 0, or -1 with "WHAT framebuffer incomplete ..." in err. */
 int gltools_fbo_complete(const gl_functions *gl, const char *what, char *err, size_t errlen);
+
+/* The draw state a pass inside another's (a GI method's inside the eye pass) borrows:
+ * saved before, given back after with the caller's program current again. */
+typedef struct gltools_draw_state {
+    GLint framebuffer, viewport[4], vertex_array;
+} gltools_draw_state;
+void gltools_draw_state_save(const gl_functions *gl, gltools_draw_state *s);
+void gltools_draw_state_restore(const gl_functions *gl, const gltools_draw_state *s,
+                                GLuint program);
 
 #endif

@@ -562,10 +562,8 @@ static void eye_bind(void *state, const gi_eye *e)
     gi_caches *c = state;
     const gl_functions *gl = c->gl;
     double t0 = clock_now_ms();
-    GLint fbo = 0, viewport[4], vao = 0;
-    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    gl->GetIntegerv(GL_VIEWPORT, viewport);
-    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    gltools_draw_state outer;
+    gltools_draw_state_save(gl, &outer);
     int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
     reserve_eye(c, e->width, e->height, glossy);
     GLuint prog = c->program[glossy ? P_INTERP_GLOSSY : P_INTERP];
@@ -581,10 +579,7 @@ static void eye_bind(void *state, const gi_eye *e)
     gl->Viewport(0, 0, e->width, e->height);
     gl->BindVertexArray(c->vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
-    gl->BindVertexArray((GLuint)vao);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    gl->UseProgram(e->program);
+    gltools_draw_state_restore(gl, &outer, e->program);
     gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit));
     gl->BindTexture(GL_TEXTURE_2D, c->irradiance);
     gl->Uniform1i(gl->GetUniformLocation(e->program, "u_caches_irradiance"), e->first_unit);

@@ -262,10 +262,8 @@ static void splat(gi_ldm *g, const gi_eye *e)
 {
     const gl_functions *gl = g->gl;
     double t0 = clock_now_ms();
-    GLint fbo = 0, viewport[4], vao = 0;
-    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    gl->GetIntegerv(GL_VIEWPORT, viewport);
-    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    gltools_draw_state outer;
+    gltools_draw_state_save(gl, &outer);
     target(g, e->width, e->height);
     gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     gl->Viewport(0, 0, e->width, e->height);
@@ -294,10 +292,7 @@ static void splat(gi_ldm *g, const gi_eye *e)
     if (slots)
         gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)(6 * slots));
     gl->Disable(GL_BLEND);
-    gl->BindVertexArray((GLuint)vao);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    gl->UseProgram(e->program);
+    gltools_draw_state_restore(gl, &outer, e->program);
     gl->Finish();
     g->splat_ms = clock_now_ms() - t0;
 }

@@ -91,10 +91,8 @@ static void draw_into(const vpl_interleave *il, GLuint target, int w, int h)
 void vpl_interleave_run(vpl_interleave *il, const gi_eye *e, int unit)
 {
     const gl_functions *gl = il->gl;
-    GLint fbo = 0, viewport[4], vao = 0;
-    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    gl->GetIntegerv(GL_VIEWPORT, viewport);
-    gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    gltools_draw_state outer;
+    gltools_draw_state_save(gl, &outer);
     reserve(il, e->width, e->height);
     int k = il->block;
     gl->BindFramebuffer(GL_FRAMEBUFFER, il->fbo);
@@ -119,8 +117,5 @@ void vpl_interleave_run(vpl_interleave *il, const gi_eye *e, int unit)
     draw_into(il, il->irradiance, e->width, e->height);
 
     gl->BindTexture(GL_TEXTURE_2D, il->irradiance);
-    gl->BindVertexArray((GLuint)vao);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    gl->UseProgram(e->program);
+    gltools_draw_state_restore(gl, &outer, e->program);
 }
