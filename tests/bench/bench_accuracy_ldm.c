@@ -105,7 +105,7 @@ static renderer *create(acc_setup *s, const frame_params *fp)
 }
 
 static int indirect_rows(acc_setup *s, const acc_reference *ref, const int (*cfg)[2], int n,
-                         int photons, float *img)
+                         int photons, const char *spread, float *img)
 {
     FILE *f = acc_open_csv(s, "ldm", "scene,directions,resolution,photons,construct_ms,"
                            "photons_ms,trace_ms,splat_ms,gi_ms,frame_ms,memory_mb,"
@@ -135,11 +135,11 @@ static int indirect_rows(acc_setup *s, const acc_reference *ref, const int (*cfg
                 cfg[c][0], cfg[c][1], photons, st[0], st[1], st[2], st[3], t.gi_ms, t.frame_ms,
                 mb, m.rmse_rel, m.ssim, m.best_scale);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"ldm\",\"scene\":\"%s\",\"width\":%d,"
-               "\"height\":%d,\"directions\":%d,\"resolution\":%d,\"photons\":%d,"
+               "\"height\":%d,\"directions\":%d,\"resolution\":%d,\"photons\":%d,\"spread\":\"%s\","
                "\"construct_ms\":%.3f,\"photons_ms\":%.3f,\"trace_ms\":%.3f,\"splat_ms\":%.3f,"
                "\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"memory_mb\":%.6g,\"rmse_rel\":%.4f,"
                "\"ssim\":%.4f,\"best_scale\":%.4f}\n", s->opt.scene, s->opt.width,
-               s->opt.height, cfg[c][0], cfg[c][1], photons, st[0], st[1], st[2], st[3], t.gi_ms,
+               s->opt.height, cfg[c][0], cfg[c][1], photons, spread, st[0], st[1], st[2], st[3], t.gi_ms,
                t.frame_ms, mb, m.rmse_rel, m.ssim, m.best_scale);
         fflush(stdout);
     }
@@ -237,11 +237,14 @@ int accuracy_ldm(int argc, char **argv)
     const char *configs = "16:64,32:128,64:128", *ao_configs = "32:64,64:128,128:128";
     const char *distances = "0.25,0.5,1,2";
     int photons = 32;
+    const char *spread = NULL; /* the method's default */
     const bench_option opts[] = {
         ACC_COMMON_OPTIONS(&o),
         BENCH_TEXT("configs", "D:R,...", "the ldm method's maps: directions:resolution", &configs),
         BENCH_INT("photons", "N", "the ldm method's photons per side of a light view", &photons,
                   4, 256),
+        BENCH_TEXT("spread", "light|cell", "the ldm method's footprint widening (ldm-spread); "
+                   "none: the node's default", &spread),
         BENCH_TEXT("ao-configs", "D:R,...", "the LDM AO's maps: directions:resolution",
                    &ao_configs),
         BENCH_TEXT("distances", "M,...", "AO distance limits, metres", &distances),
@@ -262,13 +265,21 @@ int accuracy_ldm(int argc, char **argv)
     acc_setup s;
     if (acc_setup_open(&s, &o) != 0)
         return 1;
+    const char *why = spread ? gi_set(&s.base, "ldm-spread", spread) : NULL;
+    if (why) {
+        fprintf(stderr, "bench accuracy ldm: --spread %s: %s\n", spread, why);
+        acc_setup_close(&s);
+        return 2;
+    }
+    char spread_name[32];
+    spread = gi_get_text(&s.base, "ldm-spread", spread_name, sizeof spread_name);
     acc_reference ref;
     if (acc_reference_get(&s, &s.base, "a", &ref) != 0) {
         acc_setup_close(&s);
         return 1;
     }
     float *img = malloc((size_t)o.width * o.height * 3 * sizeof *img);
-    int rc = !img || indirect_rows(&s, &ref, (const int (*)[2])cfg, n, photons, img) ||
+    int rc = !img || indirect_rows(&s, &ref, (const int (*)[2])cfg, n, photons, spread, img) ||
              ao_rows(&s, (const int (*)[2])ao_cfg, na, dist, nd, img);
     free(img);
     acc_reference_free(&ref);
