@@ -182,22 +182,6 @@ static double time_steps(scene_lpv *sc, step_fn fn, const lpv_propagate_desc *pd
     return m;
 }
 
-/* Largest difference relative to the largest value of the channel, over the channels. */
-static double max_rel_diff(const lpv_volume *a, const lpv_volume *ref)
-{
-    double max_rel = 0.0;
-    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
-        double scale = 0.0, diff = 0.0;
-        for (size_t i = 0; i < ref->cells; i++) {
-            scale = fmax(scale, fabs(ref->ch[c][i]));
-            diff = fmax(diff, fabs((double)ref->ch[c][i] - a->ch[c][i]));
-        }
-        if (scale > 0.0)
-            max_rel = fmax(max_rel, diff / scale);
-    }
-    return max_rel;
-}
-
 static int bench_cpu(scene_lpv *sc, lpv_propagate_desc *pd, int steps, int naive_repeats)
 {
     int threads = workpool_threads(pd->pool), res = sc->n[0];
@@ -209,7 +193,7 @@ static int bench_cpu(scene_lpv *sc, lpv_propagate_desc *pd, int steps, int naive
     lpv_volume_copy(&fast, last);
     /* The scalar reference: same steps, same settings, fewer repeats (it is slow). */
     double naive_s = time_steps(sc, lpv_reference_step, pd, steps, naive_repeats, 0, &last);
-    double max_rel = max_rel_diff(&fast, last);
+    double max_rel = lpv_reference_rel_diff(&fast, last);
     double flops = steps * lpv_propagate_flops(pd->transport, fast.cells);
     double peak = peak_gflops(pd->pool, threads), gflops = flops / fast_s * 1e-9;
     printf("{\"bench\":\"lpv\",\"backend\":\"cpu\",\"transport\":\"%s\",\"res\":%d,"
@@ -263,7 +247,7 @@ static int bench_gl(scene_lpv *sc, lpv_propagate_desc *pd, int steps)
     if (rc == 0) {
         lpv_gl_download(&gs, tex[steps & 1], &gpu);
         time_steps(sc, lpv_propagate_step, pd, steps, 1, 0, &cpu);
-        double diff = max_rel_diff(&gpu, cpu), s = median(times, MIN_REPEATS);
+        double diff = lpv_reference_rel_diff(&gpu, cpu), s = median(times, MIN_REPEATS);
         printf("{\"bench\":\"lpv\",\"backend\":\"gl\",\"transport\":\"%s\",\"res\":%d,"
                "\"steps\":%d,\"renderer\":\"%s\",\"repeats\":%d,\"ms_per_step\":%.4f,"
                "\"max_rel_diff_vs_cpu\":%.3g,\"loadavg_1m\":%.2f}\n",

@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
+#include "lpv_reference.h"
 
 enum { W = 64, H = 48 };
 
@@ -61,16 +62,7 @@ static void classic_gl_matches_cpu(int steps)
     }
     const lpv_volume *a = gi_ilpv_volume(gi_ilpv_of(renderer_gi(cpu.r))), *b = gi_ilpv_volume(gi_ilpv_of(renderer_gi(gpu.r)));
     assert_int_equal(lpv_volume_count_nonfinite(b), 0);
-    double worst = 0, ea[3], eb[3];
-    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
-        double peak = 0, diff = 0;
-        for (size_t i = 0; i < a->cells; i++) {
-            peak = fmax(peak, fabs(a->ch[c][i]));
-            diff = fmax(diff, fabs((double)a->ch[c][i] - b->ch[c][i]));
-        }
-        if (peak > 0)
-            worst = fmax(worst, diff / peak);
-    }
+    double worst = lpv_reference_rel_diff(b, a), ea[3], eb[3];
     lpv_volume_energy(a, ea);
     lpv_volume_energy(b, eb);
     printf("classic, %d steps: max relative difference GL vs CPU %.3g, energy %.6g / %.6g\n",

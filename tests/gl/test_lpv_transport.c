@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
+#include "lpv_reference.h"
 #include "lpv/sh.h"
 
 enum { W = 128, H = 96 };
@@ -86,22 +87,6 @@ static uint64_t run_alone(ilpv_backend_choice backend, int threads, ilpv_mode mo
     return sum;
 }
 
-/* The worst channel's max |a - b| over that channel's peak |a|. */
-static double worst_relative(const lpv_volume *a, const lpv_volume *b)
-{
-    assert_int_equal(a->cells, b->cells);
-    double worst = 0;
-    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
-        double peak = 0, diff = 0;
-        for (size_t i = 0; i < a->cells; i++) {
-            peak = fmax(peak, fabs(a->ch[c][i]));
-            diff = fmax(diff, fabs((double)a->ch[c][i] - b->ch[c][i]));
-        }
-        worst = fmax(worst, peak > 0 ? diff / peak : diff);
-    }
-    return worst;
-}
-
 static void gl_matches_cpu(ilpv_mode mode)
 {
     lpv_volume a, b;
@@ -110,7 +95,7 @@ static void gl_matches_cpu(ilpv_mode mode)
     assert_int_equal(lpv_volume_count_nonfinite(&b), 0);
     double e[3];
     lpv_volume_energy(&a, e);
-    double worst = worst_relative(&a, &b);
+    double worst = lpv_reference_rel_diff(&b, &a);
     printf("paper %s: GL against CPU, worst channel %.3g of its peak (energy %.4g)\n",
            mode == ILPV_MODE_CLASSIC ? "classic" : "incremental", worst, e[0]);
     assert_true(e[0] > 0);

@@ -1,5 +1,6 @@
 #include "lpv_reference.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -110,4 +111,18 @@ void lpv_reference_step(const lpv_propagate_desc *desc, const lpv_volume *src, l
                 desc->accum->ch[k][i] += dst->ch[k][i];
         }
     free(acc);
+}
+
+double lpv_reference_rel_diff(const lpv_volume *a, const lpv_volume *ref)
+{
+    double worst = 0.0;
+    for (int c = 0; c < LPV_LIGHT_CHANNELS; c++) {
+        double peak = 0.0, diff = 0.0;
+        for (size_t i = 0; i < ref->cells; i++) {
+            peak = fmax(peak, fabs(ref->ch[c][i]));
+            diff = fmax(diff, fabs((double)a->ch[c][i] - ref->ch[c][i]));
+        }
+        worst = fmax(worst, peak > 0.0 ? diff / peak : diff);
+    }
+    return worst;
 }

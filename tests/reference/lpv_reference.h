@@ -14,4 +14,9 @@
 /* The same arguments as lpv_propagate_step() (the pool is ignored). */
 void lpv_reference_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);
 
+/* How far a is from ref: per light channel, the largest |a - ref| over that channel's
+ * largest |ref| (the absolute difference where ref's channel is all zero); the worst
+ * channel. The measure the fast paths and the GL steps are held to. */
+double lpv_reference_rel_diff(const lpv_volume *a, const lpv_volume *ref);
+
 #endif

@@ -14,6 +14,7 @@
 #include "gi/ilpv/gi_ilpv.h"
 #include "glctx.h"
 #include "lpv/ilpv.h"
+#include "lpv_testutil.h"
 #include "lpv/lattice.h"
 #include "lpv/lpv_geometry.h"
 #include "lpv/lpv_inject.h"
@@ -260,18 +261,6 @@ static inline void stab_cpu_frame(stab_cpu *c, float lambda, int steps, double e
                     c->vpl_count, NULL);
     ilpv_frame_desc fd = {.steps = steps, .lambda_incr = lambda, .emitted_energy = emitted};
     ilpv_frame(&c->ilpv, &fd);
-}
-
-/* Largest |a - b| over every channel and cell, over the largest |b|. */
-static inline double stab_rel_change(const lpv_volume *a, const lpv_volume *b)
-{
-    double diff = 0.0, scale = 0.0;
-    for (int ch = 0; ch < a->channels; ch++)
-        for (size_t i = 0; i < a->cells; i++) {
-            diff = fmax(diff, fabs((double)a->ch[ch][i] - b->ch[ch][i]));
-            scale = fmax(scale, fabs((double)b->ch[ch][i]));
-        }
-    return scale > 0.0 ? diff / scale : diff;
 }
 
 #endif

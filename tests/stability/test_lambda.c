@@ -51,9 +51,9 @@ static lambda_run run(float lambda, int frames)
         const lpv_volume *l = ilpv_result(&c.ilpv);
         out.max_ratio = fmax(out.max_ratio, stab_energy(l) / stab_energy(ilpv_injection(&c.ilpv)));
         if (f == 10)
-            out.residual_10 = stab_rel_change(l, &prev);
+            out.residual_10 = testutil_rel_diff(l, &prev);
         if (f == frames)
-            out.residual_last = stab_rel_change(l, &prev);
+            out.residual_last = testutil_rel_diff(l, &prev);
     }
     out.checksum = lpv_volume_checksum(ilpv_result(&c.ilpv));
     out.chord = stab_mean_chord_cells(&c.scene, c.lattice.cell);

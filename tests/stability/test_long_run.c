@@ -39,7 +39,7 @@ static void test_static_light_energy_does_not_drift(void **state)
     mean /= FRAMES - FIRST;
     for (int f = FIRST; f < FRAMES; f++)
         drift = fmax(drift, fabs(energy[f] - mean) / mean);
-    double cells = stab_rel_change(ilpv_result(&c.ilpv), &at_first);
+    double cells = testutil_rel_diff(ilpv_result(&c.ilpv), &at_first);
     printf("lattice %dx%dx%d, %zu VPLs, %d frames x %d steps: energy mean %.6g, drift %.3g, "
            "largest cell change frame %d -> %d %.3g\n", c.lattice.n[0], c.lattice.n[1],
            c.lattice.n[2], c.vpl_count, FRAMES, STEPS, mean, drift, FIRST, FRAMES, cells);
