@@ -10,7 +10,7 @@
 #include "cluster/cluster_config.h"
 #include "cluster_auth.h"
 #include "gi/gi_settings.h"
-#include "input_config.h"
+#include "input/input_config.h"
 #include "scene/scene.h"
 
 typedef struct check_ctx {

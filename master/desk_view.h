@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "input_source.h"
+#include "input/input_source.h"
 
 #define DESK_VIEW_MAP_M 4.0f /* metres across the map: the CAVE and a step around it */
 

@@ -8,7 +8,7 @@
 #define CAVELIGHT_GRAB_H
 
 #include "frame/frame_params.h"
-#include "input_state.h"
+#include "input/input_state.h"
 #include "scene/scene_pose.h"
 
 typedef struct grab {

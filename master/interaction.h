@@ -23,7 +23,7 @@
 
 #include <stdint.h>
 #include "frame/frame_params.h"
-#include "input_state.h"
+#include "input/input_state.h"
 
 typedef enum interaction_layout {
     INTERACTION_NAVIGATION = 0,

@@ -5,7 +5,7 @@
 
 #include "cluster/cluster_config.h"
 #include "gi/gi_settings.h"
-#include "gi/ilpv/ilpv_budget.h"
+#include "gi/gi_budget.h"
 
 enum group { G_CLUSTER, G_NODES, G_GI, G_DISPLAY, G_FRAMES, G_OUTPUT, G_INPUT, G_CALIBRATION, G_COUNT };
 
@@ -61,7 +61,7 @@ static const cli_option options[] = {
     {O_ALLOW_OUTSIDE, "allow-outside-paths", NULL, NULL, G_NODES, 0,
      "glTF buffers and images from outside the scene file's\nfolder too"},
     {O_BUDGET, "budget-ms", "MS", NULL, G_GI, 0,
-     "ilpv: choose --lattice and --steps so that the frame pass\ntakes about MS ms on the slowest node (measured on every\nnode before the session's frames)"},
+     "choose the settings of the frame's method (one with a\nbudget rule, docs/node.md) so that the frame pass takes\nabout MS ms on the slowest node (measured on every node\nbefore the session's frames)"},
     {O_FRAMES, "frames", "N", "0: until stopped; 1 with --pattern --output png", G_FRAMES, 0, "frames to run"},
     {O_DT, "dt", "S", "1/30", G_FRAMES, 0,
      "seconds of the scripted head and light path per frame\n(0: the wall clock)"},
@@ -221,6 +221,16 @@ cli_result master_cli_parse(int argc, char **argv, master_options *o)
     return CLI_OK;
 }
 
+/* gi_budget_check()'s question: was the setting named name given on the command line? */
+static int setting_given(void *ctx, const char *name)
+{
+    const master_options *o = ctx;
+    for (int i = 0; i < o->setting_count; i++)
+        if (strcmp(o->setting_name[i], name) == 0)
+            return 1;
+    return 0;
+}
+
 int master_settings(const master_options *o, const cluster_config *cfg, frame_params *out,
                     char *err, size_t errlen)
 {
@@ -230,14 +240,8 @@ int master_settings(const master_options *o, const cluster_config *cfg, frame_pa
     for (int i = 0; i < o->setting_count; i++)
         gi_set(out, o->setting_name[i], o->setting_value[i]); /* checked when parsed */
     const char *why = gi_check(out);
-    if (!why && o->budget_ms > 0) {
-        int lattice_given = 0;
-        for (int i = 0; i < o->setting_count; i++)
-            lattice_given |= strcmp(o->setting_name[i], "lattice") == 0 ||
-                             strcmp(o->setting_name[i], "lattice-cells") == 0 ||
-                             strcmp(o->setting_name[i], "steps") == 0;
-        why = ilpv_budget_check(out, lattice_given);
-    }
+    if (!why && o->budget_ms > 0)
+        why = gi_budget_check(out, setting_given, (void *)o);
     if (why) {
         snprintf(err, errlen, "%s", why);
         return -1;

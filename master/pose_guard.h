@@ -22,7 +22,7 @@
 
 #include "base/ratelog.h"
 #include "cluster/cluster_config.h"
-#include "input_state.h"
+#include "input/input_state.h"
 
 /* max |R^T R - I|: a tracker's rotation rounded to 6 decimals (DTrack) or a float
  * quaternion is off by about 1e-6; 1e-3 is a thousand times that and below what a

@@ -12,14 +12,14 @@
 #include "base/clock.h"
 #include "gi/gi_settings.h"
 #include "grab.h"
-#include "input.h"
-#include "input_config.h"
+#include "input/input.h"
+#include "input/input_config.h"
 #include "interaction.h"
 #include "pose_guard.h"
 #include "frame/exposure.h"
 #include "gi/gi_cost.h"
 #include "gi/gi_settings.h"
-#include "gi/ilpv/ilpv_budget.h"
+#include "gi/gi_budget.h"
 #include "scene/scene_load.h"
 #include "script.h"
 
@@ -59,8 +59,9 @@ struct session {
     uint64_t last_version;
     run_stats rs;
     float bounds_min[3], bounds_max[3]; /* the scene's */
-    double budget_ms;                   /* > 0: the budget chose lattice and steps */
-    lpv_budget_choice budget;
+    double budget_ms;                   /* > 0: the budget chose the method's settings */
+    int budget_frames;                  /* its measuring frames */
+    gi_budget_choice budget;
 };
 
 /* The scene as every node places it, the application (its init registers its keys) and
@@ -399,38 +400,36 @@ static double budget_frame(session *s, const frame_params *f)
 
 int session_choose_budget(session *s, double budget_ms, volatile sig_atomic_t *stop, char *err, size_t errlen)
 {
-    ilpv_budget_plan *plan = xcalloc(1, sizeof *plan);
-    ilpv_budget_plan_init(plan, &s->frame, s->bounds_min, s->bounds_max);
-    int rc = 0;
-    for (int i = 0; rc == 0 && i < ILPV_BUDGET_FRAMES; i++) {
+    gi_budget_plan *plan = gi_budget_plan_create(&s->frame, s->bounds_min, s->bounds_max);
+    int rc = 0, frames = gi_budget_plan_frames(plan);
+    for (int i = 0; rc == 0 && i < frames; i++) {
         frame_params f;
-        ilpv_budget_plan_frame(plan, i, &f);
+        gi_budget_plan_frame(plan, i, &f);
         double ms = stop && *stop ? -1 : budget_frame(s, &f);
         if (ms < 0) {
             snprintf(err, errlen, "--budget-ms: no node was ready in measuring frame %d of %d", i + 1,
-                     ILPV_BUDGET_FRAMES);
+                     frames);
             rc = -1;
         }
-        ilpv_budget_plan_record(plan, i, ms);
+        gi_budget_plan_record(plan, i, ms);
     }
-    lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
-    if (rc == 0 && ilpv_budget_plan_costs(plan, cand, err, errlen) != 0)
-        rc = -1;
-    if (rc == 0 && ilpv_budget_apply(budget_ms, cand, ILPV_BUDGET_CANDIDATES, &s->frame, &s->budget) != 0) {
-        snprintf(err, errlen, "--budget-ms: no choice from the measured costs");
+    char why[256];
+    if (rc == 0 && gi_budget_plan_choose(plan, budget_ms, &s->frame, &s->budget, why, sizeof why) != 0) {
+        snprintf(err, errlen, "--budget-ms: %s", why);
         rc = -1;
     }
-    free(plan);
+    gi_budget_plan_destroy(plan);
     if (rc != 0)
         return -1;
     /* Every node starts the chosen lattice afresh, whatever the plan left in its history. */
     params_store *store = cluster_master_params(s->m);
     params_set_u32(store, PARAMS_RESET_EPOCH, params_get_u32(store, PARAMS_RESET_EPOCH) + 1);
     s->budget_ms = budget_ms;
-    const lpv_budget_choice *c = &s->budget;
-    fprintf(stderr, "cavelight-master: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame "
-            "on the slowest node%s\n", budget_ms, c->axis_cells, c->steps, c->steps == 1 ? "" : "s",
-            c->predicted_ms, c->fits ? "" : ", over budget even at the coarsest lattice");
+    s->budget_frames = frames;
+    const gi_budget_choice *c = &s->budget;
+    fprintf(stderr, "cavelight-master: budget %.3g ms: %s, predicted %.3g ms per frame on the "
+            "slowest node%s\n", budget_ms, c->summary, c->predicted_ms,
+            c->fits ? "" : ", over budget even at the cheapest choice");
     return 0;
 }
 
@@ -506,9 +505,9 @@ int session_write_report(session *s, const char *path, double wall_s)
     if (s->budget_ms > 0) {
         cJSON *b = cJSON_AddObjectToObject(root, "budget");
         cJSON_AddNumberToObject(b, "budget_ms", s->budget_ms);
-        cJSON_AddNumberToObject(b, "frames", ILPV_BUDGET_FRAMES); /* measuring, among "frames" */
-        cJSON_AddNumberToObject(b, "lattice_cells", s->budget.axis_cells);
-        cJSON_AddNumberToObject(b, "steps", s->budget.steps);
+        cJSON_AddNumberToObject(b, "frames", s->budget_frames); /* measuring, among "frames" */
+        for (int i = 0; i < s->budget.figure_count; i++)
+            cJSON_AddNumberToObject(b, s->budget.figure[i].name, s->budget.figure[i].value);
         cJSON_AddNumberToObject(b, "predicted_ms", s->budget.predicted_ms);
         cJSON_AddBoolToObject(b, "fits", s->budget.fits);
     }

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 
 #include "base/xalloc.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 
 struct app_draw {
     const gl_functions *gl;

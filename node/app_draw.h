@@ -10,7 +10,7 @@
 #include <stddef.h>
 
 #include "cavelight/app.h"
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 
 typedef struct app_draw app_draw;
 

@@ -14,10 +14,10 @@
 #include "base/ratelog.h"
 #include "frame/pattern.h"
 #include "gi/gi_settings.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "base/mat4.h"
 #include "base/vec3.h"
-#include "present.h"
+#include "present/present.h"
 #include "scene/scene.h"
 
 struct cluster_view {

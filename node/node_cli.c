@@ -7,8 +7,8 @@
 #include "frame/frame_view.h"
 #include "frame/hud.h"
 #include "gi/gi_settings.h"
-#include "gi/ilpv/ilpv_budget.h"
-#include "reference.h"
+#include "gi/gi_budget.h"
+#include "reference/reference.h"
 
 enum { MODE_STANDALONE = 1u << NODE_MODE_STANDALONE, MODE_CLUSTER = 1u << NODE_MODE_CLUSTER };
 
@@ -91,7 +91,7 @@ static const cli_option options[] = {
     {O_CACHE_DIR, "cache-dir", "DIR", "CAVELIGHT_CACHE_DIR, else $XDG_CACHE_HOME/cavelight, else ~/.cache/cavelight",
      G_GI, 0, "where a GI method keeps what it computes once per scene\n(caches: the light caches; sets CAVELIGHT_CACHE_DIR)"},
     {O_BUDGET, "budget-ms", "MS", NULL, G_GI, S,
-     "ilpv: choose --lattice and --steps so that the LPV work\ntakes about MS ms per frame on this machine"},
+     "choose the settings of the frame's method (one with a\nbudget rule, docs/node.md) so that its work takes about\nMS ms per frame on this machine"},
     {O_HUD, "hud", "0|1|2", "no HUD", G_DISPLAY, S, "show the HUD of that layout (navigation, lighting, settings)"},
     {O_WAND, "wand", "x,y,z", "in front of the first eye", G_DISPLAY, S, "HUD wand position (pointing along -Z)"},
     {O_RENDERER, "renderer", "raster|reference", "raster", G_REFERENCE, S,
@@ -208,7 +208,7 @@ static const char *set(void *user, int id, const char *v)
         d->threads = o->threads;
         return why;
     }
-    case O_CACHE_DIR: /* read where the folder is needed (common/caches/cache_file.h) */
+    case O_CACHE_DIR: /* read where the folder is needed (common/gi/caches/cache_file.h) */
         if (!*v || setenv("CAVELIGHT_CACHE_DIR", v, 1) != 0)
             return "a folder";
         break;
@@ -236,9 +236,18 @@ static const char *show_default(void *user, int id, char *buf, size_t cap)
     return buf;
 }
 
-/* 1 when the setting named name was on the command line. */
-static int setting_given(const cli_program *p, const cli_given *given, const char *name)
+/* The command line, for setting_given(). */
+typedef struct given_query {
+    const cli_program *program;
+    const cli_given *given;
+} given_query;
+
+/* gi_budget_check()'s question: was the setting named name on the command line? */
+static int setting_given(void *ctx, const char *name)
 {
+    const given_query *q = ctx;
+    const cli_program *p = q->program;
+    const cli_given *given = q->given;
     for (int i = 0; i < gi_option_count(); i++)
         if (strcmp(gi_option_at(i)->row->name, name) == 0)
             return cli_was_given(p, given, O_SETTING + i);
@@ -248,11 +257,10 @@ static int setting_given(const cli_program *p, const cli_given *given, const cha
 /* What no single option can say. */
 static int check_standalone(const node_options *o, const cli_program *p, const cli_given *given)
 {
-    int lattice_given = setting_given(p, given, "lattice") ||
-                        setting_given(p, given, "lattice-cells") || setting_given(p, given, "steps");
+    given_query q = {p, given};
     const char *why = gi_check(&o->frame); /* the methods' own rules first */
     if (!why && o->budget_ms > 0)
-        why = ilpv_budget_check(&o->frame, lattice_given);
+        why = gi_budget_check(&o->frame, setting_given, &q);
     if (!why && o->have_screen != o->have_eye)
         why = "--screen and --eye go together";
     if (!why && o->reference && o->stereo)

@@ -12,12 +12,12 @@
 #include "frame/light_view.h"
 #include "gi/gi.h"
 #include "gi/gi_settings.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 #include "renderer.h"
 #include "renderer_ao.h"
 #include "renderer_hud.h"
 #include "renderer_rsm.h"
-#include "scene_gl.h"
+#include "gl/scene_gl.h"
 
 enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
 
@@ -446,9 +446,8 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     query_begin(r, &r->frame_queries, slot, Q_RSM);
     renderer_rsm_render(r->rsm, r->mesh, p);
     query_end(r, &r->frame_queries, slot, Q_RSM);
-    gi_rsm rsm = {.size = renderer_rsm_size(r->rsm), .maps = r->rsm, .mesh = r->mesh};
-    rsm.layers = renderer_rsm_views(r->rsm, &rsm.views, &rsm.fbo);
-    renderer_rsm_textures(r->rsm, rsm.textures);
+    gi_rsm rsm;
+    renderer_gi_rsm(r, &rsm);
     r->checksum = gi_frame(r->gi, p, &rsm);
     gi_stats_get(r->gi, &r->timings.gi);
     r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
@@ -701,4 +700,11 @@ void renderer_get_timings(const renderer *r, renderer_timings *out)
 }
 
 renderer_rsm *renderer_get_rsm(renderer *r) { return r->rsm; }
+
+void renderer_gi_rsm(const renderer *r, gi_rsm *out)
+{
+    *out = (gi_rsm){.size = renderer_rsm_size(r->rsm), .mesh = r->mesh};
+    out->layers = renderer_rsm_views(r->rsm, &out->views, &out->fbo);
+    renderer_rsm_textures(r->rsm, out->textures);
+}
 gi *renderer_gi(renderer *r) { return r->gi; }

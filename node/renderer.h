@@ -27,7 +27,7 @@
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
 #include "gi/gi.h"
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 #include "renderer_ao.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
@@ -89,6 +89,8 @@ const char *renderer_last_error(const renderer *r);
 /* The last frame pass's shadow maps and the VPL source every GI method shares
  * (renderer_rsm.h); the renderer owns them. */
 struct renderer_rsm *renderer_get_rsm(renderer *r);
+/* The last frame's maps as the GI method got them. */
+void renderer_gi_rsm(const renderer *r, gi_rsm *out);
 /* The active GI method (gi.h; its own header inspects its state: gi_ilpv.h, gi_vpl.h). */
 gi *renderer_gi(renderer *r);
 

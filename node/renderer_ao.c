@@ -7,8 +7,9 @@
 
 #include "base/clock.h"
 #include "base/xalloc.h"
-#include "gltools.h"
-#include "ldm_gl.h"
+#include "gi/ao_cost.h"
+#include "gi/ldm/ldm_gl.h"
+#include "gl/gltools.h"
 
 struct renderer_ao {
     const gl_functions *gl;

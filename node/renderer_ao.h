@@ -19,9 +19,9 @@
 
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 #include "scene/scene.h"
-#include "scene_gl.h"
+#include "gl/scene_gl.h"
 
 typedef struct renderer_ao renderer_ao;
 

@@ -11,7 +11,7 @@
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
 #include "gi/gi_cost.h"
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 #include "scene/scene.h"
 
 typedef struct renderer_desc {

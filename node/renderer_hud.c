@@ -10,7 +10,7 @@
 #include "base/xalloc.h"
 #include "base/vec3.h"
 #include "renderer_hud.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 
 enum { RENDERER_HUD_BOX, RENDERER_HUD_CONE, RENDERER_HUD_TORUS, RENDERER_HUD_MESHES };
 

@@ -14,7 +14,7 @@
 #define CAVELIGHT_RENDERER_HUD_H
 
 #include "frame/hud.h"
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 
 #define RENDERER_HUD_DISTANCE 0.12f   /* panel in front of the wand origin, metres */
 #define RENDERER_HUD_BAR_LENGTH 0.12f /* a bar at value 1 */

@@ -1,5 +1,5 @@
-/* renderer_rsm: the reflective shadow maps, the lights' shading uniforms and the shared
- * VPL source (renderer_rsm.h). */
+/* renderer_rsm: the reflective shadow maps and the lights' shading uniforms
+ * (renderer_rsm.h). */
 #include "renderer_rsm.h"
 
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "base/xalloc.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 
 struct renderer_rsm {
     const gl_functions *gl;
@@ -20,9 +20,6 @@ struct renderer_rsm {
     GLuint position, normal, flux, depth;
     int view_count;          /* views rendered by the last render */
     light_view views[LIGHT_VIEW_MAX];
-    float *read[3];          /* position, normal, flux of one layer, read back */
-    lpv_vpl *vpls;           /* renderer_rsm_vpls()'s array */
-    size_t vpl_capacity;
 };
 
 static const GLenum rsm_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
@@ -88,13 +85,6 @@ renderer_rsm *renderer_rsm_create(const gl_functions *gl, const scene *s, int si
     frame_params_lights_from_scene(&p, s);
     light_view views[LIGHT_VIEW_MAX];
     int n = light_views(&p, s, size, views);
-    size_t texels = (size_t)size * size;
-    for (int i = 0; i < 3; i++)
-        if (!(r->read[i] = malloc(texels * 4 * sizeof(float)))) {
-            snprintf(err, errlen, "renderer: out of memory for the RSM readback");
-            renderer_rsm_destroy(r);
-            return NULL;
-        }
     if (!(r->prog = gltools_program(gl, "scene.vert", "rsm.frag", NULL, NULL, NULL, err, errlen)) ||
         reserve(r, n > 0 ? n : 1, err, errlen) != 0) {
         renderer_rsm_destroy(r);
@@ -110,9 +100,6 @@ void renderer_rsm_destroy(renderer_rsm *r)
     release(r);
     if (r->prog)
         r->gl->DeleteProgram(r->prog);
-    for (int i = 0; i < 3; i++)
-        free(r->read[i]);
-    free(r->vpls);
     free(r);
 }
 
@@ -258,50 +245,4 @@ void renderer_rsm_bind_shading(const renderer_rsm *r, GLuint prog, const frame_p
     }
     uniform1f(r, prog, "u_shadow_texel", 1.0f / (float)r->size);
     uniform1f(r, prog, "u_min_light_distance", scene_min_light_distance(r->scene));
-}
-
-void renderer_rsm_read_layer(renderer_rsm *r, int layer, const float **position,
-                             const float **normal, const float **flux)
-{
-    const gl_functions *gl = r->gl;
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo[layer]);
-    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-    for (int b = 0; b < 3; b++) {
-        gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
-        gl->ReadPixels(0, 0, r->size, r->size, GL_RGBA, GL_FLOAT, r->read[b]);
-    }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    *position = r->read[0];
-    *normal = r->read[1];
-    *flux = r->read[2];
-}
-
-size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
-{
-    size_t texels = (size_t)r->size * r->size, n = 0;
-    size_t need = (size_t)r->view_count * texels;
-    if (need > r->vpl_capacity) {
-        lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
-        if (!v) { /* out of memory: no VPLs this frame rather than a crash */
-            *out = r->vpls;
-            return 0;
-        }
-        r->vpls = v;
-        r->vpl_capacity = need;
-    }
-    for (int layer = 0; layer < r->view_count; layer++) {
-        const float *pos, *nrm, *flux;
-        renderer_rsm_read_layer(r, layer, &pos, &nrm, &flux);
-        for (size_t i = 0; i < texels; i++) {
-            const float *f = flux + 4 * i;
-            if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
-                continue;
-            lpv_vpl *v = &r->vpls[n++];
-            memcpy(v->position, pos + 4 * i, sizeof v->position);
-            memcpy(v->normal, nrm + 4 * i, sizeof v->normal);
-            memcpy(v->flux, f, sizeof v->flux);
-        }
-    }
-    *out = r->vpls;
-    return n;
 }

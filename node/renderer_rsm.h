@@ -1,7 +1,7 @@
 /* renderer_rsm: the reflective shadow maps (RSMs) of a frame's lights, one layer per light
  * view (light_view.h says which views a light type gets), the lights' uniforms for the
- * shading pass, and the one VPL source every GI method takes its light from
- * (renderer_rsm_vpls()).
+ * shading pass. The GI methods get the maps as a gi_rsm (gi/gi_rsm.h), which also reads
+ * them back.
  *
  * All views share four 2D array textures (position, normal with the texel's plane, flux,
  * depth), grown when a frame needs more layers than any before. Owns the RSM program;
@@ -13,10 +13,9 @@
 
 #include "frame/frame_params.h"
 #include "frame/light_view.h"
-#include "gl_functions.h"
-#include "lpv/lpv_inject.h"
+#include "gl/gl_functions.h"
 #include "scene/scene.h"
-#include "scene_gl.h"
+#include "gl/scene_gl.h"
 
 typedef struct renderer_rsm renderer_rsm;
 
@@ -38,14 +37,4 @@ void renderer_rsm_textures(const renderer_rsm *m, GLuint out[3]);
  * p: the parameters of the last render. */
 void renderer_rsm_bind_shading(const renderer_rsm *m, GLuint prog, const frame_params *p,
                                GLenum depth_unit, GLenum normal_unit);
-/* One layer of the last render read back: position, normal (w: the texel's plane) and flux,
- * 4 floats per texel, row by row; the module's arrays, valid until the next read. */
-void renderer_rsm_read_layer(renderer_rsm *m, int layer, const float **position,
-                             const float **normal, const float **flux);
-/* The VPL source every GI method shares: every RSM texel a light reaches, of every view of
- * the last render, as a Lambertian VPL carrying the flux it reflects, Phi in W (not
- * Phi / pi), in view then texel order (deterministic). Reads the RSMs back. The array is
- * the module's, valid until the next call; 0 VPLs when out of memory. */
-size_t renderer_rsm_vpls(renderer_rsm *m, lpv_vpl **out);
-
 #endif

@@ -7,17 +7,17 @@
 
 #include "base/folder.h"
 #include "frame/frame_params.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "image/image.h"
 #include "frame/exposure.h"
 #include "gi/gi_settings.h"
-#include "gi/ilpv/ilpv_budget.h"
+#include "gi/gi_budget.h"
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
-#include "present.h"
-#include "reference_cli.h"
+#include "present/present.h"
+#include "reference/reference_cli.h"
 #include "renderer.h"
 #include "renderer_hud.h"
 #include "scene/scene_load.h"
@@ -122,68 +122,53 @@ static int write_images(const node_options *o, int frame, const char *eye,
     return 0;
 }
 
-/* The budget plan's frames on a renderer of their own (ilpv_budget.h): the costs of each
- * candidate lattice on this machine. */
-static int measure_budget(const renderer_desc *base, const frame_params *fp,
-                          lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES])
+/* The budget plan's frames on a renderer of their own (gi_budget.h): what the method's
+ * candidate settings cost on this machine. */
+static int measure_budget(const renderer_desc *base, gi_budget_plan *plan)
 {
     char err[512];
-    ilpv_budget_plan *plan = xcalloc(1, sizeof *plan);
     frame_params f;
-    ilpv_budget_plan_init(plan, fp, base->scene->bounds_min, base->scene->bounds_max);
-    ilpv_budget_plan_frame(plan, 0, &f);
+    gi_budget_plan_frame(plan, 0, &f);
     renderer_desc rd = *base;
     rd.first = &f;
     renderer *r = renderer_create(&rd, err, sizeof err);
-    for (int i = 0; r && i < ILPV_BUDGET_FRAMES; i++) {
-        ilpv_budget_plan_frame(plan, i, &f);
+    if (!r)
+        return fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err), -1;
+    for (int i = 0; i < gi_budget_plan_frames(plan); i++) {
+        gi_budget_plan_frame(plan, i, &f);
         renderer_frame_pass(r, &f);
         renderer_timings t;
         renderer_get_timings(r, &t);
-        ilpv_budget_plan_record(plan, i, t.frame_host_ms);
+        gi_budget_plan_record(plan, i, t.frame_host_ms);
     }
-    int rc = r ? ilpv_budget_plan_costs(plan, cand, err, sizeof err) : -1;
-    if (rc != 0)
-        fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
     renderer_destroy(r);
-    free(plan);
-    return rc;
+    return 0;
 }
 
-/* --budget-ms: the ILPV's lattice and steps from this machine's measured costs
- * (ilpv_budget.h), into fp and the report. */
+/* --budget-ms: the method's settings from this machine's measured costs (gi_budget.h),
+ * into fp and the report. */
 static int choose_budget(const node_options *o, const renderer_desc *base, frame_params *fp,
                          cJSON *report)
 {
-    lpv_budget_candidate cand[ILPV_BUDGET_CANDIDATES];
-    lpv_budget_choice choice;
-    if (measure_budget(base, fp, cand) != 0)
+    char err[512];
+    gi_budget_choice choice;
+    gi_budget_plan *plan =
+        gi_budget_plan_create(fp, base->scene->bounds_min, base->scene->bounds_max);
+    int rc = measure_budget(base, plan);
+    if (rc == 0 && (rc = gi_budget_plan_choose(plan, o->budget_ms, fp, &choice, err, sizeof err)))
+        fprintf(stderr, "cavelight-node: --budget-ms: %s\n", err);
+    gi_budget_plan_destroy(plan);
+    if (rc != 0)
         return -1;
-    if (ilpv_budget_apply(o->budget_ms, cand, ILPV_BUDGET_CANDIDATES, fp, &choice) != 0) {
-        fprintf(stderr, "cavelight-node: --budget-ms: no choice from the measured costs\n");
-        return -1;
-    }
-    const lpv_budget_candidate *c = &cand[choice.index];
-    printf("cavelight-node: budget %.3g ms: lattice %d, %d step%s, predicted %.3g ms per frame%s "
-           "(measured %.3g ms per step, %.3g ms per frame besides the steps)\n", o->budget_ms,
-           choice.axis_cells, choice.steps, choice.steps == 1 ? "" : "s", choice.predicted_ms,
-           choice.fits ? "" : ", over budget even at the coarsest lattice", c->step_ms,
-           c->fixed_ms);
+    printf("cavelight-node: budget %.3g ms: %s, predicted %.3g ms per frame%s (%s)\n",
+           o->budget_ms, choice.summary, choice.predicted_ms,
+           choice.fits ? "" : ", over budget even at the cheapest choice", choice.detail);
     cJSON *jb = cJSON_AddObjectToObject(report, "budget");
     cJSON_AddNumberToObject(jb, "budget_ms", o->budget_ms);
-    cJSON_AddNumberToObject(jb, "lattice_cells", choice.axis_cells);
-    cJSON_AddNumberToObject(jb, "steps", choice.steps);
+    for (int i = 0; i < choice.figure_count; i++)
+        cJSON_AddNumberToObject(jb, choice.figure[i].name, choice.figure[i].value);
     cJSON_AddNumberToObject(jb, "predicted_ms", choice.predicted_ms);
     cJSON_AddBoolToObject(jb, "fits", choice.fits);
-    cJSON *jc = cJSON_AddArrayToObject(jb, "candidates");
-    for (int i = 0; i < ILPV_BUDGET_CANDIDATES; i++) {
-        cJSON *e = cJSON_CreateObject();
-        cJSON_AddNumberToObject(e, "axis_cells", cand[i].axis_cells);
-        cJSON_AddNumberToObject(e, "cells", (double)cand[i].cells);
-        cJSON_AddNumberToObject(e, "step_ms", cand[i].step_ms);
-        cJSON_AddNumberToObject(e, "fixed_ms", cand[i].fixed_ms);
-        cJSON_AddItemToArray(jc, e);
-    }
     return 0;
 }
 
@@ -354,7 +339,7 @@ static int report_finish(const node_options *o, renderer *r, cJSON *report, doub
     return rc;
 }
 
-/* The GL path: context, renderer (its lattice and steps from --budget-ms if given), the
+/* The GL path: context, renderer (its method's settings from --budget-ms if given), the
  * frames, the report. */
 static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes, int eye_count,
                   frame_params *fp)

@@ -8,7 +8,7 @@
 #define CAVELIGHT_STANDALONE_H
 
 #include "frame/frame_params.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "renderer.h"
 
 typedef struct node_options {

@@ -6,7 +6,7 @@ wand: flies 0.5 m forward, turns the CAVE 20 degrees left by dragging, switches 
 lighting layout and sweeps the spotlight across the room like a flashlight, tints it
 (saturation, then hue), doubles its intensity, then switches to the renderer settings
 (one more propagation step, more absorption, next lambda preset). 150 polls at 30 Hz.
-The format is the one master/input_playback.h documents; this script only writes it."""
+The format is the one master/input/input_playback.h documents; this script only writes it."""
 import math
 import sys
 

@@ -17,7 +17,7 @@ vec4 sh_cosine_lobe(vec3 n)
 // The specular lobe every pass shades with (normalized Blinn-Phong, a dielectric's
 // reflectance SPECULAR_F0): exponent m = 2 / alpha^2 - 2 from roughness (alpha = roughness^2,
 // bounded so that a mirror stays finite), f_s = (m + 8) / (8 pi) F0 (n . h)^m for half
-// vector h. common/caches/cache_light.c has the host's copy.
+// vector h. common/gi/caches/cache_light.c has the host's copy.
 const float SPECULAR_F0 = 0.04;
 
 float specular_exponent(float roughness)

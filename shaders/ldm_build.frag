@@ -1,8 +1,8 @@
-// Layered depth maps, the build (node/ldm_gl.h): every fragment of map u_ldm_map inserts
+// Layered depth maps, the build (node/gi/ldm/ldm_gl.h): every fragment of map u_ldm_map inserts
 // its depth along the map, t = (p - c).d + R, into its texel's sorted list of the
 // u_ldm_layers smallest (ldm_map.h) by an atomic minimum down the list that carries the
 // larger value on: the lists end the same whatever order the fragments come in
-// (common/ldm/ldm_cpu.c does the same insertion). A depth pushed out of a full list is
+// (common/gi/ldm/ldm_cpu.c does the same insertion). A depth pushed out of a full list is
 // counted. No colour, no depth test: the framebuffer has no attachments.
 in vec3 v_position;
 

@@ -1,7 +1,7 @@
-// Layered depth maps, the trace (node/ldm_gl.h binds the buffers and uniforms): from a
+// Layered depth maps, the trace (node/gi/ldm/ldm_gl.h binds the buffers and uniforms): from a
 // point along +d or -d of one map, the distance to the first surface of its texel's
-// sorted list (common/ldm/ldm_map.h says where the maps lie; ldm_list_trace() in
-// common/ldm/ldm_cpu.c is the same search on the CPU).
+// sorted list (common/gi/ldm/ldm_map.h says where the maps lie; ldm_list_trace() in
+// common/gi/ldm/ldm_cpu.c is the same search on the CPU).
 layout(std430, binding = 0) readonly buffer ldm_depth_buffer { uint ldm_depth[]; };
 layout(std430, binding = 1) readonly buffer ldm_map_buffer { vec4 ldm_map[]; };
 

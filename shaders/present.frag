@@ -1,4 +1,4 @@
-// The presentation pass (node/present_warp.c, common/warp/warp_map.h): the rendered image
+// The presentation pass (node/present/present_warp.c, common/warp/warp_map.h): the rendered image
 // warped onto the projector image and blended (MPCDI 2.4, in linear light:
 // P = Pi alpha (1 - beta) + beta), or, showing the blend regions, the pattern tinted by
 // its weight where this projector is dimmed.

@@ -1,4 +1,4 @@
-// The presentation pass (node/present_warp.c): one triangle over the projector image, or
+// The presentation pass (node/present/present_warp.c): one triangle over the projector image, or
 // a warp mesh's cells (u_mesh), whose vertices carry the point they show and their weight.
 layout(location = 0) in vec4 a_vertex; // mesh: x y (projector image, 0..1) u v (rendered image)
 layout(location = 1) in float a_weight;

@@ -5,9 +5,9 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_volume.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_volume.h"
+#include "gi/ilpv/sh.h"
 
 /* Deterministic [0, 1) numbers for test data. */
 static inline float testutil_rand(uint64_t *s)

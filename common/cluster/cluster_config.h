@@ -24,7 +24,7 @@
  *                                 [x,y,z]} (scene/scene_transform.h; --scene-transform),
  *             "timeouts": {"barrier_ms", "heartbeat_ms", "master_ms", "stall_min_ms",
  *                          "join_ms"},
- *             "limits": {"gi_memory_mb"} (what a node's GI may take, node/gi/gi_cost.h),
+ *             "limits": {"gi_memory_mb"} (what a node's GI may take, common/gi/gi_cost.h),
  *             "settings": {"NAME": value, ...} (the options of cavelight-master's GI and
  *             display groups by their names, e.g. {"gi": "vpl", "vpl-interleave": 4}: the
  *             session's settings for every node, checked by the programs that know them),

@@ -1,8 +1,6 @@
 /* ao: see ao.h. */
 #include "frame/ao.h"
 
-#include "frame/frame_params.h"
-#include "ldm/ldm_map.h"
 
 float ao_visibility(float d, float max_d, frame_ao_falloff f)
 {
@@ -13,13 +11,4 @@ float ao_visibility(float d, float max_d, frame_ao_falloff f)
     if (d >= max_d)
         return 1.0f;
     return f == FRAME_AO_OBSCURANCE ? d / max_d : 0.0f;
-}
-
-const char *ao_check(const frame_params *p)
-{
-    static _Thread_local char why[256];
-    if (p->ao != FRAME_AO_LDM)
-        return NULL;
-    return ldm_memory_check(p->ao_directions, p->ao_resolution, p->ldm_layers,
-                            p->ldm_memory_mb, "ao", why, sizeof why);
 }

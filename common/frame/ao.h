@@ -32,8 +32,4 @@ typedef enum frame_ao_falloff {
  * in shaders/ao_common.glsl. */
 float ao_visibility(float d, float max_d, frame_ao_falloff f);
 
-struct frame_params;
-/* NULL, or one line when the frame's AO maps (ao ldm) exceed ldm-memory. */
-const char *ao_check(const struct frame_params *p);
-
 #endif

@@ -3,8 +3,7 @@
 #include <string.h>
 
 #include "frame/frame_params.h"
-#include "ldm/ldm_directions.h"
-#include "ldm/ldm_map.h"
+#include "frame/ldm_limits.h"
 #include "scene/scene.h"
 
 static void identity(float m[16])

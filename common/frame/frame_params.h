@@ -34,7 +34,7 @@ typedef struct frame_light {
     scene_light_type type;
 } frame_light;
 
-/* The GI methods' own settings (node/gi/gi_settings.h gives each method's settings their
+/* The GI methods' own settings (common/gi/gi_settings.h gives each method's settings their
  * slots and meaning): unset means the setting's default. */
 enum { FRAME_GI_SETTINGS_MAX = 48 };
 typedef struct frame_gi_setting {

@@ -37,6 +37,8 @@ void hud_describe(const frame_params *p, int lattice_cells, hud *out)
         out->light_angle = l->outer_angle;
     }
     const char letters[HUD_BAR_COUNT] = {'A', 'S', 'I', 'P'};
+    if (lattice_cells <= 0)
+        lattice_cells = HUD_DEFAULT_LATTICE_CELLS;
     float cells = (float)(lattice_cells > 1 ? lattice_cells : 1);
     const float values[HUD_BAR_COUNT] = {clamp01(p->absorption), clamp01(p->scattering),
                                          clamp01(p->lambda_incr),

@@ -46,8 +46,12 @@ typedef struct hud {
     float light_angle;     /* a spot's outer half angle, radians: the cone's opening */
 } hud;
 
+/* The P bar's scale for a GI method without a lattice: the default ILPV lattice's cells
+ * (gi_ilpv.c checks that they agree). */
+enum { HUD_DEFAULT_LATTICE_CELLS = 32 };
+
 /* lattice_cells: cells along the lattice's longest axis (normalises the P bar; the GI
- * method's, gi_stats.hud_cells). */
+ * method's, gi_stats.hud_cells; <= 0: HUD_DEFAULT_LATTICE_CELLS). */
 void hud_describe(const frame_params *p, int lattice_cells, hud *out);
 
 #define HUD_GREY 0.5f

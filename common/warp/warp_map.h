@@ -21,7 +21,7 @@
  * Blend (MPCDI section 2.4), in linear light: P = Pi alpha (1 - beta) + beta, with
  * alpha = (map value)^alpha_gamma and beta as stored; the maps cover the projector image
  * (bilinear), 1 or 3 channels, values 0..1, rows top first (PNG order). A map with no
- * values is alpha 1 or beta 0. GL-free: node/present_warp.c draws it. */
+ * values is alpha 1 or beta 0. GL-free: node/present/present_warp.c draws it. */
 #ifndef CAVELIGHT_WARP_MAP_H
 #define CAVELIGHT_WARP_MAP_H
 

@@ -7,8 +7,7 @@
 
 #include "base/xalloc.h"
 #include "gi/gi_settings.h"
-#include "gltools.h"
-#include "lpv/lattice.h"
+#include "gl/gltools.h"
 
 #define GI_METHOD(name) extern const gi_method gi_##name##_method;
 #include "gi/gi_methods.def"
@@ -95,8 +94,6 @@ void gi_stats_get(const gi *g, gi_stats *out)
 {
     memset(out, 0, sizeof *out);
     g->m->stats(g->state, out);
-    if (out->hud_cells <= 0) /* no lattice: the steps bar against the default one */
-        out->hud_cells = LATTICE_DEFAULT_AXIS_CELLS;
 }
 
 void *gi_state(const gi *g) { return g->state; }

@@ -44,10 +44,10 @@
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
 #include "frame/light_view.h"
-#include "gl_functions.h"
-#include "renderer_rsm.h"
+#include "gl/gl_functions.h"
 #include "scene/scene.h"
-#include "scene_gl.h"
+#include "gl/scene_gl.h"
+#include "gi/gi_rsm.h"
 
 typedef struct gi_desc {
     const gl_functions *gl;
@@ -60,20 +60,6 @@ typedef struct gi_desc {
                                       measure it) */
     float head_to_eye[3];          /* the viewer: frame_view_head_centre()'s offset */
 } gi_desc;
-
-/* This frame's reflective shadow maps, as the renderer rendered them (renderer_rsm.h). */
-typedef struct gi_rsm {
-    int size;                      /* texels per side */
-    int layers;                    /* light views rendered, one layer each */
-    const GLuint *fbo;             /* per layer: position, normal, flux in attachments 0..2 */
-    GLuint textures[3];            /* the same as 2D array textures, a layer per view
-                                      (renderer_rsm_textures()): for GPU passes over them */
-    const light_view *views;       /* per layer: the light and view it was rendered from */
-    renderer_rsm *maps;            /* renderer_rsm_vpls(maps): the VPL source every method
-                                      shares (read back from the maps, on request) */
-    const scene_gl *mesh;          /* the scene where the frame's objects are: a method's own
-                                      maps draw it with scene_gl_draw_geometry() */
-} gi_rsm;
 
 typedef struct gi_eye {
     GLuint program;                /* the bound shading program, its framebuffer bound */

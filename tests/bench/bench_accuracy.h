@@ -11,7 +11,7 @@
 #include "frame/frame_params.h"
 #include "gi/gi_settings.h"
 #include "gi/ilpv/gi_ilpv.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "image/image_metrics.h"
 #include "renderer.h"
 #include "scene/scene.h"

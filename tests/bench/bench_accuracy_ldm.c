@@ -24,9 +24,9 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
-#include "ldm/ldm_directions.h"
-#include "ldm/ldm_map.h"
-#include "reference.h"
+#include "gi/ldm/ldm_directions.h"
+#include "gi/ldm/ldm_map.h"
+#include "reference/reference.h"
 
 enum { MAX_CONFIGS = 8, TIMED = 3 };
 

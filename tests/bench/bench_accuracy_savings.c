@@ -14,8 +14,8 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "bench_accuracy.h"
 #include "base/clock.h"
-#include "lpv/lpv_propagate.h"
-#include "lpv/lpv_propagate.h"
+#include "gi/ilpv/lpv_propagate.h"
+#include "gi/ilpv/lpv_propagate.h"
 #include "base/workpool.h"
 
 enum { REPEATS = 7 };

@@ -9,7 +9,7 @@
 #include "bench_accuracy.h"
 #include "image/image.h"
 #include "frame/frame_view.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "image/tonemap.h"
 
 int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad)

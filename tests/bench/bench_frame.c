@@ -29,8 +29,8 @@
 
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
-#include "glctx.h"
-#include "present.h"
+#include "gl/glctx.h"
+#include "present/present.h"
 #include "frame/frame_view.h"
 #include "frame/offaxis.h"
 #include "renderer.h"

@@ -20,8 +20,8 @@
 
 #include "bench.h"
 #include "base/clock.h"
-#include "input.h"
-#include "input_dtrack.h"
+#include "input/input.h"
+#include "input/input_dtrack.h"
 #include "interaction.h"
 
 static int cmp(const void *a, const void *b)

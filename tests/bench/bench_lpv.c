@@ -10,16 +10,16 @@
 
 #include "bench.h"
 #include "base/clock.h"
-#include "lpv/lattice.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_inject.h"
-#include "lpv/lpv_propagate.h"
+#include "gi/ilpv/lattice.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/lpv_propagate.h"
 #include "lpv_reference.h"
-#include "lpv/lpv_volume.h"
+#include "gi/ilpv/lpv_volume.h"
 #include "base/workpool.h"
 
 #ifdef CAVELIGHT_HAVE_NODE
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "lpv_gl_steps.h"
 #endif
 

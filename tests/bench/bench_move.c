@@ -18,7 +18,7 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_view.h"
 #include "gi/gi_settings.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "renderer.h"
 #include "scene/scene_load.h"
 

@@ -10,7 +10,7 @@
 #ifdef CAVELIGHT_HAVE_NODE
 #include "frame/frame_params.h"
 #include "frame/frame_view.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "scene/scene.h"
 #include "base/workpool.h"
 

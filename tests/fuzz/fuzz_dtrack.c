@@ -5,7 +5,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "input_dtrack.h"
+#include "input/input_dtrack.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "input_vrpn.h"
+#include "input/input_vrpn.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

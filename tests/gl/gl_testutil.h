@@ -11,7 +11,7 @@
 #include "gi/gi_settings.h"
 #include "gi/ilpv/gi_ilpv.h"
 #include "gi/vpl/vpl_settings.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "frame/offaxis.h"
 #include "renderer.h"
 #include "scene/scene.h"

@@ -1,4 +1,4 @@
-/* The caches GI method on llvmpipe against its host copy (common/caches/), on the default
+/* The caches GI method on llvmpipe against its host copy (common/gi/caches/), on the default
  * room:
  *   selection: the GPU's importance, summed-area tables and binary search pick what the
  *     host's val_select.h picks from the RSMs read back and the same view samples (nearly
@@ -28,9 +28,9 @@
 #include "gl/gl_testutil.h"
 #include "gi/caches/gi_caches.h"
 #include "renderer_rsm.h"
-#include "scene_rt.h"
-#include "view_samples.h"
-#include "vpl/vpl_source.h"
+#include "reference/scene_rt.h"
+#include "gi/view_samples.h"
+#include "gi/vpl_source.h"
 
 enum { W = 64, H = 48, VALS = 1024 };
 

@@ -13,7 +13,7 @@
 #include "cluster/cluster_config.h"
 #include "gl/gl_testutil.h"
 #include "image/image.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 enum { W = 128, H = 96 };
 

@@ -6,7 +6,7 @@
  *   - the emissive panel alone (a surface light): pi * L_e * area;
  *   - a point light inside a closed box: albedo * 4 pi * I (the six cube faces cover every
  *     direction exactly once: their margins carry no flux), in the lattice and in the VPL
- *     source every GI method shares (renderer_rsm_vpls());
+ *     maps every GI method reads (gi_rsm_read_layer());
  *   - a directional light onto a floor: albedo * E * area * cos(slant), in the VPL source
  *     (a flat scene's lattice is one cell thick, so the half-cell offset leaves it). */
 #include <setjmp.h>
@@ -113,12 +113,19 @@ static void code_scene_energy(scene *s, const frame_light *l, int rsm, double e[
     gi_ilpv_stats st; /* the injection's energy (the lattice holds the splat's near field too) */
     gi_ilpv_stats_get(gi_ilpv_of(renderer_gi(r)), &st);
     memcpy(e, st.injected_energy, sizeof st.injected_energy);
-    lpv_vpl *v;
-    size_t n = renderer_rsm_vpls(renderer_get_rsm(r), &v);
+    gi_rsm maps;
+    gi_rsm_reader reader = {0};
+    renderer_gi_rsm(r, &maps);
     vpl[0] = vpl[1] = vpl[2] = 0;
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++)
-            vpl[c] += v[i].flux[c];
+    for (int layer = 0; layer < maps.layers; layer++) {
+        const float *pos, *nrm, *flux;
+        assert_int_equal(gi_rsm_read_layer(&reader, glctx_gl(ctx), &maps, layer, &pos, &nrm, &flux), 0);
+        for (int i = 0; i < maps.size * maps.size; i++)
+            if (pos[4 * i + 3] != 0.0f)
+                for (int c = 0; c < 3; c++)
+                    vpl[c] += flux[4 * i + c];
+    }
+    gi_rsm_reader_free(&reader);
     renderer_destroy(r);
     glctx_destroy(ctx);
 }

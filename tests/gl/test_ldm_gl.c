@@ -1,11 +1,11 @@
-/* Layered depth maps on llvmpipe (node/ldm_gl.h): the GL build of the default room gives
- * the CPU oracle's lists (common/ldm/ldm_cpu.h) texel for texel, the same on a second
+/* Layered depth maps on llvmpipe (node/gi/ldm/ldm_gl.h): the GL build of the default room gives
+ * the CPU oracle's lists (common/gi/ldm/ldm_cpu.h) texel for texel, the same on a second
  * build (the atomic insertion does not depend on the order fragments arrive in), with the
  * same overflow count when the lists are too short. Ambient occlusion (renderer_ao.h,
  * frame/ao.h) of points on a floor beside a wall, the wall far larger than the distance
  * limit (an infinite wall to them): the LDM AO and the path tracer's AO against the
  * closed form, for occlusion and obscurance; the screen-space baseline for comparison. */
-#include "reference.h"
+#include "reference/reference.h"
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,8 +15,8 @@
 #include <math.h>
 
 #include "gl/gl_testutil.h"
-#include "ldm/ldm_cpu.h"
-#include "ldm_gl.h"
+#include "gi/ldm/ldm_cpu.h"
+#include "gi/ldm/ldm_gl.h"
 
 typedef struct fixture {
     glctx *ctx;

@@ -12,9 +12,9 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "glctx.h"
-#include "lpv/lpv_paper_frame.h"
-#include "lpv/sh.h"
+#include "gl/glctx.h"
+#include "gi/ilpv/lpv_paper_frame.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_gl_steps.h"
 #include "lpv_testutil.h"
 

@@ -1,7 +1,7 @@
 /* Stage (c) of docs/lpv.md: a closed 4 x 3 x 4 m room of uniform albedo 0.75, lit by one
  * spot from under its ceiling onto the floor, at 16, 32 and 64 cells (CPU backend, 4 steps
  * per frame, lambda 0.8, to the steady state): the mean one-bounce indirect light seen on
- * each of the six faces against the path-traced reference (node/reference.h), one view per
+ * each of the six faces against the path-traced reference (node/reference/reference.h), one view per
  * face from the room's centre. The reference's own noise (from its two halves) is printed
  * next to each ratio; the bounds are the measured ones with a margin. */
 #include <setjmp.h>
@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 enum { W = 48, H = 36, FRAMES = 40, REF_SAMPLES = 12 };
 

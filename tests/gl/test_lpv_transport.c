@@ -16,7 +16,7 @@
 
 #include "gl/gl_testutil.h"
 #include "lpv_reference.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/sh.h"
 
 enum { W = 128, H = 96 };
 

@@ -27,7 +27,7 @@
 #include "base/mat4.h"
 #include "frame/frame_view.h"
 #include "image/image.h"
-#include "present.h"
+#include "present/present.h"
 
 #define GAMMA 2.2f
 

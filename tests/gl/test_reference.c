@@ -1,4 +1,4 @@
-/* The Embree reference (node/reference.h): direct light and textures equal to the
+/* The Embree reference (node/reference/reference.h): direct light and textures equal to the
  * rasterizer's, two closed-form checks (a furnace box and one spot bounce integrated
  * independently), noise that halves with 4x the samples, determinism, and bad input. */
 #include <setjmp.h>
@@ -8,7 +8,7 @@
 #include <cmocka.h>
 
 #include "gl/gl_testutil.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 static const double PI = 3.14159265358979323846;
 

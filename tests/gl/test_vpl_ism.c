@@ -20,7 +20,7 @@
 
 #include "base/vec3.h"
 #include "gl/gl_testutil.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 #include "gi/vpl/vpl_ism.h"
 
 enum { W = 64, H = 48, PIXELS = W * H * 3, SIZE = 16, POINTS = 64, K = 4 };

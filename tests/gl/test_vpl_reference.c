@@ -1,4 +1,4 @@
-/* The vpl method (node/gi_vpl.h) against the path-traced reference (node/reference.h) on
+/* The vpl method (node/gi_vpl.h) against the path-traced reference (node/reference/reference.h) on
  * the default room from its camera, 80x60: with exact visibility and 1024 VPLs the indirect
  * image matches the reference's one-bounce image within the reference's noise plus the
  * clamp's bias plus 0.10 (the issue's goal, in relRMSE over the reference's mean on the
@@ -15,7 +15,7 @@
 #include "frame/frame_view.h"
 #include "gl/gl_testutil.h"
 #include "image/image_metrics.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "seed_stats.h"
 
 enum { W = 80, H = 60, N = W * H * 3, SEEDS = 4, VPLS = 1024, REF_SAMPLES = 1024 };

@@ -134,7 +134,7 @@ grep -qF "settings.vpl-cuont: 64: not a setting (did you mean vpl-count?)" <<< "
 [ ! -d "$tmp/bad/logs" ] || fail "nodes were started for a refused config"
 echo "bad settings refused in one line before any node starts"
 
-# Settings the nodes' limits would refuse (node/gi/gi_cost.h: over ten times the set-up
+# Settings the nodes' limits would refuse (common/gi/gi_cost.h: over ten times the set-up
 # work, or over limits.gi_memory_mb) are refused by the master before any node starts; set
 # up in the config, the same settings pass.
 out=$("$build/cavelight-master" --config "$tmp/c2.json" --spawn-local --out "$tmp/runaway" \

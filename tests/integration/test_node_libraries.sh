@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A render node on a GPU host needs neither Mesa's software stack nor Embree: OSMesa (and
-# the LLVM it pulls in) and Embree are loaded when asked for (node/dynlib.h), so no program
+# the LLVM it pulls in) and Embree are loaded when asked for (common/base/dynlib.h), so no program
 # links them; asked for and missing, each is refused in one line naming the library and the
 # Debian package, exit 1. Where user namespaces are allowed the libraries are hidden by
 # binding an empty file over them; the GL context and the reference still work when they

@@ -18,9 +18,9 @@
 #include <unistd.h>
 #include <GLFW/glfw3.h>
 
-#include "input.h"
+#include "input/input.h"
 #include "desk_view.h"
-#include "input_desk.h"
+#include "input/input_desk.h"
 #include "interaction.h"
 
 static int same(const uint8_t *rgb, int w, int x, int y, const uint8_t c[3])

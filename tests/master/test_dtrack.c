@@ -18,9 +18,9 @@
 
 #include "base/ratelog.h"
 #include "cluster/cluster_config.h"
-#include "input.h"
-#include "input_config.h"
-#include "input_dtrack.h"
+#include "input/input.h"
+#include "input/input_config.h"
+#include "input/input_dtrack.h"
 
 static char *load(const char *name, size_t *len)
 {

@@ -10,7 +10,7 @@
 #include <cmocka.h>
 
 #include "base/ratelog.h"
-#include "input_source.h"
+#include "input/input_source.h"
 
 static int no_poll(input_source *s, double now, char *err, size_t errlen) { return 0; }
 static void no_close(input_source *s) { free(s); }

@@ -13,10 +13,10 @@
 #include <time.h>
 
 #include "frame/frame_params.h"
-#include "input.h"
-#include "input_config.h"
-#include "input_playback.h"
-#include "input_source.h"
+#include "input/input.h"
+#include "input/input_config.h"
+#include "input/input_playback.h"
+#include "input/input_source.h"
 #include "interaction.h"
 
 enum { POLLS = 240 };

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "input.h"
-#include "input_config.h"
-#include "input_usb.h"
+#include "input/input.h"
+#include "input/input_config.h"
+#include "input/input_usb.h"
 
 /* A typical gamepad report: byte 0 report id, byte 1 buttons, bytes 2-3 u8 sticks,
  * bytes 4-5 an s16 trigger. */

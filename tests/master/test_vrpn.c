@@ -15,9 +15,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "input.h"
-#include "input_config.h"
-#include "input_vrpn.h"
+#include "input/input.h"
+#include "input/input_config.h"
+#include "input/input_vrpn.h"
 
 static void be32(uint8_t *p, uint32_t v)
 {

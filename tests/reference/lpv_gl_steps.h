@@ -12,11 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gltools.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_paper.h"
-#include "lpv/lpv_propagate.h"
-#include "lpv/sh.h"
+#include "gl/gltools.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_paper.h"
+#include "gi/ilpv/lpv_propagate.h"
+#include "gi/ilpv/sh.h"
 
 typedef struct lpv_gl_steps {
     const gl_functions *gl;

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lpv/sh.h"
+#include "gi/ilpv/sh.h"
 
 static float unit_clamp(float x)
 {

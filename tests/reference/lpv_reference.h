@@ -9,7 +9,7 @@
 #ifndef CAVELIGHT_LPV_REFERENCE_H
 #define CAVELIGHT_LPV_REFERENCE_H
 
-#include "lpv/lpv_propagate.h"
+#include "gi/ilpv/lpv_propagate.h"
 
 /* The same arguments as lpv_propagate_step() (the pool is ignored). */
 void lpv_reference_step(const lpv_propagate_desc *desc, const lpv_volume *src, lpv_volume *dst);

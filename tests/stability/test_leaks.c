@@ -42,7 +42,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "reference.h"
+#include "reference/reference.h"
 #include "stability_util.h"
 
 enum { W = 160, H = 120, FRAMES = 31, REF_SAMPLES = 8 };

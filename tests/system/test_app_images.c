@@ -26,7 +26,7 @@
 #include "base/textfile.h"
 #include "cluster_view.h"
 #include "gi/gi_settings.h"
-#include "glctx.h"
+#include "gl/glctx.h"
 #include "image/image.h"
 #include "renderer.h"
 #include "scene/scene_load.h"

@@ -27,12 +27,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "caches/cache_file.h"
-#include "caches/cache_grid.h"
-#include "caches/cache_light.h"
-#include "caches/cache_place.h"
-#include "caches/val_select.h"
-#include "vpl/vpl_select.h"
+#include "gi/caches/cache_file.h"
+#include "gi/caches/cache_grid.h"
+#include "gi/caches/cache_light.h"
+#include "gi/caches/cache_place.h"
+#include "gi/caches/val_select.h"
+#include "gi/vpl_source.h"
 
 /* A closed 4 x 3 x 4 m room facing in, a box on its floor, a slanted panel. */
 static void room(scene *s)

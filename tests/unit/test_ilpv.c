@@ -13,8 +13,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lpv/ilpv.h"
-#include "lpv/lpv_inject.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lpv_inject.h"
 #include "lpv_testutil.h"
 
 static void inject(ilpv *s, float r, float shift)

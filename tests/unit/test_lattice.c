@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lpv/lattice.h"
+#include "gi/ilpv/lattice.h"
 
 static void test_elongated_scene_gets_elongated_lattice(void **state)
 {

@@ -16,9 +16,9 @@
 #include <cmocka.h>
 
 
-#include "ldm/ldm_cpu.h"
-#include "ldm/ldm_directions.h"
-#include "ldm/ldm_map.h"
+#include "gi/ldm/ldm_cpu.h"
+#include "gi/ldm/ldm_directions.h"
+#include "gi/ldm/ldm_map.h"
 #include "scene_testutil.h"
 
 static const double PI = 3.14159265358979323846;

@@ -9,7 +9,7 @@
 
 #include <math.h>
 
-#include "lpv/lpv_budget.h"
+#include "gi/ilpv/lpv_budget.h"
 
 /* Cost per step proportional to the cells of a 2:1:2 room, as the node fits it. */
 static const lpv_budget_candidate table[] = {

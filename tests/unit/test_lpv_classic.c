@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lpv/ilpv.h"
-#include "lpv/lpv_inject.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lpv_inject.h"
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
 

@@ -11,7 +11,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lpv/lpv_converge.h"
+#include "gi/ilpv/lpv_converge.h"
 #include "lpv_testutil.h"
 
 static void params(frame_params *p)

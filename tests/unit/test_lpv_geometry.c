@@ -9,8 +9,8 @@
 
 #include <math.h>
 
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_transfer.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_transfer.h"
 #include "lpv_testutil.h"
 
 /* Centre of cell c on axis a, world units. */

@@ -6,8 +6,8 @@
 
 #include <math.h>
 
-#include "lpv/lpv_inject.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_testutil.h"
 
 static void test_vpl_lands_half_a_cell_along_its_normal(void **state)

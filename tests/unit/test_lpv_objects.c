@@ -12,7 +12,7 @@
 
 #include "base/clock.h"
 #include "base/mat4.h"
-#include "lpv/lpv_objects.h"
+#include "gi/ilpv/lpv_objects.h"
 #include "scene/scene_load.h"
 #include "scene/scene_pose.h"
 

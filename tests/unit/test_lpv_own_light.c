@@ -15,11 +15,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lpv/lattice.h"
-#include "lpv/ilpv.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_inject.h"
-#include "lpv/lpv_receive.h"
+#include "gi/ilpv/lattice.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/lpv_receive.h"
 #include "scene/scene.h"
 
 static const float LO[3] = {-2, 0, -2}, HI[3] = {2, 3, 2};

@@ -12,10 +12,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_paper.h"
-#include "lpv/lpv_propagate.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_paper.h"
+#include "gi/ilpv/lpv_propagate.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_reference.h"
 #include "lpv_testutil.h"
 

@@ -12,8 +12,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lpv/lpv_paper_frame.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_paper_frame.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_testutil.h"
 
 static void test_merge_factors(void **state)

@@ -8,8 +8,8 @@
 
 #include <math.h>
 
-#include "lpv/lpv_receive.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_receive.h"
+#include "gi/ilpv/sh.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -10,11 +10,11 @@
 
 #include <math.h>
 
-#include "lpv/lpv_inject.h"
-#include "lpv/lpv_receive.h"
-#include "lpv/lpv_splat.h"
-#include "lpv/lpv_transfer.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/lpv_receive.h"
+#include "gi/ilpv/lpv_splat.h"
+#include "gi/ilpv/lpv_transfer.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_testutil.h"
 
 static const double PI = 3.14159265358979323846;

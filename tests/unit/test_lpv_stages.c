@@ -19,10 +19,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lpv/ilpv.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_inject.h"
-#include "lpv/lpv_receive.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/lpv_receive.h"
 
 static const double PI = 3.14159265358979323846;
 

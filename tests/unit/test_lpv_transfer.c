@@ -9,8 +9,8 @@
 #include <math.h>
 
 #include "base/vec3.h"
-#include "lpv/lpv_transfer.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_transfer.h"
+#include "gi/ilpv/sh.h"
 #include "lpv_testutil.h"
 
 static void test_offsets_are_antipodal_and_z_major(void **state)

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "lpv/lpv_volume.h"
-#include "lpv/sh.h"
+#include "gi/ilpv/lpv_volume.h"
+#include "gi/ilpv/sh.h"
 
 static void test_init_refuses_bad_shapes(void **state)
 {

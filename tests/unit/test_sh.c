@@ -6,7 +6,7 @@
 
 #include <math.h>
 
-#include "lpv/sh.h"
+#include "gi/ilpv/sh.h"
 
 static double clamped_cosine(void *ctx, const double w[3])
 {

@@ -14,7 +14,7 @@
 #include <cmocka.h>
 
 #include "frame/frame_view.h"
-#include "vpl/vpl_cluster.h"
+#include "gi/vpl/vpl_cluster.h"
 
 enum { LIGHTS = 300, POINTS = 4000 };
 

@@ -14,8 +14,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "vpl/vpl_select.h"
-#include "vpl/vpl_source.h"
+#include "gi/vpl/vpl_select.h"
+#include "gi/vpl_source.h"
 
 enum { COUNT = 500, N = 64 };
 

@@ -1,5 +1,5 @@
 /* vrpn_test_server: a small VRPN server for tests, written from the public protocol
- * description (not from VRPN's code, and sharing no code with master/input_vrpn.c).
+ * description (not from VRPN's code, and sharing no code with master/input/input_vrpn.c).
  *
  *   vrpn_test_server [--port N] [--x X] [--seconds S] [--bad-cookie] [--oversized]
  *

@@ -15,8 +15,8 @@
 #include <stddef.h>
 
 #include "base/workpool.h"
-#include "caches/cache_light.h"
-#include "scene_rt.h"
+#include "gi/caches/cache_light.h"
+#include "reference/scene_rt.h"
 
 typedef struct caches_exact caches_exact;
 

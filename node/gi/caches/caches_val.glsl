@@ -1,6 +1,6 @@
 // The caches method's virtual area lights (VALs): RSM texels read from the maps, and the
-// selection's random numbers. The GPU's copy of vpl_texel_area() (common/vpl/vpl_source.c)
-// and vpl_slot_random() (common/vpl/vpl_select.c); compiled before the passes that use it.
+// selection's random numbers. The GPU's copy of vpl_texel_area() (common/gi/vpl_source.c)
+// and vpl_slot_random() (common/gi/vpl/vpl_select.c); compiled before the passes that use it.
 uniform sampler2DArray u_rsm_position;   // w 1 where geometry
 uniform sampler2DArray u_rsm_normal;     // unit normal turned to the light
 uniform sampler2DArray u_rsm_flux;       // W reflected

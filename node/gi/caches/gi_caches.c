@@ -11,10 +11,10 @@
 #include "base/clock.h"
 #include "base/xalloc.h"
 #include "gi/caches/caches_exact.h"
-#include "gltools.h"
-#include "lpv/lpv_converge.h"
-#include "view_samples.h"
-#include "vpl/vpl_source.h"
+#include "gl/gltools.h"
+#include "gi/gi_reuse.h"
+#include "gi/view_samples.h"
+#include "gi/vpl_source.h"
 
 /* Shader storage bindings (the shaders' binding = N). */
 enum { B_CACHES = 0, B_PROXIES, B_VALS, B_PICKS, B_SUMS, B_ROW, B_SAMPLES, B_GRID, BUFFERS };
@@ -43,11 +43,9 @@ struct gi_caches {
     const gl_functions *gl;
     const scene *scene;
     caches_settings settings;  /* the last frame's */
-    int never_reuse;
     int threads;
     float head_to_eye[3];
-    frame_params last;
-    int have_last;
+    gi_reuse_state reuse;      /* the last frame's parameters */
 
     cache_set set;
     cache_grid grid;
@@ -224,7 +222,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     c->gl = d->gl;
     c->scene = d->scene;
     c->threads = d->threads;
-    c->never_reuse = d->no_reuse;
+    c->reuse.never = d->no_reuse;
     memcpy(c->head_to_eye, d->head_to_eye, sizeof c->head_to_eye);
     caches_settings_get(d->frame, &c->settings);
     if (!(c->viewer = view_samples_create(d->scene, VIEW_SAMPLES_MAX, err, errlen)) ||
@@ -252,14 +250,11 @@ static int reuse(void *state, const frame_params *p)
     caches_settings_get(p, &now);
     float eye[3], before[3];
     view_samples_viewer(p, c->head_to_eye, eye);
-    view_samples_viewer(&c->last, c->head_to_eye, before);
-    int same = c->have_last && !c->never_reuse && lpv_converge_inputs_equal(p, &c->last) &&
-               memcmp(&now, &c->settings, sizeof now) == 0 &&
-               ((now.selection == CACHES_SELECT_ALL && now.glossy == CACHES_GLOSSY_OFF) ||
-                memcmp(eye, before, sizeof eye) == 0);
-    c->last = *p;
-    c->settings = now;
-    c->have_last = 1;
+    view_samples_viewer(&c->reuse.last, c->head_to_eye, before);
+    int same = gi_reuse_unchanged(&c->reuse, p, &now, &c->settings, sizeof now,
+                                  (now.selection == CACHES_SELECT_ALL &&
+                                   now.glossy == CACHES_GLOSSY_OFF) ||
+                                  memcmp(eye, before, sizeof eye) == 0);
     if (same)
         memset(c->ms, 0, sizeof c->ms);
     return same;
@@ -592,7 +587,7 @@ static void eye_bind(void *state, const gi_eye *e)
     }
     /* measured with GL finished only when the renderer measures every frame: a node's eye
      * pass does not wait for it */
-    c->ms[STAGE_INTERPOLATE] = c->never_reuse ? finish(c, t0) : clock_now_ms() - t0;
+    c->ms[STAGE_INTERPOLATE] = c->reuse.never ? finish(c, t0) : clock_now_ms() - t0;
 }
 
 static void stats(const void *state, gi_stats *out)
@@ -620,7 +615,7 @@ static void stats(const void *state, gi_stats *out)
 
 gi_caches *gi_caches_of(gi *g)
 {
-    return g && gi_active(g) == gi_method_find("caches") ? gi_state(g) : NULL;
+    return g && gi_active(g) == GI_METHOD_ID(caches) ? gi_state(g) : NULL;
 }
 
 const cache_set *gi_caches_set(const gi_caches *c) { return &c->set; }

@@ -2,7 +2,7 @@
  * lit by virtual area lights (VALs) importance-sampled from high-resolution RSMs (Bischoff,
  * Schwandt and Broll 2017, on LightSkin: Lensing and Broll 2013).
  *
- * create(): the caches of the scene (common/caches/cache_place.h) from the disk cache or
+ * create(): the caches of the scene (common/gi/caches/cache_place.h) from the disk cache or
  * placed and stored there (cache_file.h; a note on stderr when a file was not trusted or
  * could not be written), which of them are hidden under another surface (caches_exact.h),
  * the lookup grid of the interpolation (cache_grid.h), the scene's
@@ -20,7 +20,7 @@
  *   occlusion   the disks' approximation (caches_occlude.comp); or, exact, a ray from every
  *               cache to every VAL on the host (caches_exact.h), the proxies gathered there
  *               and uploaded;
- * common/caches/val_select.h and cache_light.h are the host's copy of each shader's maths.
+ * common/gi/caches/val_select.h and cache_light.h are the host's copy of each shader's maths.
  * The checksum READY carries: FNV-1a over the picks and the proxies as read back.
  * eye_bind(): the interpolation (caches_interpolate.frag) over the eye's G-buffer into an
  * irradiance texture the snippet (caches_shade.glsl) reads; timed as stage
@@ -35,10 +35,10 @@
 #ifndef CAVELIGHT_GI_CACHES_H
 #define CAVELIGHT_GI_CACHES_H
 
-#include "caches/cache_file.h"
-#include "caches/cache_grid.h"
-#include "caches/cache_light.h"
-#include "caches/val_select.h"
+#include "gi/caches/cache_file.h"
+#include "gi/caches/cache_grid.h"
+#include "gi/caches/cache_light.h"
+#include "gi/caches/val_select.h"
 #include "gi/caches/caches_settings.h"
 #include "gi/gi.h"
 

@@ -1,5 +1,5 @@
-/* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the source every light type feeds
- * (renderer_rsm_vpls(), in texel order, so the injection is deterministic) are injected
+/* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the RSMs every light type feeds
+ * (collect_vpls(), in texel order, so the injection is deterministic) are injected
  * on the host, then the ILPV driver (lpv/ilpv.h) runs the frame on the CPU or GL backend.
  *
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
@@ -22,15 +22,20 @@
 #include "gi/ilpv/gi_ilpv.h"
 #include "gi/ilpv/ilpv_gl.h"
 #include "gi/ilpv/ilpv_paper_driver.h"
-#include "gltools.h"
-#include "lpv/ilpv.h"
-#include "lpv/lpv_converge.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_inject.h"
-#include "lpv/lpv_objects.h"
-#include "lpv/lpv_receive.h"
-#include "lpv/lpv_transfer.h"
-#include "vpl/vpl_source.h"
+#include "gl/gltools.h"
+#include "frame/hud.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lattice.h"
+#include "gi/ilpv/lpv_converge.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_inject.h"
+#include "gi/ilpv/lpv_objects.h"
+#include "gi/ilpv/lpv_receive.h"
+#include "gi/ilpv/lpv_transfer.h"
+#include "gi/vpl_source.h"
+
+_Static_assert((int)HUD_DEFAULT_LATTICE_CELLS == (int)LATTICE_DEFAULT_AXIS_CELLS,
+               "the HUD's steps bar assumes the default lattice without one");
 
 struct gi_ilpv {
     const gl_functions *gl;
@@ -47,6 +52,7 @@ struct gi_ilpv {
     lpv_converge converge;
     uint64_t checksum;       /* of the last computed result */
     workpool *pool;
+    gi_rsm_reader reader;    /* one RSM layer read back */
     lpv_vpl *vpls;           /* what the LPV injects: RSM VPLs (flux / pi) and emitters */
     size_t vpl_capacity;
     lpv_vpl *emitters;       /* one VPL per emissive triangle, built at load */
@@ -169,15 +175,17 @@ static void release(gi_ilpv *r)
     lpv_objects_free(&r->objects);
     free(r->emitters);
     free(r->vpls);
+    gi_rsm_reader_free(&r->reader);
     free(r->scratch);
 }
 
-/* The shared VPL source (renderer_rsm_vpls()) as the lattice wants it, Phi / pi (the units
- * above), then the emitters. NULL when out of memory (the frame injects nothing). */
+/* Every RSM texel a light reaches (gi_rsm_read_layer(), in layer then texel order) as the
+ * lattice wants it, Phi / pi (the units above), then the emitters. NULL when out of
+ * memory (the frame injects nothing). */
 static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
 {
-    lpv_vpl *source;
-    size_t n = renderer_rsm_vpls(rsm->maps, &source), need = n + r->emitter_count;
+    size_t texels = (size_t)rsm->size * rsm->size, n = 0;
+    size_t need = (size_t)rsm->layers * texels + r->emitter_count;
     if (need > r->vpl_capacity) {
         lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
         if (!v) {
@@ -187,14 +195,24 @@ static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
         r->vpls = v;
         r->vpl_capacity = need;
     }
-    for (size_t i = 0; i < n; i++) {
-        r->vpls[i] = source[i];
-        for (int k = 0; k < 3; k++)
-            r->vpls[i].flux[k] = source[i].flux[k] * (float)(1.0 / PI);
+    for (int layer = 0; layer < rsm->layers; layer++) {
+        const float *pos, *nrm, *flux;
+        if (gi_rsm_read_layer(&r->reader, r->gl, rsm, layer, &pos, &nrm, &flux) != 0)
+            break;
+        for (size_t i = 0; i < texels; i++) {
+            const float *f = flux + 4 * i;
+            if (pos[4 * i + 3] == 0.0f || !(f[0] > 0 || f[1] > 0 || f[2] > 0))
+                continue;
+            lpv_vpl *v = &r->vpls[n++];
+            memcpy(v->position, pos + 4 * i, sizeof v->position);
+            memcpy(v->normal, nrm + 4 * i, sizeof v->normal);
+            for (int k = 0; k < 3; k++)
+                v->flux[k] = f[k] * (float)(1.0 / PI);
+        }
     }
     if (r->emitter_count) /* a scene without emitters has no emitter array */
         memcpy(r->vpls + n, r->emitters, r->emitter_count * sizeof *r->emitters);
-    *count = need;
+    *count = n + r->emitter_count;
     return r->vpls;
 }
 
@@ -293,7 +311,7 @@ static int reuse(void *state, const frame_params *p)
 
 gi_ilpv *gi_ilpv_of(gi *g)
 {
-    return g && gi_active(g) == gi_method_find("ilpv") ? gi_state(g) : NULL;
+    return g && gi_active(g) == GI_METHOD_ID(ilpv) ? gi_state(g) : NULL;
 }
 
 const lpv_volume *gi_ilpv_volume(const gi_ilpv *r)

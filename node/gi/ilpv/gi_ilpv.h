@@ -18,8 +18,8 @@
 
 #include "gi/gi.h"
 #include "gi/ilpv/ilpv_settings.h"
-#include "lpv/lattice.h"
-#include "lpv/lpv_volume.h"
+#include "gi/ilpv/lattice.h"
+#include "gi/ilpv/lpv_volume.h"
 
 extern const gi_method gi_ilpv_method;
 

@@ -5,10 +5,10 @@
 #include <stdlib.h>
 
 #include "base/xalloc.h"
-#include "gltools.h"
-#include "lpv/lpv_paper.h"
-#include "lpv/lpv_transfer.h"
-#include "lpv/sh.h"
+#include "gl/gltools.h"
+#include "gi/ilpv/lpv_paper.h"
+#include "gi/ilpv/lpv_transfer.h"
+#include "gi/ilpv/sh.h"
 
 struct ilpv_gl {
     const gl_functions *gl;

@@ -11,12 +11,12 @@
 
 #include <stddef.h>
 
-#include "gl_functions.h"
-#include "lpv/ilpv.h"
-#include "lpv/lattice.h"
-#include "lpv/lpv_geometry.h"
-#include "lpv/lpv_paper_frame.h"
-#include "lpv/lpv_propagate.h"
+#include "gl/gl_functions.h"
+#include "gi/ilpv/ilpv.h"
+#include "gi/ilpv/lattice.h"
+#include "gi/ilpv/lpv_geometry.h"
+#include "gi/ilpv/lpv_paper_frame.h"
+#include "gi/ilpv/lpv_propagate.h"
 
 typedef struct ilpv_gl ilpv_gl;
 

@@ -3,7 +3,7 @@
 
 #include <stdio.h>
 
-#include "lpv/lpv_paper.h"
+#include "gi/ilpv/lpv_paper.h"
 
 int ilpv_paper_driver_init(ilpv_paper_driver *d, const gl_functions *gl, const lattice_desc *lat,
                            const lpv_blockers *blockers, workpool *pool, char *err, size_t errlen)

@@ -11,8 +11,8 @@
 
 #include "base/workpool.h"
 #include "gi/ilpv/ilpv_gl.h"
-#include "gl_functions.h"
-#include "lpv/lpv_paper_frame.h"
+#include "gl/gl_functions.h"
+#include "gi/ilpv/lpv_paper_frame.h"
 
 typedef struct ilpv_paper_driver {
     lpv_paper_lpv lpv;            /* CPU: all of it; GL: the injection, the history rule and

@@ -10,9 +10,9 @@
 #include "base/xalloc.h"
 #include "gi/ldm/ldm_photons.h"
 #include "gi/ldm/ldm_settings.h"
-#include "gltools.h"
+#include "gi/gi_reuse.h"
+#include "gl/gltools.h"
 #include "ldm_gl.h"
-#include "lpv/lpv_converge.h"
 
 /* Storage buffer bindings of its shaders (0 and 1 are the maps', ldm_gl.h). */
 enum { BIND_PHOTONS = 3, BIND_SPLITS = 4, SPLIT_VEC4 = 4, GROUP = 64 };
@@ -21,9 +21,8 @@ typedef struct gi_ldm {
     const gl_functions *gl;
     const scene *scene;
     ldm_settings settings;       /* the last frame's */
-    int never_reuse;
-    frame_params last;
-    int have_last;
+    gi_reuse_state reuse;        /* the last frame's parameters */
+    gi_rsm_reader reader;        /* one RSM layer read back */
     ldm_gl *maps;
     int maps_stale;              /* not built yet, or objects moved since: build in frame() */
     ldm_photon *photons;         /* this frame's primary photons */
@@ -56,6 +55,7 @@ static void release(gi_ldm *g)
     if (g->irradiance)
         gl->DeleteTextures(1, &g->irradiance);
     free(g->photons);
+    gi_rsm_reader_free(&g->reader);
     free(g->emitters);
 }
 
@@ -84,7 +84,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     gi_ldm *g = xcalloc(1, sizeof *g);
     g->gl = d->gl;
     g->scene = d->scene;
-    g->never_reuse = d->no_reuse;
+    g->reuse.never = d->no_reuse;
     ldm_settings_get(d->frame, &g->settings);
     const char *split[2] = {"ldm_trace.glsl", "ldm/ldm_split.comp"};
     const char *splat[2] = {"ldm_trace.glsl", "ldm/ldm_splat.frag"};
@@ -120,12 +120,9 @@ static int reuse(void *state, const frame_params *p)
     gi_ldm *g = state;
     ldm_settings now;
     ldm_settings_get(p, &now);
-    int same = g->have_last && !g->never_reuse && lpv_converge_inputs_equal(p, &g->last) &&
-               memcmp(&now, &g->settings, sizeof now) == 0 &&
-               p->ldm_layers == g->last.ldm_layers && p->rsm_size == g->last.rsm_size;
-    g->last = *p;
-    g->settings = now;
-    g->have_last = 1;
+    int same = gi_reuse_unchanged(&g->reuse, p, &now, &g->settings, sizeof now,
+                                  p->ldm_layers == g->reuse.last.ldm_layers &&
+                                  p->rsm_size == g->reuse.last.rsm_size);
     if (same)
         g->construct_ms = g->photons_ms = g->trace_ms = 0;
     return same;
@@ -148,7 +145,8 @@ static void collect(gi_ldm *g, const frame_params *p, const gi_rsm *rsm)
     size_t n = 0;
     for (int layer = 0; layer < rsm->layers; layer++) {
         const float *pos, *nrm, *flux;
-        renderer_rsm_read_layer(rsm->maps, layer, &pos, &nrm, &flux);
+        if (gi_rsm_read_layer(&g->reader, g->gl, rsm, layer, &pos, &nrm, &flux) != 0)
+            break;
         const frame_light *l = &p->lights[rsm->views[layer].light];
         const float *from = l->type == SCENE_LIGHT_DIRECTIONAL ? NULL : l->position;
         n += ldm_photons_from_rsm(pos, nrm, flux, rsm->size, side, from, g->photons + n);
@@ -224,7 +222,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     g->construct_ms = 0;
     if (lay->layers != p->ldm_layers && new_maps(g, p, err, sizeof err) != 0)
         fprintf(stderr, "cavelight-node: %s; the last maps stay\n", err);
-    if (g->maps_stale || g->never_reuse) /* never_reuse: a moving scene's cost is measured */
+    if (g->maps_stale || g->reuse.never) /* never_reuse: a moving scene's cost is measured */
         g->construct_ms = ldm_gl_build(g->maps, rsm->mesh);
     g->maps_stale = 0;
     double t0 = clock_now_ms();

@@ -1,7 +1,7 @@
 /* gi_ldm: the GI method "ldm", single-bounce indirect light through layered depth maps
  * (Aalund, Frisvad and Baerentzen's photon splitting), behind gi.h.
  *
- * create(): ldm-directions maps of ldm-resolution^2 texels, ldm-layers deep (node/ldm_gl.h:
+ * create(): ldm-directions maps of ldm-resolution^2 texels, ldm-layers deep (node/gi/ldm/ldm_gl.h:
  * the deterministic equal-area directions, a k-buffer per map), built once: the scene
  * never moves. Refused with one line over ldm-memory.
  * frame(): primary photons from every light view's RSM in ldm-photons^2 blocks and from

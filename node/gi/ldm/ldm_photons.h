@@ -13,8 +13,8 @@
 #include <stddef.h>
 
 #include "gi/ldm/ldm_settings.h"
-#include "ldm/ldm_map.h"
-#include "vpl/vpl_source.h"
+#include "gi/ldm/ldm_map.h"
+#include "gi/vpl_source.h"
 
 /* As the trace shader reads it (std430: three vec4). */
 typedef struct ldm_photon {

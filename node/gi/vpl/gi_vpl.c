@@ -10,15 +10,15 @@
 #include "base/clock.h"
 #include "base/vec3.h"
 #include "base/xalloc.h"
-#include "vpl/vpl_cluster.h"
-#include "vpl/vpl_select.h"
-#include "vpl/vpl_source.h"
+#include "gi/vpl/vpl_cluster.h"
+#include "gi/vpl/vpl_select.h"
+#include "gi/vpl_source.h"
 #include "gi/vpl/gi_vpl.h"
 #include "gi/vpl/vpl_interleave.h"
 #include "gi/vpl/vpl_ism.h"
-#include "gltools.h"
-#include "view_samples.h"
-#include "lpv/lpv_converge.h"
+#include "gl/gltools.h"
+#include "gi/gi_reuse.h"
+#include "gi/view_samples.h"
 
 enum { VPL_ATLAS_SIDE = 2048 };
 /* The view rule evaluates the view term of about this many candidates (evenly spaced
@@ -43,13 +43,11 @@ static const float FACE_UP[VPL_FACES][3] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1},
 typedef struct gi_vpl {
     const gl_functions *gl;
     const scene *scene;
-    float *rsm_read[3];      /* position, normal, flux of one RSM layer */
+    gi_rsm_reader reader;    /* one RSM layer read back */
     int rsm_size;
     vpl_settings settings;   /* the last frame's */
-    int never_reuse;         /* gi_desc.no_reuse: measure every frame */
     float head_to_eye[3];    /* the viewer (frame_view_head_centre()) */
-    frame_params last;       /* the last frame's parameters */
-    int have_last;
+    gi_reuse_state reuse;    /* the last frame's parameters */
     vpl *candidates;         /* this frame's: RSM texels, then the emitters */
     double *cdf;             /* vpl_select()'s scratch */
     double *view;            /* the view rule's view term per candidate */
@@ -154,8 +152,7 @@ static void release(gi_vpl *v)
     vpl_clusters_free(&v->lists);
     if (v->prog_shadow)
         gl->DeleteProgram(v->prog_shadow);
-    for (int i = 0; i < 3; i++)
-        free(v->rsm_read[i]);
+    gi_rsm_reader_free(&v->reader);
     free(v->candidates);
     free(v->cdf);
     free(v->view);
@@ -168,16 +165,12 @@ static int init(gi_vpl *v, char *err, size_t errlen)
 {
     const gl_functions *gl = v->gl;
     const scene *s = v->scene;
-    size_t texels = (size_t)v->rsm_size * v->rsm_size;
-    for (int i = 0; i < 3; i++)
-        v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
     v->emitter_count = vpl_emitters(s, NULL);
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
     vpl_emitter *raw = v->emitter_shape =
         malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
-    if (!v->rsm_read[0] || !v->rsm_read[1] || !v->rsm_read[2] || !v->emitters || !raw) {
-        snprintf(err, errlen, "renderer: out of memory for a %dx%d RSM readback",
-                 v->rsm_size, v->rsm_size);
+    if (!v->emitters || !raw) {
+        snprintf(err, errlen, "renderer: out of memory for %zu emitters", v->emitter_count);
         return -1;
     }
     vpl_emitters(s, raw);
@@ -224,7 +217,6 @@ static int reserve_candidates(gi_vpl *v, size_t need)
  * *texels: how many of them are RSM texels. */
 static size_t collect(gi_vpl *v, const gi_rsm *rsm, size_t *texels_out)
 {
-    const gl_functions *gl = v->gl;
     size_t texels = (size_t)rsm->size * rsm->size;
     if (reserve_candidates(v, (size_t)rsm->layers * texels + v->emitter_count) != 0) {
         fprintf(stderr, "cavelight-node: out of memory for %d RSM layers of VPL candidates\n",
@@ -233,16 +225,11 @@ static size_t collect(gi_vpl *v, const gi_rsm *rsm, size_t *texels_out)
     }
     size_t n = 0;
     for (int layer = 0; layer < rsm->layers; layer++) {
-        gl->BindFramebuffer(GL_FRAMEBUFFER, rsm->fbo[layer]);
-        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        for (int b = 0; b < 3; b++) {
-            gl->ReadBuffer(GL_COLOR_ATTACHMENT0 + b);
-            gl->ReadPixels(0, 0, rsm->size, rsm->size, GL_RGBA, GL_FLOAT, v->rsm_read[b]);
-        }
-        n += vpl_from_rsm(v->rsm_read[0], v->rsm_read[1], v->rsm_read[2], rsm->size,
-                          v->candidates + n);
+        const float *pos, *nrm, *flux;
+        if (gi_rsm_read_layer(&v->reader, v->gl, rsm, layer, &pos, &nrm, &flux) != 0)
+            break;
+        n += vpl_from_rsm(pos, nrm, flux, rsm->size, v->candidates + n);
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     *texels_out = n;
     if (v->emitter_count)
         memcpy(v->candidates + n, v->emitters, v->emitter_count * sizeof *v->emitters);
@@ -355,7 +342,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->scene = d->scene;
     v->rsm_size = d->rsm_size;
     vpl_settings_get(d->frame, &v->settings);
-    v->never_reuse = d->no_reuse;
+    v->reuse.never = d->no_reuse;
     memcpy(v->head_to_eye, d->head_to_eye, sizeof v->head_to_eye);
     int bad = init(v, err, errlen);
     if (!bad && v->settings.selection == VPL_SELECT_VIEW) /* Embree, loaded only for it */
@@ -383,7 +370,7 @@ static void destroy(void *state)
 }
 
 /* The VPLs and their shadow maps depend on the lights, the medium and the VPL settings
- * only (lpv_converge_inputs_equal() and vpl_settings), and under the view rule on the
+ * only (gi_reuse_inputs_equal() and vpl_settings), and under the view rule on the
  * viewer: a frame that changes none of them keeps last frame's (the flux and regular
  * rules: a moving head's too). */
 static int reuse(void *state, const frame_params *p)
@@ -393,13 +380,10 @@ static int reuse(void *state, const frame_params *p)
     vpl_settings_get(p, &now);
     float eye[3], before[3];
     view_samples_viewer(p, v->head_to_eye, eye);
-    view_samples_viewer(&v->last, v->head_to_eye, before);
-    int same = v->have_last && !v->never_reuse && lpv_converge_inputs_equal(p, &v->last) &&
-               memcmp(&now, &v->settings, sizeof now) == 0 &&
-               (now.selection != VPL_SELECT_VIEW || memcmp(eye, before, sizeof eye) == 0);
-    v->last = *p;
-    v->settings = now;
-    v->have_last = 1;
+    view_samples_viewer(&v->reuse.last, v->head_to_eye, before);
+    int same = gi_reuse_unchanged(&v->reuse, p, &now, &v->settings, sizeof now,
+                                  now.selection != VPL_SELECT_VIEW ||
+                                  memcmp(eye, before, sizeof eye) == 0);
     if (same)
         v->select_ms = v->shadow_ms = 0;
     return same;
@@ -579,7 +563,7 @@ static void eye_bind(void *state, const gi_eye *e)
         eye_lists(v, e->view);
     const gl_functions *gl = v->gl;
     int interleaved = v->interleave && v->have_maps && v->count > 0;
-    float absorption = v->last.absorption;
+    float absorption = v->reuse.last.absorption;
     if (interleaved) {
         GLuint g = vpl_interleave_program(v->interleave);
         gl->UseProgram(g);

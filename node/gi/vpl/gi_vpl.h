@@ -1,8 +1,8 @@
 /* gi_vpl: the GI method "vpl", instant radiosity with exact visibility, behind gi.h.
  *
  * frame(): every RSM texel with flux and every emissive triangle is a candidate
- * (common/vpl/vpl_source.h); vpl-count of them are chosen with vpl-seed by
- * vpl-selection's rule (vpl_settings.h; common/vpl/vpl_select.h:
+ * (common/gi/vpl_source.h); vpl-count of them are chosen with vpl-seed by
+ * vpl-selection's rule (vpl_settings.h; common/gi/vpl/vpl_select.h:
  * flux, bidirectional view importance from the head's view samples (view_samples.h), or the
  * regular pattern; unbiased weights, the same choice on every node); the checksum READY
  * carries is vpl_checksum() of that set.
@@ -12,7 +12,7 @@
  * ism or ism-splat, an imperfect shadow map from a subset of a point set (vpl_ism.h).
  * eye_bind(): the VPLs, the maps and the light lists for its shading snippet
  * (vpl_gather.glsl, vpl_shade.glsl), which gathers per pixel the VPLs its cluster lists
- * (common/vpl/vpl_cluster.h; vpl-lights:
+ * (common/gi/vpl/vpl_cluster.h; vpl-lights:
  * clustered by default, tiled, or every VPL), testing visibility in whichever maps were
  * rendered. The lists are assigned per eye in eye_bind(), or once for all eyes of a screen
  * in screen() (enclosed clustering: one grid enclosing both frusta). A VPL reaches

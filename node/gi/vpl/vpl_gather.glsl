@@ -15,7 +15,7 @@ uniform int u_vpl_clustered;         // 0: every VPL; else the lists of p's clus
 uniform usampler2D u_vpl_cluster_first; // cluster c's list: [entry c, entry c + 1)
 uniform usampler2D u_vpl_cluster_index; // VPL indices, ascending per cluster
 uniform int u_vpl_list_row;          // entries per texel row of both
-uniform vec3 u_vpl_grid_apex;        // the grid (common/vpl/vpl_cluster.h): apex and axes,
+uniform vec3 u_vpl_grid_apex;        // the grid (common/gi/vpl/vpl_cluster.h): apex and axes,
 uniform vec3 u_vpl_grid_right;
 uniform vec3 u_vpl_grid_up;
 uniform vec3 u_vpl_grid_forward;
@@ -115,7 +115,7 @@ vec3 vpl_light(int i, vec3 p, vec3 n)
     return flux * (g * visible);
 }
 
-// The cluster holding p: vpl_grid_cluster() of common/vpl/vpl_cluster.c, the same rule.
+// The cluster holding p: vpl_grid_cluster() of common/gi/vpl/vpl_cluster.c, the same rule.
 int vpl_cluster(vec3 p)
 {
     vec3 rel = p - u_vpl_grid_apex;

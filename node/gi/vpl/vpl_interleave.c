@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "base/xalloc.h"
-#include "gltools.h"
+#include "gl/gltools.h"
 
 struct vpl_interleave {
     const gl_functions *gl;

@@ -10,8 +10,8 @@
 #include <string.h>
 
 #include "base/xalloc.h"
-#include "vpl/ism_points.h"
-#include "gltools.h"
+#include "gi/vpl/ism_points.h"
+#include "gl/gltools.h"
 
 enum { ISM_ATLAS_MAX = 2048, ISM_LEVELS_MAX = 8 }; /* 2^8 = VPL_ISM_SIZE_MAX */
 

@@ -2,7 +2,7 @@
  * 2008 as the many-light thesis 3.3 and 4.4 builds them): the visibility of many VPLs from
  * a few points each instead of from the triangles.
  *
- * The scene is a fixed point set (common/vpl/ism_points.h, uniform by area, the same on
+ * The scene is a fixed point set (common/gi/vpl/ism_points.h, uniform by area, the same on
  * every node); VPL i takes its own subset of `points` of them, projects them into the
  * paraboloid map of its hemisphere (shaders/common.glsl ism_project()), one tile of
  * size x size texels of one atlas, and keeps the nearest. Single-pixel points leave holes
@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#include "gl_functions.h"
+#include "gl/gl_functions.h"
 #include "scene/scene.h"
 
 typedef struct vpl_ism vpl_ism;
