@@ -7,7 +7,7 @@
 
 #include "base/clock.h"
 #include "base/xalloc.h"
-#include "gi/ao_cost.h"
+#include "gi/ldm/ldm_settings.h"
 #include "gi/ldm/ldm_gl.h"
 #include "gl/gltools.h"
 
@@ -91,7 +91,7 @@ int renderer_ao_frame(renderer_ao *ao, const frame_params *p, const scene_gl *me
     ao->maps = NULL;
     ao->built = want;
     ao->stats.memory_mb = 0;
-    const char *why = ao_check(p);
+    const char *why = ldm_ao_check(p);
     ao->refused = 1;
     if (why) {
         snprintf(err, errlen, "%s", why);

@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "base/cli.h"
-#include "gi/ao_cost.h"
 
 #define GI_METHOD(name) extern const gi_method_settings name##_settings_table;
 #include "gi/gi_methods.def"
@@ -192,9 +191,6 @@ int gi_set_config(const cluster_config *cfg, frame_params *p, char *err, size_t 
 
 const char *gi_check(const frame_params *p)
 {
-    const char *ao = ao_check(p);
-    if (ao)
-        return ao;
     for (int m = 0; m < METHODS; m++) {
         const char *why = methods[m]->check ? methods[m]->check(p) : NULL;
         if (why)

@@ -90,8 +90,8 @@ const char *gi_get_text(const frame_params *p, const char *name, char *buf, size
 /* The cluster config's "settings" into p (gi_set() each, then gi_check()): 0, or -1 with
  * "cluster config FILE: settings.NAME: reason" in err. */
 int gi_set_config(const cluster_config *cfg, frame_params *p, char *err, size_t errlen);
-/* The frame's AO memory (ao_check()), then every method's cross-setting check
- * (gi_method_settings.check): NULL or the first line. */
+/* Every method's cross-setting check (gi_method_settings.check; the ldm method's also
+ * checks the frame's AO maps, which are its layered depth maps): NULL or the first line. */
 const char *gi_check(const frame_params *p);
 
 /* Every option as a command-line row after the count rows in rows[CLI_MAX_OPTIONS] (base/

@@ -70,7 +70,7 @@ int bench_reference(int argc, char **argv)
     frame_params p;
     frame_params_default(&p);
     frame_params_lights_from_scene(&p, &sc);
-    renderer_view v;
+    frame_view v;
     scene_camera cam;
     scene_default_camera(&sc, &cam);
     frame_view_scene_camera(&cam, cam.position, scene_far_plane(&sc), width, height, &v);

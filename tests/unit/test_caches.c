@@ -32,7 +32,7 @@
 #include "gi/caches/cache_light.h"
 #include "gi/caches/cache_place.h"
 #include "gi/caches/val_select.h"
-#include "gi/vpl_source.h"
+#include "gi/vpl/vpl_select.h"
 
 /* A closed 4 x 3 x 4 m room facing in, a box on its floor, a slanted panel. */
 static void room(scene *s)

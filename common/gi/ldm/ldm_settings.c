@@ -30,12 +30,23 @@ static const setting rows[] = {
 };
 #undef FIELD
 
-/* The maps must fit ldm-memory (the frame's) when ldm is the method. */
+const char *ldm_ao_check(const frame_params *p)
+{
+    static _Thread_local char why[256];
+    if (p->ao != FRAME_AO_LDM)
+        return NULL;
+    return ldm_memory_check(p->ao_directions, p->ao_resolution, p->ldm_layers,
+                            p->ldm_memory_mb, "ao", why, sizeof why);
+}
+
+/* The frame's AO maps (whatever the method), then the method's maps when ldm is the
+ * method, must fit ldm-memory (the frame's). */
 static const char *check(const frame_params *p)
 {
     static _Thread_local char why[256];
-    if (p->gi != GI_METHOD_ID(ldm))
-        return NULL;
+    const char *ao = ldm_ao_check(p);
+    if (ao || p->gi != GI_METHOD_ID(ldm))
+        return ao;
     ldm_settings s;
     ldm_settings_get(p, &s);
     return ldm_memory_check(s.directions, s.resolution, p->ldm_layers, p->ldm_memory_mb, "ldm",

@@ -26,6 +26,9 @@ typedef struct ldm_settings {
 
 extern const gi_method_settings ldm_settings_table;
 
+/* NULL, or one line when the frame's AO maps (ao ldm: layered depth maps whatever the
+ * method) exceed ldm-memory; the settings' check asks it first. */
+const char *ldm_ao_check(const frame_params *p);
 /* The frame's ldm settings. */
 void ldm_settings_get(const frame_params *p, ldm_settings *out);
 

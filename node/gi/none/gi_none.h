@@ -1,5 +1,6 @@
-/* gi_none: the GI method "none": direct light only, no indirect term. Its checksum is a
- * constant (it has no view-independent state to disagree about). */
+/* gi_none: the GI method "none": direct light only, or a constant indirect irradiance
+ * (none-irradiance). Its checksum is a constant per setting (it has no view-independent
+ * state to disagree about). */
 #ifndef CAVELIGHT_GI_NONE_H
 #define CAVELIGHT_GI_NONE_H
 
