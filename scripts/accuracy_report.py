@@ -85,9 +85,20 @@ def cpu_model():
     return platform.processor() or "unknown CPU"
 
 
-def err(r):
-    """The accuracy axis: indirect relative RMSE (NaN when the reference has no signal)."""
+def raw(r):
+    """Indirect relative RMSE against the reference as measured (NaN: no signal)."""
     return float(r["rmse_rel_indirect"])
+
+
+def err(r):
+    """The accuracy axis: indirect relative RMSE debiased by the reference's own noise
+    (docs/accuracy-metrics.md); the raw figure where a CSV predates the column."""
+    return float(r.get("rmse_rel_debiased_indirect") or r["rmse_rel_indirect"])
+
+
+def both(r, digits=3):
+    """The debiased relRMSE with the raw figure beside it."""
+    return f"{f(err(r), digits)} (raw {f(raw(r), digits)})"
 
 
 def met(ok):
@@ -129,7 +140,7 @@ if g0:
       f"between {GOAL_SCALE[0]} and {GOAL_SCALE[1]}, and at steady state a finer lattice "
       "never worse than a coarser one (relative RMSE at 16, 32 and 64 cells, same steps and "
       "lambda).\n")
-    p("| scene | indirect relRMSE | at most 0.35 | indirect SSIM | at least 0.8 | best level scale | within 0.8..1.25 | relRMSE at 16 / 32 / 64 cells | finer never worse | propagation ms at 32 cells |")
+    p("| scene | indirect relRMSE debiased (raw) | at most 0.35 | indirect SSIM | at least 0.8 | best level scale | within 0.8..1.25 | relRMSE at 16 / 32 / 64 cells | finer never worse | propagation ms at 32 cells |")
     p("|---|---|---|---|---|---|---|---|---|---|")
     for sc in SCENES:
         g = summary(f"sweep_{sc}.json").get("goal")
@@ -138,9 +149,9 @@ if g0:
         if g.get("no_signal"):
             p(f"| {sc} | no signal (black reference) | | | | | | | | {f(g.get('propagate_ms'), 2)} |")
             continue
-        rm, ss, bs = g["rmse_rel"], g["ssim"], g["best_scale"]
+        rm, ss, bs = g.get("rmse_rel_debiased", g["rmse_rel"]), g["ssim"], g["best_scale"]
         by = " / ".join(f(g.get(f"rmse_rel_{l}"), 3) for l in g["lattices"])
-        p(f"| {sc} | {f(rm, 3)} | {met(rm <= GOAL_RMSE)}{' (moonshot)' if rm <= MOONSHOT_RMSE else ''} | "
+        p(f"| {sc} | {f(rm, 3)} (raw {f(g['rmse_rel'], 3)}) | {met(rm <= GOAL_RMSE)}{' (moonshot)' if rm <= MOONSHOT_RMSE else ''} | "
           f"{f(ss, 3)} | {met(ss >= GOAL_SSIM)} | {f(bs, 2)} | "
           f"{met(GOAL_SCALE[0] <= bs <= GOAL_SCALE[1])} | {by} | "
           f"{met(g['finer_never_worse'])} | {f(g['propagate_ms'], 2)} |")
@@ -164,15 +175,15 @@ def method_wins(sc):
     top = min(vpl, key=err)
     better = [r for r in vpl if err(r) < err(best)]
     cheapest_better = min(better, key=lambda r: float(r["gi_ms"])) if better else None
-    parts = [f"| {sc} | {f(err(best), 3)} ({f(ms, 2)} ms) | "
+    parts = [f"| {sc} | {both(best)} ({f(ms, 2)} ms) | "
              + ("yes: " + ", ".join(f"{r['vpl_count']} VPLs {visibility(r)}" for r in equal_time)
                 if equal_time else "**no**") + " | "
-             + "; ".join(f"{v}: {f(float(r['gi_ms']), 0)} ms, {f(err(r), 3)}"
+             + "; ".join(f"{v}: {f(float(r['gi_ms']), 0)} ms, {both(r)}"
                          for v, r in fastest.items()) + " | "
              + (f"{cheapest_better['vpl_count']} VPLs {visibility(cheapest_better)}, "
-                f"{f(float(cheapest_better['gi_ms']), 0)} ms, {f(err(cheapest_better), 3)}"
+                f"{f(float(cheapest_better['gi_ms']), 0)} ms, {both(cheapest_better)}"
                 if cheapest_better else "none") + " | "
-             + f"{top['vpl_count']} VPLs {visibility(top)}: {f(err(top), 3)} |"]
+             + f"{top['vpl_count']} VPLs {visibility(top)}: {both(top)} |"]
     return parts[0]
 
 
@@ -199,12 +210,12 @@ def caches_label(r):
 def three_methods(sc):
     """One line per scene: each method's most accurate row and GI ms, and the cheapest row of
     each that reaches the caches method's best default-occlusion error."""
-    ilpv = [(float(r["propagate_ms"]), err(r), label(r)) for r in rows(f"sweep_{sc}.csv")
+    ilpv = [(float(r["propagate_ms"]), err(r), label(r), raw(r)) for r in rows(f"sweep_{sc}.csv")
             if not isnan(err(r))]
-    vpl = [(float(r["gi_ms"]), err(r), f"{r['vpl_count']} VPLs {visibility(r)}")
+    vpl = [(float(r["gi_ms"]), err(r), f"{r['vpl_count']} VPLs {visibility(r)}", raw(r))
            for r in rows(f"vpl_{sc}.csv") if not isnan(err(r))]
-    caches = [(float(r["gi_ms"]), err(r), caches_label(r)) for r in rows(f"caches_{sc}.csv")
-              if not isnan(err(r))]
+    caches = [(float(r["gi_ms"]), err(r), caches_label(r), raw(r))
+              for r in rows(f"caches_{sc}.csv") if not isnan(err(r))]
     if not caches:
         return None
     approx = [c for c in caches if "disk occlusion" in c[2] and "LightSkin" not in c[2]]
@@ -217,17 +228,19 @@ def three_methods(sc):
         top = min(rows_, key=lambda c: c[1])
         reach = [c for c in rows_ if c[1] <= target[1]]
         cheap = min(reach, key=lambda c: c[0]) if reach else None
-        cells.append(f"{f(top[1], 3)} ({f(top[0], 0)} ms, {top[2]})")
+        cells.append(f"{f(top[1], 3)} (raw {f(top[3], 3)}; {f(top[0], 0)} ms, {top[2]})")
         cells.append(f"{f(cheap[0], 0)} ms ({cheap[2]})" if cheap else "never")
     winner = min(((c[0], n) for n, rs in (("ILPV", ilpv), ("vpl", vpl), ("caches", caches))
                   for c in rs if c[1] <= target[1]), default=(0, "none"))[1]
-    return f"| {sc} | {f(target[1], 3)} | " + " | ".join(cells) + f" | {winner} |"
+    return (f"| {sc} | {f(target[1], 3)} (raw {f(target[3], 3)}) | " + " | ".join(cells)
+            + f" | {winner} |")
 
 
 three = [t for t in (three_methods(sc) for sc in SCENES) if t]
 if three:
     p("## Three methods: ILPV, vpl and caches\n")
-    p("For each scene the caches method's most accurate row with its default occlusion (the "
+    p("Errors are indirect relRMSE debiased by the reference's noise, the raw figure beside "
+      "them. For each scene the caches method's most accurate row with its default occlusion (the "
       "disks) sets the error to reach; for each method its most accurate row, and the "
       "cheapest of its rows at or below that error (GI ms: ILPV's propagation, vpl's "
       "selection, shadow maps and gather, caches' importance, selection, proxies, occlusion "
@@ -271,14 +284,14 @@ def ldm_section():
       "others' (the indirect image against the reference's one bounce). The goal of issue 23: "
       f"relRMSE at most {GOAL_RMSE} on the closed rooms at the method's defaults (32 maps of "
       "128^2, 32^2 photons per light view).\n")
-    p("| scene | maps | resolution | photons | construct ms | photons ms | trace ms | splat ms | GI ms | whole frame ms | MB | indirect relRMSE | SSIM | best level scale |")
+    p("| scene | maps | resolution | photons | construct ms | photons ms | trace ms | splat ms | GI ms | whole frame ms | MB | indirect relRMSE debiased (raw) | SSIM | best level scale |")
     p("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for sc in scenes:
         for r in rows(f"ldm_{sc}.csv"):
             p(f"| {sc} | {r['directions']} | {r['resolution']} | {r['photons']} | "
               f"{f(r['construct_ms'], 1)} | {f(r['photons_ms'], 1)} | {f(r['trace_ms'], 1)} | "
               f"{f(r['splat_ms'], 1)} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
-              f"{f(r['memory_mb'], 0)} | {f(r['rmse_rel_indirect'], 3)} | "
+              f"{f(r['memory_mb'], 0)} | {both(r)} | "
               f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} |")
     p("")
     p("Ambient occlusion (occlusion within the distance limit) against the path tracer's AO "
@@ -351,10 +364,10 @@ def beams_buys(sc):
     at = {t: next((r for r in v if r["backend"] == "cpu" and r["mode"] == "incremental"
                    and r["lattice"] == "32" and r["steps"] == "8" and float(r["lambda"]) == 0.8),
                   None) for t, v in by.items()}
-    cell = lambda r: f"{f(err(r), 3)}, SSIM {f(r['ssim_indirect'], 2)}, scale {f(r['best_scale_indirect'], 1)}, {f(r['propagate_ms'], 1)} ms" if r else "n/a"
+    cell = lambda r: f"{both(r)}, SSIM {f(r['ssim_indirect'], 2)}, scale {f(r['best_scale_indirect'], 1)}, {f(r['propagate_ms'], 1)} ms" if r else "n/a"
     return (f"| {sc} | {cell(at['paper'])} | {cell(at['beams'])} | {label(best['paper'])}: "
-            f"{f(err(best['paper']), 3)}, {f(best['paper']['propagate_ms'], 1)} ms | "
-            f"{label(best['beams'])}: {f(err(best['beams']), 3)}, {f(best['beams']['propagate_ms'], 1)} ms |")
+            f"{both(best['paper'])}, {f(best['paper']['propagate_ms'], 1)} ms | "
+            f"{label(best['beams'])}: {both(best['beams'])}, {f(best['beams']['propagate_ms'], 1)} ms |")
 
 
 buys = [b for b in (beams_buys(sc) for sc in SCENES) if b]
@@ -388,8 +401,12 @@ if os.path.exists(_steps):
         p("")
 
 p("## The reference and its noise\n")
-p("| scene | reference seconds (2 cores) | mean indirect radiance | noise of the averaged indirect (MAE) | noise relative to the mean |")
-p("|---|---|---|---|---|")
+p("Noise relRMSE is the reference's own standard deviation (RMS over the covered pixels, "
+  "from the difference of its two halves) over its mean: what it adds to every raw relRMSE "
+  "and what the debiased figures take out (docs/accuracy-metrics.md). The goal is at most "
+  "0.03.\n")
+p("| scene | paths per pixel | reference seconds (2 cores) | mean indirect radiance | noise of the averaged indirect (MAE) | noise MAE over the mean | noise relRMSE |")
+p("|---|---|---|---|---|---|---|")
 for s in SCENES:
     j = summary(f"sweep_{s}.json")
     if not j:
@@ -397,8 +414,9 @@ for s in SCENES:
     mean = j.get("reference_mean_indirect1", 0) or 0
     noise = j.get("reference_noise_indirect1", 0) or 0
     cached = " (cached from an earlier run)" if j.get("reference_cached") else ""
-    p(f"| {s} | {f(j.get('reference_seconds'), 1)}{cached} | {f(mean, 5)} | {f(noise, 5)} | "
-      f"{f(noise / mean if mean else 0, 3)} |")
+    p(f"| {s} | {j.get('reference_samples', '?')} | {f(j.get('reference_seconds'), 1)}{cached} | "
+      f"{f(mean, 5)} | {f(noise, 5)} | {f(noise / mean if mean else 0, 3)} | "
+      f"{f(j.get('reference_noise_rel'), 3)} |")
 p("")
 
 for s in SCENES:
@@ -411,12 +429,12 @@ for s in SCENES:
     front = sorted((r for r in sweep if r["pareto"] == "1"), key=lambda r: float(r["propagate_ms"]))
     p("Pareto front on the indirect relative RMSE (no other configuration is both faster and "
       "more accurate):\n")
-    p("| configuration | lattice cells | propagation ms | whole frame ms | indirect relRMSE | indirect SSIM | best level scale | display MAE |")
+    p("| configuration | lattice cells | propagation ms | whole frame ms | indirect relRMSE debiased (raw) | indirect SSIM | best level scale | display MAE |")
     p("|---|---|---|---|---|---|---|---|")
     j = summary(f"sweep_{s}.json")
     for r in front:
         p(f"| {label(r)} | {r['nx']}x{r['ny']}x{r['nz']} | {f(r['propagate_ms'], 2)} | "
-          f"{f(r['frame_ms'], 1)} | {f(r['rmse_rel_indirect'], 3)} | "
+          f"{f(r['frame_ms'], 1)} | {both(r)} | "
           f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} | "
           f"{f(r['mae_display'])} |")
     p("")
@@ -437,13 +455,13 @@ for s in SCENES:
         won = err(best) < err(base)
         wins += won
         if base["backend"] == "cpu" and base["steps"] in ("4", "8", "32"):
-            lines.append(f"| {label(base)} | {f(base['propagate_ms'], 2)} | {f(base['rmse_rel_indirect'], 3)} | "
-                         f"{label(best)} | {f(best['propagate_ms'], 2)} | {f(best['rmse_rel_indirect'], 3)} |")
+            lines.append(f"| {label(base)} | {f(base['propagate_ms'], 2)} | {both(base)} | "
+                         f"{label(best)} | {f(best['propagate_ms'], 2)} | {both(best)} |")
     p(f"ILPV (lambda > 0) against the baselines at equal or lower propagation time, each "
       f"transport against its own: the best ILPV configuration has a lower indirect relative "
       f"RMSE for **{wins} of {total}** baseline configurations (plain ILPV with lambda 0 and "
       "the classic accumulating LPV, both backends, both transports). Some of them:\n")
-    p("| baseline | ms | indirect relRMSE | best ILPV no slower | ms | indirect relRMSE |")
+    p("| baseline | ms | indirect relRMSE debiased (raw) | best ILPV no slower | ms | indirect relRMSE debiased (raw) |")
     p("|---|---|---|---|---|---|")
     for l in lines:
         p(l)
@@ -456,16 +474,16 @@ for s in SCENES:
           "without indirect light); relRMSE is the mean over its seeds, seed mean the "
           "relRMSE of the seeds' mean image (what does not average away); bound bias the "
           "level the disk bound takes off against unbounded point lights.\n")
-        p("| VPLs | visibility | seeds | GI ms | whole frame ms | indirect relRMSE | seed mean | indirect SSIM | best level scale | bound bias (level) |")
+        p("| VPLs | visibility | seeds | GI ms | whole frame ms | indirect relRMSE debiased (raw) | seed mean | indirect SSIM | best level scale | bound bias (level) |")
         p("|---|---|---|---|---|---|---|---|---|---|")
         for r in vpl:
             p(f"| {r['vpl_count']} | {visibility(r)} | {r['seeds']} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
-              f"{f(r['rmse_rel_indirect'], 3)} | {f(r['rmse_rel_seed_mean'], 3)} | "
+              f"{both(r)} | {f(r['rmse_rel_seed_mean'], 3)} | "
               f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} | "
               f"{f(r.get('bound_level_bias'), 3)} |")
         if best_ilpv:
             p(f"\nMost accurate ILPV configuration of the sweep: {label(best_ilpv)}, "
-              f"{f(best_ilpv['propagate_ms'], 2)} ms, relRMSE {f(best_ilpv['rmse_rel_indirect'], 3)}.")
+              f"{f(best_ilpv['propagate_ms'], 2)} ms, relRMSE {both(best_ilpv)}.")
         p("")
     cr = rows(f"caches_{s}.csv")
     if cr:
@@ -474,13 +492,13 @@ for s in SCENES:
           "selection, proxy lights, occlusion, and the eye pass's interpolation); vs every "
           "texel is the relRMSE of its image against the same row with every RSM texel as "
           "a VAL (plain LightSkin), speed-up that row's GI ms over this one's.\n")
-        p("| VALs | occlusion | RSM | caches | importance ms | selection ms | proxy ms | occlusion ms | interpolate ms | GI ms | indirect relRMSE | indirect SSIM | best level scale | vs every texel | speed-up |")
+        p("| VALs | occlusion | RSM | caches | importance ms | selection ms | proxy ms | occlusion ms | interpolate ms | GI ms | indirect relRMSE debiased (raw) | indirect SSIM | best level scale | vs every texel | speed-up |")
         p("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in cr:
             vals = "every texel" if r["selection"] == "all" else r["vals"]
             p(f"| {vals} | {r['occlusion']} | {r['rsm']} | {r['caches']} | {f(r['importance_ms'], 1)} | "
               f"{f(r['sat_select_ms'], 1)} | {f(r['proxy_ms'], 1)} | {f(r['occlusion_ms'], 1)} | "
-              f"{f(r['interpolate_ms'], 1)} | {f(r['gi_ms'], 1)} | {f(r['rmse_rel_indirect'], 3)} | "
+              f"{f(r['interpolate_ms'], 1)} | {f(r['gi_ms'], 1)} | {both(r)} | "
               f"{f(r['ssim_indirect'], 3)} | {f(r['best_scale_indirect'], 2)} | "
               f"{f(r['rmse_rel_vs_all'], 3)} | {f(r['speedup'], 1)} |")
         p(f"\nThe reference's own noise: relRMSE {f(cr[0]['reference_noise_rel'], 3)}.\n")
