@@ -7,7 +7,8 @@
 # ldm method's maps, against a path-traced (Embree) reference, every scene with the same
 # settings; and the layered depth maps' ambient occlusion against the screen-space baseline
 # at several distance limits. Accuracy is the
-# indirect image's relative RMSE and SSIM against the reference's one-bounce image over
+# indirect image's relative RMSE (raw, and debiased by the reference's own noise: docs/
+# accuracy-metrics.md) and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
 # (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
