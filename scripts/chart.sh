@@ -7,24 +7,32 @@
 # ldm method's maps, against a path-traced (Embree) reference, every scene with the same
 # settings; and the layered depth maps' ambient occlusion against the screen-space baseline
 # at several distance limits. Accuracy is the
-# indirect image's relative RMSE and SSIM against the reference's one-bounce image over
+# indirect image's relative RMSE (raw, and debiased by the reference's own noise: docs/
+# accuracy-metrics.md) and SSIM against the reference's one-bounce image over
 # the pixels that meet geometry. Also measures the error after an abrupt light move and
 # the frame-to-frame change along a light path; writes CSVs and PNG charts to OUT
 # (default out/chart) and docs/ACCURACY.md with docs/accuracy/.
 # The path-traced reference is cached in OUT as ref_*.pfm; --reuse-reference keeps it
 # between runs (only when the scene, camera and reference code are unchanged).
+# Its two halves get --ref-samples N paths per pixel each (QUICK_REF_SAMPLES /
+# FULL_REF_SAMPLES below), then more rounds until the reference's own noise (relRMSE of
+# the averaged image, from the halves' difference) is at most --ref-noise T (0.03; 0: one
+# round); each scene's reference is rendered first and its noise printed.
 # --charts-only draws the charts and writes the docs again from what OUT holds.
 # Usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference]
-#                         [--charts-only] [--scene FILE.gltf]...
+#                         [--ref-samples N] [--ref-noise T] [--charts-only]
+#                         [--scene FILE.gltf]...
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 . "$root/scripts/deps.sh"
 cavelight_install_deps
 cavelight_build "$root" >/dev/null
 
-quick=0 docs=1 reuse=0 charts_only=0 out=$root/out/chart
+quick=0 docs=1 reuse=0 charts_only=0 out=$root/out/chart ref_samples= ref_noise=0.03
+# The first round's paths per pixel per half (the issue-32 chart's were 32 and 256).
+QUICK_REF_SAMPLES=256 FULL_REF_SAMPLES=256
 scenes=(default corridor doorway courtyard arcades street)
-usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--charts-only] [--scene FILE]..."
+usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--ref-samples N] [--ref-noise T] [--charts-only] [--scene FILE]..."
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
@@ -32,6 +40,10 @@ while [ $# -gt 0 ]; do
     --reuse-reference) reuse=1 ;;
     --charts-only) charts_only=1 ;; # the charts and docs again from OUT's measurements
     --out) [ $# -ge 2 ] || { echo "$usage" >&2; exit 2; }; out=$2; shift ;;
+    --ref-samples) [ $# -ge 2 ] && [[ $2 =~ ^[1-9][0-9]*$ ]] ||
+                     { echo "chart: --ref-samples needs a positive number of paths per half" >&2; exit 2; }
+                   ref_samples=$2; shift ;;
+    --ref-noise) [ $# -ge 2 ] || { echo "$usage" >&2; exit 2; }; ref_noise=$2; shift ;;
     --scene) [ $# -ge 2 ] && [ -f "$2" ] || { echo "chart: --scene needs a glTF file" >&2; exit 2; }
              scenes+=("$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
     *) echo "$usage" >&2; exit 2 ;;
@@ -49,14 +61,16 @@ fi
 key() { local b; b=$(basename "$1"); echo "${b%%.*}"; }
 
 if [ $quick = 1 ]; then
-  size=(--width 160 --height 120) ref=(--ref-samples 32)
+  size=(--width 160 --height 120)
+  ref=(--ref-samples "${ref_samples:-$QUICK_REF_SAMPLES}" --ref-noise "$ref_noise")
   sweep=(--lattices 16,32,64,fit --steps 1,2,4,8,16 --gl-max-lattice 16 --timing-frames 3)
   motion=(--frames 40)
   vpl=(--counts 64,256 --seeds 1 --visibility exact,ism,ism-splat --interleave 0,4)
   caches=(--vals 512,2048 --occlusion approx,exact --lightskin 0 --frames 2 --temporal-frames 10)
   ldm=(--configs 16:64,32:128 --ao-configs 32:64,64:128)
 else
-  size=(--width 320 --height 240) ref=(--ref-samples 256)
+  size=(--width 320 --height 240)
+  ref=(--ref-samples "${ref_samples:-$FULL_REF_SAMPLES}" --ref-noise "$ref_noise")
   sweep=(--lattices 16,32,64,fit --gl-max-lattice 32 --timing-frames 5)
   motion=(--frames 60)
   vpl=(--counts 64,256,1024 --seeds 2 --visibility exact,ism,ism-splat --ism-sizes 16,32
@@ -70,6 +84,10 @@ measure() {
   for scene in "${scenes[@]}"; do
     k=$(key "$scene")
     echo "$k" >> "$out/scenes.txt"
+    "$bench" accuracy reference --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" \
+      > "$out/reference_$k.json"
+    python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print("chart: %s: reference noise relRMSE %.4f (%d paths per pixel, %.1f s%s)" % (sys.argv[2], j["reference_noise_rel"], j["reference_samples"], j["reference_seconds"], ", cached" if j["reference_cached"] else ""))' \
+      "$out/reference_$k.json" "$k" >&2
     echo "chart: $k: sweep ($((SECONDS - start)) s)" >&2
     "$bench" accuracy sweep --scene "$scene" --out "$out" "${size[@]}" "${ref[@]}" "${sweep[@]}" \
       > "$out/sweep_$k.json"

@@ -4,7 +4,8 @@
  * with no linearisation (compare PNGs only with PNGs). Exit 0; 2 with one line on stderr
  * naming the file or argument at fault; 3 when the reference has no signal (black over the
  * compared pixels: relative RMSE and SSIM are undefined, printed as null) unless
- * --allow-no-signal. */
+ * --allow-no-signal. --flip adds the mean FLIP (common/image/flip.h): LDR-FLIP of two PNGs
+ * (sRGB), HDR-FLIP of two PFMs. */
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <stdio.h>
@@ -12,10 +13,11 @@
 #include <string.h>
 
 #include "base/cli.h"
+#include "image/flip.h"
 #include "image/image.h"
 #include "image/image_metrics.h"
 
-enum { O_MASK_BACKGROUND, O_SSIM_RANGE, O_CROP, O_ALLOW_NO_SIGNAL };
+enum { O_MASK_BACKGROUND, O_SSIM_RANGE, O_CROP, O_ALLOW_NO_SIGNAL, O_FLIP, O_PPD };
 
 static const cli_option options[] = {
     {O_MASK_BACKGROUND, "mask-background", NULL, NULL, 0, 0,
@@ -24,11 +26,16 @@ static const cli_option options[] = {
     {O_CROP, "crop", "x,y,w,h", "the whole image", 0, 0, "compare only this rectangle (top-left origin)"},
     {O_ALLOW_NO_SIGNAL, "allow-no-signal", NULL, NULL, 0, 0,
      "exit 0 even when the reference is black (no signal)"},
+    {O_FLIP, "flip", NULL, NULL, 0, 0,
+     "also the mean FLIP (Andersson et al.): LDR-FLIP of PNGs, HDR-FLIP of PFMs"},
+    {O_PPD, "ppd", "P", "67.02 (0.7 m from a 0.7 m wide 4K monitor)", 0, 0,
+     "FLIP's pixels per degree of visual angle"},
 };
 
 typedef struct compare_options {
-    int mask_background, allow_no_signal, cropping;
+    int mask_background, allow_no_signal, cropping, flip;
     int crop[4];
+    double ppd;
     image_metrics_desc desc;
 } compare_options;
 
@@ -39,6 +46,11 @@ static const char *set(void *user, int id, const char *v)
     switch (id) {
     case O_MASK_BACKGROUND: o->mask_background = 1; break;
     case O_ALLOW_NO_SIGNAL: o->allow_no_signal = 1; break;
+    case O_FLIP: o->flip = 1; break;
+    case O_PPD:
+        if (sscanf(v, "%lf%c", &o->ppd, &extra) != 1 || !(o->ppd > 0 && o->ppd <= 1000))
+            return "a number in (0, 1000]";
+        break;
     case O_SSIM_RANGE:
         if (sscanf(v, "%lf%c", &o->desc.ssim_range, &extra) != 1 || !(o->desc.ssim_range > 0))
             return "a positive number";
@@ -54,7 +66,7 @@ static const char *set(void *user, int id, const char *v)
 }
 
 /* Reads a PFM or PNG (told apart by their magic bytes) into linear-layout floats. */
-static int read_image(const char *role, const char *path, int *w, int *h, float **rgb)
+static int read_image(const char *role, const char *path, int *w, int *h, float **rgb, int *png)
 {
     char err[512];
     unsigned char magic[2] = {0};
@@ -71,6 +83,7 @@ static int read_image(const char *role, const char *path, int *w, int *h, float 
             return 0;
     } else if (got == 2 && magic[0] == 0x89 && magic[1] == 'P') {
         uint8_t *bytes = NULL;
+        *png = 1;
         if (image_read_png(path, w, h, &bytes, err, sizeof err) == 0) {
             size_t n = (size_t)*w * *h * 3;
             *rgb = malloc(n * sizeof **rgb);
@@ -102,12 +115,18 @@ static float *crop_image(const float *rgb, int w, int x, int y, int cw, int ch)
 
 /* Both images at one size, cropped when asked. 0, or -1 after one line on stderr. */
 static int load_pair(const char *const paths[2], const compare_options *opt, int *width, int *height,
-                     float *rgb[2])
+                     float *rgb[2], int png[2])
 {
     int w[2], h[2];
-    if (read_image("image", paths[0], &w[0], &h[0], &rgb[0]) != 0 ||
-        read_image("reference", paths[1], &w[1], &h[1], &rgb[1]) != 0)
+    if (read_image("image", paths[0], &w[0], &h[0], &rgb[0], &png[0]) != 0 ||
+        read_image("reference", paths[1], &w[1], &h[1], &rgb[1], &png[1]) != 0)
         return -1;
+    if (opt->flip && png[0] != png[1]) {
+        fprintf(stderr, "cavelight-compare: --flip: image %s is a %s but reference %s a %s; "
+                        "give two PNGs (LDR-FLIP) or two PFMs (HDR-FLIP)\n", paths[0],
+                png[0] ? "PNG" : "PFM", paths[1], png[1] ? "PNG" : "PFM");
+        return -1;
+    }
     if (w[0] != w[1] || h[0] != h[1]) {
         fprintf(stderr, "cavelight-compare: size mismatch: image %s is %dx%d but reference "
                         "%s is %dx%d; render both at the same size\n",
@@ -160,9 +179,23 @@ static uint8_t *background_mask(const float *reference, size_t n, int *failed)
 
 /* The metrics as one JSON line on stdout. Returns the exit code: 0, 2 (out of memory)
  * or 3 (no signal, unless allowed). */
-static int print_metrics(const char *const paths[2], int width, int height, const image_metrics *m,
-                         int allow_no_signal)
+/* The FLIP fields: mean, mode and viewer; HDR-FLIP's exposures. */
+static void add_flip(cJSON *o, const flip_result *f, int hdr, double ppd)
 {
+    cJSON_AddNumberToObject(o, "flip", f->mean);
+    cJSON_AddStringToObject(o, "flip_mode", hdr ? "hdr" : "ldr");
+    cJSON_AddNumberToObject(o, "flip_ppd", ppd);
+    if (hdr) {
+        cJSON_AddNumberToObject(o, "flip_start_exposure", f->start_exposure);
+        cJSON_AddNumberToObject(o, "flip_stop_exposure", f->stop_exposure);
+        cJSON_AddNumberToObject(o, "flip_exposures", f->exposures);
+    }
+}
+
+static int print_metrics(const char *const paths[2], int width, int height, const image_metrics *m,
+                         const compare_options *opt, const flip_result *flip, int hdr)
+{
+    int allow_no_signal = opt->allow_no_signal;
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "image", paths[0]);
     cJSON_AddStringToObject(o, "reference", paths[1]);
@@ -179,6 +212,8 @@ static int print_metrics(const char *const paths[2], int width, int height, cons
     cJSON_AddNumberToObject(o, "best_scale", m->best_scale);
     cJSON_AddNumberToObject(o, "mae_scaled", m->mae_scaled);
     cJSON_AddBoolToObject(o, "signal", !m->no_signal);
+    if (flip)
+        add_flip(o, flip, hdr, opt->ppd ? opt->ppd : FLIP_DEFAULT_PPD);
     char *text = cJSON_PrintUnformatted(o);
     int rc = 2;
     if (text) {
@@ -209,7 +244,8 @@ int main(int argc, char **argv)
                  "  IMAGE, REFERENCE  PFM (linear) or PNG (8-bit display values / 255, not linearised)\n",
         .groups = groups, .group_count = 1,
         .options = options, .count = (int)(sizeof options / sizeof *options),
-        .epilogue = "Prints one JSON object with the metrics of common/image/image_metrics.h.\n"
+        .epilogue = "Prints one JSON object with the metrics of common/image/image_metrics.h\n"
+                    "(and with --flip those of common/image/flip.h).\n"
                     "Exit 0; 2 on bad input; 3 when the reference has no signal.\n",
         .set = set, .user = &opt,
     };
@@ -227,8 +263,9 @@ int main(int argc, char **argv)
     }
     int width, height, failed = 0, rc = 2;
     float *rgb[2] = {NULL, NULL};
+    int png[2] = {0, 0};
     uint8_t *mask = NULL;
-    if (load_pair(paths, &opt, &width, &height, rgb) != 0)
+    if (load_pair(paths, &opt, &width, &height, rgb, png) != 0)
         goto done;
     image_metrics_desc desc = opt.desc;
     if (opt.mask_background && !(desc.mask = mask = background_mask(rgb[1], (size_t)width * height, &failed)) &&
@@ -241,7 +278,14 @@ int main(int argc, char **argv)
                 opt.mask_background ? ", the rest background" : "");
         goto done;
     }
-    rc = print_metrics(paths, width, height, &m, opt.allow_no_signal);
+    flip_result flip;
+    flip_desc fd = {.ppd = opt.ppd, .mask = desc.mask};
+    if (opt.flip && (png[0] ? flip_ldr : flip_hdr)(rgb[0], rgb[1], width, height, &fd, NULL, &flip) != 0) {
+        fprintf(stderr, "cavelight-compare: --flip: out of memory comparing %s against %s\n",
+                paths[0], paths[1]);
+        goto done;
+    }
+    rc = print_metrics(paths, width, height, &m, &opt, opt.flip ? &flip : NULL, !png[0]);
 done:
     free(rgb[0]);
     free(rgb[1]);

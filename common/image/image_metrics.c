@@ -155,6 +155,8 @@ int image_metrics_compare(const float *img, const float *ref, int width, int hei
     out->reference_mean = ref_sum / samples;
     out->no_signal = ref_sum == 0;
     out->rmse_rel = out->no_signal ? NAN : sqrt(sq_sum / samples) / out->reference_mean;
+    double truth_sq = sq_sum / samples - d.reference_noise * d.reference_noise;
+    out->rmse_rel_debiased = out->no_signal ? NAN : sqrt(fmax(truth_sq, 0.0)) / out->reference_mean;
     out->best_scale = img_sq > 0 ? cross / img_sq : 1.0;
 
     double scaled_sum = 0;

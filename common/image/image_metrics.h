@@ -12,6 +12,9 @@
  *   mean, reference_mean = mean img, mean ref
  *   best_scale = sum(img*ref) / sum(img^2): the gain that best fits img to ref (1 if img is 0)
  *   mae_scaled = mean |best_scale*img - ref|: error left once the level is corrected
+ *   rmse_rel_debiased = sqrt(max(mean (img - ref)^2 - noise^2, 0)) / mean(ref), noise the
+ *              reference's own standard deviation (desc.reference_noise): a noisy reference
+ *              adds its variance to the expected squared difference, and this takes it out
  *
  * SSIM: 11x11 Gaussian window, sigma 1.5, C1 = (0.01 L)^2, C2 = (0.03 L)^2; the window is
  * centred on every counted pixel, loses the taps that fall outside the image or on uncounted
@@ -37,11 +40,14 @@ typedef struct image_metrics_desc {
     const uint8_t *mask;   /* width*height, nonzero = pixel counts; NULL = all pixels */
     double ssim_range;     /* dynamic range L of SSIM's constants; 0 = max reference luminance */
     double relmse_epsilon; /* relMSE denominator ref^2 + epsilon; 0 = 1e-2 */
+    double reference_noise; /* RMS over the counted samples of the reference's standard
+                               deviation (reference_noise.indirect1_rms); 0 = exact */
 } image_metrics_desc;
 
 typedef struct image_metrics {
     double mae;            /* mean over counted pixels and the 3 channels of |img - ref| */
     double rmse_rel;       /* sqrt(mean (img-ref)^2) / mean(ref) */
+    double rmse_rel_debiased; /* the same less the reference's noise (see above) */
     double relmse;         /* mean (img-ref)^2 / (ref^2 + epsilon) */
     double ssim;           /* mean SSIM of luminance (Rec. 709 weights) */
     double mean, reference_mean;

@@ -18,6 +18,8 @@
  *                     disk bound (bench_accuracy_vpl.c)
  *   accuracy caches   the caches method per setting row, and its importance-sampled VALs
  *                     against every RSM texel (bench_accuracy_caches.c)
+ *   accuracy reference  only the path-traced reference and its noise
+ *                     (bench_accuracy_reference.c)
  *   accuracy ldm      the layered depth maps: the ldm method's error and GI ms per maps
  *                     configuration, and LDM against screen-space AO per distance limit
  *                     (bench_accuracy_ldm.c)
@@ -102,7 +104,7 @@ static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_ref
     row->frame_pass_ms = acc_median(pass, timing);
     row->eye_ms = acc_median(eye, timing);
     int w = s->opt.width, h = s->opt.height;
-    image_metrics_desc geometry = {.mask = ref->coverage};
+    image_metrics_desc geometry = {.mask = ref->coverage, .reference_noise = ref->noise_rms_indirect1};
     if (image_metrics_compare(img.indirect, ref->indirect1, w, h, &geometry, &row->indirect) ||
         image_metrics_compare(img.final, ref->final1, w, h, &geometry, &row->final)) {
         fprintf(stderr, "bench accuracy: %s: no pixel of the view meets geometry\n",
@@ -145,14 +147,14 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
     for (int i = 0; i < n; i++) {
         const sweep_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d," FMT_MS ",%.4f,%.4f,%.4f,"
-                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d,%s\n",
+                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d,%s," FMT_ERROR "\n",
                 s->opt.scene, r->backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                 r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
                 r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
                 r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
                 r->indirect.relmse, r->indirect.ssim, r->indirect.best_scale,
                 r->indirect.mae_scaled, r->final.mae, r->final.ssim, r->display_mae, r->self_mae,
-                r->pareto, lpv_transport_names[r->transport]);
+                r->pareto, lpv_transport_names[r->transport], r->indirect.rmse_rel_debiased);
     }
 }
 
@@ -240,6 +242,7 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
     printf(",\"goal\":{\"lattice\":%d,\"steps\":%d,\"lambda\":%g", GOAL_LATTICE, steps,
            lambda);
     json_number("rmse_rel", "%.6g", at->indirect.rmse_rel);
+    json_number("rmse_rel_debiased", "%.6g", at->indirect.rmse_rel_debiased);
     json_number("ssim", "%.6g", at->indirect.ssim);
     json_number("best_scale", "%.6g", at->indirect.best_scale);
     json_number("propagate_ms", "%.4f", at->propagate_ms);
@@ -365,7 +368,7 @@ static int accuracy_sweep(int argc, char **argv)
             "scene,backend,mode,lattice,nx,ny,nz,steps,lambda,frames,propagate_ms,"
             "frame_pass_ms,eye_ms,frame_ms,mae_indirect,rmse_rel_indirect,relmse_indirect,"
             "ssim_indirect,best_scale_indirect,mae_scaled_indirect,mae_final,ssim_final,"
-            "mae_display,mae_self32,pareto,transport");
+            "mae_display,mae_self32,pareto,transport,rmse_rel_debiased_indirect");
         rc = f ? 0 : 1;
         if (f) {
             write_rows(f, &s, run.rows, run.n);
@@ -377,11 +380,11 @@ static int accuracy_sweep(int argc, char **argv)
         printf("{\"bench\":\"accuracy\",\"experiment\":\"sweep\",\"scene\":\"%s\","
                "\"width\":%d,\"height\":%d,\"configs\":%d,\"reference_samples\":%d,"
                "\"reference_seconds\":%.4g,\"reference_cached\":%s,"
-               "\"reference_noise_indirect1\":%.6g,"
+               "\"reference_noise_indirect1\":%.6g,\"reference_noise_rel\":%.6g,"
                "\"reference_mean_indirect1\":%.6g,\"pixels_compared\":%zu",
-               o.scene, o.width, o.height, run.n, 2 * o.ref_samples, ref.seconds,
-               ref.cached ? "true" : "false", ref.noise_indirect1, ref.mean_indirect1,
-               run.n ? run.rows[0].indirect.pixels : 0);
+               o.scene, o.width, o.height, run.n, 2 * ref.samples, ref.seconds,
+               ref.cached ? "true" : "false", ref.noise_indirect1,
+               ref.noise_rel, ref.mean_indirect1, run.n ? run.rows[0].indirect.pixels : 0);
         /* The paper's comparison per transport: 8 steps with lambda 0.8 against 8 plain
          * steps, 32 cells. */
         printf(",\"paper_lattice\":%d,\"fig2\":{", lat);
@@ -426,8 +429,10 @@ int bench_accuracy(int argc, char **argv)
         return accuracy_caches(argc - 1, argv + 1);
     if (argc >= 2 && strcmp(argv[1], "ldm") == 0)
         return accuracy_ldm(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "reference") == 0)
+        return accuracy_reference(argc - 1, argv + 1);
     int help = argc >= 2 && strcmp(argv[1], "--help") == 0;
-    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|caches|ldm [options]\n"
+    fprintf(help ? stdout : stderr, "usage: cavelight-bench accuracy sweep|move|path|savings|vpl|caches|ldm|reference [options]\n"
             "  the speed-against-accuracy sweep behind scripts/chart.sh (see there)\n");
     return help ? 0 : 2;
 }

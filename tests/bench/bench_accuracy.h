@@ -20,12 +20,15 @@ typedef struct acc_options {
     const char *scene;      /* a built-in scene's name or a glTF path */
     const char *out;        /* folder for CSVs and the cached reference */
     int width, height;
-    int ref_samples;        /* paths per pixel of each of the two reference halves */
+    int ref_samples;        /* paths per pixel of each of the two reference halves (the
+                               first round's, with ref_noise) */
+    const char *ref_noise;  /* "0", or the noise relRMSE to render more rounds down to */
     int threads;            /* CPU LPV threads, 0 = all */
 } acc_options;
 
 typedef struct acc_setup {
     acc_options opt;
+    double ref_noise;       /* opt.ref_noise as a number */
     scene sc;
     glctx *ctx;
     renderer_view view;
@@ -41,7 +44,10 @@ typedef struct acc_reference {
     double noise_indirect1;             /* MAE of the averaged indirect1 (from its halves) */
     double noise_rms_indirect1;         /* its RMS over the covered pixels */
     double mean_indirect1;
+    double noise_rel;                   /* noise_rms_indirect1 over indirect1's mean on the
+                                           covered pixels: the reference's own relRMSE */
     double seconds;                     /* render time (when it was rendered) */
+    int samples;                        /* paths per pixel of each half */
     int cached;                         /* read from the cache, not rendered now */
 } acc_reference;
 
@@ -56,6 +62,8 @@ int acc_parse_common(acc_options *o, int argc, char **argv, int *i, int *bad);
     BENCH_INT("height", "H", "image height", &(o)->height, 8, 16384),                         \
     BENCH_INT("ref-samples", "N", "paths per pixel of each of the reference's two halves",    \
               &(o)->ref_samples, 1, 1 << 20),                                                  \
+    BENCH_TEXT("ref-noise", "T", "add rounds of paths until the reference's noise relRMSE\n"  \
+               "is at most T (0: one round of --ref-samples)", &(o)->ref_noise),              \
     BENCH_INT("threads", "T", "CPU LPV threads (0: all cores)", &(o)->threads, 0, 1024)
 int acc_setup_open(acc_setup *s, const acc_options *o);
 void acc_setup_close(acc_setup *s);
@@ -104,5 +112,6 @@ int accuracy_savings(int argc, char **argv);
 int accuracy_vpl(int argc, char **argv);
 int accuracy_caches(int argc, char **argv);
 int accuracy_ldm(int argc, char **argv);
+int accuracy_reference(int argc, char **argv);
 
 #endif

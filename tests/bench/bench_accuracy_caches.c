@@ -83,7 +83,7 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, int frames,
     out->gi_ms = acc_median(gi_ms, frames);
     out->frame_ms = acc_median(frame, frames);
     memcpy(image, img.indirect, (size_t)s->opt.width * s->opt.height * 3 * sizeof *image);
-    image_metrics_desc geometry = {.mask = ref->coverage};
+    image_metrics_desc geometry = {.mask = ref->coverage, .reference_noise = ref->noise_rms_indirect1};
     if (image_metrics_compare(image, ref->indirect1, s->opt.width, s->opt.height, &geometry,
                               &out->m) != 0) {
         fprintf(stderr, "bench accuracy caches: %s: no pixel meets geometry\n", s->opt.scene);
@@ -135,17 +135,19 @@ static int row(sweep *w, renderer *r, const frame_params *fp)
             density, rsm, x.caches);
     for (int k = 0; k < STAGES; k++)
         fprintf(w->csv, ",%.3f", x.stage[k]);
-    fprintf(w->csv, ",%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.4g\n", x.gi_ms, x.frame_ms,
-            x.m.rmse_rel, x.m.ssim, x.m.best_scale, w->noise_rel, vs_all, diff, speedup);
+    fprintf(w->csv, ",%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.4g,%.6g\n", x.gi_ms, x.frame_ms,
+            x.m.rmse_rel, x.m.ssim, x.m.best_scale, w->noise_rel, vs_all, diff, speedup,
+            x.m.rmse_rel_debiased);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"caches\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"vals\":\"%s\",\"occlusion\":\"%s\","
            "\"density\":%s,\"rsm\":%s,\"caches\":%zu", w->s->opt.scene, w->s->opt.width,
-           w->s->opt.height, 2 * w->s->opt.ref_samples, name, occlusion, density, rsm, x.caches);
+           w->s->opt.height, 2 * w->ref->samples, name, occlusion, density, rsm, x.caches);
     for (int k = 0; k < STAGES; k++)
         printf(",\"%s_ms\":%.3f", STAGE_NAMES[k], x.stage[k]);
-    printf(",\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,\"ssim\":%.4f,"
-           "\"best_scale\":%.4f,\"reference_noise_rel\":%.4f", x.gi_ms, x.frame_ms,
-           x.m.rmse_rel, x.m.ssim, x.m.best_scale, w->noise_rel);
+    printf(",\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,\"rmse_rel_debiased\":%.4f,"
+           "\"ssim\":%.4f,\"best_scale\":%.4f,\"reference_noise_rel\":%.4f", x.gi_ms,
+           x.frame_ms, x.m.rmse_rel, x.m.rmse_rel_debiased, x.m.ssim, x.m.best_scale,
+           w->noise_rel);
     if (!isnan(speedup))
         printf(",\"rmse_rel_vs_all\":%.4f,\"rmse_rel_minus_all\":%.4f,\"speedup\":%.3f", vs_all,
                diff, speedup);
@@ -351,7 +353,8 @@ int accuracy_caches(int argc, char **argv)
                          "scene,vals,selection,occlusion,density,rsm,caches,importance_ms,"
                          "sat_select_ms,proxy_ms,occlusion_ms,interpolate_ms,gi_ms,frame_ms,"
                          "rmse_rel_indirect,ssim_indirect,best_scale_indirect,"
-                         "reference_noise_rel,rmse_rel_vs_all,rmse_rel_minus_all,speedup");
+                         "reference_noise_rel,rmse_rel_vs_all,rmse_rel_minus_all,speedup,"
+                         "rmse_rel_debiased_indirect");
     int rc = w.image && w.all && w.csv ? 0 : 1;
     for (int k = 0; k < l.nr * l.nd && rc == 0; k++)
         rc = rows_of(&w, &l, l.rsm[k / l.nd], l.density[k % l.nd]) ? 1 : 0;

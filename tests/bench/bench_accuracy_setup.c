@@ -36,7 +36,12 @@ int acc_setup_open(acc_setup *s, const acc_options *o)
 {
     memset(s, 0, sizeof *s);
     s->opt = *o;
-    char err[512];
+    char err[512], *end = NULL;
+    s->ref_noise = o->ref_noise ? strtod(o->ref_noise, &end) : 0.0;
+    if (o->ref_noise && (end == o->ref_noise || *end || !(s->ref_noise >= 0 && s->ref_noise < 1))) {
+        fprintf(stderr, "bench accuracy: --ref-noise %s: expected a number in [0, 1)\n", o->ref_noise);
+        return -1;
+    }
     if (mkdir(o->out, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "bench accuracy: cannot create %s (%s)\n", o->out, strerror(errno));
         return -1;
@@ -70,13 +75,16 @@ void acc_setup_close(acc_setup *s)
     scene_free(&s->sc);
 }
 
-/* Cache file names: <out>/ref_<scene>_<tag>_<w>x<h>_<spp>_<kind> */
+/* Cache file names: <out>/ref_<scene>_<tag>_<w>x<h>_<spp>[_n<noise>]_<kind> */
 static void ref_path(const acc_setup *s, const char *tag, const char *kind, char *out, size_t n)
 {
     const char *base = strrchr(s->opt.scene, '/');
     base = base ? base + 1 : s->opt.scene;
-    snprintf(out, n, "%s/ref_%.*s_%s_%dx%d_%d_%s", s->opt.out, (int)strcspn(base, "."),
-             base, tag, s->opt.width, s->opt.height, s->opt.ref_samples, kind);
+    char noise[32] = "";
+    if (s->ref_noise > 0)
+        snprintf(noise, sizeof noise, "_n%g", s->ref_noise);
+    snprintf(out, n, "%s/ref_%.*s_%s_%dx%d_%d%s_%s", s->opt.out, (int)strcspn(base, "."),
+             base, tag, s->opt.width, s->opt.height, s->opt.ref_samples, noise, kind);
 }
 
 /* The coverage mask is cached as a PFM of 0s and 1s. */
@@ -125,42 +133,95 @@ static int read_cached(const acc_setup *s, const char *tag, acc_reference *out)
         return -1;
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "r");
-    int ok = f && fscanf(f, "%lf %lf %lf", &out->noise_indirect1, &out->seconds,
-                         &out->noise_rms_indirect1) == 3;
+    out->samples = s->opt.ref_samples; /* a cache written before the count was kept */
+    int ok = f && fscanf(f, "%lf %lf %lf %d", &out->noise_indirect1, &out->seconds,
+                         &out->noise_rms_indirect1, &out->samples) >= 3;
     out->cached = 1;
     if (f)
         fclose(f);
     return ok && w == s->opt.width && h == s->opt.height ? 0 : -1;
 }
 
-/* Two independent halves (seeds 1 and 2), averaged; their difference estimates the noise. */
-static int render_reference(acc_setup *s, const frame_params *p, const char *tag,
-                            acc_reference *out)
+enum { REF_MAX_SAMPLES = 1 << 16 }; /* per half: where a scene whose noise will not fall stops */
+
+/* acc = (acc * had + add * n) / (had + n): the running mean of a half over its rounds. */
+static void blend(float *acc, const float *add, size_t values, int had, int n)
+{
+    for (size_t i = 0; i < values; i++)
+        acc[i] = (float)(((double)acc[i] * had + (double)add[i] * n) / (had + n));
+}
+
+/* The noise of the halves' average, from their difference: MAE over all samples, RMS over
+ * the covered ones (the averaged image's standard deviation) and that over the covered mean. */
+static double halves_noise(const reference_images h[2], size_t values, double *mae, double *rms)
+{
+    double abs_sum = 0, sq = 0, sum = 0;
+    size_t covered = 0;
+    for (size_t i = 0; i < values; i++) {
+        double e = (double)h[0].indirect1[i] - h[1].indirect1[i];
+        abs_sum += fabs(e);
+        if (h[0].coverage[i / 3]) {
+            sq += e * e;
+            sum += 0.5 * ((double)h[0].indirect1[i] + h[1].indirect1[i]);
+            covered++;
+        }
+    }
+    *mae = values ? abs_sum / (2.0 * (double)values) : 0;
+    *rms = covered ? sqrt(sq / (double)covered) / 2.0 : 0;
+    return sum > 0 ? *rms / (sum / (double)covered) : NAN;
+}
+
+/* Paths per half of the next round: by noise ~ 1/sqrt(paths), enough for 0.9 of the target
+ * (the estimate is itself noisy), at most 8 times the paths so far. */
+static int next_round(int total, double noise_rel, double target)
+{
+    double want = total * (noise_rel / (0.9 * target)) * (noise_rel / (0.9 * target));
+    double n = fmin(ceil(want) - total, 7.0 * total);
+    return (int)fmax(1.0, fmin(n, (double)(REF_MAX_SAMPLES - total)));
+}
+
+/* The two halves, in rounds of independent seeds (1 and 2, then 3 and 4, ...) until their
+ * noise relRMSE is at most s->ref_noise (one round when it is 0). */
+static int render_halves(acc_setup *s, reference *ref, const frame_params *p,
+                         reference_images half[2], acc_reference *out)
 {
     char err[512];
-    reference *ref = reference_create(&s->sc, s->opt.threads, err, sizeof err);
-    if (!ref) {
-        fprintf(stderr, "bench accuracy: %s\n", err);
-        return -1;
+    size_t values = (size_t)s->opt.width * s->opt.height * 3;
+    int total = 0, n = s->opt.ref_samples;
+    for (uint64_t seed = 1;; seed += 2) {
+        reference_images round[2] = {{0}};
+        for (int h = 0; h < 2; h++) {
+            reference_images *into = total ? &round[h] : &half[h];
+            reference_render_desc d = {.params = p, .view = &s->view, .samples = n,
+                                       .seed = seed + (uint64_t)h};
+            if (reference_render(ref, &d, into, err, sizeof err) != 0) {
+                fprintf(stderr, "bench accuracy: reference: %s\n", err);
+                reference_images_free(&round[0]);
+                return -1;
+            }
+            out->seconds += into->render_ms / 1000.0;
+        }
+        for (int h = 0; total && h < 2; h++) {
+            blend(half[h].direct, round[h].direct, values, total, n);
+            blend(half[h].indirect1, round[h].indirect1, values, total, n);
+            reference_images_free(&round[h]);
+        }
+        total += n;
+        double rel = halves_noise(half, values, &out->noise_indirect1, &out->noise_rms_indirect1);
+        if (!(s->ref_noise > 0 && rel > s->ref_noise && total < REF_MAX_SAMPLES))
+            break;
+        n = next_round(total, rel, s->ref_noise);
+        fprintf(stderr, "bench accuracy: %s: reference noise relRMSE %.4f at %d paths per half; "
+                "%d more\n", s->opt.scene, rel, total, n);
     }
-    reference_images img = {0};
-    reference_noise noise;
-    reference_render_desc d = {.params = p, .view = &s->view, .samples = s->opt.ref_samples,
-                               .seed = 1};
-    int rc = reference_render_averaged(ref, &d, &img, &noise, err, sizeof err);
-    reference_destroy(ref);
-    if (rc != 0) {
-        fprintf(stderr, "bench accuracy: reference: %s\n", err);
-        return -1;
-    }
-    out->seconds = img.render_ms / 1000.0;
-    out->noise_indirect1 = noise.indirect1;
-    out->noise_rms_indirect1 = noise.indirect1_rms;
-    out->direct = img.direct;       /* the images pass to out; img.indirect is not needed */
-    out->indirect1 = img.indirect1;
-    out->coverage = img.coverage;
-    free(img.indirect);
-    char path[4200];
+    out->samples = total;
+    return 0;
+}
+
+static int write_reference(acc_setup *s, const char *tag, const acc_reference *out)
+{
+    char path[4200], err[512];
+    int rc = 0;
     ref_path(s, tag, "direct.pfm", path, sizeof path);
     rc |= image_write_pfm(path, s->opt.width, s->opt.height, out->direct, err, sizeof err);
     ref_path(s, tag, "indirect1.pfm", path, sizeof path);
@@ -170,11 +231,42 @@ static int render_reference(acc_setup *s, const frame_params *p, const char *tag
     ref_path(s, tag, "noise.txt", path, sizeof path);
     FILE *f = fopen(path, "w");
     if (f) {
-        fprintf(f, "%.9g %.3f %.9g\n", out->noise_indirect1, out->seconds,
-                out->noise_rms_indirect1);
+        fprintf(f, "%.9g %.3f %.9g %d\n", out->noise_indirect1, out->seconds,
+                out->noise_rms_indirect1, out->samples);
         fclose(f);
     }
     return rc || !f ? -1 : 0;
+}
+
+/* Two independent halves, averaged; their difference estimates the noise. */
+static int render_reference(acc_setup *s, const frame_params *p, const char *tag,
+                            acc_reference *out)
+{
+    char err[512];
+    reference *ref = reference_create(&s->sc, s->opt.threads, err, sizeof err);
+    if (!ref) {
+        fprintf(stderr, "bench accuracy: %s\n", err);
+        return -1;
+    }
+    reference_images half[2] = {{0}};
+    int rc = render_halves(s, ref, p, half, out);
+    reference_destroy(ref);
+    if (rc == 0) {
+        size_t values = (size_t)s->opt.width * s->opt.height * 3;
+        for (size_t i = 0; i < values; i++) {
+            half[0].direct[i] = 0.5f * (half[0].direct[i] + half[1].direct[i]);
+            half[0].indirect1[i] = 0.5f * (half[0].indirect1[i] + half[1].indirect1[i]);
+        }
+        out->direct = half[0].direct; /* the images pass to out */
+        out->indirect1 = half[0].indirect1;
+        out->coverage = half[0].coverage;
+        half[0].direct = half[0].indirect1 = NULL;
+        half[0].coverage = NULL;
+        rc = write_reference(s, tag, out);
+    }
+    reference_images_free(&half[0]);
+    reference_images_free(&half[1]);
+    return rc;
 }
 
 int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_reference *out)
@@ -194,12 +286,16 @@ int acc_reference_get(acc_setup *s, const frame_params *p, const char *tag, acc_
         acc_reference_free(out);
         return -1;
     }
-    double sum = 0;
+    double sum = 0, covered_sum = 0;
+    size_t covered = 0;
     for (size_t i = 0; i < px * 3; i++) {
         out->final1[i] = out->direct[i] + out->indirect1[i];
         sum += out->indirect1[i];
+        covered_sum += out->coverage[i / 3] ? out->indirect1[i] : 0.0;
+        covered += out->coverage[i / 3];
     }
     out->mean_indirect1 = sum / (double)(px * 3);
+    out->noise_rel = covered_sum > 0 ? out->noise_rms_indirect1 / (covered_sum / (double)covered) : NAN;
     tonemap_rgb8(out->final1, px, s->encoding_gamma, out->display);
     return 0;
 }

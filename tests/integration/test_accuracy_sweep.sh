@@ -62,7 +62,35 @@ assert g["rmse_rel"] == float(goal[1]["rmse_rel_indirect"]) and g["no_signal"] i
 assert abs(g["ssim"] - float(goal[1]["ssim_indirect"])) <= 1e-5 and g["propagate_ms"] > 0
 by = [g["rmse_rel_16"], g["rmse_rel_32"], g["rmse_rel_64"]]
 assert g["finer_never_worse"] == (by[1] <= by[0] and by[2] <= by[1]), g
+# Debiased: raw^2 - debiased^2 is the reference's noise relRMSE squared (or debiased is 0).
+noise = j["reference_noise_rel"]
+assert 0 < noise < 2 and j["reference_samples"] == 8, j
+for r in rows:
+    raw, deb = float(r["rmse_rel_indirect"]), float(r["rmse_rel_debiased_indirect"])
+    assert 0 <= deb <= raw, r
+    assert deb == 0 or abs(raw * raw - deb * deb - noise * noise) < 1e-4 * max(1, raw * raw), (r, noise)
+assert abs(g["rmse_rel_debiased"] - float(goal[1]["rmse_rel_debiased_indirect"])) < 1e-5, g
 PY
+
+# The reference alone, in rounds to a noise target: more paths than the first round's, the
+# noise at or below the target, the count cached with it; one round by default.
+"$bench" accuracy reference --scene default "${small[@]}" --ref-samples 2 --ref-noise 0.3 \
+    > "$out/reference.json" 2> "$out/reference.log" || { cat "$out/reference.log" >&2; fail "reference failed"; }
+"$bench" accuracy reference --scene default "${small[@]}" --ref-samples 2 --ref-noise 0.3 \
+    > "$out/reference_again.json" 2>/dev/null || fail "cached reference failed"
+"$bench" accuracy reference --scene default "${small[@]}" --ref-samples 2 \
+    > "$out/reference_one.json" 2>/dev/null || fail "one-round reference failed"
+python3 - "$out" <<'PY' || fail "reference rounds wrong"
+import json, sys
+out = sys.argv[1]
+r, again, one = (json.loads(open(f"{out}/{n}.json").read())
+                 for n in ("reference", "reference_again", "reference_one"))
+assert one["reference_samples"] == 4 and one["reference_noise_rel"] > 0.3, one
+assert r["reference_samples"] > 4 and r["reference_noise_rel"] <= 0.3, r
+assert again["reference_cached"] is True and again["reference_samples"] == r["reference_samples"], again
+assert abs(again["reference_noise_rel"] - r["reference_noise_rel"]) < 1e-6, again
+PY
+grep -q "reference noise relRMSE .* at 2 paths per half" "$out/reference.log" || fail "no round printed"
 
 # Masked to geometry: from the open courtyard's camera some pixels see the sky; the
 # metrics count only the others.
@@ -140,10 +168,11 @@ PY
 python3 "$src/scripts/accuracy_report.py" "$out" --quick > "$out/ACCURACY.md" \
     || fail "report generator failed"
 grep -q "^## default: speed against accuracy" "$out/ACCURACY.md" || fail "report lacks the sweep"
-grep -q "^| default | [0-9.]* | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
+grep -q "^| default | [0-9.]* (raw [0-9.]*) | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
     || fail "report lacks the goal table"
 grep -q "Modelling no more than the scene needs" "$out/ACCURACY.md" || fail "report lacks savings"
 grep -q "^| every texel | approx | 64 | " "$out/ACCURACY.md" || fail "report lacks the caches rows"
 grep -q "^## Three methods: ILPV, vpl and caches" "$out/ACCURACY.md" || fail "report lacks the method table"
 grep -q "^| default | yes | " "$out/ACCURACY.md" || fail "report lacks the caches' temporal table"
+grep -q "^| default | 8 | .* | [0-9.]* |$" "$out/ACCURACY.md" || fail "report lacks the reference noise table"
 echo "accuracy sweep: ok"

@@ -2,7 +2,8 @@
 # cavelight-compare end to end: PFM and PNG inputs, --mask-background, --crop and
 # --ssim-range checked against an independent direct (non-separable) Python evaluation of
 # the metric definitions, a black reference reported as no signal (exit 3 unless
-# --allow-no-signal), and one-line exit-2 errors naming the file at fault.
+# --allow-no-signal), --flip's known answers (LDR on PNGs, HDR on PFMs), and one-line exit-2
+# errors naming the file at fault.
 set -euo pipefail
 build=$1
 tool="$build/cavelight-compare"
@@ -168,6 +169,39 @@ line=$("$tool" "$out/black.pfm" "$out/leak.pfm") || fail "a black image against 
 python3 -c 'import json,sys; m=json.loads(sys.argv[1]); assert m["signal"] is True and abs(m["rmse_rel"] - 48 ** 0.5) < 1e-5, m' \
     "$line" || fail "black image against a lit reference: $line"
 
+# --flip: the known answers of tests/unit/test_flip.c through the tool. Uniform black
+# against white PNGs (LDR-FLIP: 0.967380, the colour term alone); an image against itself
+# (PFM: HDR-FLIP, exactly 0); a uniform PFM against black: one exposure, 0.965188.
+python3 - "$out" <<'PY'
+import struct, sys, zlib
+d = sys.argv[1]
+W, H = 8, 6
+def write_png(path, v):
+    raw = b''.join(b'\0' + bytes([v] * (3 * W)) for _ in range(H))
+    chunk = lambda t, b: struct.pack('>I', len(b)) + t + b + struct.pack('>I', zlib.crc32(t + b))
+    with open(path, 'wb') as f:
+        f.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', W, H, 8, 2, 0, 0, 0))
+                + chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b''))
+write_png(d + '/white8.png', 255)
+write_png(d + '/black8.png', 0)
+with open(d + '/grey.pfm', 'wb') as f:
+    f.write(b'PF\n%d %d\n-1.0\n' % (W, H) + struct.pack('<3f', 0.37, 0.37, 0.37) * (W * H))
+PY
+flip_check() { # json-line expression
+    python3 -c 'import json,sys; m=json.loads(sys.argv[1]); assert eval(sys.argv[2]), m' "$1" "$2" ||
+        fail "--flip: $2: $1"
+}
+line=$("$tool" "$out/black8.png" "$out/white8.png" --flip) || fail "--flip on PNGs failed"
+flip_check "$line" 'abs(m["flip"] - 0.967380) < 1e-5 and m["flip_mode"] == "ldr" and abs(m["flip_ppd"] - 67.0206) < 1e-3'
+line=$("$tool" "$out/black8.png" "$out/white8.png") || fail "compare without --flip failed"
+flip_check "$line" '"flip" not in m'
+line=$("$tool" "$out/img.pfm" "$out/img.pfm" --flip --ppd 30) || fail "--flip on PFMs failed"
+flip_check "$line" 'm["flip"] == 0 and m["flip_mode"] == "hdr" and m["flip_ppd"] == 30'
+line=$("$tool" "$out/black.pfm" "$out/grey.pfm" --flip) || fail "--flip on a uniform PFM failed"
+flip_check "$line" 'abs(m["flip"] - 0.965188) < 1e-4 and m["flip_exposures"] == 1'
+line=$("$tool" "$out/img.pfm" "$out/ref.pfm" --flip --mask-background) || fail "--flip with a mask failed"
+flip_check "$line" '0 < m["flip"] < 1 and m["flip_exposures"] >= 2 and m["flip_start_exposure"] < m["flip_stop_exposure"]'
+
 # Errors: exit 2 and one line on stderr that names the file at fault.
 expect_error() { # substring command...
     local want=$1 rc=0
@@ -186,4 +220,6 @@ printf 'PF\n24 18\n-1.0\n' > "$out/truncated.pfm"
 expect_error "$out/truncated.pfm: truncated" "$tool" "$out/img.pfm" "$out/truncated.pfm"
 expect_error "does not fit" "$tool" "$out/img.pfm" "$out/ref.pfm" --crop 20,0,5,5
 expect_error "--ssim-range" "$tool" "$out/img.pfm" "$out/ref.pfm" --ssim-range x
+expect_error "give two PNGs (LDR-FLIP) or two PFMs" "$tool" "$out/black.pfm" "$out/white8.png" --flip
+expect_error "--ppd" "$tool" "$out/img.pfm" "$out/ref.pfm" --flip --ppd 0
 echo "compare CLI OK"

@@ -266,6 +266,56 @@ static void test_no_signal(void **state)
     free(img);
 }
 
+/* Debiasing: an offset c against a reference whose noise is s leaves sqrt(c^2 - s^2);
+ * a noise above the error leaves 0; and on a noisy reference made of two halves, the
+ * halves' estimate of its noise brings the error back to the one against the truth. */
+static void test_debiased(void **state)
+{
+    (void)state;
+    float *ref = image_alloc(), *img = image_alloc();
+    for (int i = 0; i < N * 3; i++) {
+        ref[i] = 2.0f;
+        img[i] = 2.5f;
+    }
+    image_metrics m;
+    image_metrics_desc d = {.reference_noise = 0.3};
+    assert_int_equal(image_metrics_compare(img, ref, W, H, &d, &m), 0);
+    assert_float_equal(m.rmse_rel, 0.25, 1e-9);
+    assert_float_equal(m.rmse_rel_debiased, 0.4 / 2.0, 1e-9);
+    d.reference_noise = 0.7;
+    assert_int_equal(image_metrics_compare(img, ref, W, H, &d, &m), 0);
+    assert_true(m.rmse_rel_debiased == 0.0);
+    assert_int_equal(image_metrics_compare(img, ref, W, H, NULL, &m), 0);
+    assert_true(m.rmse_rel_debiased == m.rmse_rel);
+
+    /* truth 1 + pattern; image = truth + 0.05; halves = truth + noise of sd 0.4 */
+    enum { BIG = 200 * 200 };
+    float *truth = malloc(sizeof(float) * BIG * 3), *avg = malloc(sizeof(float) * BIG * 3);
+    float *test = malloc(sizeof(float) * BIG * 3);
+    assert_non_null(truth && avg && test);
+    uint32_t seed = 5;
+    double sq = 0;
+    for (int i = 0; i < BIG * 3; i++) {
+        truth[i] = 1.0f + 0.5f * (float)sin(0.01 * i);
+        test[i] = truth[i] + 0.05f;
+        double a = truth[i] + 0.4 * sqrt(3.0) * noise(&seed);
+        double b = truth[i] + 0.4 * sqrt(3.0) * noise(&seed);
+        avg[i] = (float)(0.5 * (a + b));
+        sq += (a - b) * (a - b);
+    }
+    image_metrics_desc halves = {.reference_noise = sqrt(sq / (BIG * 3)) / 2.0};
+    image_metrics vs_truth;
+    assert_int_equal(image_metrics_compare(test, truth, 200, 200, NULL, &vs_truth), 0);
+    assert_int_equal(image_metrics_compare(test, avg, 200, 200, &halves, &m), 0);
+    assert_true(m.rmse_rel > 4 * vs_truth.rmse_rel);
+    assert_float_equal(m.rmse_rel_debiased, vs_truth.rmse_rel, 0.2 * vs_truth.rmse_rel);
+    free(truth);
+    free(avg);
+    free(test);
+    free(ref);
+    free(img);
+}
+
 static void test_bad_sizes(void **state)
 {
     (void)state;
@@ -290,6 +340,7 @@ int main(void)
         cmocka_unit_test(test_mask),
         cmocka_unit_test(test_nonfinite),
         cmocka_unit_test(test_no_signal),
+        cmocka_unit_test(test_debiased),
         cmocka_unit_test(test_bad_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
