@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/fnv1a.h"
 #include "base/xalloc.h"
 #include "gltools.h"
 #include "ldm/ldm_directions.h"
@@ -19,14 +20,6 @@ struct ldm_gl {
     uint64_t checksum;
     size_t overflowed;
 };
-
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *b = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
 
 static GLuint storage(const gl_functions *gl, size_t bytes, const void *data)
 {
@@ -162,7 +155,7 @@ double ldm_gl_build(ldm_gl *m, const scene_gl *mesh)
     m->checksum = 0;
     if (all) {
         ldm_gl_read(m, all);
-        m->checksum = fnv1a(1469598103934665603ull, all, words * sizeof *all);
+        m->checksum = fnv1a64(FNV1A64_CLUSTER_SEED, all, words * sizeof *all);
     }
     free(all);
     return built;

@@ -9,6 +9,7 @@
 
 #include "base/byteorder.h"
 #include "base/clock.h"
+#include "base/fnv1a.h"
 #include "base/folder.h"
 #include "caches/val_select.h"
 
@@ -20,21 +21,11 @@ enum { HEADER = 40, RECORD = 4 * CACHE_RECORD_FLOATS, TRAILER = 8 };
 /* More caches than this is a damaged count, not a scene. */
 #define MAX_COUNT ((uint64_t)1 << 26)
 
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *b = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= b[i];
-        h *= 0x100000001b3ull;
-    }
-    return h;
-}
-
 uint64_t cache_scene_hash(const scene *s)
 {
     uint8_t b[8];
     le_put(b, s->triangle_count, 8);
-    uint64_t h = fnv(0xcbf29ce484222325ull, b, 8);
+    uint64_t h = fnv1a64(FNV1A64_OFFSET, b, 8);
     h = val_hash_words(h, s->positions, 9 * s->triangle_count);
     h = val_hash_words(h, s->normals, 9 * s->triangle_count);
     for (size_t t = 0; t < s->triangle_count; t++) /* the caches' roughness */
@@ -81,7 +72,7 @@ void cache_file_path(const char *dir, const cache_key *key, char *out, size_t ca
     uint8_t h[HEADER];
     put_header(h, key, 0);
     snprintf(out, cap, "%s/caches-%016llx.bin", dir,
-             (unsigned long long)fnv(0xcbf29ce484222325ull, h, HEADER));
+             (unsigned long long)fnv1a64(FNV1A64_OFFSET, h, HEADER));
 }
 
 /* The records of buf (count of them) into a new set. */
@@ -144,7 +135,7 @@ int cache_file_read(const char *path, const cache_key *key, cache_set *out, char
             snprintf(why, cap, "truncated or padded: %ld bytes where %llu caches take %llu",
                      size, (unsigned long long)count, (unsigned long long)expect);
         else if (le_get(buf + size - TRAILER, 8) !=
-                 fnv(0xcbf29ce484222325ull, buf, (size_t)size - TRAILER))
+                 fnv1a64(FNV1A64_OFFSET, buf, (size_t)size - TRAILER))
             snprintf(why, cap, "checksum mismatch (damaged)");
         else if (decode(buf, count, key, out) != 0)
             snprintf(why, cap, "out of memory for %llu caches", (unsigned long long)count);
@@ -179,7 +170,7 @@ int cache_file_write(const char *path, const cache_key *key, const cache_set *se
             le_put(buf + HEADER + RECORD * i + 4 * k, bits, 4);
         }
     }
-    le_put(buf + size - TRAILER, fnv(0xcbf29ce484222325ull, buf, size - TRAILER), 8);
+    le_put(buf + size - TRAILER, fnv1a64(FNV1A64_OFFSET, buf, size - TRAILER), 8);
     char tmp[600];
     snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
     FILE *f = fopen(tmp, "wb");

@@ -1,5 +1,7 @@
 #include "caches/val_select.h"
 
+#include "base/fnv1a.h"
+
 #include <string.h>
 
 float val_view_term(const vpl *v, const float *samples, int nsamples)
@@ -113,10 +115,7 @@ uint64_t val_hash_words(uint64_t h, const void *words, size_t n)
     for (size_t i = 0; i < n; i++) {
         uint32_t w;
         memcpy(&w, (const char *)words + 4 * i, sizeof w);
-        for (int b = 0; b < 4; b++) {
-            h ^= (w >> (8 * b)) & 0xffu;
-            h *= 0x100000001b3ull;
-        }
+        h = fnv1a64_le(h, w, 4);
     }
     return h;
 }

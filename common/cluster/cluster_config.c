@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/fnv1a.h"
 #include "base/json_keys.h"
 #include "base/mat4.h"
 #include "warp/mpcdi.h"
@@ -639,10 +640,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     parse_ctx c = {.keys = json_keys_create(), .path = path, .err = err, .errlen = errlen};
     memset(cfg, 0, sizeof *cfg);
     snprintf(cfg->path, sizeof cfg->path, "%s", path);
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < len; i++)
-        h = (h ^ (uint8_t)text[i]) * 1099511628211ull;
-    cfg->hash = h;
+    cfg->hash = fnv1a64(FNV1A64_CLUSTER_SEED, text, len);
 
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);

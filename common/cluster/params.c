@@ -1,6 +1,7 @@
 #include "cluster/params.h"
 
 #include "base/byteorder.h"
+#include "base/fnv1a.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -46,14 +47,6 @@ int params_light_key(int light, int field)
     return PARAMS_LIGHT_BASE + light * PARAMS_LIGHT_FIELDS + field;
 }
 
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const uint8_t *b = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-
 static int is_bytes_type(params_type t) { return t == PARAMS_T_STRING || t == PARAMS_T_BLOB; }
 
 static params_key *add(params_schema *s, const char *name, params_type type, size_t offset,
@@ -66,14 +59,14 @@ static params_key *add(params_schema *s, const char *name, params_type type, siz
     k->setting = row;
     k->gi_slot = slot;
     uint32_t t = (uint32_t)type;
-    s->hash = fnv(fnv(s->hash, k->name, strlen(k->name) + 1), &t, sizeof t);
+    s->hash = fnv1a64(fnv1a64(s->hash, k->name, strlen(k->name) + 1), &t, sizeof t);
     return k;
 }
 
 void params_schema_init(params_schema *s)
 {
     memset(s, 0, sizeof *s);
-    s->hash = 1469598103934665603ull;
+    s->hash = FNV1A64_CLUSTER_SEED;
     for (int k = 0; k < PARAMS_LIGHT_BASE; k++)
         add(s, core[k].name, core[k].type, core[k].offset, NULL, -1);
     for (int l = 0; l < FRAME_MAX_LIGHTS; l++)
@@ -100,7 +93,7 @@ int params_schema_find(const params_schema *s, const char *name)
 
 uint64_t params_session_hash(uint64_t config_hash, const params_schema *s)
 {
-    return fnv(fnv(1469598103934665603ull, &config_hash, 8), &s->hash, 8);
+    return fnv1a64(fnv1a64(FNV1A64_CLUSTER_SEED, &config_hash, 8), &s->hash, 8);
 }
 
 int params_schema_add(params_schema *s, const setting *row, size_t frame_offset, int gi_slot)
@@ -175,14 +168,14 @@ int params_schema_add_key(params_schema *s, const char *name, params_type type,
     params_key *k = add(s, name, type, PARAMS_NO_FRAME, NULL, -1);
     if (is_bytes_type(type)) {
         uint64_t c = capacity;
-        s->hash = fnv(s->hash, &c, sizeof c);
+        s->hash = fnv1a64(s->hash, &c, sizeof c);
         k->capacity = capacity;
         k->bytes_offset = s->bytes_used;
         s->bytes_used += capacity;
     } else if (initial) {
         size_t size = type_words(type) * type_word_size(type);
         memcpy(k->initial, initial, size);
-        s->hash = fnv(s->hash, k->initial, size);
+        s->hash = fnv1a64(s->hash, k->initial, size);
     }
     return s->count - 1;
 }
@@ -533,17 +526,15 @@ void params_to_frame(const params_store *s, frame_params *f)
 
 uint64_t params_checksum(const params_store *s)
 {
-    uint64_t h = 1469598103934665603ull;
-    for (int i = 0; i < 8; i++)
-        h = (h ^ ((s->version >> (8 * i)) & 0xff)) * 1099511628211ull;
+    uint64_t h = fnv1a64_le(FNV1A64_CLUSTER_SEED, s->version, 8);
     for (int k = 0; k < s->schema->count; k++) {
         size_t size = params_key_size(s, k);
         const uint8_t *v = s->value[k];
         if (is_bytes_type(params_key_type(s, k))) {
-            h = fnv(h, v, 4);
+            h = fnv1a64(h, v, 4);
             v = params_get_bytes(s, k, &size);
         }
-        h = fnv(h, v, size);
+        h = fnv1a64(h, v, size);
     }
     return h;
 }

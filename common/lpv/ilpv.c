@@ -1,5 +1,6 @@
 #include "lpv/ilpv.h"
 
+#include "base/fnv1a.h"
 #include "base/fpmode.h"
 #include "lpv/lpv_propagate.h"
 
@@ -89,8 +90,8 @@ uint64_t ilpv_injection_key(const lpv_volume *injected, const lpv_volume *origin
     memcpy(&bits[0], &absorption, sizeof bits[0]);
     memcpy(&bits[1], &scattering, sizeof bits[1]);
     uint64_t k = lpv_volume_checksum(injected);
-    k = (k ^ lpv_volume_checksum(origin)) * 0x100000001b3ull;
-    return (k ^ ((uint64_t)bits[0] << 32 | bits[1])) * 0x100000001b3ull;
+    k = fnv1a64_word(k, lpv_volume_checksum(origin));
+    return fnv1a64_word(k, (uint64_t)bits[0] << 32 | bits[1]);
 }
 
 ilpv_rule ilpv_history_rule(const ilpv_history *h, float lambda_incr, uint64_t key,

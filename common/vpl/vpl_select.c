@@ -1,5 +1,7 @@
 #include "vpl/vpl_select.h"
 
+#include "base/fnv1a.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -133,7 +135,7 @@ void vpl_view_term(const vpl *candidates, size_t count, size_t texels, const flo
 
 uint64_t vpl_checksum(const vpl *v, int n)
 {
-    uint64_t h = 0xcbf29ce484222325ull;
+    uint64_t h = FNV1A64_OFFSET;
     for (int i = 0; i < n; i++) {
         const float *f[4] = {v[i].position, v[i].normal, v[i].flux, &v[i].area};
         const int len[4] = {3, 3, 3, 1};
@@ -141,10 +143,7 @@ uint64_t vpl_checksum(const vpl *v, int n)
             for (int k = 0; k < len[a]; k++) {
                 uint32_t bits;
                 memcpy(&bits, &f[a][k], sizeof bits);
-                for (int b = 0; b < 4; b++) {
-                    h ^= (bits >> (8 * b)) & 0xffu;
-                    h *= 0x100000001b3ull;
-                }
+                h = fnv1a64_le(h, bits, 4);
             }
     }
     return h;

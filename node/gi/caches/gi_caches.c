@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/fnv1a.h"
 #include "base/xalloc.h"
 #include "gi/caches/caches_exact.h"
 #include "gltools.h"
@@ -514,7 +515,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     else
         gpu_proxies(c, rsm);
     read_proxies(c, 0, c->proxies);
-    uint64_t h = val_pick_checksum(c->picks, c->pick_count, 0xcbf29ce484222325ull);
+    uint64_t h = val_pick_checksum(c->picks, c->pick_count, FNV1A64_OFFSET);
     /* cache_proxy: 8 floats, no padding */
     h = val_hash_words(h, c->proxies, c->set.count * 8);
     if (glossy) {

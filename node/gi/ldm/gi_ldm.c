@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/fnv1a.h"
 #include "base/mat4.h"
 #include "base/xalloc.h"
 #include "gi/ldm/ldm_photons.h"
@@ -160,14 +161,6 @@ static void collect(gi_ldm *g, const frame_params *p, const gi_rsm *rsm)
     g->photon_count = n;
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *b = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-
 /* The split: one invocation per photon and map. Then the checksum of its slots. */
 static void split(gi_ldm *g, const frame_params *p)
 {
@@ -206,7 +199,7 @@ static void checksum(gi_ldm *g, size_t slots)
     gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(slots * SPLIT_VEC4 * 16), all);
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     uint64_t maps = ldm_gl_checksum(g->maps);
-    g->checksum = fnv1a(fnv1a(1469598103934665603ull, &maps, sizeof maps), all,
+    g->checksum = fnv1a64(fnv1a64(FNV1A64_CLUSTER_SEED, &maps, sizeof maps), all,
                         slots * SPLIT_VEC4 * 4 * sizeof(float));
     g->splits = 0;
     for (size_t i = 0; i < slots; i++) {
