@@ -677,22 +677,9 @@ static int all_ready(cluster_master *m, void *arg)
     return 1;
 }
 
-int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
+/* FRAME v to every live node: those at v-1 (the usual case) share one encoded delta. */
+static void send_frames(cluster_master *m, uint64_t v, cluster_frame_result *out)
 {
-    memset(out, 0, sizeof *out);
-    double t0 = clock_now_ms();
-    pump(m, t0, NULL, NULL); /* joins and leaves that arrived since the last frame */
-    if (live_count(m) == 0)
-        return -1;
-    if (m->raise_epoch) {
-        params_set_u32(&m->params, PARAMS_RESET_EPOCH, params_get_u32(&m->params, PARAMS_RESET_EPOCH) + 1);
-        m->raise_epoch = 0;
-    }
-    uint64_t v = params_commit(&m->params);
-    out->version = v;
-    out->epoch = params_get_u32(&m->params, PARAMS_RESET_EPOCH);
-
-    /* Nodes at v-1 (the usual case) share one encoded delta. */
     uint8_t *common = m->common_buf;
     size_t common_len = params_encode_delta(&m->params, v - 1, common, sizeof m->common_buf);
     for (int i = 0; i < m->cfg->node_count; i++) {
@@ -716,13 +703,11 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
                 out->frame_bytes = wire_encode(&msg, m->buf, sizeof m->buf);
         }
     }
-    double tb = clock_now_ms();
-    m->last_heartbeat = tb; /* the FRAME was every live node's heartbeat */
-    int timeout = stall_timeout_ms(m);
-    out->timeout_ms = timeout;
-    pump(m, tb + timeout, all_ready, NULL);
-    out->barrier_ms = clock_now_ms() - tb;
+}
 
+/* After the barrier: nodes not ready are dropped; the ready ones' checksums must agree. */
+static void collect_ready(cluster_master *m, uint64_t v, int timeout, cluster_frame_result *out)
+{
     uint64_t first = 0;
     int have_first = 0;
     for (int i = 0; i < m->cfg->node_count; i++) {
@@ -752,19 +737,50 @@ int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
             out->desync = 1;
         }
     }
+}
+
+static void log_desync(cluster_master *m, uint64_t v)
+{
+    uint64_t skipped = 0;
+    if (!ratelog_event(&m->desync_log, clock_now_ms(), &skipped))
+        return;
+    fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): GI checksums "
+            "differ:", (unsigned long long)v, (unsigned long long)m->st.desyncs, (unsigned long long)skipped);
+    for (int i = 0; i < m->cfg->node_count; i++)
+        if (m->peers[i].in_barrier && m->peers[i].ready)
+            fprintf(stderr, " %s=%016llx", m->cfg->nodes[i].name, (unsigned long long)m->peers[i].s.checksum);
+    fprintf(stderr, "\n");
+}
+
+int cluster_master_frame(cluster_master *m, cluster_frame_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double t0 = clock_now_ms();
+    pump(m, t0, NULL, NULL); /* joins and leaves that arrived since the last frame */
+    if (live_count(m) == 0)
+        return -1;
+    if (m->raise_epoch) {
+        params_set_u32(&m->params, PARAMS_RESET_EPOCH, params_get_u32(&m->params, PARAMS_RESET_EPOCH) + 1);
+        m->raise_epoch = 0;
+    }
+    uint64_t v = params_commit(&m->params);
+    out->version = v;
+    out->epoch = params_get_u32(&m->params, PARAMS_RESET_EPOCH);
+    send_frames(m, v, out);
+    double tb = clock_now_ms();
+    m->last_heartbeat = tb; /* the FRAME was every live node's heartbeat */
+    int timeout = stall_timeout_ms(m);
+    out->timeout_ms = timeout;
+    pump(m, tb + timeout, all_ready, NULL);
+    out->barrier_ms = clock_now_ms() - tb;
+
+    collect_ready(m, v, timeout, out);
     if (out->desync)
         m->st.desyncs++;
     if (out->ready > 0)
         m->st.frames_rendered++;
-    uint64_t skipped = 0;
-    if (out->desync && ratelog_event(&m->desync_log, clock_now_ms(), &skipped)) {
-        fprintf(stderr, "cavelight-master: desync in frame %llu (%llu so far, %llu not logged): GI checksums "
-                "differ:", (unsigned long long)v, (unsigned long long)m->st.desyncs, (unsigned long long)skipped);
-        for (int i = 0; i < m->cfg->node_count; i++)
-            if (m->peers[i].in_barrier && m->peers[i].ready)
-                fprintf(stderr, " %s=%016llx", m->cfg->nodes[i].name, (unsigned long long)m->peers[i].s.checksum);
-        fprintf(stderr, "\n");
-    }
+    if (out->desync)
+        log_desync(m, v);
     wire_msg swap = {.type = WIRE_SWAP, .version = v};
     for (int i = 0; i < m->cfg->node_count; i++)
         if (m->peers[i].in_barrier && m->peers[i].ready)

@@ -470,6 +470,47 @@ static size_t snapshot_bytes(session *s)
     return wire_encode(&sm, msg, sizeof msg);
 }
 
+/* The report's per_node[i]. */
+static cJSON *node_report(session *s, int i)
+{
+    static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
+    run_stats *rs = &s->rs;
+    cluster_peer_stats ps;
+    cluster_master_peer_stats(s->m, i, &ps);
+    cJSON *n = cJSON_CreateObject();
+    cJSON_AddStringToObject(n, "name", s->cfg->nodes[i].name);
+    cJSON_AddStringToObject(n, "state", ps.state == CLUSTER_PEER_LIVE ? "live" :
+                            ps.state == CLUSTER_PEER_DROPPED ? "dropped" : "absent");
+    cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
+    cJSON_AddNumberToObject(n, "joins", ps.joins);
+    cJSON_AddNumberToObject(n, "drops", ps.drops);
+    cJSON_AddNumberToObject(n, "refusals", ps.refusals);
+    cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
+    char hex[20];
+    snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
+    cJSON_AddStringToObject(n, "last_checksum", hex);
+    cJSON *pass = cJSON_AddObjectToObject(n, "pass_ms_mean");
+    for (int k = 0; k < WIRE_TIMING_COUNT; k++)
+        cJSON_AddNumberToObject(pass, pass_names[k], rs->pass_frames[i] ? rs->pass_sum[i][k] / rs->pass_frames[i] : 0);
+    cJSON_AddItemToObject(n, "ready_after_frame_ms", stat_obj(rs->ready_ms[i], rs->node_n[i]));
+    return n;
+}
+
+/* root printed to path, and freed. */
+static int write_report(cJSON *root, const char *path)
+{
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    FILE *f = text ? fopen(path, "w") : NULL;
+    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
+    if (f && fclose(f) != 0)
+        ok = 0;
+    free(text);
+    if (!ok)
+        fprintf(stderr, "cavelight-master: cannot write report %s: %s\n", path, strerror(errno));
+    return ok ? 0 : -1;
+}
+
 int session_write_report(session *s, const char *path, double wall_s)
 {
     const cluster_config *cfg = s->cfg;
@@ -519,36 +560,7 @@ int session_write_report(session *s, const char *path, double wall_s)
     cJSON_AddNumberToObject(root, "accept_failures", (double)st.accept_failures);
     cJSON_AddNumberToObject(root, "fd_limit", (double)st.fd_limit);
     cJSON *nodes = cJSON_AddArrayToObject(root, "per_node");
-    static const char *const pass_names[WIRE_TIMING_COUNT] = {"apply", "frame_pass", "eye_passes", "total"};
-    for (int i = 0; i < cfg->node_count; i++) {
-        cluster_peer_stats ps;
-        cluster_master_peer_stats(m, i, &ps);
-        cJSON *n = cJSON_CreateObject();
-        cJSON_AddStringToObject(n, "name", cfg->nodes[i].name);
-        cJSON_AddStringToObject(n, "state", ps.state == CLUSTER_PEER_LIVE ? "live" :
-                                ps.state == CLUSTER_PEER_DROPPED ? "dropped" : "absent");
-        cJSON_AddNumberToObject(n, "frames_ready", (double)ps.frames_ready);
-        cJSON_AddNumberToObject(n, "joins", ps.joins);
-        cJSON_AddNumberToObject(n, "drops", ps.drops);
-        cJSON_AddNumberToObject(n, "refusals", ps.refusals);
-        cJSON_AddStringToObject(n, "last_refusal", ps.refusal);
-        char hex[20];
-        snprintf(hex, sizeof hex, "%016llx", (unsigned long long)ps.checksum);
-        cJSON_AddStringToObject(n, "last_checksum", hex);
-        cJSON *pass = cJSON_AddObjectToObject(n, "pass_ms_mean");
-        for (int k = 0; k < WIRE_TIMING_COUNT; k++)
-            cJSON_AddNumberToObject(pass, pass_names[k], rs->pass_frames[i] ? rs->pass_sum[i][k] / rs->pass_frames[i] : 0);
-        cJSON_AddItemToObject(n, "ready_after_frame_ms", stat_obj(rs->ready_ms[i], rs->node_n[i]));
-        cJSON_AddItemToArray(nodes, n);
-    }
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    FILE *f = text ? fopen(path, "w") : NULL;
-    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
-    if (f && fclose(f) != 0)
-        ok = 0;
-    free(text);
-    if (!ok)
-        fprintf(stderr, "cavelight-master: cannot write report %s: %s\n", path, strerror(errno));
-    return ok ? 0 : -1;
+    for (int i = 0; i < cfg->node_count; i++)
+        cJSON_AddItemToArray(nodes, node_report(s, i));
+    return write_report(root, path);
 }

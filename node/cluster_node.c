@@ -163,6 +163,59 @@ static void say_link(const cluster_node_desc *d, cluster_client *client, const c
                 note);
 }
 
+/* The session: frames, swaps and the link's news until a stop, a refusal, the master's end
+ * (with exit_with_master) or the window closing. 1 on an error. */
+static int serve(const cluster_node_desc *d, cluster_view *view, node_keys *keys, cluster_client *client,
+                 cluster_node_stats *st, char *err, size_t errlen)
+{
+    int lost_reported = 0;
+    uint64_t pending_swap = 0;
+    ratelog range_log = {0};
+    while (!(d->stop && *d->stop)) {
+        cluster_event ev;
+        switch (cluster_client_poll(client, 100, &ev)) {
+        case CLUSTER_EVENT_FRAME:
+            if (render_frame(d, view, keys, client, &ev, &range_log, st, err, errlen) != 0)
+                return 1;
+            pending_swap = ev.version;
+            lost_reported = 0;
+            break;
+        case CLUSTER_EVENT_SWAP:
+            if (ev.version != pending_swap)
+                break;
+            st->swaps++;
+            if (view) {
+                int pr = cluster_view_present(view, err, errlen);
+                if (pr < 0)
+                    return 1;
+                if (pr > 0) {
+                    if (!d->quiet)
+                        fprintf(stderr, "cavelight-node %s: window closed: leaving\n", d->name);
+                    return 0;
+                }
+            }
+            break;
+        case CLUSTER_EVENT_LOST:
+            if (!lost_reported)
+                say_link(d, client, &ev);
+            lost_reported = 1;
+            break;
+        case CLUSTER_EVENT_SHUTDOWN:
+            say_link(d, client, &ev);
+            if (d->exit_with_master)
+                return 0;
+            break;
+        case CLUSTER_EVENT_REFUSED:
+            snprintf(err, errlen, "cluster node %s: refused by the master (config hash differs from %s)",
+                     d->name, d->config->path);
+            return 1;
+        default:
+            break;
+        }
+    }
+    return 0;
+}
+
 int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char *err, size_t errlen)
 {
     cluster_node_stats st = {0};
@@ -202,57 +255,7 @@ int cluster_node_run(const cluster_node_desc *d, cluster_node_stats *stats, char
     }
     if (keys->app)
         app_host_bind(keys->app, cluster_client_params(client), NULL, &keys->pose);
-    int rc = 0, lost_reported = 0;
-    uint64_t pending_swap = 0;
-    ratelog range_log = {0};
-    while (!(d->stop && *d->stop)) {
-        cluster_event ev;
-        switch (cluster_client_poll(client, 100, &ev)) {
-        case CLUSTER_EVENT_FRAME:
-            if (render_frame(d, view, keys, client, &ev, &range_log, &st, err, errlen) != 0) {
-                rc = 1;
-                goto out;
-            }
-            pending_swap = ev.version;
-            lost_reported = 0;
-            break;
-        case CLUSTER_EVENT_SWAP:
-            if (ev.version != pending_swap)
-                break;
-            st.swaps++;
-            if (view) {
-                int pr = cluster_view_present(view, err, errlen);
-                if (pr < 0) {
-                    rc = 1;
-                    goto out;
-                }
-                if (pr > 0) {
-                    if (!d->quiet)
-                        fprintf(stderr, "cavelight-node %s: window closed: leaving\n", d->name);
-                    goto out;
-                }
-            }
-            break;
-        case CLUSTER_EVENT_LOST:
-            if (!lost_reported)
-                say_link(d, client, &ev);
-            lost_reported = 1;
-            break;
-        case CLUSTER_EVENT_SHUTDOWN:
-            say_link(d, client, &ev);
-            if (d->exit_with_master)
-                goto out;
-            break;
-        case CLUSTER_EVENT_REFUSED:
-            snprintf(err, errlen, "cluster node %s: refused by the master (config hash differs from %s)",
-                     d->name, d->config->path);
-            rc = 1;
-            goto out;
-        default:
-            break;
-        }
-    }
-out:
+    int rc = serve(d, view, keys, client, &st, err, errlen);
     cluster_client_destroy(client);
     node_keys_destroy(keys); /* the application's shutdown, with the GL context still there */
     cluster_view_destroy(view);

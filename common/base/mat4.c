@@ -16,6 +16,75 @@ void mat4_mul(const float a[16], const float b[16], float out[16])
     memcpy(out, t, sizeof t);
 }
 
+void mat4d_mul(const double a[16], const double b[16], double out[16])
+{
+    double t[16];
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a[k * 4 + r] * b[c * 4 + k];
+            t[c * 4 + r] = s;
+        }
+    memcpy(out, t, sizeof t);
+}
+
+void mat4d_identity(double out[16])
+{
+    for (int i = 0; i < 16; i++)
+        out[i] = i % 5 == 0;
+}
+
+void mat4d_from_float(const float m[16], double out[16])
+{
+    for (int i = 0; i < 16; i++)
+        out[i] = m[i];
+}
+
+/* Swaps row c with the row below it of the largest |a[r][c]|; 0 when that is ~0. */
+static int pivot(double a[4][8], int c)
+{
+    int piv = c;
+    for (int r = c + 1; r < 4; r++)
+        if (fabs(a[r][c]) > fabs(a[piv][c]))
+            piv = r;
+    if (!(fabs(a[piv][c]) > 1e-300))
+        return 0;
+    for (int k = 0; k < 8; k++) {
+        double t = a[c][k];
+        a[c][k] = a[piv][k];
+        a[piv][k] = t;
+    }
+    return 1;
+}
+
+int mat4d_inverse(const double m[16], double out[16])
+{
+    double a[4][8]; /* [m | I], row-major */
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            a[r][c] = m[c * 4 + r];
+            a[r][4 + c] = r == c;
+        }
+    for (int c = 0; c < 4; c++) {
+        if (!pivot(a, c))
+            return -1;
+        double inv = 1.0 / a[c][c];
+        for (int k = 0; k < 8; k++)
+            a[c][k] *= inv;
+        for (int r = 0; r < 4; r++)
+            if (r != c) {
+                double f = a[r][c];
+                for (int k = 0; k < 8; k++)
+                    a[r][k] -= f * a[c][k];
+            }
+    }
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            out[c * 4 + r] = a[r][4 + c];
+    return 0;
+}
+
 int mat4_affine_inverse_d(const double m[16], double out[16])
 {
     /* The 3x3 part by its cofactors over the determinant, the translation by -R^-1 t. */

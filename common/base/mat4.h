@@ -10,6 +10,16 @@
 /* out = a * b; out may alias a or b. */
 void mat4_mul(const float a[16], const float b[16], float out[16]);
 
+/* The double forms, for chains that must not round to float between steps (glTF node
+ * trees, animation poses, the path tracer's camera). mat4d_mul() sums each element from
+ * k = 0 to 3, starting from 0: callers' results depend on that order. out may alias. */
+void mat4d_mul(const double a[16], const double b[16], double out[16]);
+void mat4d_identity(double out[16]);
+void mat4d_from_float(const float m[16], double out[16]);
+/* The inverse of any m (projective too), by Gauss-Jordan with partial pivoting; -1 (out
+ * untouched) when m is singular. mat4_affine_inverse_d() is the cheaper affine case. */
+int mat4d_inverse(const double m[16], double out[16]);
+
 /* out = the inverse of the affine m (last row 0 0 0 1: rotation, scale, shear and a
  * translation), computed in double; returns -1 (out untouched) when m is singular or not
  * finite. The _d form works on doubles throughout. */

@@ -500,6 +500,70 @@ static int parse_warp(parse_ctx *c, const cJSON *w, const char *field, cluster_w
     return c->failed ? -1 : 0;
 }
 
+/* nodes[index].screens[i]: a screen name, or {"name", "resolution", "warp"}; dw x dh is
+ * the node's resolution. -1 after a failure. */
+static int parse_node_screen(parse_ctx *c, const cJSON *e, int index, int i, int dw, int dh,
+                             cluster_config *cfg)
+{
+    char field[96];
+    cluster_node_screen *ns = &cfg->nodes[index].screens[i];
+    const char *sname = NULL;
+    ns->width = dw;
+    ns->height = dh;
+    snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
+    if (cJSON_IsString(e)) {
+        sname = e->valuestring;
+    } else if (cJSON_IsObject(e)) {
+        const cJSON *nm = json_keys_get(c->keys, e, "name");
+        sname = cJSON_IsString(nm) ? nm->valuestring : NULL;
+        const cJSON *r = json_keys_get(c->keys, e, "resolution");
+        snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
+        if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
+            return -1;
+        snprintf(field, sizeof field, "nodes[%d].screens[%d].warp", index, i);
+        if (parse_warp(c, json_keys_get(c->keys, e, "warp"), field, &ns->warp))
+            return -1;
+        snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
+    }
+    if (!sname) {
+        fail(c, field, "must be a screen name or {\"name\", \"resolution\"}");
+        return -1;
+    }
+    ns->screen = cluster_config_find_screen(cfg, sname);
+    if (ns->screen < 0) {
+        fail(c, field, "unknown screen '%s' (define it under \"screens\")", sname);
+        return -1;
+    }
+    if (ns->width <= 0) {
+        fail(c, field, "no resolution (give nodes[%d].resolution or one per screen)", index);
+        return -1;
+    }
+    return 0;
+}
+
+/* eyes, output, stereo, window, and the launch texts (exe, workdir, config, display). */
+static void parse_node_options(parse_ctx *c, const cJSON *n, int index, cluster_node *node)
+{
+    char field[96];
+    snprintf(field, sizeof field, "nodes[%d].eyes", index);
+    node->eyes = (cluster_eyes)get_enum(c, n, "eyes", field, eyes_names, 4, CLUSTER_EYES_MONO);
+    snprintf(field, sizeof field, "nodes[%d].output", index);
+    node->output = (cluster_output)get_enum(c, n, "output", field, output_names, 3, CLUSTER_OUTPUT_WINDOW);
+    snprintf(field, sizeof field, "nodes[%d].stereo", index);
+    node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
+    parse_window(c, n, index, &node->window);
+    static const struct { const char *key; size_t offset; const char *def; } texts[] = {
+        {"exe", offsetof(cluster_node, exe), ""},
+        {"workdir", offsetof(cluster_node, workdir), ""},
+        {"config", offsetof(cluster_node, config), ""},
+        {"display", offsetof(cluster_node, display), ":0"},
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+        snprintf(field, sizeof field, "nodes[%d].%s", index, texts[i].key);
+        get_string(c, n, texts[i].key, field, (char *)node + texts[i].offset, CLUSTER_TEXT_MAX, texts[i].def);
+    }
+}
+
 static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *cfg)
 {
     char field[96];
@@ -528,58 +592,10 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
         return;
     }
     node->screen_count = cJSON_GetArraySize(screens);
-    for (int i = 0; i < node->screen_count; i++) {
-        const cJSON *e = cJSON_GetArrayItem(screens, i);
-        cluster_node_screen *ns = &node->screens[i];
-        const char *sname = NULL;
-        ns->width = dw;
-        ns->height = dh;
-        snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
-        if (cJSON_IsString(e)) {
-            sname = e->valuestring;
-        } else if (cJSON_IsObject(e)) {
-            const cJSON *nm = json_keys_get(c->keys, e, "name");
-            sname = cJSON_IsString(nm) ? nm->valuestring : NULL;
-            const cJSON *r = json_keys_get(c->keys, e, "resolution");
-            snprintf(field, sizeof field, "nodes[%d].screens[%d].resolution", index, i);
-            if (r && parse_resolution(c, r, field, &ns->width, &ns->height))
-                return;
-            snprintf(field, sizeof field, "nodes[%d].screens[%d].warp", index, i);
-            if (parse_warp(c, json_keys_get(c->keys, e, "warp"), field, &ns->warp))
-                return;
-            snprintf(field, sizeof field, "nodes[%d].screens[%d]", index, i);
-        }
-        if (!sname) {
-            fail(c, field, "must be a screen name or {\"name\", \"resolution\"}");
+    for (int i = 0; i < node->screen_count; i++)
+        if (parse_node_screen(c, cJSON_GetArrayItem(screens, i), index, i, dw, dh, cfg) != 0)
             return;
-        }
-        ns->screen = cluster_config_find_screen(cfg, sname);
-        if (ns->screen < 0) {
-            fail(c, field, "unknown screen '%s' (define it under \"screens\")", sname);
-            return;
-        }
-        if (ns->width <= 0) {
-            fail(c, field, "no resolution (give nodes[%d].resolution or one per screen)", index);
-            return;
-        }
-    }
-    snprintf(field, sizeof field, "nodes[%d].eyes", index);
-    node->eyes = (cluster_eyes)get_enum(c, n, "eyes", field, eyes_names, 4, CLUSTER_EYES_MONO);
-    snprintf(field, sizeof field, "nodes[%d].output", index);
-    node->output = (cluster_output)get_enum(c, n, "output", field, output_names, 3, CLUSTER_OUTPUT_WINDOW);
-    snprintf(field, sizeof field, "nodes[%d].stereo", index);
-    node->stereo = (cluster_stereo)get_enum(c, n, "stereo", field, stereo_names, 5, CLUSTER_STEREO_SIDE_BY_SIDE);
-    parse_window(c, n, index, &node->window);
-    static const struct { const char *key; size_t offset; const char *def; } texts[] = {
-        {"exe", offsetof(cluster_node, exe), ""},
-        {"workdir", offsetof(cluster_node, workdir), ""},
-        {"config", offsetof(cluster_node, config), ""},
-        {"display", offsetof(cluster_node, display), ":0"},
-    };
-    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
-        snprintf(field, sizeof field, "nodes[%d].%s", index, texts[i].key);
-        get_string(c, n, texts[i].key, field, (char *)node + texts[i].offset, CLUSTER_TEXT_MAX, texts[i].def);
-    }
+    parse_node_options(c, n, index, node);
 }
 
 /* "settings": {"NAME": value, ...}: kept as text; the programs that know the names check
@@ -634,6 +650,92 @@ static void note_unknown(void *user, const char *field, const char *key, const c
     cfg->unknown_key_count++;
 }
 
+/* A file cJSON could not parse: the line it stopped at. */
+static void syntax_error(const char *text, size_t len, const char *end, const char *path, char *err,
+                         size_t errlen)
+{
+    size_t off = end ? (size_t)(end - text) : 0;
+    int line = 1;
+    for (size_t i = 0; i < off && i < len; i++)
+        line += text[i] == '\n';
+    snprintf(err, errlen, "cluster config %s: not valid JSON near line %d: fix the syntax", path, line);
+}
+
+/* name, scene, app, launch and scene_transform. */
+static void parse_top(parse_ctx *c, const cJSON *root, cluster_config *cfg)
+{
+    get_string(c, root, "name", "name", cfg->name, sizeof cfg->name, "");
+    get_string(c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
+    get_string(c, root, "app", "app", cfg->app, sizeof cfg->app, "");
+    get_string(c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
+    const cJSON *st = json_keys_get(c->keys, root, "scene_transform");
+    cfg->has_scene_transform = st != NULL;
+    if (st)
+        parse_scene_transform(c, st, &cfg->scene_transform);
+}
+
+/* -1 when "master" is missing: nothing after it is read. */
+static int parse_master(parse_ctx *c, const cJSON *root, cluster_config *cfg)
+{
+    const cJSON *m = json_keys_get(c->keys, root, "master");
+    if (!cJSON_IsObject(m)) {
+        fail(c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
+        return -1;
+    }
+    get_string(c, m, "bind", "master.bind", cfg->master_bind, sizeof cfg->master_bind, NULL);
+    get_string(c, m, "connect", "master.connect", cfg->master_connect, sizeof cfg->master_connect, NULL);
+    if (!c->failed && strncmp(cfg->master_bind, "tcp://", 6) && strncmp(cfg->master_bind, "ipc://", 6))
+        fail(c, "master.bind", "'%s' must start with tcp:// or ipc://", cfg->master_bind);
+    if (!c->failed && strncmp(cfg->master_connect, "tcp://", 6) && strncmp(cfg->master_connect, "ipc://", 6))
+        fail(c, "master.connect", "'%s' must start with tcp:// or ipc://", cfg->master_connect);
+    return 0;
+}
+
+static void parse_timeouts(parse_ctx *c, const cJSON *t, cluster_config *cfg)
+{
+    if (t && !cJSON_IsObject(t))
+        fail(c, "timeouts", "must be an object");
+    cfg->barrier_timeout_ms = (int)get_number(c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
+    cfg->heartbeat_ms = (int)get_number(c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 100, 0, 10, 60000);
+    /* The master sends something every heartbeat_ms: a node that misses a few in a row
+     * (MASTER_SILENT_BEATS) reports it lost, well under a second at the default. */
+    enum { MASTER_SILENT_BEATS = 4 };
+    cfg->master_timeout_ms = (int)get_number(c, t, "master_ms", "timeouts.master_ms",
+                                             MASTER_SILENT_BEATS * cfg->heartbeat_ms, 0, 10, 600000);
+    if (!c->failed && cfg->master_timeout_ms < 2 * cfg->heartbeat_ms)
+        fail(c, "timeouts.master_ms", "%d is less than twice timeouts.heartbeat_ms (%d): nodes would lose "
+             "a master that is only between heartbeats; leave master_ms out for %d x heartbeat_ms",
+             cfg->master_timeout_ms, cfg->heartbeat_ms, (int)MASTER_SILENT_BEATS);
+    cfg->stall_min_ms = (int)get_number(c, t, "stall_min_ms", "timeouts.stall_min_ms", 250, 0, 10, 600000);
+    cfg->join_timeout_ms = (int)get_number(c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
+}
+
+/* screens[] then nodes[]; -1 when either is not an array of a valid length. */
+static int parse_screens_and_nodes(parse_ctx *c, const cJSON *root, cluster_config *cfg)
+{
+    const cJSON *screens = json_keys_get(c->keys, root, "screens");
+    if (!c->failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
+                       cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
+        fail(c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
+        return -1;
+    }
+    for (int i = 0; !c->failed && i < cJSON_GetArraySize(screens); i++) {
+        parse_screen(c, cJSON_GetArrayItem(screens, i), i, cfg);
+        cfg->screen_count = i + 1;
+    }
+    const cJSON *nodes = json_keys_get(c->keys, root, "nodes");
+    if (!c->failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
+                       cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
+        fail(c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);
+        return -1;
+    }
+    for (int i = 0; !c->failed && i < cJSON_GetArraySize(nodes); i++) {
+        parse_node(c, cJSON_GetArrayItem(nodes, i), i, cfg);
+        cfg->node_count = i + 1;
+    }
+    return 0;
+}
+
 int cluster_config_parse(const char *text, size_t len, const char *path, cluster_config *cfg,
                          char *err, size_t errlen)
 {
@@ -645,11 +747,7 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
     if (!root) {
-        size_t off = end ? (size_t)(end - text) : 0;
-        int line = 1;
-        for (size_t i = 0; i < off && i < len; i++)
-            line += text[i] == '\n';
-        snprintf(err, errlen, "cluster config %s: not valid JSON near line %d: fix the syntax", path, line);
+        syntax_error(text, len, end, path, err, errlen);
         json_keys_destroy(c.keys);
         return -1;
     }
@@ -657,71 +755,18 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         fail(&c, "(top level)", "must be a JSON object");
         goto done;
     }
-    get_string(&c, root, "name", "name", cfg->name, sizeof cfg->name, "");
-    get_string(&c, root, "scene", "scene", cfg->scene, sizeof cfg->scene, "");
-    get_string(&c, root, "app", "app", cfg->app, sizeof cfg->app, "");
-    get_string(&c, root, "launch", "launch", cfg->launch, sizeof cfg->launch, "ssh -n {host} {command}");
-    const cJSON *st = json_keys_get(c.keys, root, "scene_transform");
-    cfg->has_scene_transform = st != NULL;
-    if (st)
-        parse_scene_transform(&c, st, &cfg->scene_transform);
-
-    const cJSON *m = json_keys_get(c.keys, root, "master");
-    if (!cJSON_IsObject(m)) {
-        fail(&c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
+    parse_top(&c, root, cfg);
+    if (parse_master(&c, root, cfg) != 0)
         goto done;
-    }
-    get_string(&c, m, "bind", "master.bind", cfg->master_bind, sizeof cfg->master_bind, NULL);
-    get_string(&c, m, "connect", "master.connect", cfg->master_connect, sizeof cfg->master_connect, NULL);
-    if (!c.failed && strncmp(cfg->master_bind, "tcp://", 6) && strncmp(cfg->master_bind, "ipc://", 6))
-        fail(&c, "master.bind", "'%s' must start with tcp:// or ipc://", cfg->master_bind);
-    if (!c.failed && strncmp(cfg->master_connect, "tcp://", 6) && strncmp(cfg->master_connect, "ipc://", 6))
-        fail(&c, "master.connect", "'%s' must start with tcp:// or ipc://", cfg->master_connect);
-
-    const cJSON *t = json_keys_get(c.keys, root, "timeouts");
-    if (t && !cJSON_IsObject(t))
-        fail(&c, "timeouts", "must be an object");
-    cfg->barrier_timeout_ms = (int)get_number(&c, t, "barrier_ms", "timeouts.barrier_ms", 2000, 0, 10, 600000);
-    cfg->heartbeat_ms = (int)get_number(&c, t, "heartbeat_ms", "timeouts.heartbeat_ms", 100, 0, 10, 60000);
-    /* The master sends something every heartbeat_ms: a node that misses a few in a row
-     * (MASTER_SILENT_BEATS) reports it lost, well under a second at the default. */
-    enum { MASTER_SILENT_BEATS = 4 };
-    cfg->master_timeout_ms = (int)get_number(&c, t, "master_ms", "timeouts.master_ms",
-                                             MASTER_SILENT_BEATS * cfg->heartbeat_ms, 0, 10, 600000);
-    if (!c.failed && cfg->master_timeout_ms < 2 * cfg->heartbeat_ms)
-        fail(&c, "timeouts.master_ms", "%d is less than twice timeouts.heartbeat_ms (%d): nodes would lose "
-             "a master that is only between heartbeats; leave master_ms out for %d x heartbeat_ms",
-             cfg->master_timeout_ms, cfg->heartbeat_ms, (int)MASTER_SILENT_BEATS);
-    cfg->stall_min_ms = (int)get_number(&c, t, "stall_min_ms", "timeouts.stall_min_ms", 250, 0, 10, 600000);
-    cfg->join_timeout_ms = (int)get_number(&c, t, "join_ms", "timeouts.join_ms", 15000, 0, 100, 3600000);
-
+    parse_timeouts(&c, json_keys_get(c.keys, root, "timeouts"), cfg);
     cfg->corner_tolerance_mm = get_number(&c, root, "corner_tolerance_mm", "corner_tolerance_mm", 20, 0, 0, 1000);
     cfg->gi_memory_mb = get_number(&c, json_keys_get(c.keys, root, "limits"), "gi_memory_mb", "limits.gi_memory_mb",
                                    CLUSTER_GI_MEMORY_MB, 0, 16, 1 << 20);
     parse_observer(&c, json_keys_get(c.keys, root, "observer"), &cfg->observer);
     parse_security(&c, json_keys_get(c.keys, root, "security"), cfg);
     parse_settings(&c, json_keys_get(c.keys, root, "settings"), cfg);
-
-    const cJSON *screens = json_keys_get(c.keys, root, "screens");
-    if (!c.failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
-                      cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
-        fail(&c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
+    if (parse_screens_and_nodes(&c, root, cfg) != 0)
         goto done;
-    }
-    for (int i = 0; !c.failed && i < cJSON_GetArraySize(screens); i++) {
-        parse_screen(&c, cJSON_GetArrayItem(screens, i), i, cfg);
-        cfg->screen_count = i + 1;
-    }
-    const cJSON *nodes = json_keys_get(c.keys, root, "nodes");
-    if (!c.failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
-                      cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
-        fail(&c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);
-        goto done;
-    }
-    for (int i = 0; !c.failed && i < cJSON_GetArraySize(nodes); i++) {
-        parse_node(&c, cJSON_GetArrayItem(nodes, i), i, cfg);
-        cfg->node_count = i + 1;
-    }
     if (!c.failed)
         json_keys_unknown(c.keys, root, note_unknown, cfg);
 done:

@@ -43,6 +43,7 @@
 #include <vector>
 
 extern "C" {
+#include "base/mat4.h"
 #include "scene/scene.h"
 }
 
@@ -849,21 +850,15 @@ struct mat4 {
 
 mat4 identity()
 {
-    mat4 r{};
-    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+    mat4 r;
+    mat4d_identity(r.m);
     return r;
 }
 
 mat4 mul(const mat4 &a, const mat4 &b)
 {
-    mat4 r{};
-    for (int c = 0; c < 4; c++)
-        for (int rr = 0; rr < 4; rr++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++)
-                s += a.m[k * 4 + rr] * b.m[c * 4 + k];
-            r.m[c * 4 + rr] = s;
-        }
+    mat4 r;
+    mat4d_mul(a.m, b.m, r.m);
     return r;
 }
 

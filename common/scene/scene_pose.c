@@ -54,21 +54,14 @@ typedef struct dmat { double m[16]; } dmat;
 static dmat dmul(dmat a, dmat b)
 {
     dmat r;
-    for (int c = 0; c < 4; c++)
-        for (int row = 0; row < 4; row++) {
-            double sum = 0;
-            for (int k = 0; k < 4; k++)
-                sum += a.m[k * 4 + row] * b.m[c * 4 + k];
-            r.m[c * 4 + row] = sum;
-        }
+    mat4d_mul(a.m, b.m, r.m);
     return r;
 }
 
 static dmat dfrom(const float m[16])
 {
     dmat r;
-    for (int i = 0; i < 16; i++)
-        r.m[i] = m[i];
+    mat4d_from_float(m, r.m);
     return r;
 }
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/mat4.h"
 #include "base/vec3.h"
 #include "base/xalloc.h"
 #include "frame/light_view.h"
@@ -125,43 +126,6 @@ void reference_destroy(reference *ref)
     free(ref);
 }
 
-/* Gauss-Jordan with partial pivoting on a column-major 4x4; -1 when singular. */
-static int invert4(const double m[16], double out[16])
-{
-    double a[4][8];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) {
-            a[r][c] = m[c * 4 + r];
-            a[r][4 + c] = r == c;
-        }
-    for (int c = 0; c < 4; c++) {
-        int piv = c;
-        for (int r = c + 1; r < 4; r++)
-            if (fabs(a[r][c]) > fabs(a[piv][c]))
-                piv = r;
-        if (!(fabs(a[piv][c]) > 1e-300))
-            return -1;
-        for (int k = 0; k < 8; k++) {
-            double t = a[c][k];
-            a[c][k] = a[piv][k];
-            a[piv][k] = t;
-        }
-        double inv = 1.0 / a[c][c];
-        for (int k = 0; k < 8; k++)
-            a[c][k] *= inv;
-        for (int r = 0; r < 4; r++)
-            if (r != c) {
-                double f = a[r][c];
-                for (int k = 0; k < 8; k++)
-                    a[r][k] -= f * a[c][k];
-            }
-    }
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++)
-            out[c * 4 + r] = a[r][4 + c];
-    return 0;
-}
-
 static int all_finite(const float *v, int n)
 {
     for (int i = 0; i < n; i++)
@@ -227,15 +191,11 @@ static int setup_job(reference_job *job, const reference_render_desc *d, char *e
             s->window_area = 4.0f * lv.extent[0] * lv.extent[1];
         }
     }
-    double vp[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            double sum = 0;
-            for (int k = 0; k < 4; k++)
-                sum += (double)v->projection[k * 4 + r] * v->view[c * 4 + k];
-            vp[c * 4 + r] = sum;
-        }
-    if (invert4(vp, job->inv_view_projection) != 0) {
+    double vp[16], view[16];
+    mat4d_from_float(v->projection, vp);
+    mat4d_from_float(v->view, view);
+    mat4d_mul(vp, view, vp);
+    if (mat4d_inverse(vp, job->inv_view_projection) != 0) {
         snprintf(err, errlen, "reference: the view-projection matrix is singular (degenerate camera)");
         return -1;
     }

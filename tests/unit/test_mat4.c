@@ -1,10 +1,12 @@
-/* mat4: column-major product and point transform, including aliased output. */
+/* mat4: column-major product and point transform, including aliased output; the double
+ * product and the general inverse. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 #include <cmocka.h>
+#include <math.h>
 
 #include "base/mat4.h"
 
@@ -43,11 +45,49 @@ static void test_aliased_output(void **state)
     assert_memory_equal(c, want, sizeof want);
 }
 
+/* The double product: the float one's layout and order, aliasing allowed; identity neutral. */
+static void test_double_product(void **state)
+{
+    double t[16], sc[16], ts[16], id[16], c[16];
+    mat4d_from_float(T, t);
+    mat4d_from_float(S, sc);
+    mat4d_mul(t, sc, ts);
+    float want[16];
+    mat4_mul(T, S, want);
+    for (int i = 0; i < 16; i++)
+        assert_true(ts[i] == want[i]);
+    mat4d_identity(id);
+    memcpy(c, ts, sizeof c);
+    mat4d_mul(id, c, c);
+    assert_memory_equal(c, ts, sizeof c);
+    mat4d_mul(c, id, c);
+    assert_memory_equal(c, ts, sizeof c);
+}
+
+/* The general inverse undoes a perspective projection times a view; singular is -1. */
+static void test_double_inverse(void **state)
+{
+    const double p[16] = {1.5, 0, 0, 0, 0, 2, 0, 0, 0, 0, -1.2, -1, 0, 0, -0.22, 0};
+    double t[16], m[16], inv[16], prod[16];
+    mat4d_from_float(T, t);
+    mat4d_mul(p, t, m);
+    assert_int_equal(mat4d_inverse(m, inv), 0);
+    mat4d_mul(m, inv, prod);
+    for (int i = 0; i < 16; i++)
+        assert_true(fabs(prod[i] - (i % 5 == 0)) < 1e-12);
+    double flat[16] = {1, 2, 3, 4, 2, 4, 6, 8}; /* two parallel columns, two zero ones */
+    memcpy(inv, p, sizeof inv);
+    assert_int_equal(mat4d_inverse(flat, inv), -1);
+    assert_memory_equal(inv, p, sizeof inv);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_order_and_layout),
         cmocka_unit_test(test_aliased_output),
+        cmocka_unit_test(test_double_product),
+        cmocka_unit_test(test_double_inverse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

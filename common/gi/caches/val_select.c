@@ -2,6 +2,8 @@
 
 #include "base/fnv1a.h"
 
+#include "base/fnv1a.h"
+
 #include <string.h>
 
 float val_view_term(const vpl *v, const float *samples, int nsamples)

@@ -65,28 +65,16 @@ static void frustum_point(const vpl_grid *g, float d, float tx, float ty, float 
         out[k] = g->apex[k] + d * (g->forward[k] + tx * g->right[k] + ty * g->up[k]);
 }
 
-int vpl_grid_enclosing(const frame_view *views, int n, int slices, vpl_grid *out)
+/* Per image axis (x: right, y: up), in a's axes around the eyes' mean: the lowest and
+ * highest corner offsets at the near and the far depth (the eyes share them along
+ * forward). A boundary line through its near and far extremes holds every frustum
+ * (their envelope is convex), so the apex goes where the two lines of an axis meet:
+ * *b behind the mean; the axis that needs the larger b sets it. */
+static void enclosing_apex(const vpl_grid *f, int n, const float mean[3], float *b, float centre[2])
 {
-    enum { MAX_VIEWS = 8 };
-    vpl_grid f[MAX_VIEWS];
-    if (n < 1 || n > MAX_VIEWS)
-        return -1;
-    float mean[3] = {0, 0, 0};
-    for (int i = 0; i < n; i++) {
-        if (view_frustum(&views[i], &f[i]) != 0 ||
-            vec3_dot(f[i].forward, f[0].forward) < 0.9999f ||
-            vec3_dot(f[i].right, f[0].right) < 0.9999f)
-            return -1;
-        for (int k = 0; k < 3; k++)
-            mean[k] += f[i].apex[k] / (float)n;
-    }
     const vpl_grid *a = &f[0];
-    /* Per image axis (x: right, y: up), in a's axes around the eyes' mean: the lowest and
-     * highest corner offsets at the near and the far depth (the eyes share them along
-     * forward). A boundary line through its near and far extremes holds every frustum
-     * (their envelope is convex), so the apex goes where the two lines of an axis meet:
-     * b behind the mean; the axis that needs the larger b sets it. */
-    float b = 0, centre[2] = {0, 0};
+    *b = 0;
+    centre[0] = centre[1] = 0;
     for (int axis = 0; axis < 2; axis++) {
         const float *dir = axis ? a->up : a->right;
         float lo[2] = {FLT_MAX, FLT_MAX}, hi[2] = {-FLT_MAX, -FLT_MAX}, depth[2] = {0, 0};
@@ -108,17 +96,16 @@ int vpl_grid_enclosing(const frame_view *views, int n, int slices, vpl_grid *out
         if (slope_hi - slope_lo <= 0)
             continue;
         float zb = depth[0] - (hi[0] - lo[0]) / (slope_hi - slope_lo); /* where they meet */
-        if (-zb > b)
-            b = -zb;
+        if (-zb > *b)
+            *b = -zb;
         centre[axis] = lo[0] + slope_lo * (zb - depth[0]);
     }
-    memcpy(out->right, a->right, sizeof out->right);
-    memcpy(out->up, a->up, sizeof out->up);
-    memcpy(out->forward, a->forward, sizeof out->forward);
-    for (int k = 0; k < 3; k++)
-        out->apex[k] = mean[k] - b * a->forward[k] + centre[0] * a->right[k] +
-                       centre[1] * a->up[k];
-    /* The window and depths of every frustum's corners seen from the apex. */
+}
+
+/* The window and depths of every frustum's corners seen from out's apex; -1 when one lies
+ * behind it. */
+static int enclosing_window(const vpl_grid *f, int n, vpl_grid *out)
+{
     float w[4] = {FLT_MAX, FLT_MAX, -FLT_MAX, -FLT_MAX}, dn = FLT_MAX, df = 0;
     for (int i = 0; i < n; i++)
         for (int c = 0; c < 8; c++) {
@@ -140,6 +127,36 @@ int vpl_grid_enclosing(const frame_view *views, int n, int slices, vpl_grid *out
     memcpy(out->window, w, sizeof w);
     out->near = dn;
     out->far = df;
+    return 0;
+}
+
+int vpl_grid_enclosing(const frame_view *views, int n, int slices, vpl_grid *out)
+{
+    enum { MAX_VIEWS = 8 };
+    vpl_grid f[MAX_VIEWS];
+    if (n < 1 || n > MAX_VIEWS)
+        return -1;
+    float mean[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++) {
+        if (view_frustum(&views[i], &f[i]) != 0 ||
+            vec3_dot(f[i].forward, f[0].forward) < 0.9999f ||
+            vec3_dot(f[i].right, f[0].right) < 0.9999f)
+            return -1;
+        for (int k = 0; k < 3; k++)
+            mean[k] += f[i].apex[k] / (float)n;
+    }
+    const vpl_grid *a = &f[0];
+    float b, centre[2];
+    enclosing_apex(f, n, mean, &b, centre);
+    memcpy(out->right, a->right, sizeof out->right);
+    memcpy(out->up, a->up, sizeof out->up);
+    memcpy(out->forward, a->forward, sizeof out->forward);
+    for (int k = 0; k < 3; k++)
+        out->apex[k] = mean[k] - b * a->forward[k] + centre[0] * a->right[k] +
+                       centre[1] * a->up[k];
+    if (enclosing_window(f, n, out) != 0)
+        return -1;
+    const float *w = out->window;
     /* Tiles at the first view's pixel density. */
     out->tiles[0] = tiles_for((float)views[0].width, (w[2] - w[0]) / (a->window[2] - a->window[0]), 0);
     out->tiles[1] = tiles_for((float)views[0].height, (w[3] - w[1]) / (a->window[3] - a->window[1]), 0);

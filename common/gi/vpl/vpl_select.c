@@ -2,6 +2,8 @@
 
 #include "base/fnv1a.h"
 
+#include "base/fnv1a.h"
+
 #include <math.h>
 #include <string.h>
 
