@@ -14,12 +14,13 @@
 #include "gi/gi_settings.h"
 #include "gltools.h"
 #include "renderer.h"
+#include "renderer_aa.h"
 #include "renderer_ao.h"
 #include "renderer_hud.h"
 #include "renderer_rsm.h"
 #include "scene_gl.h"
 
-enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
+enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2, Q_AA = 3 };
 
 enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
 
@@ -53,6 +54,7 @@ struct renderer {
 
     gi *gi;                  /* the indirect-light method (gi.h), with its shading program */
     renderer_ao *ao;         /* the ambient term's occlusion (renderer_ao.h) */
+    renderer_aa *aa;         /* the final image's anti-aliasing (renderer_aa.h) */
     uint64_t checksum;       /* its last frame's */
     renderer_desc desc;
     int software;            /* a software GL (llvmpipe) */
@@ -288,6 +290,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
         build_frame_state(r, &r->frame, err, errlen) != 0 ||
         !(r->ao = renderer_ao_create(r->gl, r->scene, err, errlen)) ||
+        !(r->aa = renderer_aa_create(r->gl, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
@@ -313,6 +316,7 @@ void renderer_destroy(renderer *r)
     const gl_functions *gl = r->gl;
     gi_destroy(r->gi);
     renderer_ao_destroy(r->ao);
+    renderer_aa_destroy(r->aa);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_final};
@@ -616,7 +620,8 @@ static void final_pass(renderer *r, const renderer_view *view, const float vp[16
     renderer_hud_draw(r->hud, p, r->timings.gi.hud_cells, vp, view->eye_position, encoding);
 }
 
-/* The final image as 8-bit RGB, top row first, and the linear images on request. */
+/* The bound framebuffer's image (the final one, or its anti-aliased copy) as 8-bit RGB,
+ * top row first, and the linear images on request. */
 static void read_back(renderer *r, int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
@@ -658,7 +663,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     if (eye_targets(r, view->width, view->height))
         return -1;
     double t0 = clock_now_ms();
-    int slot = queries_begin_frame(r, &r->eye_queries, 3);
+    int slot = queries_begin_frame(r, &r->eye_queries, 4);
     float vp[16], eye[4];
     mat4_mul(view->projection, view->view, vp);
     eye_towards(view, eye);
@@ -675,11 +680,15 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     query_begin(r, &r->eye_queries, slot, Q_FINAL);
     final_pass(r, view, vp);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
+    query_begin(r, &r->eye_queries, slot, Q_AA);
+    renderer_aa_apply(r->aa, r->frame.aa, r->f_color, view->width, view->height, r->empty_vao);
+    query_end(r, &r->eye_queries, slot, Q_AA);
     read_back(r, want_linear, out);
     gi_stats_get(r->gi, &r->timings.gi); /* the eye-side figures (vpl: its assignment) */
     r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
     r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
     r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
+    r->timings.aa_ms = r->eye_queries.ms[Q_AA];
     renderer_ao_stats_get(r->ao, &r->timings.ao);
     r->timings.eye_host_ms = clock_now_ms() - t0;
     GLenum e = r->gl->GetError();
