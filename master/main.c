@@ -234,7 +234,7 @@ static int master_run(const master_options *o)
                        .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .settings = &settings,
-                       .exposure_auto = o->exposure_auto, .strict = o->strict,
+                       .exposure_auto = master_exposure_auto(o, &cfg), .strict = o->strict,
                        .app = o->app ? o->app : cfg.app[0] ? cfg.app : NULL};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {

@@ -173,7 +173,7 @@ static const char *set(void *user, int id, const char *v)
 
 cli_result master_cli_parse(int argc, char **argv, master_options *o)
 {
-    *o = (master_options){.dt = 1.0 / 30, .out_dir = CLUSTER_DEFAULT_OUT};
+    *o = (master_options){.dt = 1.0 / 30, .out_dir = CLUSTER_DEFAULT_OUT, .exposure_auto = -1};
     static cli_option all[CLI_MAX_OPTIONS];
     int count = (int)(sizeof options / sizeof *options);
     memcpy(all, options, sizeof options);
@@ -219,6 +219,16 @@ cli_result master_cli_parse(int argc, char **argv, master_options *o)
             return CLI_ERROR;
         }
     return CLI_OK;
+}
+
+int master_exposure_auto(const master_options *o, const cluster_config *cfg)
+{
+    if (o->exposure_auto >= 0)
+        return o->exposure_auto;
+    for (int i = 0; i < cfg->setting_count; i++)
+        if (strcmp(cfg->settings[i].name, "exposure") == 0)
+            return 0;
+    return 1;
 }
 
 int master_settings(const master_options *o, const cluster_config *cfg, frame_params *out,

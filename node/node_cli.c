@@ -173,10 +173,12 @@ static const char *set(void *user, int id, const char *v)
     cluster_node_desc *d = &c->cluster;
     if (id >= O_SETTING) {
         const gi_option *g = gi_option_at(id - O_SETTING);
-        /* --exposure auto: the scene's light decides, once it is loaded (exposure.h). */
-        if (strcmp(g->row->name, "exposure") == 0 && strcmp(v, "auto") == 0) {
-            o->exposure_auto = 1;
-            return NULL;
+        /* --exposure auto (the default): the scene's light decides, once it is loaded
+         * (exposure.h); a number fixes it. */
+        if (strcmp(g->row->name, "exposure") == 0) {
+            o->exposure_auto = strcmp(v, "auto") == 0;
+            if (o->exposure_auto)
+                return NULL;
         }
         return gi_set(&o->frame, g->row->name, v);
     }
@@ -268,6 +270,7 @@ cli_result node_cli_parse(int argc, char **argv, node_cli *c)
     c->standalone = (node_options){
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
         .yfov = -1, .eye_separation = FRAME_VIEW_EYE_SEPARATION, .seed = 1,
+        .exposure_auto = 1,
     };
     frame_params_default(&c->standalone.frame);
     c->cluster = (cluster_node_desc){.output = -1, .render = CLUSTER_RENDER_GL};

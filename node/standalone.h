@@ -32,7 +32,7 @@ typedef struct node_options {
     /* the frame parameters: frame_params_default() with the command line's values (the
      * GI method and its settings among them, gi_settings.h); lights come from the scene */
     frame_params frame;
-    int exposure_auto;    /* --exposure auto: from the scene's light (exposure.h) */
+    int exposure_auto;    /* 1 unless --exposure N: from the scene's light (exposure.h) */
     int have_wand;        /* HUD (docs/node.md): wand position given */
     float wand[3];
     /* --renderer reference: the path tracer (docs/reference.md) instead of GL */

@@ -51,8 +51,8 @@ const setting frame_display_settings[] = {
     {"display-gamma", "G", SETTING_FLOAT, 0.1, 10, 2.2, NULL, 0, 0, FIELD(display_gamma),
      "display gamma"},
     {"exposure", "E|auto", SETTING_FLOAT, 1e-6, 1e6, 1, NULL, 0, 0, FIELD(exposure),
-     "linear scale before tone mapping; auto: the scene's\naverage lit surface at middle grey "
-     "(docs/node.md)"},
+     "linear scale before tone mapping; auto (what the master\nand the standalone node "
+     "take unless a number is given): the\nscene's average lit surface at middle grey (docs/node.md)"},
     {"ao", NULL, SETTING_CHOICE, 0, 0, FRAME_AO_OFF, ao_names, FRAME_AO_COUNT, 0,
      FIELD(ao), "ambient occlusion of the ambient term: layered depth\nmaps, screen space "
      "(horizons) or none"},
