@@ -240,6 +240,8 @@ int master_settings(const master_options *o, const cluster_config *cfg, frame_pa
     for (int i = 0; i < o->setting_count; i++)
         gi_set(out, o->setting_name[i], o->setting_value[i]); /* checked when parsed */
     const char *why = gi_check(out);
+    if (!why)
+        why = ao_ambient_check(out);
     if (!why && o->budget_ms > 0) {
         int lattice_given = 0;
         for (int i = 0; i < o->setting_count; i++)

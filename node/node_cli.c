@@ -257,6 +257,8 @@ static int check_standalone(const node_options *o, const cli_program *p, const c
         why = ilpv_budget_check(&o->frame, lattice_given);
     if (!why && o->have_screen != o->have_eye)
         why = "--screen and --eye go together";
+    if (!why && !o->reference)
+        why = ao_ambient_check(&o->frame);
     if (!why && o->reference && o->stereo)
         why = "--renderer reference renders one eye: use --eyes mono";
     if (why)
