@@ -69,6 +69,7 @@ struct renderer {
     /* Views that show no light: a query over the final pass, whose shader leaves black
      * pixels out; one warning when the k-th view of a frame turns black. */
     GLuint lit_query;
+    GLuint seen_query;       /* over the G-buffer pass: any surface in view */
     int eye_index;           /* eye passes since the frame pass */
     int view_dark[RENDERER_DARK_VIEWS];
     ratelog dark_log;
@@ -299,6 +300,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     queries_init(r, &r->eye_queries);
     r->gl->GenVertexArrays(1, &r->empty_vao);
     r->gl->GenQueries(1, &r->lit_query);
+    r->gl->GenQueries(1, &r->seen_query);
     r->emits = scene_has_emitter(r->scene);
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
@@ -329,6 +331,8 @@ void renderer_destroy(renderer *r)
         gl->DeleteVertexArrays(1, &r->empty_vao);
     if (r->lit_query)
         gl->DeleteQueries(1, &r->lit_query);
+    if (r->seen_query)
+        gl->DeleteQueries(1, &r->seen_query);
     free(r->models);
     free(r->shown);
     for (int i = 0; i < RENDERER_QUERY_RING; i++) {
@@ -516,9 +520,13 @@ static void warn_if_dark(renderer *r, int lit)
     for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
         lights += light_is_lit(&p->lights[i]) &&
                   (p->lights[i].color[0] > 0 || p->lights[i].color[1] > 0 || p->lights[i].color[2] > 0);
+    GLint seen = 0;
+    r->gl->GetQueryObjectiv(r->seen_query, GL_QUERY_RESULT, &seen); /* ready: as lit_query */
     fprintf(stderr, "cavelight-node: warning: frame %llu, view %d receives no light: %s%s\n",
             (unsigned long long)p->version, k,
-            light_dark_reason(lights || r->emits),
+            seen ? light_dark_reason(lights || r->emits)
+                 : "nothing in view (the scene lies outside this view: check its placement and "
+                   "scale, e.g. --scene-transform '{\"fit\": true}')",
             skipped ? " (more such lines left out)" : "");
 }
 
@@ -566,8 +574,10 @@ static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[
     gl->UseProgram(r->prog_gbuffer);
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
     gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
+    gl->BeginQuery(GL_ANY_SAMPLES_PASSED, r->seen_query);
     scene_gl_draw(r->mesh, r->prog_gbuffer);
     gbuffer_extra(r, view, vp);
+    gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->Disable(GL_DEPTH_TEST);
 }
 

@@ -423,11 +423,9 @@ int standalone_run(const node_options *o)
         scene_free(&sc);
         return 1;
     }
-    if (sc.light_added) {
-        char note[400];
-        scene_light_added_note(&sc, o->scene, note, sizeof note);
+    char note[400];
+    if (scene_light_note(&sc, o->scene, note, sizeof note))
         fprintf(stderr, "cavelight-node: warning: %s\n", note);
-    }
     node_options opt = *o;
     /* The scene's camera (the file's first, or --camera's), else the default view; the
      * command line's position, target and field of view win. */
