@@ -54,8 +54,8 @@ static const cli_option options[] = {
      "leave when the master ends the session"},
     {O_RENDER, "render", "gl|none", "gl", G_CLUSTER, C, "none: no GL, the checksum of the parameters (tests)"},
     {O_QUIET, "quiet", NULL, NULL, G_CLUSTER, C, "log only errors"},
-    {O_APP, "app", "FILE.so", NULL, G_CLUSTER, C,
-     "an application (cavelight/app.h): the master's --app\n(docs/app.md)"},
+    {O_APP, "app", "FILE.so", NULL, G_CLUSTER, 0,
+     "an application (cavelight/app.h, docs/app.md): the master's\n--app; standalone: its update, frame and draw here"},
     {O_GL, "gl", "egl|osmesa|glfw", "egl", G_SCENE, S, "GL context: headless EGL, OSMesa, or a GLFW window"},
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
@@ -190,7 +190,7 @@ static const char *set(void *user, int id, const char *v)
     case O_EXIT_WITH_MASTER: d->exit_with_master = 1; break;
     case O_RENDER: CHOICE(d->render, render_names); break;
     case O_QUIET: d->quiet = 1; break;
-    case O_APP: d->app = v; break;
+    case O_APP: o->app = d->app = v; break;
     case O_SCENE: o->scene = d->scene = v; break;
     case O_SCENE_TRANSFORM: {
         const char *why = cluster_scene_transform_option(v, &d->scene_transform);
@@ -259,6 +259,8 @@ static int check_standalone(const node_options *o, const cli_program *p, const c
         why = "--screen and --eye go together";
     if (!why && !o->reference)
         why = ao_ambient_check(&o->frame);
+    if (!why && o->reference && o->app)
+        why = "--app runs with the GL renderer, not --renderer reference";
     if (!why && o->reference && o->stereo)
         why = "--renderer reference renders one eye: use --eyes mono";
     if (why)

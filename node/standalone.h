@@ -38,6 +38,7 @@ typedef struct node_options {
     /* --renderer reference: the path tracer (docs/reference.md) instead of GL */
     int reference, samples, bounces;
     unsigned long long seed;
+    const char *app;      /* --app: an application run without a cluster (standalone_app.h) */
 } node_options;
 
 /* The frame a standalone run starts from: o->frame (frame_params_default() and the
