@@ -234,7 +234,7 @@ static int master_run(const master_options *o)
                        .quiet = o->quiet, .insecure_anywhere = o->insecure_anywhere, .scene = o->scene, .input = o->input, .dt = o->dt,
                        .record = o->record, .out_dir = o->out_dir, .pattern = o->pattern,
                        .print_poses = o->print_poses, .settings = &settings,
-                       .exposure_auto = o->exposure_auto, .strict = o->strict,
+                       .exposure_auto = master_exposure_auto(o, &cfg), .strict = o->strict,
                        .app = o->app ? o->app : cfg.app[0] ? cfg.app : NULL};
     session *s = session_create(&sd, err, sizeof err);
     if (!s) {
@@ -252,8 +252,8 @@ static int master_run(const master_options *o)
     int wait_ms = o->wait_ms ? o->wait_ms : cfg.join_timeout_ms;
     int live = launch_wait(s, &cfg, &nodes, wait_ms, o->quiet, &stop_requested);
     if (!o->quiet)
-        fprintf(stderr, "cavelight-master: %d nodes live, running %s%d frames\n", live,
-                o->frames ? "" : "until stopped, ", o->frames);
+        fprintf(stderr, "cavelight-master: %d node%s live, running %s%d frames\n", live,
+                live == 1 ? "" : "s", o->frames ? "" : "until stopped, ", o->frames);
     double wall_s = 0;
     int exit_code = 1;
     if (o->budget_ms > 0 && session_choose_budget(s, o->budget_ms, &stop_requested, err, sizeof err) != 0)

@@ -173,7 +173,7 @@ static const char *set(void *user, int id, const char *v)
 
 cli_result master_cli_parse(int argc, char **argv, master_options *o)
 {
-    *o = (master_options){.dt = 1.0 / 30, .out_dir = CLUSTER_DEFAULT_OUT};
+    *o = (master_options){.dt = 1.0 / 30, .out_dir = CLUSTER_DEFAULT_OUT, .exposure_auto = -1};
     static cli_option all[CLI_MAX_OPTIONS];
     int count = (int)(sizeof options / sizeof *options);
     memcpy(all, options, sizeof options);
@@ -231,6 +231,16 @@ static int setting_given(void *ctx, const char *name)
     return 0;
 }
 
+int master_exposure_auto(const master_options *o, const cluster_config *cfg)
+{
+    if (o->exposure_auto >= 0)
+        return o->exposure_auto;
+    for (int i = 0; i < cfg->setting_count; i++)
+        if (strcmp(cfg->settings[i].name, "exposure") == 0)
+            return 0;
+    return 1;
+}
+
 int master_settings(const master_options *o, const cluster_config *cfg, frame_params *out,
                     char *err, size_t errlen)
 {
@@ -240,6 +250,8 @@ int master_settings(const master_options *o, const cluster_config *cfg, frame_pa
     for (int i = 0; i < o->setting_count; i++)
         gi_set(out, o->setting_name[i], o->setting_value[i]); /* checked when parsed */
     const char *why = gi_check(out);
+    if (!why)
+        why = ao_ambient_check(out);
     if (!why && o->budget_ms > 0)
         why = gi_budget_check(out, setting_given, (void *)o);
     if (why) {

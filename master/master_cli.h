@@ -31,7 +31,7 @@ typedef struct master_options {
      * given, each checked already: the session applies them over the config's "settings". */
     int setting_count;
     const char *setting_name[MASTER_MAX_SETTINGS], *setting_value[MASTER_MAX_SETTINGS];
-    int exposure_auto;          /* --exposure auto */
+    int exposure_auto;          /* --exposure auto 1, --exposure N 0, not given -1 */
     float budget_ms;            /* > 0: --budget-ms, every node measured (session.h) */
     int check;                  /* --check: validate the config and exit (check.h) */
     int strict;                 /* unknown keys in the cluster or input config are errors */
@@ -43,6 +43,10 @@ typedef struct master_options {
 
 /* CLI_OK, CLI_HELP (help printed: exit 0) or CLI_ERROR (one line printed: exit 2). */
 cli_result master_cli_parse(int argc, char **argv, master_options *o);
+/* Whether the session derives the exposure from the scene's light (frame/exposure.h): the
+ * default, unless the config's "settings" or --exposure give a number (--exposure auto
+ * over a config's number: auto). */
+int master_exposure_auto(const master_options *o, const cluster_config *cfg);
 /* The session's first frame settings: the defaults, the config's "settings", then the
  * command line's (gi_check() over all of them). 0, or -1 with one line in err. */
 int master_settings(const master_options *o, const cluster_config *cfg, frame_params *out,

@@ -110,11 +110,9 @@ static int seed(session *s, const char *scene_path, const session_desc *d, char 
     const scene sc = s->scene;
     if (sc.warning[0]) /* the nodes load it too; the master says it once */
         fprintf(stderr, "cavelight-master: warning: scene %s: %s\n", scene_path, sc.warning);
-    if (sc.light_added) {
-        char note[400];
-        scene_light_added_note(&sc, scene_path, note, sizeof note);
+    char note[400];
+    if (scene_light_note(&sc, scene_path, note, sizeof note))
         fprintf(stderr, "cavelight-master: warning: %s\n", note);
-    }
     if (d->settings)
         s->frame = *d->settings;
     else

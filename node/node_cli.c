@@ -54,8 +54,8 @@ static const cli_option options[] = {
      "leave when the master ends the session"},
     {O_RENDER, "render", "gl|none", "gl", G_CLUSTER, C, "none: no GL, the checksum of the parameters (tests)"},
     {O_QUIET, "quiet", NULL, NULL, G_CLUSTER, C, "log only errors"},
-    {O_APP, "app", "FILE.so", NULL, G_CLUSTER, C,
-     "an application (cavelight/app.h): the master's --app\n(docs/app.md)"},
+    {O_APP, "app", "FILE.so", NULL, G_CLUSTER, 0,
+     "an application (cavelight/app.h, docs/app.md): the master's\n--app; standalone: its update, frame and draw here"},
     {O_GL, "gl", "egl|osmesa|glfw", "egl", G_SCENE, S, "GL context: headless EGL, OSMesa, or a GLFW window"},
     {O_SCENE, "scene", "FILE|NAME", "default (cluster: the config's scene)", G_SCENE, 0,
      "glTF 2.0 (.gltf/.glb) or a built-in scene: default,\n"
@@ -173,10 +173,12 @@ static const char *set(void *user, int id, const char *v)
     cluster_node_desc *d = &c->cluster;
     if (id >= O_SETTING) {
         const gi_option *g = gi_option_at(id - O_SETTING);
-        /* --exposure auto: the scene's light decides, once it is loaded (exposure.h). */
-        if (strcmp(g->row->name, "exposure") == 0 && strcmp(v, "auto") == 0) {
-            o->exposure_auto = 1;
-            return NULL;
+        /* --exposure auto (the default): the scene's light decides, once it is loaded
+         * (exposure.h); a number fixes it. */
+        if (strcmp(g->row->name, "exposure") == 0) {
+            o->exposure_auto = strcmp(v, "auto") == 0;
+            if (o->exposure_auto)
+                return NULL;
         }
         return gi_set(&o->frame, g->row->name, v);
     }
@@ -188,7 +190,7 @@ static const char *set(void *user, int id, const char *v)
     case O_EXIT_WITH_MASTER: d->exit_with_master = 1; break;
     case O_RENDER: CHOICE(d->render, render_names); break;
     case O_QUIET: d->quiet = 1; break;
-    case O_APP: d->app = v; break;
+    case O_APP: o->app = d->app = v; break;
     case O_SCENE: o->scene = d->scene = v; break;
     case O_SCENE_TRANSFORM: {
         const char *why = cluster_scene_transform_option(v, &d->scene_transform);
@@ -263,6 +265,10 @@ static int check_standalone(const node_options *o, const cli_program *p, const c
         why = gi_budget_check(&o->frame, setting_given, &q);
     if (!why && o->have_screen != o->have_eye)
         why = "--screen and --eye go together";
+    if (!why && !o->reference)
+        why = ao_ambient_check(&o->frame);
+    if (!why && o->reference && o->app)
+        why = "--app runs with the GL renderer, not --renderer reference";
     if (!why && o->reference && o->stereo)
         why = "--renderer reference renders one eye: use --eyes mono";
     if (why)
@@ -276,6 +282,7 @@ cli_result node_cli_parse(int argc, char **argv, node_cli *c)
     c->standalone = (node_options){
         .gl = GLCTX_EGL, .scene = "default", .frames = 1, .width = 320, .height = 240,
         .yfov = -1, .eye_separation = FRAME_VIEW_EYE_SEPARATION, .seed = 1,
+        .exposure_auto = 1,
     };
     frame_params_default(&c->standalone.frame);
     c->cluster = (cluster_node_desc){.output = -1, .render = CLUSTER_RENDER_GL};

@@ -14,12 +14,13 @@
 #include "gi/gi_settings.h"
 #include "gl/gltools.h"
 #include "renderer.h"
+#include "renderer_aa.h"
 #include "renderer_ao.h"
 #include "renderer_hud.h"
 #include "renderer_rsm.h"
 #include "gl/scene_gl.h"
 
-enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2 };
+enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2, Q_AA = 3 };
 
 enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
 
@@ -53,6 +54,7 @@ struct renderer {
 
     gi *gi;                  /* the indirect-light method (gi.h), with its shading program */
     renderer_ao *ao;         /* the ambient term's occlusion (renderer_ao.h) */
+    renderer_aa *aa;         /* the final image's anti-aliasing (renderer_aa.h) */
     uint64_t checksum;       /* its last frame's */
     renderer_desc desc;
     int software;            /* a software GL (llvmpipe) */
@@ -67,6 +69,7 @@ struct renderer {
     /* Views that show no light: a query over the final pass, whose shader leaves black
      * pixels out; one warning when the k-th view of a frame turns black. */
     GLuint lit_query;
+    GLuint seen_query;       /* over the G-buffer pass: any surface in view */
     int eye_index;           /* eye passes since the frame pass */
     int view_dark[RENDERER_DARK_VIEWS];
     ratelog dark_log;
@@ -288,6 +291,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
         build_frame_state(r, &r->frame, err, errlen) != 0 ||
         !(r->ao = renderer_ao_create(r->gl, r->scene, err, errlen)) ||
+        !(r->aa = renderer_aa_create(r->gl, err, errlen)) ||
         !(r->hud = renderer_hud_create(r->gl, err, errlen))) {
         renderer_destroy(r);
         return NULL;
@@ -296,6 +300,7 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     queries_init(r, &r->eye_queries);
     r->gl->GenVertexArrays(1, &r->empty_vao);
     r->gl->GenQueries(1, &r->lit_query);
+    r->gl->GenQueries(1, &r->seen_query);
     r->emits = scene_has_emitter(r->scene);
     GLenum e = r->gl->GetError();
     if (e != GL_NO_ERROR) {
@@ -313,6 +318,7 @@ void renderer_destroy(renderer *r)
     const gl_functions *gl = r->gl;
     gi_destroy(r->gi);
     renderer_ao_destroy(r->ao);
+    renderer_aa_destroy(r->aa);
     renderer_hud_destroy(r->hud);
     free_eye_targets(r);
     GLuint progs[] = {r->prog_gbuffer, r->prog_final};
@@ -325,6 +331,8 @@ void renderer_destroy(renderer *r)
         gl->DeleteVertexArrays(1, &r->empty_vao);
     if (r->lit_query)
         gl->DeleteQueries(1, &r->lit_query);
+    if (r->seen_query)
+        gl->DeleteQueries(1, &r->seen_query);
     free(r->models);
     free(r->shown);
     for (int i = 0; i < RENDERER_QUERY_RING; i++) {
@@ -511,9 +519,13 @@ static void warn_if_dark(renderer *r, int lit)
     for (int i = 0; i < p->light_count && i < FRAME_MAX_LIGHTS; i++)
         lights += light_is_lit(&p->lights[i]) &&
                   (p->lights[i].color[0] > 0 || p->lights[i].color[1] > 0 || p->lights[i].color[2] > 0);
+    GLint seen = 0;
+    r->gl->GetQueryObjectiv(r->seen_query, GL_QUERY_RESULT, &seen); /* ready: as lit_query */
     fprintf(stderr, "cavelight-node: warning: frame %llu, view %d receives no light: %s%s\n",
             (unsigned long long)p->version, k,
-            light_dark_reason(lights || r->emits),
+            seen ? light_dark_reason(lights || r->emits)
+                 : "nothing in view (the scene lies outside this view: check its placement and "
+                   "scale, e.g. --scene-transform '{\"fit\": true}')",
             skipped ? " (more such lines left out)" : "");
 }
 
@@ -561,8 +573,10 @@ static void gbuffer_pass(renderer *r, const renderer_view *view, const float vp[
     gl->UseProgram(r->prog_gbuffer);
     gl->UniformMatrix4fv(loc(r, r->prog_gbuffer, "u_view_projection"), 1, GL_FALSE, vp);
     gl->Uniform4fv(loc(r, r->prog_gbuffer, "u_eye"), 1, eye);
+    gl->BeginQuery(GL_ANY_SAMPLES_PASSED, r->seen_query);
     scene_gl_draw(r->mesh, r->prog_gbuffer);
     gbuffer_extra(r, view, vp);
+    gl->EndQuery(GL_ANY_SAMPLES_PASSED);
     gl->Disable(GL_DEPTH_TEST);
 }
 
@@ -615,7 +629,8 @@ static void final_pass(renderer *r, const renderer_view *view, const float vp[16
     renderer_hud_draw(r->hud, p, r->timings.gi.hud_cells, vp, view->eye_position, encoding);
 }
 
-/* The final image as 8-bit RGB, top row first, and the linear images on request. */
+/* The bound framebuffer's image (the final one, or its anti-aliased copy) as 8-bit RGB,
+ * top row first, and the linear images on request. */
 static void read_back(renderer *r, int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
@@ -657,7 +672,7 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     if (eye_targets(r, view->width, view->height))
         return -1;
     double t0 = clock_now_ms();
-    int slot = queries_begin_frame(r, &r->eye_queries, 3);
+    int slot = queries_begin_frame(r, &r->eye_queries, 4);
     float vp[16], eye[4];
     mat4_mul(view->projection, view->view, vp);
     eye_towards(view, eye);
@@ -674,11 +689,15 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     query_begin(r, &r->eye_queries, slot, Q_FINAL);
     final_pass(r, view, vp);
     query_end(r, &r->eye_queries, slot, Q_FINAL);
+    query_begin(r, &r->eye_queries, slot, Q_AA);
+    renderer_aa_apply(r->aa, r->frame.aa, r->f_color, view->width, view->height, r->empty_vao);
+    query_end(r, &r->eye_queries, slot, Q_AA);
     read_back(r, want_linear, out);
     gi_stats_get(r->gi, &r->timings.gi); /* the eye-side figures (vpl: its assignment) */
     r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
     r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
     r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
+    r->timings.aa_ms = r->eye_queries.ms[Q_AA];
     renderer_ao_stats_get(r->ao, &r->timings.ao);
     r->timings.eye_host_ms = clock_now_ms() - t0;
     GLenum e = r->gl->GetError();

@@ -54,6 +54,7 @@ typedef struct renderer_timings {
     gi_stats gi;                            /* frame pass: the GI method's stages (host
                                                ms), its figures */
     double gbuffer_ms, shade_ms, final_ms;  /* last eye pass (GPU clock) */
+    double aa_ms;                           /* its anti-aliasing (GPU clock; 0 when off) */
     renderer_ao_stats ao;                   /* last eye pass: the ambient occlusion (host
                                                ms); its maps' build and memory */
     double frame_host_ms, eye_host_ms;

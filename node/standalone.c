@@ -22,6 +22,7 @@
 #include "renderer_hud.h"
 #include "scene/scene_load.h"
 #include "standalone.h"
+#include "standalone_app.h"
 
 void standalone_frame_params(const node_options *o, const scene *s, const renderer_view *first_eye,
                              frame_params *out)
@@ -233,7 +234,7 @@ static void add_stats(cJSON *obj, const gi_stats *g)
 /* The eye passes of one frame: images written, the first eye handed to the window, stage
  * times summed over the eyes. */
 static int render_eyes(const node_options *o, renderer *r, present *out, const eye_setup *eyes,
-                       int eye_count, int f, double eye_sum[4])
+                       int eye_count, int f, double eye_sum[4], standalone_app *app)
 {
     renderer_view views[2];
     for (int e = 0; e < eye_count; e++)
@@ -241,6 +242,8 @@ static int render_eyes(const node_options *o, renderer *r, present *out, const e
     renderer_screen(r, views, eye_count); /* one light assignment for both eyes */
     for (int e = 0; e < eye_count; e++) {
         renderer_image img;
+        if (app)
+            standalone_app_eye(app, eye_count == 1 ? 0 : 2 * e - 1);
         if (renderer_eye_pass(r, &eyes[e].view, o->pfm, &img) != 0) {
             fprintf(stderr, "cavelight-node: frame %d, eye %s: %s\n", f, eyes[e].name,
                     renderer_last_error(r));
@@ -264,15 +267,17 @@ static int render_eyes(const node_options *o, renderer *r, present *out, const e
  * report. Returns 0, 1 when the window was closed, -1 on an error. */
 static int render_frame(const node_options *o, present *out, renderer *r, const eye_setup *eyes,
                         int eye_count, frame_params *fp, int f, cJSON *frames,
-                        double stage_ms[M_COUNT])
+                        double stage_ms[M_COUNT], standalone_app *app)
 {
     fp->version = (uint64_t)f;
     fp->time = f / 60.0;
+    if (app)
+        standalone_app_step(app, r, fp, f);
     uint64_t checksum = renderer_frame_pass(r, fp);
     renderer_timings t;
     renderer_get_timings(r, &t);
     double eye_sum[4] = {0, 0, 0, 0};
-    if (render_eyes(o, r, out, eyes, eye_count, f, eye_sum) != 0)
+    if (render_eyes(o, r, out, eyes, eye_count, f, eye_sum, app) != 0)
         return -1;
     /* A window (--gl glfw) shows the first eye; closing it ends the run. */
     char err[512];
@@ -360,6 +365,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
     renderer_desc rd = {.gl = glctx_gl(ctx), .scene = sc, .first = fp, .threads = o->threads};
     cJSON *report = cJSON_CreateObject();
     renderer *r = NULL;
+    standalone_app *app = NULL;
     double *samples = xcalloc((size_t)o->frames * M_COUNT, sizeof *samples);
     int rc = 1, frames_run = 0;
     if (o->budget_ms > 0 && choose_budget(o, &rd, fp, report) != 0)
@@ -368,12 +374,18 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
         fprintf(stderr, "cavelight-node: %s\n", err);
         goto out;
     }
+    if (o->app && !(app = standalone_app_open(o->app, sc, ctx, err, sizeof err))) {
+        fprintf(stderr, "cavelight-node: %s\n", err);
+        goto out;
+    }
+    if (app)
+        standalone_app_attach(app, r);
     report_setup(report, o, ctx, r, sc, fp);
     cJSON *frames = cJSON_AddArrayToObject(report, "frames");
     int step = 0;
     for (int f = 0; f < o->frames && step == 0; f++) {
         double stage_ms[M_COUNT];
-        if ((step = render_frame(o, out, r, eyes, eye_count, fp, f, frames, stage_ms)) < 0)
+        if ((step = render_frame(o, out, r, eyes, eye_count, fp, f, frames, stage_ms, app)) < 0)
             goto out;
         for (int m = 0; m < M_COUNT; m++)
             samples[(size_t)m * o->frames + f] = stage_ms[m];
@@ -383,6 +395,7 @@ static int run_gl(const node_options *o, const scene *sc, const eye_setup *eyes,
 out:
     free(samples);
     cJSON_Delete(report);
+    standalone_app_close(app);
     renderer_destroy(r);
     present_destroy(out);
     return rc;
@@ -408,11 +421,9 @@ int standalone_run(const node_options *o)
         scene_free(&sc);
         return 1;
     }
-    if (sc.light_added) {
-        char note[400];
-        scene_light_added_note(&sc, o->scene, note, sizeof note);
+    char note[400];
+    if (scene_light_note(&sc, o->scene, note, sizeof note))
         fprintf(stderr, "cavelight-node: warning: %s\n", note);
-    }
     node_options opt = *o;
     /* The scene's camera (the file's first, or --camera's), else the default view; the
      * command line's position, target and field of view win. */

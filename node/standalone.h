@@ -32,12 +32,13 @@ typedef struct node_options {
     /* the frame parameters: frame_params_default() with the command line's values (the
      * GI method and its settings among them, gi_settings.h); lights come from the scene */
     frame_params frame;
-    int exposure_auto;    /* --exposure auto: from the scene's light (exposure.h) */
+    int exposure_auto;    /* 1 unless --exposure N: from the scene's light (exposure.h) */
     int have_wand;        /* HUD (docs/node.md): wand position given */
     float wand[3];
     /* --renderer reference: the path tracer (docs/reference.md) instead of GL */
     int reference, samples, bounces;
     unsigned long long seed;
+    const char *app;      /* --app: an application run without a cluster (standalone_app.h) */
 } node_options;
 
 /* The frame a standalone run starts from: o->frame (frame_params_default() and the

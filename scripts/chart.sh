@@ -24,10 +24,6 @@
 #                         [--scene FILE.gltf]...
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-. "$root/scripts/deps.sh"
-cavelight_install_deps
-cavelight_build "$root" >/dev/null
-
 quick=0 docs=1 reuse=0 charts_only=0 out=$root/out/chart ref_samples= ref_noise=0.03
 # The first round's paths per pixel per half (the issue-32 chart's were 32 and 256).
 QUICK_REF_SAMPLES=256 FULL_REF_SAMPLES=256
@@ -35,6 +31,7 @@ scenes=(default corridor doorway courtyard arcades street)
 usage="usage: scripts/chart.sh [--quick] [--out DIR] [--no-docs] [--reuse-reference] [--ref-samples N] [--ref-noise T] [--charts-only] [--scene FILE]..."
 while [ $# -gt 0 ]; do
   case $1 in
+    -h|--help) echo "$usage"; exit 0 ;;
     --quick) quick=1 ;;
     --no-docs) docs=0 ;;
     --reuse-reference) reuse=1 ;;
@@ -50,6 +47,10 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
+# Dependencies and the build once the arguments are known good (--help needs neither).
+. "$root/scripts/deps.sh"
+cavelight_install_deps
+cavelight_build "$root" >/dev/null
 mkdir -p "$out"
 if [ $charts_only = 1 ]; then
   [ -f "$out/scenes.txt" ] || { echo "chart: --charts-only: no measurements in $out" >&2; exit 2; }

@@ -41,6 +41,7 @@ struct app_host {
     float models[SCENE_MAX_OBJECTS][16];
     uint8_t shown[SCENE_MAX_OBJECTS];
     char error[400];
+    char refused_key[400];       /* init's first refused registration */
     ratelog log;
 };
 
@@ -55,8 +56,12 @@ static int refusal(app_host *h, const char *fmt, ...)
     if (ratelog_event(&h->log, clock_now_ms(), &skipped))
         fprintf(stderr, "%s: app %s: %s%s\n", h->who, h->name, h->error,
                 skipped ? " (more such lines left out)" : "");
-    if (h->phase == PHASE_INIT)
+    /* Only a refused registration stops the session; another call in init (an object
+     * query) only returns -1 to the application. */
+    if (h->phase == PHASE_INIT && strncmp(h->error, "cavelight_key_", 14) == 0 && !h->key_refused) {
         h->key_refused = 1;
+        snprintf(h->refused_key, sizeof h->refused_key, "%s", h->error);
+    }
     return -1;
 }
 
@@ -233,11 +238,15 @@ static int host_object_find(void *host, const char *name)
     return scene_object_find(((app_host *)host)->desc.scene, name);
 }
 
-static int object_ok(app_host *h, const char *call, int o)
+/* An object's rest bounds need no pose (valid in init); the rest reads or sets it. */
+static int object_ok(app_host *h, const char *call, int o, int pose)
 {
     int count = h->desc.scene->object_count;
-    if (o >= 0 && o < count && h->pose)
+    if (o >= 0 && o < count && (h->pose || !pose))
         return 1;
+    if (o >= 0 && o < count)
+        return refusal(h, "%s: object %d's pose is there from update on (init has its bounds)",
+                       call, o), 0;
     return refusal(h, "%s: no object %d (the scene has %d)", call, o, count), 0;
 }
 
@@ -251,7 +260,7 @@ static int host_object_set(void *host, int o, const float *offset, int visible)
 {
     app_host *h = host;
     const char *call = offset ? "cavelight_object_set_offset" : "cavelight_object_set_visible";
-    if (!settable(h, call, "") || !object_ok(h, call, o))
+    if (!settable(h, call, "") || !object_ok(h, call, o, 1))
         return -1;
     if (offset) {
         for (int i = 0; i < 16; i++)
@@ -267,7 +276,8 @@ static int host_object_set(void *host, int o, const float *offset, int visible)
 static int host_object_get(void *host, int o, app_object_part part, float *out)
 {
     app_host *h = host;
-    if (!object_ok(h, "cavelight_object_*", o))
+    if (!object_ok(h, part == APP_OBJECT_BOUNDS ? "cavelight_object_bounds" : "cavelight_object_*", o,
+                   part != APP_OBJECT_BOUNDS))
         return -1;
     switch (part) {
     case APP_OBJECT_OFFSET:
@@ -393,7 +403,8 @@ int app_host_init(app_host *h, char *err, size_t errlen)
         h->app.desc.init(&h->app);
     h->phase = PHASE_NONE;
     if (h->key_refused) {
-        snprintf(err, errlen, "app %s: init registered a key that was refused (%s)", h->name, h->error);
+        snprintf(err, errlen, "app %s: init registered a key that was refused (%s)", h->name,
+                 h->refused_key);
         return -1;
     }
     if (!h->desc.quiet)

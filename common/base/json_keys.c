@@ -120,6 +120,19 @@ int json_keys_unknown(const json_keys *k, const cJSON *root, json_keys_report re
     return w.found;
 }
 
+const char *json_keys_misspelt(const cJSON *object, const char *key)
+{
+    enum { MAX = 64 };
+    const char *names[MAX];
+    int n = 0;
+    if (!cJSON_IsObject(object))
+        return NULL;
+    for (const cJSON *m = object->child; m && n < MAX; m = m->next)
+        if (m->string && strcmp(m->string, key) != 0)
+            names[n++] = m->string;
+    return cli_nearest(key, names, n);
+}
+
 void json_keys_describe(const char *key, const char *nearest, const char *valid, char *out, size_t cap)
 {
     if (nearest)

@@ -35,6 +35,10 @@ typedef void (*json_keys_report)(void *user, const char *field, const char *key,
 /* Reports every unknown member under root, in document order; returns their count. */
 int json_keys_unknown(const json_keys *k, const cJSON *root, json_keys_report report, void *user);
 
+/* For a required key that object lacks: the member of object that looks like it misspelt
+ * ("nmae" for "name", by cli_nearest()'s rule), or NULL. */
+const char *json_keys_misspelt(const cJSON *object, const char *key);
+
 /* The usual words for one unknown member, into out: 'unknown key "resolutoin" (did you
  * mean "resolution"?)' or 'unknown key "x" (keys here: a, b)'. */
 void json_keys_describe(const char *key, const char *nearest, const char *valid, char *out, size_t cap);

@@ -61,6 +61,17 @@ const char *cluster_security_name(cluster_security s) { return (unsigned)s < 2 ?
 int cluster_output_parse(const char *s) { return lookup(s, output_names, 3); }
 int cluster_stereo_parse(const char *s) { return lookup(s, stereo_names, 5); }
 
+/* A required member absent from obj: what it must be, and the member that misspelt it. */
+static void fail_missing(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
+                         const char *what)
+{
+    const char *near = json_keys_misspelt(obj, key);
+    if (near)
+        fail(c, field, "missing (%s; \"%s\" here is \"%s\" misspelt?)", what, near, key);
+    else
+        fail(c, field, "missing (%s)", what);
+}
+
 /* Each getter: absent -> default (or an error when required); wrong type -> error. */
 static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const char *field,
                        char *out, size_t cap, const char *def)
@@ -68,7 +79,7 @@ static void get_string(parse_ctx *c, const cJSON *obj, const char *key, const ch
     const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (!def)
-            fail(c, field, "missing (a string is required)");
+            fail_missing(c, obj, key, field, "a string is required");
         else
             snprintf(out, cap, "%s", def);
         return;
@@ -90,7 +101,7 @@ static double get_number(parse_ctx *c, const cJSON *obj, const char *key, const 
     const cJSON *v = json_keys_get(c->keys, obj, key);
     if (!v) {
         if (required)
-            fail(c, field, "missing (a number is required)");
+            fail_missing(c, obj, key, field, "a number is required");
         return def;
     }
     if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) {
@@ -343,7 +354,7 @@ static void parse_screen(parse_ctx *c, const cJSON *s, int index, cluster_config
         snprintf(field, sizeof field, "screens[%d].%s", index, corner[k]);
         const cJSON *v = json_keys_get(c->keys, s, corner[k]);
         if (!v) {
-            fail(c, field, "missing (three corners in CAVE space are required)");
+            fail_missing(c, s, corner[k], field, "three corners in CAVE space are required");
             return;
         }
         if (get_vector(c, v, field, dst[k], 3, -1e4, 1e4))
@@ -586,6 +597,10 @@ static void parse_node(parse_ctx *c, const cJSON *n, int index, cluster_config *
 
     const cJSON *screens = json_keys_get(c->keys, n, "screens");
     snprintf(field, sizeof field, "nodes[%d].screens", index);
+    if (!screens) {
+        fail_missing(c, n, "screens", field, "an array of screen names is required");
+        return;
+    }
     if (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
         cJSON_GetArraySize(screens) > CLUSTER_NODE_MAX_SCREENS) {
         fail(c, field, "must be an array of 1..%d screen names", CLUSTER_NODE_MAX_SCREENS);
@@ -678,6 +693,9 @@ static void parse_top(parse_ctx *c, const cJSON *root, cluster_config *cfg)
 static int parse_master(parse_ctx *c, const cJSON *root, cluster_config *cfg)
 {
     const cJSON *m = json_keys_get(c->keys, root, "master");
+    if (!m)
+        fail_missing(c, root, "master", "master",
+                     "an object is required: {\"bind\": ..., \"connect\": ...}");
     if (!cJSON_IsObject(m)) {
         fail(c, "master", "missing or not an object (give {\"bind\": ..., \"connect\": ...})");
         return -1;
@@ -714,6 +732,8 @@ static void parse_timeouts(parse_ctx *c, const cJSON *t, cluster_config *cfg)
 static int parse_screens_and_nodes(parse_ctx *c, const cJSON *root, cluster_config *cfg)
 {
     const cJSON *screens = json_keys_get(c->keys, root, "screens");
+    if (!screens)
+        fail_missing(c, root, "screens", "screens", "an array of screens is required");
     if (!c->failed && (!cJSON_IsArray(screens) || cJSON_GetArraySize(screens) < 1 ||
                        cJSON_GetArraySize(screens) > CLUSTER_MAX_SCREENS)) {
         fail(c, "screens", "must be an array of 1..%d screens", CLUSTER_MAX_SCREENS);
@@ -724,6 +744,8 @@ static int parse_screens_and_nodes(parse_ctx *c, const cJSON *root, cluster_conf
         cfg->screen_count = i + 1;
     }
     const cJSON *nodes = json_keys_get(c->keys, root, "nodes");
+    if (!nodes)
+        fail_missing(c, root, "nodes", "nodes", "an array of nodes is required");
     if (!c->failed && (!cJSON_IsArray(nodes) || cJSON_GetArraySize(nodes) < 1 ||
                        cJSON_GetArraySize(nodes) > CLUSTER_MAX_NODES)) {
         fail(c, "nodes", "must be an array of 1..%d nodes", CLUSTER_MAX_NODES);

@@ -32,4 +32,10 @@ typedef enum frame_ao_falloff {
  * in shaders/ao_common.glsl. */
 float ao_visibility(float d, float max_d, frame_ao_falloff f);
 
+struct frame_params;
+/* NULL, or one line when the frame asks for AO (ldm, ssao) and has no ambient term for it
+ * to occlude: the rasterized picture would not change. The master and the standalone GL
+ * node refuse such settings; the path tracer, which writes the AO image itself, does not. */
+const char *ao_ambient_check(const struct frame_params *p);
+
 #endif

@@ -14,6 +14,7 @@ static void identity(float m[16])
 
 static const char *const environment_names[] = {"dark", "dim", "office"};
 static const char *const ao_names[FRAME_AO_COUNT] = {"off", "ldm", "ssao"};
+static const char *const aa_names[FRAME_AA_COUNT] = {"off", "fxaa"};
 static const char *const ao_falloff_names[FRAME_AO_FALLOFFS] = {"occlusion", "obscurance"};
 
 #define FIELD(f) offsetof(frame_params, f)
@@ -49,8 +50,8 @@ const setting frame_display_settings[] = {
     {"display-gamma", "G", SETTING_FLOAT, 0.1, 10, 2.2, NULL, 0, 0, FIELD(display_gamma),
      "display gamma"},
     {"exposure", "E|auto", SETTING_FLOAT, 1e-6, 1e6, 1, NULL, 0, 0, FIELD(exposure),
-     "linear scale before tone mapping; auto: the scene's\naverage lit surface at middle grey "
-     "(docs/node.md)"},
+     "linear scale before tone mapping; auto (what the master\nand the standalone node "
+     "take unless a number is given): the\nscene's average lit surface at middle grey (docs/node.md)"},
     {"ao", NULL, SETTING_CHOICE, 0, 0, FRAME_AO_OFF, ao_names, FRAME_AO_COUNT, 0,
      FIELD(ao), "ambient occlusion of the ambient term: layered depth\nmaps, screen space "
      "(horizons) or none"},
@@ -66,6 +67,9 @@ const setting frame_display_settings[] = {
      SETTING_REBUILD, FIELD(ao_resolution), "ambient occlusion: texels per side of each map"},
     {"ambient", "L", SETTING_FLOAT, 0, 1e6, 0, NULL, 0, 0, FIELD(ambient),
      "ambient light from every direction, W/(m^2 sr), times\nits occlusion (ao); 0: none"},
+    /* After the tone map, before warp and blend: what a wall's pixels show. */
+    {"aa", NULL, SETTING_CHOICE, 0, 0, FRAME_AA_OFF, aa_names, FRAME_AA_COUNT, 0, FIELD(aa),
+     "anti-aliasing of each eye's image: FXAA 3.11 (Lottes)\nor none"},
 };
 #undef FIELD
 const int frame_display_setting_count =

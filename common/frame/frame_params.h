@@ -21,6 +21,13 @@ typedef enum frame_environment {
     FRAME_ENV_OFFICE = 2, /* 1.125 */
 } frame_environment;
 
+/* Anti-aliasing of each eye's final image (node/renderer_aa.h). */
+typedef enum frame_aa {
+    FRAME_AA_OFF = 0,
+    FRAME_AA_FXAA = 1,
+    FRAME_AA_COUNT
+} frame_aa;
+
 /* One light as the master and every node hold it; the fields mean what scene_light's do
  * (units there). */
 typedef struct frame_light {
@@ -70,6 +77,7 @@ typedef struct frame_params {
     int ao_directions;      /* its layered depth maps */
     int ao_resolution;
     float ambient;          /* the ambient light's radiance, W/(m^2 sr); 0: none */
+    frame_aa aa;            /* anti-aliasing of the final image */
     /* Interaction state */
     int hud_layout;         /* active interaction layout for the HUD, -1 = no HUD */
     int pattern;            /* 1: screens show the calibration pattern (pattern.h), 0 the scene */
@@ -79,7 +87,7 @@ typedef struct frame_params {
 /* The frame's settings, the one place of their names, ranges and defaults (offsets into
  * frame_params): how light travels (steps, lambda, absorption, scattering, rsm, and the
  * layered depth maps' layers and memory cap) and how it is shown (env, display-gamma,
- * exposure, the ambient term and its occlusion: ao.h). */
+ * exposure, the ambient term and its occlusion: ao.h, anti-aliasing). */
 extern const setting frame_transport_settings[];
 extern const int frame_transport_setting_count;
 extern const setting frame_display_settings[];

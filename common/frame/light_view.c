@@ -164,7 +164,7 @@ double light_power(const frame_light *l, const scene *s)
 
 const char *light_dark_reason(int lit)
 {
-    return lit ? "no light reaches what it sees (the lights point elsewhere, or walls shut them "
+    return lit ? "no light reaches what is seen (the lights point elsewhere, or walls shut them "
                  "out; check their positions and the view)"
                : "every light is off or at zero intensity or colour, and no surface emits";
 }

@@ -249,6 +249,10 @@ void check_version(const jvalue &root)
     auto asset = root.find("asset");
     if (asset != root.end()) {
         auto v = asset->is_object() ? asset->find("version") : asset->end();
+        // 1.0 exporters wrote the version as a number; a glTF 2.0 file never does.
+        if (v != asset->end() && v->is_number() && v->get<double>() < 2.0)
+            refuse("glTF 1.0 is not supported (asset.version is the number " + v->dump() +
+                   "): convert the file to glTF 2.0");
         if (v == asset->end() || !v->is_string())
             return; // rules[] names what is wrong with it
         std::string s = v->get<std::string>().substr(0, 20);

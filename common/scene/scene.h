@@ -223,6 +223,10 @@ int scene_point_is_free(const scene *s, const float p[3], int *fronts);
  * KHR_lights_punctual light to choose your own)" ("outside its bounds on its camera's
  * side" for an object). */
 void scene_light_added_note(const scene *s, const char *path, char *out, size_t n);
+/* The line a user needs about the scene's light, and 1: the added light's note, or for a
+ * scene with emissive surfaces and no light "scene X: only emissive materials and no light:
+ * ..."; 0 (out untouched) when the scene has its own lights. */
+int scene_light_note(const scene *s, const char *path, char *out, size_t n);
 
 /* Adds a copy of c to cameras. Returns its index or -1 when out of memory. */
 int scene_add_camera(scene *s, const scene_camera *c);

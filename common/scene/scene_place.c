@@ -226,6 +226,16 @@ void scene_default_camera(const scene *s, scene_camera *out)
     scene_default_view(s, out->position, out->target);
 }
 
+int scene_light_note(const scene *s, const char *path, char *out, size_t n)
+{
+    if (s->light_added)
+        scene_light_added_note(s, path, out, n);
+    else if (s->light_count == 0)
+        snprintf(out, n, "scene %s: only emissive materials and no light: every other surface "
+                 "stays dark (add a KHR_lights_punctual light)", path);
+    return s->light_added || s->light_count == 0;
+}
+
 void scene_light_added_note(const scene *s, const char *path, char *out, size_t n)
 {
     const scene_light *l = &s->lights[0];

@@ -17,7 +17,8 @@
  * scene would need them), photons and trace (the split), and splat_ms the eye pass's
  * splat; memory_mb the maps'. With --ao ldm|ssao, ao_ms is the eye pass's ambient
  * occlusion, ao_build_ms and ao_memory_mb its maps' (built once). A method's figures in ms
- * are medians over the frames like the passes.
+ * are medians over the frames like the passes. With --aa fxaa, aa_ms is the eye pass's
+ * anti-aliasing.
  * GPU passes use the
  * renderer's timer queries (read late, never stalling), the rest host clocks. The first
  * two frames are warm-up and not counted. */
@@ -131,7 +132,7 @@ int bench_frame(int argc, char **argv)
     }
     int rc = 0;
     double *assign = calloc((size_t)n * 3, sizeof *assign); /* mono, per eye, enclosed */
-    double *figs = calloc((size_t)n * (GI_STATS_MAX + 1), sizeof *figs); /* and the AO's */
+    double *figs = calloc((size_t)n * (GI_STATS_MAX + 2), sizeof *figs); /* and AO's, AA's */
     renderer_ao_stats ao = {0};
     size_t pairs[3] = {0, 0, 0};
     for (int f = 0; f < frames && rc == 0; f++) {
@@ -149,6 +150,7 @@ int bench_frame(int argc, char **argv)
         for (int k = 0; k < stages.figure_count; k++)
             figs[(size_t)k * n + (f - WARMUP)] = t.gi.figure[k].value;
         figs[(size_t)GI_STATS_MAX * n + (f - WARMUP)] = t.ao.eye_ms;
+        figs[(size_t)(GI_STATS_MAX + 1) * n + (f - WARMUP)] = t.aa_ms;
         for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
             s[(size_t)(PASSES + 1 + k) * n + (f - WARMUP)] = t.gi.stage[k].value;
         double vals[PASSES] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.gbuffer_ms, t.shade_ms,
@@ -251,6 +253,8 @@ int bench_frame(int argc, char **argv)
             printf(",\"ao_ms\":%.3f,\"ao_build_ms\":%.3f,\"ao_memory_mb\":%.6g,\"ao_overflow\":%zu",
                    median(figs + (size_t)GI_STATS_MAX * n, n), ao.build_ms, ao.memory_mb,
                    ao.overflow);
+        if (fp.aa != FRAME_AA_OFF)
+            printf(",\"aa_ms\":%.3f", median(figs + (size_t)(GI_STATS_MAX + 1) * n, n));
         for (int p = 0; p < PASSES - 1; p++)
             printf(",\"%s\":%.3f", passes[p], med[p]);
         for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)

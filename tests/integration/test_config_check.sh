@@ -50,6 +50,9 @@ grep -q "settings.vpl-cuont: 64: not a setting (did you mean vpl-count?)" "$tmp/
 [ "$(grep -c "check: " "$tmp/bad.log")" = 6 ] && grep -q "bad.json: 5 problems" "$tmp/bad.log" \
   || fail "not one line per problem: $(cat "$tmp/bad.log")"
 echo "--check: a good config ok with its port taken; 5 problems in 5 lines, exit 2"
+# AO without an ambient term: refused before anything starts, naming --ambient.
+rc=0; "$master" --config "$tmp/good.json" --check --ao ssao 2> "$tmp/ao.log" || rc=$?
+[ $rc = 2 ] && grep -q -- "--ambient" "$tmp/ao.log" || fail "--ao without --ambient: rc $rc, $(cat "$tmp/ao.log")"
 python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); del c["settings"]; json.dump(c, open(sys.argv[1], "w"))' \
   "$tmp/bad.json" # the sessions below run on its unknown keys, which a bad setting would stop
 

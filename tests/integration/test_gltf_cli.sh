@@ -70,6 +70,11 @@ cams = [("CamNode", "Main", [0.5, 1.6, 1.8], [0, 0, 0, 1]),
 write("cams.gltf", [lamp], cams)
 write("dark.gltf")
 write("off.gltf", [({"type": "point", "intensity": 0}, [0.4, 2.3, 0.3])], cams[:1])
+# Every surface emissive, no light: the renderer adds none (an emitter lights it).
+glow = json.load(open("%s/dark.gltf" % out))
+glow["materials"] = [{"emissiveFactor": [1, 1, 1]}]
+glow["meshes"][0]["primitives"][0]["material"] = 0
+json.dump(glow, open("%s/glow.gltf" % out, "w"))
 
 # A site exported Z up in centimetres, 100 m from its origin: a 10 x 10 m ground, a 1 m
 # block, a lamp 3 m up; its buffer in site.bin, and a copy one folder down that reaches up
@@ -138,6 +143,19 @@ grep -q "receives no light" "$out/dark.err" && { cat "$out/dark.err" >&2; fail "
 run off --scene "$out/off.gltf" --frames 4
 [ "$(grep -c "receives no light: every light is off" "$out/off.err")" -eq 1 ] \
     || { cat "$out/off.err" >&2; fail "not exactly one 'receives no light' warning in 4 frames"; }
+
+# A camera outside the room, looking away from it: the view is black because nothing is
+# in it, and says so (not that no light reaches it).
+run away --scene "$out/cams.gltf" --position 0.5,1.6,40 --target 0.5,1.6,80 --frames 2
+[ "$(grep -c "receives no light: nothing in view" "$out/away.err")" -eq 1 ] \
+    || { cat "$out/away.err" >&2; fail "not exactly one 'nothing in view' warning"; }
+grep -q "every light is off\|no light reaches" "$out/away.err" && { cat "$out/away.err" >&2; fail "away: wrong reason"; }
+grep -q "nothing in view" "$out/off.err" && { cat "$out/off.err" >&2; fail "off: the room is in view"; }
+
+# Emissive surfaces and no light: one line that says so.
+run glow --scene "$out/glow.gltf" --frames 2
+[ "$(grep -c "only emissive materials and no light" "$out/glow.err")" -eq 1 ] \
+    || { cat "$out/glow.err" >&2; fail "not exactly one 'only emissive materials and no light' warning"; }
 
 # The reference renders the same file from the same camera, lit.
 "$node" --standalone --renderer reference --samples 2 --bounces 2 --width 64 \

@@ -155,5 +155,15 @@ one_line_error "--vpl-count" "$node" --standalone --gi vpl --vpl-count 10
 # Values outside a setting's range are refused naming the option and the range.
 one_line_error "--lambda 1.5: expected a number in \[0, 0.999\]" "$node" --standalone --lambda 1.5
 one_line_error "--exposure" "$node" --standalone --exposure 0
+# AO without an ambient term would change no pixel: refused, naming the missing option.
+one_line_error "--ambient" "$node" --standalone --ao ssao
+one_line_error "--ambient" "$node" --standalone --ao ldm --ambient 0
+
+# The exposure: the scene's light decides (the default room's is not 1), a number fixes it.
+[ "$(json "$out/egl/report.json" "abs(r['settings']['exposure'] - 1) > 0.5")" = True ] \
+    || fail "the default exposure is not derived from the scene's light"
+"$node" --standalone --frames 1 --width 32 --height 24 --rsm 64 --lattice 8 --exposure 1 \
+    --out "$out/exp1" > /dev/null || fail "--exposure 1 failed"
+[ "$(json "$out/exp1/report.json" "r['settings']['exposure'] == 1")" = True ] || fail "--exposure 1 not kept"
 one_line_error "--steps 300: expected a whole number in 0..256" "$node" --standalone --steps 300
 echo "node CLI: all checks passed"

@@ -29,9 +29,11 @@ static const char *config_json =
 
 static void standalone_frame(const char *scene_name, frame_params *out)
 {
-    char *argv[] = {"cavelight-node", "--standalone", "--scene", (char *)scene_name};
+    /* The exposure fixed as the session's (exposure_auto 0): the automatic one follows
+     * each side's first lights, which the master's scripted lamp changes. */
+    char *argv[] = {"cavelight-node", "--standalone", "--scene", (char *)scene_name, "--exposure", "1"};
     static node_cli cli;
-    assert_int_equal(node_cli_parse(4, argv, &cli), CLI_OK);
+    assert_int_equal(node_cli_parse(6, argv, &cli), CLI_OK);
     const node_options o = cli.standalone;
     scene sc;
     char err[256];

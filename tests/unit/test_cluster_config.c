@@ -251,6 +251,33 @@ static void test_display_keys(void **state)
 #undef WARP
 }
 
+/* A required key that is missing beside a member that looks like it: both named. */
+static void expect_misspelt(const char *json, const char *line)
+{
+    char err[512] = "";
+    assert_int_equal(cluster_config_parse(json, strlen(json), "bad.json", &cfg, err, sizeof err), -1);
+    if (!strstr(err, line))
+        fail_msg("error '%s' is not '%s'", err, line);
+}
+
+static void test_misspelt_required_keys(void **state)
+{
+    (void)state;
+    char buf[2048];
+    expect_misspelt(NODES("{\"nmae\": \"a\", \"screens\": [\"s\"], \"resolution\": [4,4]}"),
+                    "field nodes[0].name: missing (a string is required; \"nmae\" here is \"name\" misspelt?)");
+    expect_misspelt(NODES("{\"name\": \"a\", \"scren\": [\"s\"], \"resolution\": [4,4]}"),
+                    "field nodes[0].screens: missing (an array of screen names is required; \"scren\" here is "
+                    "\"screens\" misspelt?)");
+    expect_misspelt("{\"mastr\": {}, \"screens\": []}", "field master: missing (an object is required: "
+                    "{\"bind\": ..., \"connect\": ...}; \"mastr\" here is \"master\" misspelt?)");
+    snprintf(buf, sizeof buf, "%s \"nodez\": []}", good_head);
+    expect_misspelt(buf, "field nodes: missing (an array of nodes is required; \"nodez\" here is \"nodes\" misspelt?)");
+    /* Nothing close: only what is missing. */
+    expect_misspelt(NODES("{\"host\": \"h\", \"screens\": [\"s\"], \"resolution\": [4,4]}"),
+                    "field nodes[0].name: missing (a string is required)");
+}
+
 static void test_missing_file(void **state)
 {
     char err[512] = "";
@@ -386,6 +413,7 @@ int main(void)
         cmocka_unit_test(test_unknown_keys),
         cmocka_unit_test(test_display_keys),
         cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_misspelt_required_keys),
         cmocka_unit_test(test_tracker_transform),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

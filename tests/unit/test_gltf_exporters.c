@@ -297,7 +297,8 @@ static void test_draco(void **state)
     expect_refused(DIR "/box_draco.gltf", "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression: cannot decode");
 }
 
-/* glTF 1.0 is named for what it is: by asset.version, by its dictionaries where there is no
+/* glTF 1.0 is named for what it is: by asset.version (a string, or a number as 1.0
+ * exporters wrote it), by its dictionaries where there is no
  * "asset", and in the binary container by its version field. */
 static void test_gltf1(void **state)
 {
@@ -305,6 +306,8 @@ static void test_gltf1(void **state)
     expect_refused(write_case("v1", "{\"asset\":{\"version\":\"1.0\"},\"scene\":\"defaultScene\","
                                     "\"scenes\":{\"defaultScene\":{\"nodes\":[]}}}", NULL, 0),
                    "glTF 1.0 is not supported (asset.version): convert the file to glTF 2.0");
+    expect_refused(write_case("v1_number", "{\"asset\":{\"version\":1.0},\"scene\":\"s\"}", NULL, 0),
+                   "glTF 1.0 is not supported (asset.version is the number 1.0): convert the file to glTF 2.0");
     expect_refused(write_case("v1_no_asset", "{\"scene\":\"s\",\"meshes\":{\"m\":{\"primitives\":[]}}}", NULL, 0),
                    "glTF 1.0 is not supported (\"meshes\" is a dictionary, no \"asset\")");
     const unsigned char glb1[20] = {'g', 'l', 'T', 'F', 1, 0, 0, 0, 20, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
