@@ -56,6 +56,21 @@ for d in hud hudwand; do
     cmp -s "$out/nohud/frame0000_mono.png" "$out/$d/frame0000_mono.png" && fail "$d: no HUD drawn"
 done
 
+# The none method (the skeleton of a method): its one setting, a constant indirect
+# irradiance, lights the indirect image evenly, and changes the checksum READY carries.
+pfm_mean() { python3 -c "
+import struct,sys
+d=open(sys.argv[1],'rb').read(); h=d.split(b'\n',3); w,hh=map(int,h[1].split())
+v=struct.unpack('<%df'%(3*w*hh), h[3][:12*w*hh]); print(sum(v)/len(v))" "$1"; }
+"$node" "${small[@]}" --gi none --pfm --out "$out/none0" > "$out/none0.log" || fail "--gi none failed"
+"$node" "${small[@]}" --gi none --none-irradiance 2 --pfm --out "$out/none2" > "$out/none2.log" \
+    || fail "--none-irradiance failed"
+[ "$(pfm_mean "$out/none0/frame0000_mono_indirect.pfm")" = 0.0 ] || fail "none: indirect light"
+python3 -c "import sys; sys.exit(not float(sys.argv[1]) > 0.05)" \
+    "$(pfm_mean "$out/none2/frame0000_mono_indirect.pfm")" || fail "--none-irradiance 2 lit nothing"
+[ "$(grep -o 'none [0-9a-f]*' "$out/none0.log")" != "$(grep -o 'none [0-9a-f]*' "$out/none2.log")" ] \
+    || fail "--none-irradiance left the checksum unchanged"
+
 # The report: fitted lattice against a cube; converged static frames are skipped with the
 # same checksum; classic mode; a budget picks a lattice and steps and says so.
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
