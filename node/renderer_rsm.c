@@ -89,6 +89,7 @@ renderer_rsm *renderer_rsm_create(const gl_functions *gl, const scene *s, int si
     light_view views[LIGHT_VIEW_MAX];
     int n = light_views(&p, s, size, views);
     size_t texels = (size_t)size * size;
+    /* not xalloc: the RSM size (a setting): refused in err */
     for (int i = 0; i < 3; i++)
         if (!(r->read[i] = malloc(texels * 4 * sizeof(float)))) {
             snprintf(err, errlen, "renderer: out of memory for the RSM readback");
@@ -281,6 +282,7 @@ size_t renderer_rsm_vpls(renderer_rsm *r, lpv_vpl **out)
     size_t texels = (size_t)r->size * r->size, n = 0;
     size_t need = (size_t)r->view_count * texels;
     if (need > r->vpl_capacity) {
+        /* not xalloc: the RSM size (a setting): no VPLs this frame */
         lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
         if (!v) { /* out of memory: no VPLs this frame rather than a crash */
             *out = r->vpls;

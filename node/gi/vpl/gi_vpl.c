@@ -170,6 +170,7 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     const scene *s = v->scene;
     size_t texels = (size_t)v->rsm_size * v->rsm_size;
     for (int i = 0; i < 3; i++)
+        /* not xalloc: the RSM size (a setting) and the scene's emitters: refused in err */
         v->rsm_read[i] = malloc(texels * 4 * sizeof(float));
     v->emitter_count = vpl_emitters(s, NULL);
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
@@ -205,6 +206,7 @@ static int reserve_candidates(gi_vpl *v, size_t need)
 {
     if (need <= v->capacity)
         return 0;
+    /* not xalloc: the RSM size and VPL count (settings): -1 to the caller */
     vpl *c = realloc(v->candidates, need * sizeof *c);
     if (c)
         v->candidates = c;
