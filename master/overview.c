@@ -89,6 +89,7 @@ int overview_compose(const cluster_config *cfg, const char *dir, const char *out
     int cw, ch;
     if (overview_size(cfg, &cw, &ch, err, errlen) != 0)
         return -1;
+    /* not xalloc: the config's screens' size: refused in err */
     uint8_t *canvas = malloc((size_t)cw * ch * 3);
     if (!canvas) {
         snprintf(err, errlen, "overview: out of memory for %d x %d pixels", cw, ch);

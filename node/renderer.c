@@ -155,6 +155,7 @@ static int eye_targets(renderer *r, int w, int h)
     bad |= gltools_fbo_complete(r->gl, "final", err, sizeof err);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 
+    /* not xalloc: the image size (a setting): refused in r->error */
     r->rgba = malloc((size_t)w * h * 4);
     r->rgb = malloc((size_t)w * h * 3);
     for (int i = 0; i < 3; i++)

@@ -121,6 +121,7 @@ static int target(renderer_ao *ao, int w, int h)
     char err[160];
     int bad = gltools_fbo_complete(gl, "ambient occlusion", err, sizeof err);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    /* not xalloc: the image size (a setting): no ambient occlusion, said once */
     ao->rgb = malloc((size_t)w * h * 4 * sizeof(float)); /* grey RGB, then the read red */
     if (bad || !ao->rgb) {
         fprintf(stderr, "cavelight-node: %s: no ambient occlusion\n", bad ? err : "out of memory");

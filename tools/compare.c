@@ -86,6 +86,7 @@ static int read_image(const char *role, const char *path, int *w, int *h, float 
         *png = 1;
         if (image_read_png(path, w, h, &bytes, err, sizeof err) == 0) {
             size_t n = (size_t)*w * *h * 3;
+            /* not xalloc: the image file's size: refused naming the file */
             *rgb = malloc(n * sizeof **rgb);
             if (*rgb)
                 for (size_t i = 0; i < n; i++)
@@ -105,6 +106,7 @@ static int read_image(const char *role, const char *path, int *w, int *h, float 
 /* Copies the rectangle (x, y, cw, ch) of a w-wide image into a new buffer. */
 static float *crop_image(const float *rgb, int w, int x, int y, int cw, int ch)
 {
+    /* not xalloc: the image's size: NULL is refused by the caller */
     float *out = malloc((size_t)cw * ch * 3 * sizeof *out);
     if (out)
         for (int r = 0; r < ch; r++)
@@ -162,6 +164,7 @@ static int load_pair(const char *const paths[2], const compare_options *opt, int
  * pixel is compared and no signal is reported. *failed on out of memory. */
 static uint8_t *background_mask(const float *reference, size_t n, int *failed)
 {
+    /* not xalloc: the image's size: refused in one line */
     uint8_t *mask = malloc(n);
     if (!mask) {
         fprintf(stderr, "cavelight-compare: out of memory for the mask\n");

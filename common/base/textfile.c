@@ -17,6 +17,7 @@ char *textfile_read(const char *path, size_t *len, char *err, size_t errlen)
     struct stat st;
     char *s = NULL;
     size_t n = 0;
+    /* not xalloc: the file's size: refused in err */
     if (fstat(fileno(f), &st) != 0) {
         snprintf(err, errlen, "cannot read (%s)", strerror(errno));
     } else if (!S_ISREG(st.st_mode)) {

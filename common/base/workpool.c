@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include "base/xalloc.h"
+
 enum { MAX_THREADS = 256 };
 
 struct workpool {
@@ -77,9 +79,7 @@ workpool *workpool_create(int threads)
     }
     if (threads > MAX_THREADS)
         threads = MAX_THREADS;
-    workpool *p = calloc(1, sizeof *p);
-    if (!p)
-        return NULL;
+    workpool *p = xcalloc(1, sizeof *p);
     p->threads = threads;
     if (pthread_mutex_init(&p->lock, NULL) != 0) {
         free(p);

@@ -133,6 +133,7 @@ static void from_ycxcz(const colour_space *cs, const double ycc[3], double rgb[3
 static int kernel_alloc(kernel *k, int r)
 {
     k->r = r;
+    /* not xalloc: sized by the images (files): -1 to the caller */
     k->w = malloc((size_t)(2 * r + 1) * sizeof *k->w);
     return k->w ? 0 : -1;
 }
@@ -230,6 +231,7 @@ static int work_init(flip_work *wk, int w, int h, double ppd)
     float **planes[] = {&wk->ycc[0][0], &wk->ycc[0][1], &wk->ycc[0][2], &wk->ycc[1][0],
                         &wk->ycc[1][1], &wk->ycc[1][2], &wk->tmp, &wk->a, &wk->b,
                         &wk->ref_edge, &wk->ref_point, &wk->test_point, &wk->feature};
+    /* not xalloc: sized by the images (files): -1 to the caller */
     for (size_t i = 0; i < sizeof planes / sizeof *planes && !failed; i++)
         failed = !(*planes[i] = malloc(wk->n * sizeof(float)));
     if (failed)
@@ -388,6 +390,7 @@ int flip_ldr(const float *img, const float *ref, int width, int height, const fl
     if (ppd < 0)
         return -1;
     size_t n = (size_t)width * height;
+    /* not xalloc: sized by the images (files): -1 to the caller */
     float *lin = malloc(6 * n * sizeof *lin), *m = map ? map : malloc(n * sizeof *m);
     flip_work wk;
     int rc = -1;
@@ -431,6 +434,7 @@ static double median_sorted(const float *v, size_t n)
 static int exposure_range(const float *img, const float *ref, size_t n, const flip_desc *d,
                           double *start, double *stop)
 {
+    /* not xalloc: sized by the images (files): -1 to the caller */
     float *lum = malloc(n * sizeof *lum);
     if (!lum)
         return -1;
@@ -463,6 +467,7 @@ static int hdr_map(const float *img, const float *ref, flip_work *wk, const flip
                    float *map)
 {
     size_t n = wk->n;
+    /* not xalloc: sized by the images (files): -1 to the caller */
     float *tm = malloc(6 * n * sizeof *tm), *ldr = malloc(n * sizeof *ldr);
     double step = (r->stop_exposure - r->start_exposure) / (r->exposures > 1 ? r->exposures - 1 : 1);
     for (int e = 0; e < r->exposures && tm && ldr; e++) {
@@ -493,6 +498,7 @@ int flip_hdr(const float *img, const float *ref, int width, int height, const fl
         return -1;
     double range = out->stop_exposure - out->start_exposure;
     out->exposures = range > 0 ? (int)fmax(2.0, ceil(range)) : 1;
+    /* not xalloc: sized by the images (files): -1 to the caller */
     float *m = map ? map : malloc(n * sizeof *m);
     flip_work wk;
     int rc = -1;

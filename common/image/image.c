@@ -60,6 +60,7 @@ int image_read_pfm(const char *path, int *width, int *height, float **rgb,
         snprintf(err, errlen, "PFM %s: not a little-endian colour PFM", path);
         return -1;
     }
+    /* not xalloc: the image file's size: refused in its error line */
     float *p = malloc((size_t)w * h * 3 * sizeof *p);
     int ok = p != NULL;
     for (int y = h - 1; ok && y >= 0; y--)
@@ -88,6 +89,7 @@ int image_read_png(const char *path, int *width, int *height, uint8_t **rgb,
     }
     img.format = PNG_FORMAT_RGB;
     /* Zeroed: with no background colour libpng composites alpha onto the buffer. */
+    /* not xalloc: the image file's size: refused in its error line */
     uint8_t *p = calloc(PNG_IMAGE_SIZE(img), 1);
     if (!p) {
         png_image_free(&img);

@@ -92,6 +92,18 @@ static double ssim_mean(const float *img, const float *ref, const uint8_t *count
     return sum;
 }
 
+/* The absolute error of scale * img against ref over the counted pixels. */
+static double scaled_abs_sum(const float *img, const float *ref, const uint8_t *counted, size_t n,
+                             double scale)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        if (counted[i])
+            for (int c = 0; c < 3; c++)
+                sum += fabs(scale * img[i * 3 + c] - ref[i * 3 + c]);
+    return sum;
+}
+
 int image_metrics_compare(const float *img, const float *ref, int width, int height,
                           const image_metrics_desc *desc, image_metrics *out)
 {
@@ -105,6 +117,7 @@ int image_metrics_compare(const float *img, const float *ref, int width, int hei
     if (d.relmse_epsilon == 0)
         d.relmse_epsilon = 1e-2;
     size_t n = (size_t)width * height;
+    /* not xalloc: the images' size: -1 to the caller */
     uint8_t *counted = malloc(n);
     double *scratch = malloc(((size_t)SSIM_TAPS * SSIM_MOMENTS + 3) * width * sizeof *scratch);
     if (!counted || !scratch) {
@@ -159,12 +172,7 @@ int image_metrics_compare(const float *img, const float *ref, int width, int hei
     out->rmse_rel_debiased = out->no_signal ? NAN : sqrt(fmax(truth_sq, 0.0)) / out->reference_mean;
     out->best_scale = img_sq > 0 ? cross / img_sq : 1.0;
 
-    double scaled_sum = 0;
-    for (size_t i = 0; i < n; i++)
-        if (counted[i])
-            for (int c = 0; c < 3; c++)
-                scaled_sum += fabs(out->best_scale * img[i * 3 + c] - ref[i * 3 + c]);
-    out->mae_scaled = scaled_sum / samples;
+    out->mae_scaled = scaled_abs_sum(img, ref, counted, n, out->best_scale) / samples;
 
     double range = d.ssim_range > 0 ? d.ssim_range : (max_lum > 0 ? max_lum : 1.0);
     out->ssim = out->no_signal

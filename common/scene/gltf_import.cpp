@@ -1492,6 +1492,7 @@ struct importer {
                                         : comps == 4        ? SCENE_ANIM_ROTATION
                                                             : SCENE_ANIM_SCALE,
                                 sm.interpolation == "STEP", times.size(), nullptr, nullptr};
+        // not xalloc: a file's key count: the import refuses the file, never exits
         c.times = (float *)std::malloc(times.size() * sizeof(float));
         c.values = (float *)std::malloc(times.size() * (size_t)comps * sizeof(float));
         if (!c.times || !c.values) {

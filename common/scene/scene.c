@@ -11,6 +11,7 @@ static int grow(void **p, size_t elem, size_t count, size_t *capacity)
     if (count < *capacity)
         return 0;
     size_t cap = *capacity ? *capacity * 2 : 64;
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     void *q = realloc(*p, cap * elem);
     if (!q)
         return -1;
@@ -21,6 +22,7 @@ static int grow(void **p, size_t elem, size_t count, size_t *capacity)
 
 int scene_add_material(scene *s, const scene_material *m)
 {
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     scene_material *q = realloc(s->materials, (s->material_count + 1) * sizeof *q);
     if (!q)
         return -1;
@@ -31,6 +33,7 @@ int scene_add_material(scene *s, const scene_material *m)
 
 int scene_add_texture(scene *s, int width, int height, uint8_t *rgba)
 {
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     scene_texture *q = realloc(s->textures, (s->texture_count + 1) * sizeof *q);
     if (!q)
         return -1;
@@ -156,6 +159,7 @@ int scene_add_light(scene *s, const scene_light *l)
 
 int scene_add_camera(scene *s, const scene_camera *c)
 {
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     scene_camera *q = realloc(s->cameras, (s->camera_count + 1) * sizeof *q);
     if (!q)
         return -1;

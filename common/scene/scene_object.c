@@ -30,6 +30,7 @@ int scene_begin_object(scene *s, const char *name, int parent)
 {
     if (s->object_count >= SCENE_MAX_OBJECTS)
         return -1;
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     scene_object *q = realloc(s->objects, (size_t)(s->object_count + 1) * sizeof *q);
     if (!q)
         return -1;
@@ -59,6 +60,7 @@ void scene_end_object(scene *s, int object)
 
 int scene_add_anim_channel(scene *s, const scene_anim_channel *c)
 {
+    /* not xalloc: a scene file's count: its import refuses the file, never exits */
     scene_anim_channel *q = realloc(s->anim_channels, (s->anim_channel_count + 1) * sizeof *q);
     if (!q)
         return -1;

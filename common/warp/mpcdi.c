@@ -133,6 +133,7 @@ static uint8_t *member(ctx *c, const char *part, const char *path, size_t cap, s
     for (;;) {
         if (have == size) {
             size_t grown = size ? 2 * size : 65536;
+            /* not xalloc: a file's size (at most cap): refused naming the file */
             uint8_t *b = size <= cap ? realloc(buf, grown < cap + 1 ? grown : cap + 1) : NULL;
             if (!b) {
                 if (size > cap)

@@ -62,6 +62,7 @@ int warp_decode_pfm(const uint8_t *d, size_t len, int *width, int *height, int *
         snprintf(why, whylen, "PFM truncated: %zu bytes of samples, %zu needed", len - at, count * 4);
         return -1;
     }
+    /* not xalloc: a PFM file's size: refused in its error line */
     float *v = malloc(count * sizeof *v);
     if (!v) {
         snprintf(why, whylen, "out of memory for %zu PFM samples", count);
@@ -115,6 +116,7 @@ static void png_quiet(png_structp png, png_const_charp msg)
 static float *png_values(const uint8_t *rows, int w, int h, int c, int bits)
 {
     size_t n = (size_t)w * h * c;
+    /* not xalloc: a PNG file's size: NULL is refused by the caller */
     float *v = malloc(n * sizeof *v);
     if (!v)
         return NULL;
@@ -156,6 +158,7 @@ int warp_decode_png(const uint8_t *data, size_t len, warp_blend_map *out, int *b
     int w = (int)png_get_image_width(png, info), h = (int)png_get_image_height(png, info);
     int c = png_get_channels(png, info), b = png_get_bit_depth(png, info);
     size_t stride = png_get_rowbytes(png, info);
+    /* not xalloc: a PNG file's size: png_error() refuses it */
     rows = malloc(stride * (size_t)h);
     ptr = rows ? malloc((size_t)h * sizeof *ptr) : NULL;
     if (!ptr)

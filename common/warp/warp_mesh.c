@@ -95,6 +95,7 @@ static int line_item(parser *p, char **tok, int n, warp_map *m, size_t *vertices
                 return -1;
             m->mesh_cols = g[0];
             m->mesh_rows = g[1];
+            /* not xalloc: the mesh file's grid: refused in one line */
             m->mesh = calloc((size_t)g[0] * g[1] * 5, sizeof *m->mesh);
             return m->mesh ? 0 : fail(p, "out of memory for %d x %d vertices", g[0], g[1]);
         }

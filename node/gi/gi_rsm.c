@@ -8,7 +8,7 @@ int gi_rsm_read_layer(gi_rsm_reader *r, const gl_functions *gl, const gi_rsm *rs
     size_t texels = (size_t)rsm->size * rsm->size;
     if (texels > r->texels) {
         gi_rsm_reader_free(r);
-        for (int b = 0; b < 3; b++) /* the RSM size is a setting: refused, not xalloc's exit */
+        for (int b = 0; b < 3; b++) /* not xalloc: the RSM size (a setting): -1 */
             if (!(r->read[b] = malloc(texels * 4 * sizeof(float)))) {
                 gi_rsm_reader_free(r);
                 return -1;

@@ -48,6 +48,7 @@ static int upload_triangles(scene_gl *m, char *err, size_t errlen)
     const gl_functions *gl = m->gl;
     const scene *s = m->scene;
     size_t nt = s->triangle_count, groups = (size_t)(s->object_count + 1) * s->material_count;
+    /* not xalloc: the scene's triangles: refused in err */
     float *v = malloc(nt * 3 * 8 * sizeof(float));
     size_t *order = malloc(nt * sizeof *order);
     size_t *start = calloc(groups + 1, sizeof *start);
@@ -95,6 +96,7 @@ static int upload_textures(scene_gl *m, char *err, size_t errlen)
 {
     const gl_functions *gl = m->gl;
     const scene *s = m->scene;
+    /* not xalloc: the scene's texture count: refused in err */
     m->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *m->textures);
     if (!m->textures)
         return snprintf(err, errlen, "renderer: out of memory for %zu textures", s->texture_count), -1;

@@ -22,6 +22,7 @@ static float srgb_to_linear(int c)
 static int build_tables(reference *ref)
 {
     const scene *s = ref->scene;
+    /* not xalloc: the scene's triangles: -1 to the caller */
     ref->face_normal = malloc(s->triangle_count * 3 * sizeof *ref->face_normal);
     ref->emitter_triangle = malloc(s->triangle_count * sizeof *ref->emitter_triangle);
     ref->emitter_front = malloc(s->triangle_count * 3 * sizeof *ref->emitter_front);
@@ -59,6 +60,7 @@ static int build_tables(reference *ref)
     }
     for (size_t i = 0; i < ref->emitter_count; i++)
         ref->emitter_area_pdf[i] = (float)(ref->emitter_area_pdf[i] / ref->emitter_power);
+    /* not xalloc: the scene's textures and their sizes: -1 to the caller */
     ref->texture_linear = calloc(s->texture_count ? s->texture_count : 1, sizeof *ref->texture_linear);
     if (!ref->texture_linear)
         return -1;
@@ -68,7 +70,7 @@ static int build_tables(reference *ref)
     for (size_t i = 0; i < s->texture_count; i++) {
         const scene_texture *t = &s->textures[i];
         size_t n = (size_t)t->width * (size_t)t->height;
-        float *img = malloc((n ? n : 1) * 3 * sizeof *img);
+        float *img = malloc((n ? n : 1) * 3 * sizeof *img); /* not xalloc: as above */
         if (!img)
             return -1;
         for (size_t j = 0; j < n; j++)
@@ -229,6 +231,7 @@ int reference_render(reference *ref, const reference_render_desc *d, reference_i
     size_t n = (size_t)job.width * (size_t)job.height * 3;
     out->width = job.width;
     out->height = job.height;
+    /* not xalloc: the image size (a setting): refused in err */
     out->direct = job.direct = malloc(n * sizeof(float));
     out->indirect1 = job.indirect1 = malloc(n * sizeof(float));
     out->indirect = job.indirect = malloc(n * sizeof(float));

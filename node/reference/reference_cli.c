@@ -32,6 +32,7 @@ static int write_outputs(const reference_cli_desc *d, const reference_images *im
 {
     int w = img->width, ht = img->height;
     size_t n = (size_t)w * ht * 3;
+    /* not xalloc: the image size (a setting): -1 to the caller */
     float *final1 = malloc(n * sizeof(float)), *final = malloc(n * sizeof(float));
     uint8_t *rgb = malloc(n);
     int rc = final1 && final && rgb ? 0 : -1;

@@ -79,6 +79,7 @@ void cache_file_path(const char *dir, const cache_key *key, char *out, size_t ca
 static int decode(const uint8_t *buf, uint64_t count, const cache_key *key, cache_set *out)
 {
     memset(out, 0, sizeof *out);
+    /* not xalloc: a cache file's count: -1, and the caller rebuilds */
     out->caches = malloc((count ? count : 1) * sizeof *out->caches);
     if (!out->caches)
         return -1;
@@ -113,6 +114,7 @@ int cache_file_read(const char *path, const cache_key *key, cache_set *out, char
     /* Only a regular file: a folder of that name opens too, and its "size" is LONG_MAX. */
     long size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     int rc = -1;
+    /* not xalloc: the file's size: a failure is "cannot be read" and a rebuild */
     if (size < 0) {
         snprintf(why, cap, "not a regular file");
     } else if ((uint64_t)size > HEADER + RECORD * MAX_COUNT + TRAILER) {
@@ -153,6 +155,7 @@ int cache_file_write(const char *path, const cache_key *key, const cache_set *se
     if (folder_create_for(path, why, cap) != 0)
         return -1;
     size_t size = HEADER + RECORD * set->count + TRAILER;
+    /* not xalloc: the scene's cache count: not saved, said in why */
     uint8_t *buf = malloc(size);
     if (!buf) {
         snprintf(why, cap, "out of memory");

@@ -138,6 +138,7 @@ int cache_grid_build(const cache_set *set, const float bounds_min[3], const floa
     }
     memcpy(g->origin, bounds_min, sizeof g->origin);
     size_t cells = (size_t)g->dims[0] * g->dims[1] * g->dims[2];
+    /* not xalloc: the scene's size over the cache density (a setting): refused in err */
     uint32_t *count = calloc(cells + 1, sizeof *count);
     g->first = calloc(cells + 1, sizeof *g->first);
     if (!count || !g->first) {
@@ -154,6 +155,7 @@ int cache_grid_build(const cache_set *set, const float bounds_min[3], const floa
         total += count[c];
     }
     g->first[cells] = (uint32_t)total;
+    /* not xalloc: the scene's caches (a density setting): refused in err */
     g->index = malloc((total ? total : 1) * sizeof *g->index);
     ranked *rank = malloc(((total ? total : 1)) * sizeof *rank);
     if (!g->index || !rank) {

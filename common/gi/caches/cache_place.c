@@ -222,6 +222,7 @@ int cache_place(const scene *s, const cache_place_desc *d, cache_set *out, char 
         snprintf(err, errlen, "light caches: the scene has no surface to place them on");
         return -1;
     }
+    /* not xalloc: the scene's surface points (a density setting): refused in err */
     float *pts = malloc(n * POINT_FLOATS * sizeof *pts);
     keyed *order = malloc(n * sizeof *order);
     unsigned char *left = malloc(n);
@@ -255,6 +256,7 @@ int cache_place(const scene *s, const cache_place_desc *d, cache_set *out, char 
     free(pts);
     free(order);
     free(left);
+    /* not xalloc: it only shrinks; a failure keeps the larger block */
     light_cache *fit = realloc(out->caches, out->count * sizeof *fit);
     if (fit)
         out->caches = fit;

@@ -2,6 +2,7 @@
 
 #include "base/fnv1a.h"
 #include "base/fpmode.h"
+#include "base/xalloc.h"
 #include "gi/ilpv/lpv_propagate.h"
 
 #include <math.h>
@@ -283,9 +284,7 @@ static const lpv_volume *cpu_sum(void *state)
 
 ilpv_cpu *ilpv_cpu_create(const lattice_desc *lat, const lpv_blockers *blockers, workpool *pool)
 {
-    ilpv_cpu *c = calloc(1, sizeof *c);
-    if (!c)
-        return NULL;
+    ilpv_cpu *c = xcalloc(1, sizeof *c);
     c->blockers = blockers;
     c->pool = pool;
     if (lpv_volume_init(&c->front[0], lat->n, LPV_LIGHT_CHANNELS) != 0 ||

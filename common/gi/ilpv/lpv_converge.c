@@ -12,6 +12,7 @@ int lpv_converge_init(lpv_converge *c, const int n[3], double threshold)
     memset(c, 0, sizeof *c);
     if (lpv_volume_init(&c->previous, n, LPV_LIGHT_CHANNELS) != 0)
         return -1;
+    /* not xalloc: the lattice's size (a setting): -1 to the caller */
     c->slice_sums = malloc(2 * (size_t)n[2] * sizeof *c->slice_sums);
     if (!c->slice_sums) {
         lpv_converge_free(c);

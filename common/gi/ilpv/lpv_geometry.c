@@ -19,6 +19,7 @@ int lpv_blockers_init(lpv_blockers *b, const int n[3])
     }
     if (cells > ((size_t)1 << 34))
         return -1;
+    /* not xalloc: the lattice's size (a setting): -1 to the caller */
     b->mask = calloc(cells, sizeof *b->mask);
     if (!b->mask)
         return -1;

@@ -59,6 +59,7 @@ int lpv_objects_init(lpv_objects *o, lpv_blockers *b, const lattice_desc *lat, c
     memset(o, 0, sizeof *o);
     o->count = s->object_count;
     size_t nt = s->triangle_count, cells = lattice_cell_count(lat);
+    /* not xalloc: the scene's objects and triangles, the lattice's cells: -1 to the caller */
     o->first = calloc((size_t)o->count + 2, sizeof *o->first);
     o->tri = malloc((nt ? nt : 1) * sizeof *o->tri);
     o->dirty = calloc(cells, 1);
@@ -76,6 +77,7 @@ int lpv_objects_init(lpv_objects *o, lpv_blockers *b, const lattice_desc *lat, c
         largest = o->first[k + 1] > largest ? o->first[k + 1] : largest;
         o->first[k + 1] += o->first[k];
     }
+    /* not xalloc: the scene's largest object: -1 to the caller */
     o->moved_positions = malloc(largest * 9 * sizeof(float));
     size_t *fill = calloc((size_t)o->count + 1, sizeof *fill);
     if (!fill || !o->moved_positions) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/fpmode.h"
+#include "base/xalloc.h"
 #include "gi/ilpv/lpv_receive.h"
 #include "gi/ilpv/lpv_transfer.h"
 #include "gi/ilpv/sh.h"
@@ -43,12 +44,10 @@ static int neighbour_index(int dx, int dy, int dz)
 
 /* The straight lattice walk from the source cell to t: after hop i of m (m the largest
  * |t_a|) the walk is at round(t i / m), so every hop moves at most one cell per axis. */
-static int build_table(table *tb)
+static void build_table(table *tb)
 {
     int side = 2 * REACH + 1;
-    tb->targets = malloc((size_t)side * side * side * sizeof *tb->targets);
-    if (!tb->targets)
-        return -1;
+    tb->targets = xmalloc((size_t)side * side * side * sizeof *tb->targets);
     tb->count = 0;
     for (int z = -REACH; z <= REACH; z++)
         for (int y = -REACH; y <= REACH; y++)
@@ -75,7 +74,6 @@ static int build_table(table *tb)
                     }
                 }
             }
-    return 0;
 }
 
 /* Angular density of the source's light in colour c towards unit w (1/sr). */
@@ -290,6 +288,7 @@ int lpv_splat_run(lpv_splat *s, const lpv_splat_desc *d, lpv_volume *near, lpv_v
                     continue;
                 if (s->count == s->capacity) {
                     size_t cap = s->capacity ? 2 * s->capacity : 256;
+                    /* not xalloc: grows with the scene's and the RSM's lights: -1 to the caller */
                     lpv_splat_source *grown = realloc(s->sources, cap * sizeof *grown);
                     if (!grown) {
                         fpmode_leave(mode);
@@ -321,8 +320,10 @@ int lpv_splat_run(lpv_splat *s, const lpv_splat_desc *d, lpv_volume *near, lpv_v
                     src->plane[a] = len > 0.0f && isfinite(len) ? f[a] / len : 0.0f;
             }
     table tb;
+    build_table(&tb);
+    /* not xalloc: one per light source of the scene; a failure is this call's -1 */
     float (*norm)[3] = s->count ? malloc(s->count * sizeof *norm) : NULL;
-    if (build_table(&tb) != 0 || (s->count && !norm)) {
+    if (s->count && !norm) {
         free(tb.targets);
         free(norm);
         fpmode_leave(mode);

@@ -80,6 +80,7 @@ int ldm_cpu_build(const scene *s, const ldm_layout *l, ldm_cpu *out)
     memset(out, 0, sizeof *out);
     out->layout = *l;
     size_t entries = (size_t)l->directions * l->resolution * l->resolution * l->layers;
+    /* not xalloc: the size the ldm settings ask for: -1 lets the caller name them */
     out->maps = malloc((size_t)l->directions * sizeof *out->maps);
     out->depth = malloc(entries * sizeof *out->depth);
     if (!out->maps || !out->depth) {

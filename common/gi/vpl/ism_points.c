@@ -24,6 +24,7 @@ float ism_point_radius(double area, int m)
 int ism_points(const scene *s, size_t first, size_t n, float *position)
 {
     size_t count = s->triangle_count;
+    /* not xalloc: the scene's triangles: -1 to the caller */
     double *cdf = malloc((count ? count : 1) * sizeof *cdf);
     if (!cdf)
         return -1;

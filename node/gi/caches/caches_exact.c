@@ -119,6 +119,7 @@ int caches_exact_proxies(caches_exact *x, const light_cache *caches, size_t coun
                          const vpl *vals, size_t n, const caches_exact_glossy *glossy,
                          cache_proxy *out, double *rays_ms, double *gather_ms)
 {
+    /* not xalloc: caches times VALs (the scene and a setting): -1 to the caller */
     job j = {x, caches, count, vals, n, malloc(count * (n ? n : 1)), glossy, out};
     if (!j.visible)
         return -1;

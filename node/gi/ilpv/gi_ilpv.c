@@ -72,6 +72,7 @@ static const double PI = 3.14159265358979323846;
 static int build_emitters(gi_ilpv *r)
 {
     size_t n = vpl_emitters(r->scene, NULL);
+    /* not xalloc: the scene's emitters: -1 to the caller */
     vpl_emitter *e = n ? malloc(n * sizeof *e) : NULL;
     r->emitters = n ? malloc(n * sizeof *r->emitters) : NULL;
     if (n && (!e || !r->emitters)) {
@@ -142,6 +143,7 @@ static int init(gi_ilpv *r, const gi_desc *d, char *err, size_t errlen)
         return -1;
     double threshold = d->no_reuse ? -1.0 : r->settings.converge_threshold;
     /* The blockers of the scene as loaded; objects() follows what moves. */
+    /* not xalloc: scratch is the lattice's size (a setting): refused in err */
     if (lpv_blockers_init(&r->blockers, r->lattice.n) != 0 || build_emitters(r) != 0 ||
         lpv_objects_init(&r->objects, &r->blockers, &r->lattice, s) != 0 ||
         lpv_converge_init(&r->converge, r->lattice.n, threshold) != 0 ||
@@ -187,6 +189,7 @@ static const lpv_vpl *collect_vpls(gi_ilpv *r, const gi_rsm *rsm, size_t *count)
     size_t texels = (size_t)rsm->size * rsm->size, n = 0;
     size_t need = (size_t)rsm->layers * texels + r->emitter_count;
     if (need > r->vpl_capacity) {
+        /* not xalloc: the RSM size (a setting) and the scene's emitters: no VPLs this frame */
         lpv_vpl *v = realloc(r->vpls, need * sizeof *v);
         if (!v) {
             *count = 0;

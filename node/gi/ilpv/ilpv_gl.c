@@ -269,6 +269,7 @@ ilpv_gl *ilpv_gl_create(const gl_functions *gl, const lattice_desc *lat,
         ilpv_gl_destroy(g);
         return NULL;
     }
+    /* not xalloc: scratch is the lattice's size (a setting): refused in err */
     if (lpv_volume_init(&g->host_sum, lat->n, LPV_LIGHT_CHANNELS) != 0 ||
         !(g->scratch = malloc(lattice_cell_count(lat) * 4 * sizeof(float)))) {
         snprintf(err, errlen, "renderer: out of memory for a %dx%dx%d GL lattice", lat->n[0],

@@ -151,6 +151,7 @@ double ldm_gl_build(ldm_gl *m, const scene_gl *mesh)
     gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof lost, &lost);
     m->overflowed = lost;
     size_t words = (size_t)(ldm_memory_bytes(l) / 4.0);
+    /* not xalloc: the ldm memory setting's size: without it the checksum is 0 */
     uint32_t *all = malloc(words * sizeof *all);
     m->checksum = 0;
     if (all) {

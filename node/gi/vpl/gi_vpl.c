@@ -166,6 +166,7 @@ static int init(gi_vpl *v, char *err, size_t errlen)
     const gl_functions *gl = v->gl;
     const scene *s = v->scene;
     v->emitter_count = vpl_emitters(s, NULL);
+    /* not xalloc: the scene's emitters (a file's): refused in err */
     v->emitters = malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *v->emitters);
     vpl_emitter *raw = v->emitter_shape =
         malloc((v->emitter_count ? v->emitter_count : 1) * sizeof *raw);
@@ -198,6 +199,7 @@ static int reserve_candidates(gi_vpl *v, size_t need)
 {
     if (need <= v->capacity)
         return 0;
+    /* not xalloc: the RSM size and VPL count (settings): -1 to the caller */
     vpl *c = realloc(v->candidates, need * sizeof *c);
     if (c)
         v->candidates = c;

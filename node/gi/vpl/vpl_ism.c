@@ -97,6 +97,7 @@ static int reserve_points(vpl_ism *m, size_t n)
 {
     if (n <= m->generated)
         return 0;
+    /* not xalloc: the ISM point count (a setting): -1 to the caller */
     float *h = realloc(m->host, n * 3 * sizeof *h);
     if (!h)
         return -1;
