@@ -283,6 +283,8 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
 {
     fp->version = (uint64_t)f;
     fp->time = f / 60.0;
+    if (f > 0 && fp->light_count > 0)
+        fp->lights[0].position[0] += o->light_drift;
     uint64_t checksum = renderer_frame_pass(r, fp);
     renderer_timings t;
     renderer_get_timings(r, &t);
@@ -292,7 +294,9 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
     /* A window (--gl glfw) shows the first eye; closing it ends the run. */
     char err[512];
     present_frame_desc pf = {.version = (uint64_t)f, .display_gamma = fp->display_gamma};
+    int h = gpu_timer_begin(renderer_gpu_timer(r), "present"); /* its context is the renderer's */
     int closed = present_frame(out, &pf, err, sizeof err);
+    gpu_timer_end(renderer_gpu_timer(r), h);
     if (closed < 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return -1;
