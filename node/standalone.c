@@ -307,6 +307,11 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
     cJSON_AddNumberToObject(jf, "frame", f);
     cJSON_AddStringToObject(jf, "checksum", hex); /* the GI method's, as READY carries it */
     add_stats(jf, &t.gi);
+    renderer_timings late; /* the GPU's stages as far as they arrived (a frame or more late) */
+    renderer_get_timings(r, &late);
+    cJSON *gpu = cJSON_AddObjectToObject(jf, "gpu_ms");
+    for (int i = 0; i < late.gpu.count; i++)
+        cJSON_AddNumberToObject(gpu, late.gpu.stage[i].name, late.gpu.stage[i].ms);
     double vals[M_COUNT] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.frame_host_ms,
                             eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
     for (int m = 0; m < M_COUNT; m++) {
