@@ -37,7 +37,7 @@ enum id {
     O_OUT, O_OUTPUT, O_KEEP_FRAMES, O_SHOW_BLEND, O_PFM,
     O_THREADS, O_CACHE_DIR, O_BUDGET, O_HUD, O_WAND,
     O_RENDERER, O_SAMPLES, O_BOUNCES, O_SEED,
-    O_FAULT_CHECKSUM,
+    O_FAULT_CHECKSUM, O_LIGHT_DRIFT,
     O_SCENE_TRANSFORM, O_ALLOW_OUTSIDE, O_APP,
     O_SETTING = 1000, /* + gi_option index: the GI and display settings (gi_settings.h) */
 };
@@ -101,6 +101,8 @@ static const cli_option options[] = {
     {O_SEED, "seed", "S", "1", G_REFERENCE, S, "random seed (the halves use S and S+1)"},
     {O_FAULT_CHECKSUM, "fault-checksum-from", "V", NULL, G_TEST, C,
      "report a wrong checksum from frame version V on"},
+    {O_LIGHT_DRIFT, "light-drift", "M", NULL, G_TEST, S,
+     "move the first light M metres along x each frame (no frame's GI is reused)"},
 };
 #undef S
 #undef C
@@ -144,6 +146,7 @@ static const char *set_view(node_options *o, int id, const char *v)
     case O_EYE_SEPARATION: why = cli_float(v, 0.0f, 1.0f, &o->eye_separation); break;
     case O_PFM: o->pfm = 1; break;
     case O_BUDGET: why = cli_float(v, 1e-3f, 1e6f, &o->budget_ms); break;
+    case O_LIGHT_DRIFT: why = cli_float(v, -1.0f, 1.0f, &o->light_drift); break;
     case O_HUD: why = cli_int(v, 0, HUD_INDICATOR_COUNT - 1, &o->frame.hud_layout); break;
     case O_WAND: why = cli_floats(v, 3, o->wand); o->have_wand = 1; break;
     case O_RENDERER: {

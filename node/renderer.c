@@ -13,6 +13,8 @@
 #include "gi/gi.h"
 #include "gi/gi_settings.h"
 #include "gl/gltools.h"
+#include "gl/gpu_checksum.h"
+#include "gl/gpu_timer.h"
 #include "renderer.h"
 #include "renderer_aa.h"
 #include "renderer_ao.h"
@@ -20,18 +22,7 @@
 #include "renderer_rsm.h"
 #include "gl/scene_gl.h"
 
-enum { Q_RSM = 0, Q_GBUFFER = 0, Q_SHADE = 1, Q_FINAL = 2, Q_AA = 3 };
-
-enum { RENDERER_QUERY_RING = 4, RENDERER_DARK_VIEWS = 16 };
-
-/* GL timer queries read a few frames later, never waited for (paper 4.6). */
-typedef struct renderer_queries {
-    GLuint id[RENDERER_QUERY_RING][4];
-    int pending[RENDERER_QUERY_RING];
-    int next;
-    long dropped;            /* implausible readings thrown away */
-    double ms[4];            /* latest results that arrived */
-} renderer_queries;
+enum { RENDERER_DARK_VIEWS = 16 };
 
 struct renderer {
     const gl_functions *gl;
@@ -55,7 +46,8 @@ struct renderer {
     gi *gi;                  /* the indirect-light method (gi.h), with its shading program */
     renderer_ao *ao;         /* the ambient term's occlusion (renderer_ao.h) */
     renderer_aa *aa;         /* the final image's anti-aliasing (renderer_aa.h) */
-    uint64_t checksum;       /* its last frame's */
+    uint64_t checksum;       /* its last frame's: READY's */
+    uint64_t host_checksum;  /* the method's host part of the last frame it computed */
     renderer_desc desc;
     int software;            /* a software GL (llvmpipe) */
     frame_params refused;    /* the last frame whose method or RSM could not be built */
@@ -73,7 +65,8 @@ struct renderer {
     int eye_index;           /* eye passes since the frame pass */
     int view_dark[RENDERER_DARK_VIEWS];
     ratelog dark_log;
-    renderer_queries frame_queries, eye_queries;
+    gpu_timer *timer;        /* GPU time per stage, read back late (gpu_timer.h) */
+    gpu_checksum *sum;       /* the method's GPU results hashed, one frame late */
     scene_pose pose;         /* where the passes draw the scene's objects */
     scene_pose gi_pose;      /* where the GI method last saw them (rest: as built) */
     float (*models)[16];     /* the pose's model matrices and shown flags */
@@ -170,64 +163,6 @@ static int eye_targets(renderer *r, int w, int h)
     return 0;
 }
 
-/* ---- timer queries ---------------------------------------------------------------- */
-
-static void queries_init(renderer *r, renderer_queries *q)
-{
-    for (int i = 0; i < RENDERER_QUERY_RING; i++)
-        r->gl->GenQueries(4, q->id[i]);
-}
-
-/* Collects every finished slot without waiting; returns the slot to use now. A slot whose
- * results are still out is simply reused (its numbers are dropped, the pipeline never
- * stalls). */
-static int queries_begin_frame(renderer *r, renderer_queries *q, int used)
-{
-    const gl_functions *gl = r->gl;
-    for (int k = 0; k < RENDERER_QUERY_RING; k++) {
-        int slot = (q->next + k) % RENDERER_QUERY_RING;
-        if (!(q->pending[slot]))
-            continue;
-        int last = 0;
-        for (int i = 0; i < used; i++)
-            if (q->pending[slot] & (1 << i))
-                last = i;
-        GLint ready = 0;
-        gl->GetQueryObjectiv(q->id[slot][last], GL_QUERY_RESULT_AVAILABLE, &ready);
-        if (!ready)
-            continue;
-        for (int i = 0; i < used; i++) {
-            if (!(q->pending[slot] & (1 << i)))
-                continue;
-            GLuint64 ns = 0;
-            gl->GetQueryObjectui64v(q->id[slot][i], GL_QUERY_RESULT, &ns);
-            /* llvmpipe now and then times a query from an undefined start (hundreds of
-             * seconds, seen on the first query of a context and after compute work): a
-             * pass longer than 10 s is such a reading, dropped and counted. */
-            if (ns < 10000000000ull)
-                q->ms[i] = (double)ns * 1e-6;
-            else
-                q->dropped++;
-        }
-        q->pending[slot] = 0;
-    }
-    int slot = q->next;
-    q->next = (q->next + 1) % RENDERER_QUERY_RING;
-    q->pending[slot] = 0;
-    return slot;
-}
-
-static void query_begin(renderer *r, renderer_queries *q, int slot, int i)
-{
-    r->gl->BeginQuery(GL_TIME_ELAPSED, q->id[slot][i]);
-}
-
-static void query_end(renderer *r, renderer_queries *q, int slot, int i)
-{
-    r->gl->EndQuery(GL_TIME_ELAPSED);
-    q->pending[slot] |= 1 << i;
-}
-
 /* ---- create / destroy ------------------------------------------------------------- */
 
 /* The shadow maps and the GI method for frame p (sanitized); -1 with one line in err and
@@ -240,7 +175,7 @@ static int build_frame_state(renderer *r, const frame_params *p, char *err, size
         return -1;
     gi_desc gd = {.gl = r->gl, .scene = r->scene, .frame = p, .rsm_size = p->rsm_size,
                   .threads = r->desc.threads, .software = r->software,
-                  .no_reuse = r->desc.no_reuse};
+                  .no_reuse = r->desc.no_reuse, .timer = r->timer, .sum = r->sum};
     memcpy(gd.head_to_eye, r->desc.head_to_eye, sizeof gd.head_to_eye);
     gi *g = gi_create(&gd, err, errlen);
     if (!g) {
@@ -287,7 +222,9 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
     const char *gl_renderer = (const char *)r->gl->GetString(GL_RENDERER);
     r->software = gl_renderer && (strstr(gl_renderer, "llvmpipe") ||
                                   strstr(gl_renderer, "softpipe") || strstr(gl_renderer, "swrast"));
-    if (!(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
+    r->timer = gpu_timer_create(r->gl);
+    if (!(r->sum = gpu_checksum_create(r->gl, err, errlen)) ||
+        !(r->prog_gbuffer = gltools_program(r->gl, "scene.vert", "gbuffer.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->prog_final = gltools_program(r->gl, "fullscreen.vert", "final.frag", NULL, NULL, NULL, err, errlen)) ||
         !(r->mesh = scene_gl_create(r->gl, r->scene, err, errlen)) ||
         build_frame_state(r, &r->frame, err, errlen) != 0 ||
@@ -297,8 +234,6 @@ renderer *renderer_create(const renderer_desc *desc, char *err, size_t errlen)
         renderer_destroy(r);
         return NULL;
     }
-    queries_init(r, &r->frame_queries);
-    queries_init(r, &r->eye_queries);
     r->gl->GenVertexArrays(1, &r->empty_vao);
     r->gl->GenQueries(1, &r->lit_query);
     r->gl->GenQueries(1, &r->seen_query);
@@ -336,12 +271,8 @@ void renderer_destroy(renderer *r)
         gl->DeleteQueries(1, &r->seen_query);
     free(r->models);
     free(r->shown);
-    for (int i = 0; i < RENDERER_QUERY_RING; i++) {
-        if (r->frame_queries.id[i][0])
-            gl->DeleteQueries(4, r->frame_queries.id[i]);
-        if (r->eye_queries.id[i][0])
-            gl->DeleteQueries(4, r->eye_queries.id[i]);
-    }
+    gpu_timer_destroy(r->timer);
+    gpu_checksum_destroy(r->sum);
     free(r);
 }
 
@@ -435,6 +366,10 @@ static void follow_ao(renderer *r, const frame_params *p, int moved)
 uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
 {
     double t0 = clock_now_ms();
+    /* Where a frame begins in a GL trace (the stall test counts calls between these). */
+    r->gl->DebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 0,
+                              GL_DEBUG_SEVERITY_NOTIFICATION, -1, "cavelight frame");
+    gpu_timer_frame(r->timer, params->version);
     /* Whatever arrived (NaN, inf, absurd counts): lights off or defaults, never NaN. Once
      * per frame; the eye passes render this copy. */
     r->frame = *params;
@@ -447,19 +382,28 @@ uint64_t renderer_frame_pass(renderer *r, const frame_params *params)
     follow_ao(r, p, moved);
     if (!moved && gi_reuse(r->gi, p)) { /* RSMs, textures and the method still hold this result */
         r->timings.rsm_ms = 0;
+        r->timings.gpu = *gpu_timer_last(r->timer);
         gi_stats_get(r->gi, &r->timings.gi);
+        r->checksum = r->host_checksum ^ gpu_checksum_frame(r->sum); /* its GPU part now in */
         r->timings.frame_host_ms = clock_now_ms() - t0;
         return r->checksum;
     }
-    int slot = queries_begin_frame(r, &r->frame_queries, 1);
-    query_begin(r, &r->frame_queries, slot, Q_RSM);
+    int h = gpu_timer_begin(r->timer, "rsm");
     renderer_rsm_render(r->rsm, r->mesh, p);
-    query_end(r, &r->frame_queries, slot, Q_RSM);
+    gpu_timer_end(r->timer, h);
     gi_rsm rsm;
     renderer_gi_rsm(r, &rsm);
-    r->checksum = gi_frame(r->gi, p, &rsm);
+    /* READY's checksum: the method's host part of this frame and the GPU part of the last
+     * computed one (docs/cluster.md: a desync there shows one frame late). */
+    uint64_t late = gpu_checksum_frame(r->sum);
+    h = gpu_timer_begin(r->timer, "gi");
+    r->host_checksum = gi_frame(r->gi, p, &rsm);
+    gpu_timer_end(r->timer, h);
+    gpu_checksum_submit(r->sum);
+    r->checksum = r->host_checksum ^ late;
     gi_stats_get(r->gi, &r->timings.gi);
-    r->timings.rsm_ms = r->frame_queries.ms[Q_RSM];
+    r->timings.gpu = *gpu_timer_last(r->timer);
+    r->timings.rsm_ms = gpu_timer_mean_ms(&r->timings.gpu, "rsm");
     r->timings.frame_host_ms = clock_now_ms() - t0;
     return r->checksum;
 }
@@ -636,6 +580,8 @@ static void read_back(renderer *r, int want_linear, renderer_image *out)
 {
     const gl_functions *gl = r->gl;
     int w = r->eye_w, h = r->eye_h;
+    /* The image handed out: the one read back a trace may allow (the stall test). */
+    gl->PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "cavelight image");
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, r->rgba);
@@ -659,6 +605,7 @@ static void read_back(renderer *r, int want_linear, renderer_image *out)
         out->direct = r->linear[1];
         out->indirect = r->linear[2];
     }
+    gl->PopDebugGroup();
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -673,32 +620,35 @@ int renderer_eye_pass(renderer *r, const renderer_view *view, int want_linear,
     if (eye_targets(r, view->width, view->height))
         return -1;
     double t0 = clock_now_ms();
-    int slot = queries_begin_frame(r, &r->eye_queries, 4);
     float vp[16], eye[4];
     mat4_mul(view->projection, view->view, vp);
     eye_towards(view, eye);
-    query_begin(r, &r->eye_queries, slot, Q_GBUFFER);
+    int h = gpu_timer_begin(r->timer, "gbuffer");
     gbuffer_pass(r, view, vp, eye);
-    query_end(r, &r->eye_queries, slot, Q_GBUFFER);
+    gpu_timer_end(r->timer, h);
+    h = gpu_timer_begin(r->timer, "ao");
     renderer_ao_eye(r->ao, &(renderer_ao_eye_desc){.view = view, .position = r->g_position,
                                                    .normal = r->g_normal, .eye = eye,
                                                    .pixel_angle = pixel_angle(view),
-                                                   .vao = r->empty_vao});
-    query_begin(r, &r->eye_queries, slot, Q_SHADE);
+                                                   .vao = r->empty_vao,
+                                                   .measure = r->desc.no_reuse});
+    gpu_timer_end(r->timer, h);
+    h = gpu_timer_begin(r->timer, "shade");
     shade_pass(r, view, eye);
-    query_end(r, &r->eye_queries, slot, Q_SHADE);
-    query_begin(r, &r->eye_queries, slot, Q_FINAL);
+    gpu_timer_end(r->timer, h);
+    h = gpu_timer_begin(r->timer, "final");
     final_pass(r, view, vp);
-    query_end(r, &r->eye_queries, slot, Q_FINAL);
-    query_begin(r, &r->eye_queries, slot, Q_AA);
+    gpu_timer_end(r->timer, h);
+    h = gpu_timer_begin(r->timer, "aa");
     renderer_aa_apply(r->aa, r->frame.aa, r->f_color, view->width, view->height, r->empty_vao);
-    query_end(r, &r->eye_queries, slot, Q_AA);
+    gpu_timer_end(r->timer, h);
     read_back(r, want_linear, out);
     gi_stats_get(r->gi, &r->timings.gi); /* the eye-side figures (vpl: its assignment) */
-    r->timings.gbuffer_ms = r->eye_queries.ms[Q_GBUFFER];
-    r->timings.shade_ms = r->eye_queries.ms[Q_SHADE];
-    r->timings.final_ms = r->eye_queries.ms[Q_FINAL];
-    r->timings.aa_ms = r->eye_queries.ms[Q_AA];
+    r->timings.gpu = *gpu_timer_last(r->timer);
+    r->timings.gbuffer_ms = gpu_timer_mean_ms(&r->timings.gpu, "gbuffer");
+    r->timings.shade_ms = gpu_timer_mean_ms(&r->timings.gpu, "shade");
+    r->timings.final_ms = gpu_timer_mean_ms(&r->timings.gpu, "final");
+    r->timings.aa_ms = gpu_timer_mean_ms(&r->timings.gpu, "aa");
     renderer_ao_stats_get(r->ao, &r->timings.ao);
     r->timings.eye_host_ms = clock_now_ms() - t0;
     GLenum e = r->gl->GetError();
@@ -726,5 +676,12 @@ void renderer_gi_rsm(const renderer *r, gi_rsm *out)
     *out = (gi_rsm){.size = renderer_rsm_size(r->rsm), .mesh = r->mesh};
     out->layers = renderer_rsm_views(r->rsm, &out->views, &out->fbo);
     renderer_rsm_textures(r->rsm, out->textures);
+}
+
+gpu_timer *renderer_gpu_timer(renderer *r) { return r->timer; }
+
+uint64_t renderer_checksum_complete(renderer *r)
+{
+    return r->host_checksum ^ gpu_checksum_frame(r->sum);
 }
 gi *renderer_gi(renderer *r) { return r->gi; }

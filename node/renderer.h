@@ -28,6 +28,7 @@
 #include "frame/frame_view.h"
 #include "gi/gi.h"
 #include "gl/gl_functions.h"
+#include "gl/gpu_timer.h"
 #include "renderer_ao.h"
 #include "renderer_desc.h"
 #include "scene/scene.h"
@@ -53,11 +54,16 @@ typedef struct renderer_timings {
     double rsm_ms;                          /* frame pass: the RSMs (GPU clock) */
     gi_stats gi;                            /* frame pass: the GI method's stages (host
                                                ms), its figures */
-    double gbuffer_ms, shade_ms, final_ms;  /* last eye pass (GPU clock) */
+    double gbuffer_ms, shade_ms, final_ms;  /* per eye pass (GPU clock, gpu's mean) */
     double aa_ms;                           /* its anti-aliasing (GPU clock; 0 when off) */
     renderer_ao_stats ao;                   /* last eye pass: the ambient occlusion (host
                                                ms); its maps' build and memory */
     double frame_host_ms, eye_host_ms;
+    gpu_timer_result gpu;                   /* GPU ms per stage of the newest frame whose
+                                               timer queries arrived (a frame or more
+                                               late, gpu_timer.h): rsm, gi and the method's
+                                               own, gbuffer, ao, shade, final (summed over
+                                               the eyes), present */
     int fixed;                              /* fields of the last frame the renderer
                                                clamped (gi_frame_sanitize()) */
 } renderer_timings;
@@ -76,6 +82,10 @@ void renderer_set_pose(renderer *r, const scene_pose *pose);
  * that cannot be built (memory) leaves the current one in place and says why in
  * renderer_last_error(); the checksums then tell the master whether the nodes disagree. */
 uint64_t renderer_frame_pass(renderer *r, const frame_params *p);
+/* The last computed frame's checksum with its own GPU part, which renderer_frame_pass()
+ * returns a frame late (gpu_checksum.h; waits for it): what a test compares between
+ * renderers after one frame. */
+uint64_t renderer_checksum_complete(renderer *r);
 /* The views of one screen (both eyes of a stereo screen), before their eye passes: the GI
  * method may prepare what they share once (vpl: one light assignment over a grid that
  * encloses all of them). Views not announced get their own. */
@@ -92,6 +102,9 @@ const char *renderer_last_error(const renderer *r);
 struct renderer_rsm *renderer_get_rsm(renderer *r);
 /* The last frame's maps as the GI method got them. */
 void renderer_gi_rsm(const renderer *r, gi_rsm *out);
+/* Its GPU stage timer: what runs on its context between frame passes (presentation) may
+ * add stages. */
+gpu_timer *renderer_gpu_timer(renderer *r);
 /* The active GI method (gi.h; its own header inspects its state: gi_ilpv.h, gi_vpl.h). */
 gi *renderer_gi(renderer *r);
 

@@ -43,6 +43,8 @@ typedef struct renderer_ao_eye_desc {
     const float *eye;          /* the eye (w 1) or the direction to it (w 0) */
     float pixel_angle;         /* a pixel's width over its distance (w 0: its width) */
     GLuint vao;                /* an empty vertex array for the full-screen pass */
+    int measure;               /* 1: GL finished for eye_ms (benchmarks); a node's eye pass
+                                  never waits (its GPU time: the renderer's timer) */
 } renderer_ao_eye_desc;
 
 /* The eye's AO into the module's texture (nothing when off). Leaves the program and the
@@ -53,8 +55,8 @@ void renderer_ao_bind(const renderer_ao *ao, GLuint prog, int unit);
 /* The last eye's AO as grey linear RGB, top row first (width x height x 3 floats, the
  * module's), or NULL when off. */
 const float *renderer_ao_read(renderer_ao *ao);
-/* Host ms of the last eye's pass (GL finished) and of the last build of the maps;
- * the maps' MB (0 when none). */
+/* Host ms of the last eye's pass (GL finished when measured) and of the last build of
+ * the maps; the maps' MB (0 when none). */
 typedef struct renderer_ao_stats {
     double eye_ms, build_ms, memory_mb;
     size_t overflow;           /* depths that did not fit the maps */

@@ -21,7 +21,8 @@ typedef struct renderer_desc {
                                   size); NULL: frame_params_default() */
     int threads;               /* CPU threads of the GI methods, 0 = all cores */
     int no_reuse;              /* compute every frame pass, never reuse the last one's
-                                  result: to measure it */
+                                  result, and finish GL for each stage's host ms: to
+                                  measure it (benchmarks) */
     float head_to_eye[3];      /* the viewer's eye centre from the tracked head
                                   (frame_view_head_centre()): a cluster config's observer */
     const gi_limits *limits;   /* a cluster node's bounds on the frames' GI settings

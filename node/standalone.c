@@ -273,6 +273,8 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
     fp->time = f / 60.0;
     if (app)
         standalone_app_step(app, r, fp, f);
+    if (f > 0 && fp->light_count > 0)
+        fp->lights[0].position[0] += o->light_drift;
     uint64_t checksum = renderer_frame_pass(r, fp);
     renderer_timings t;
     renderer_get_timings(r, &t);
@@ -282,7 +284,9 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
     /* A window (--gl glfw) shows the first eye; closing it ends the run. */
     char err[512];
     present_frame_desc pf = {.version = (uint64_t)f, .display_gamma = fp->display_gamma};
+    int h = gpu_timer_begin(renderer_gpu_timer(r), "present"); /* its context is the renderer's */
     int closed = present_frame(out, &pf, err, sizeof err);
+    gpu_timer_end(renderer_gpu_timer(r), h);
     if (closed < 0) {
         fprintf(stderr, "cavelight-node: %s\n", err);
         return -1;
@@ -293,6 +297,11 @@ static int render_frame(const node_options *o, present *out, renderer *r, const 
     cJSON_AddNumberToObject(jf, "frame", f);
     cJSON_AddStringToObject(jf, "checksum", hex); /* the GI method's, as READY carries it */
     add_stats(jf, &t.gi);
+    renderer_timings late; /* the GPU's stages as far as they arrived (a frame or more late) */
+    renderer_get_timings(r, &late);
+    cJSON *gpu = cJSON_AddObjectToObject(jf, "gpu_ms");
+    for (int i = 0; i < late.gpu.count; i++)
+        cJSON_AddNumberToObject(gpu, late.gpu.stage[i].name, late.gpu.stage[i].ms);
     double vals[M_COUNT] = {t.rsm_ms, gi_stats_total_ms(&t.gi), t.frame_host_ms,
                             eye_sum[0], eye_sum[1], eye_sum[2], eye_sum[3]};
     for (int m = 0; m < M_COUNT; m++) {

@@ -17,6 +17,7 @@ typedef struct node_options {
     const char *scene;
     int allow_outside_paths;     /* glTF buffers and images from outside the file's folder */
     float budget_ms;          /* > 0: choose the ILPV's lattice and steps (ilpv_budget.h) */
+    float light_drift;        /* test: light 0 moves this far along x each frame */
     int threads;
     int frames, width, height;
     const char *out;

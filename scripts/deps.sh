@@ -9,7 +9,7 @@ CAVELIGHT_PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev draco
   libzmq3-dev libusb-1.0-0-dev
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev libglfw3-dev libxrandr-dev
-  libembree-dev gnuplot-nox clang libclang-rt-14-dev iproute2 xvfb python3
+  libembree-dev gnuplot-nox clang libclang-rt-14-dev iproute2 xvfb python3 apitrace
 )
 
 cavelight_install_deps() {

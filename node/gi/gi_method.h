@@ -8,7 +8,9 @@
  *   reuse()     frame pass, before the RSMs: 1 when last frame's result stands (nothing is
  *               rendered, frame() is not called)
  *   frame()     frame pass, once per frame, view independent, with this frame's RSMs;
- *               returns the checksum READY carries (desync detection covers the method)
+ *               returns the host part of the checksum READY carries (desync detection
+ *               covers the method); results that stay on the GPU go to gi_desc.sum
+ *               instead (gpu_checksum.h: READY carries them a frame late)
  *   screen()    optional (NULL: none), before the eye passes of one screen: all its views
  *               (both eyes), so a method can prepare once what they share (vpl: one light
  *               assignment for both eyes, enclosed clustering)
@@ -45,6 +47,8 @@
 #include "frame/frame_view.h"
 #include "frame/light_view.h"
 #include "gl/gl_functions.h"
+#include "gl/gpu_checksum.h"
+#include "gl/gpu_timer.h"
 #include "scene/scene.h"
 #include "gl/scene_gl.h"
 #include "gi/gi_rsm.h"
@@ -59,6 +63,11 @@ typedef struct gi_desc {
     int no_reuse;                  /* reuse() must say 0: every frame is computed (to
                                       measure it) */
     float head_to_eye[3];          /* the viewer: frame_view_head_centre()'s offset */
+    gpu_timer *timer;              /* the renderer's: the method's stages' GPU time
+                                      (gpu_timer_begin() with the stage's name); may be
+                                      NULL */
+    gpu_checksum *sum;             /* the renderer's: GPU results into the checksum (may be
+                                      NULL) */
 } gi_desc;
 
 typedef struct gi_eye {

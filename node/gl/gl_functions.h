@@ -1,4 +1,5 @@
-/* gl_functions: the GL 4.3 core entry points the node uses, as one table.
+/* gl_functions: the GL 4.3 core entry points the node uses (and glBufferStorage, 4.4), as
+ * one table.
  *
  * Every GL call goes through a gl_functions table filled from the active context
  * backend's GetProcAddress: libOpenGL and libOSMesa in one program would otherwise route
@@ -104,7 +105,17 @@ typedef void (APIENTRYP cavelight_PFNGLDRAWELEMENTSPROC)(GLenum mode, GLsizei co
     X(PFNGLBEGINQUERYPROC, BeginQuery) \
     X(PFNGLENDQUERYPROC, EndQuery) \
     X(PFNGLGETQUERYOBJECTIVPROC, GetQueryObjectiv) \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v) \
+    X(PFNGLQUERYCOUNTERPROC, QueryCounter) \
+    X(PFNGLDEBUGMESSAGEINSERTPROC, DebugMessageInsert) \
+    X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup) \
+    X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup) \
+    X(PFNGLBUFFERSTORAGEPROC, BufferStorage) \
+    X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange) \
+    X(PFNGLUNMAPBUFFERPROC, UnmapBuffer) \
+    X(PFNGLFENCESYNCPROC, FenceSync) \
+    X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync) \
+    X(PFNGLDELETESYNCPROC, DeleteSync)
 
 typedef struct gl_functions {
 #define GL_FUNCTIONS_MEMBER(type, name) type name;

@@ -60,6 +60,25 @@ static double median(double *v, int n)
 }
 
 
+/* "gpu_ms": each stage's median over the measured frames whose timer queries arrived
+ * (gpu_timer.h: a frame or more late, never waited for), stages in the last one's order. */
+static void print_gpu_ms(const gpu_timer_result *res, int n)
+{
+    const gpu_timer_result *names = &res[n - 1];
+    double *v = calloc((size_t)n, sizeof *v);
+    printf(",\"gpu_ms\":{");
+    for (int k = 0; k < names->count && v; k++) {
+        int m = 0;
+        for (int f = 0; f < n; f++)
+            for (int i = 0; i < res[f].count; i++)
+                if (strcmp(res[f].stage[i].name, names->stage[k].name) == 0)
+                    v[m++] = res[f].stage[i].ms;
+        printf("%s\"%s\":%.3f", k ? "," : "", names->stage[k].name, m ? median(v, m) : 0.0);
+    }
+    printf("}");
+    free(v);
+}
+
 int bench_frame(int argc, char **argv)
 {
     const char *scene_arg = "default";
@@ -133,6 +152,7 @@ int bench_frame(int argc, char **argv)
     int rc = 0;
     double *assign = calloc((size_t)n * 3, sizeof *assign); /* mono, per eye, enclosed */
     double *figs = calloc((size_t)n * (GI_STATS_MAX + 2), sizeof *figs); /* and AO's, AA's */
+    gpu_timer_result *gpu = calloc((size_t)n, sizeof *gpu);
     renderer_ao_stats ao = {0};
     size_t pairs[3] = {0, 0, 0};
     for (int f = 0; f < frames && rc == 0; f++) {
@@ -144,6 +164,7 @@ int bench_frame(int argc, char **argv)
         if (f < WARMUP)
             continue;
         assign[f - WARMUP] = gi_stats_value(&t.gi, "assign_ms", NULL);
+        gpu[f - WARMUP] = t.gpu;
         pairs[0] = (size_t)gi_stats_value(&t.gi, "assignments", NULL);
         stages = t.gi;
         ao = t.ao;
@@ -259,6 +280,7 @@ int bench_frame(int argc, char **argv)
             printf(",\"%s\":%.3f", passes[p], med[p]);
         for (int k = 0; k < stages.stage_count && k < GI_STAGES; k++)
             printf(",\"%s_ms\":%.3f", stages.stage[k].name, med[PASSES + 1 + k]);
+        print_gpu_ms(gpu, n);
         double am[3];
         for (int k = 0; k < 3; k++) {
             qsort(assign + (size_t)k * n, (size_t)n, sizeof *assign, cmp_double);
@@ -288,6 +310,7 @@ int bench_frame(int argc, char **argv)
     free(assign);
     free(lightskin);
     free(figs);
+    free(gpu);
     renderer_destroy(r);
     present_destroy(out);
     scene_free(&sc);

@@ -65,6 +65,9 @@ struct gi_caches {
     size_t hidden_count;
     uint64_t checksum;
     double ms[STAGES];
+    gpu_timer *timer;          /* the renderer's: the stages' GPU time */
+    int gpu_stage;             /* its running stage */
+    gpu_checksum *sum;         /* the renderer's: the checksum of what stays on the GPU */
 
     GLuint program[PROGRAMS];
     GLuint buffer[BUFFERS];
@@ -224,6 +227,8 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     c->scene = d->scene;
     c->threads = d->threads;
     c->reuse.never = d->no_reuse;
+    c->timer = d->timer;
+    c->sum = d->sum;
     memcpy(c->head_to_eye, d->head_to_eye, sizeof c->head_to_eye);
     caches_settings_get(d->frame, &c->settings);
     if (!(c->viewer = view_samples_create(d->scene, VIEW_SAMPLES_MAX, err, errlen)) ||
@@ -319,10 +324,21 @@ static int upload_samples(gi_caches *c, const frame_params *p)
     return n;
 }
 
+/* A stage begins: its GPU time (gpu_timer.h) and the host's clock. */
+static double start(gi_caches *c, int stage)
+{
+    c->gpu_stage = gpu_timer_begin(c->timer, STAGE_NAMES[stage]);
+    return clock_now_ms();
+}
+
+/* A stage ends. GL is finished for its host ms only when the renderer measures every
+ * frame (benchmarks): a node's frame never waits, its GPU time is the timer's. */
 static double finish(gi_caches *c, double since)
 {
+    gpu_timer_end(c->timer, c->gpu_stage);
     c->gl->MemoryBarrier(GL_ALL_BARRIER_BITS);
-    c->gl->Finish();
+    if (c->reuse.never)
+        c->gl->Finish();
     return clock_now_ms() - since;
 }
 
@@ -331,7 +347,7 @@ static void select_vals(gi_caches *c, const frame_params *p, const gi_rsm *rsm)
 {
     const gl_functions *gl = c->gl;
     int columns = rsm->layers * rsm->size, n = c->settings.vals;
-    double t0 = clock_now_ms();
+    double t0 = start(c, STAGE_IMPORTANCE);
     reserve_tables(c, (size_t)columns * rsm->size, columns);
     int samples = upload_samples(c, p);
     bind_rsm(c, P_IMPORTANCE, rsm);
@@ -339,7 +355,7 @@ static void select_vals(gi_caches *c, const frame_params *p, const gi_rsm *rsm)
     gl->DispatchCompute((GLuint)(rsm->size + 7) / 8, (GLuint)(rsm->size + 7) / 8,
                         (GLuint)rsm->layers);
     c->ms[STAGE_IMPORTANCE] = finish(c, t0);
-    double t1 = clock_now_ms();
+    double t1 = start(c, STAGE_SELECT);
     for (int i = P_COLUMNS; i <= P_ROW; i++) {
         use_program(c, i);
         uniform1i(c, i, "u_columns", columns);
@@ -355,19 +371,26 @@ static void select_vals(gi_caches *c, const frame_params *p, const gi_rsm *rsm)
     uniform1i(c, P_SELECT, "u_seed", c->settings.seed);
     gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl->DispatchCompute((GLuint)(n + TILE - 1) / TILE, 1, 1);
+    c->pick_count = n;
+    c->val_count = c->emitters + (size_t)n;
+    c->ms[STAGE_SELECT] = finish(c, t1);
+}
+
+/* The picks from the GPU into c->picks (tests, gi_caches_picks()): a frame does not read
+ * them, the checksum is the GPU's. */
+static void read_picks(gi_caches *c)
+{
     float *picks = c->pick_read;
-    gl->MemoryBarrier(GL_ALL_BARRIER_BITS);
-    gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, c->buffer[B_PICKS]);
-    gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(n * 4 * sizeof *picks), picks);
-    for (int i = 0; i < n; i++) {
+    c->gl->MemoryBarrier(GL_ALL_BARRIER_BITS);
+    c->gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, c->buffer[B_PICKS]);
+    c->gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                            (GLsizeiptr)(c->pick_count * 4 * sizeof *picks), picks);
+    for (int i = 0; i < c->pick_count; i++) {
         int32_t col, row;
         memcpy(&col, &picks[4 * i], 4);
         memcpy(&row, &picks[4 * i + 1], 4);
         c->picks[i] = (val_pick){col, row, picks[4 * i + 2]};
     }
-    c->pick_count = n;
-    c->val_count = c->emitters + (size_t)n;
-    c->ms[STAGE_SELECT] = finish(c, t1);
 }
 
 /* The selected VALs from the GPU into c->vals after the emitters. */
@@ -454,7 +477,7 @@ static void gpu_proxies(gi_caches *c, const gi_rsm *rsm)
     int prog = glossy ? (all ? P_PROXY_ALL_GLOSSY : P_PROXY_GLOSSY) : all ? P_PROXY_ALL : P_PROXY;
     int occlude = glossy ? P_OCCLUDE_GLOSSY : P_OCCLUDE;
     int texels = rsm->layers * rsm->size * rsm->size;
-    double t0 = clock_now_ms();
+    double t0 = start(c, STAGE_PROXY);
     bind_rsm(c, prog, rsm);
     if (glossy)
         c->gl->Uniform3fv(c->gl->GetUniformLocation(c->program[prog], "u_eye"), 1, c->eye);
@@ -463,7 +486,7 @@ static void gpu_proxies(gi_caches *c, const gi_rsm *rsm)
     uniform1i(c, prog, "u_texels", texels);
     dispatch_chunks(c, prog, (int)(all ? c->emitters + (size_t)texels : c->val_count));
     c->ms[STAGE_PROXY] = finish(c, t0);
-    double t1 = clock_now_ms();
+    double t1 = start(c, STAGE_OCCLUSION);
     if (c->settings.occlusion != CACHES_OCCLUSION_OFF) {
         use_program(c, occlude);
         uniform1i(c, occlude, "u_caches", (int)c->set.count);
@@ -509,15 +532,13 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         exact_proxies(c);
     else
         gpu_proxies(c, rsm);
-    read_proxies(c, 0, c->proxies);
-    uint64_t h = val_pick_checksum(c->picks, c->pick_count, FNV1A64_OFFSET);
-    /* cache_proxy: 8 floats, no padding */
-    h = val_hash_words(h, c->proxies, c->set.count * 8);
-    if (glossy) {
-        read_proxies(c, 1, c->glossy);
-        h = val_hash_words(h, c->glossy, c->set.count * 8);
-    }
-    return c->checksum = h;
+    /* The checksum READY carries: the picks and the proxies (cache_proxy's 8 floats of
+     * each, the glossy ones too when on), hashed on the GPU (gpu_checksum.h). */
+    gpu_checksum_add(c->sum, c->buffer[B_PICKS], 0, (size_t)c->pick_count, 4, 4);
+    for (int part = 0; part < 1 + glossy; part++)
+        gpu_checksum_add(c->sum, c->buffer[B_PROXIES], (size_t)part_offset(c, part) / sizeof(float),
+                         c->set.count, 8, PROXY_FLOATS);
+    return c->checksum = FNV1A64_OFFSET; /* no host part */
 }
 
 /* The irradiance texture at the eye's size, and the glossy one when glossy. */
@@ -557,7 +578,7 @@ static void eye_bind(void *state, const gi_eye *e)
 {
     gi_caches *c = state;
     const gl_functions *gl = c->gl;
-    double t0 = clock_now_ms();
+    double t0 = start(c, STAGE_INTERPOLATE);
     gltools_draw_state outer;
     gltools_draw_state_save(gl, &outer);
     int glossy = c->settings.glossy == CACHES_GLOSSY_ON;
@@ -586,9 +607,7 @@ static void eye_bind(void *state, const gi_eye *e)
         gl->ActiveTexture((GLenum)(GL_TEXTURE0 + e->first_unit + 1));
         gl->BindTexture(GL_TEXTURE_2D, c->glossy_texture);
     }
-    /* measured with GL finished only when the renderer measures every frame: a node's eye
-     * pass does not wait for it */
-    c->ms[STAGE_INTERPOLATE] = c->reuse.never ? finish(c, t0) : clock_now_ms() - t0;
+    c->ms[STAGE_INTERPOLATE] = finish(c, t0);
 }
 
 static void stats(const void *state, gi_stats *out)
@@ -622,13 +641,23 @@ gi_caches *gi_caches_of(gi *g)
 const cache_set *gi_caches_set(const gi_caches *c) { return &c->set; }
 const cache_grid *gi_caches_grid(const gi_caches *c) { return &c->grid; }
 const cache_store_report *gi_caches_store(const gi_caches *c) { return &c->store; }
-const cache_proxy *gi_caches_proxies(const gi_caches *c) { return c->proxies; }
-const cache_proxy *gi_caches_glossy(const gi_caches *c) { return c->glossy; }
+const cache_proxy *gi_caches_proxies(gi_caches *c)
+{
+    read_proxies(c, 0, c->proxies);
+    return c->proxies;
+}
+
+const cache_proxy *gi_caches_glossy(gi_caches *c)
+{
+    read_proxies(c, 1, c->glossy);
+    return c->glossy;
+}
 const float *gi_caches_viewer(const gi_caches *c) { return c->eye; }
 const uint8_t *gi_caches_hidden(const gi_caches *c) { return c->hidden; }
 
-int gi_caches_picks(const gi_caches *c, const val_pick **picks)
+int gi_caches_picks(gi_caches *c, const val_pick **picks)
 {
+    read_picks(c);
     *picks = c->picks;
     return c->pick_count;
 }

@@ -49,17 +49,18 @@ typedef struct gi_caches gi_caches;
 /* The method's state when g runs caches, else NULL. */
 gi_caches *gi_caches_of(gi *g);
 /* What the tests and benchmarks inspect after a frame: the caches and grid, how they were
- * got, the last selection's picks (n), its VALs (the emitters first, then one per pick: read
- * back from the GPU on this call) and the proxies. */
+ * got, the last selection's picks (n), its VALs (the emitters first, then one per pick) and
+ * the proxies; picks, VALs and proxies are read back from the GPU on each call (a frame
+ * keeps them there). */
 const cache_set *gi_caches_set(const gi_caches *c);
 const cache_grid *gi_caches_grid(const gi_caches *c);
 const cache_store_report *gi_caches_store(const gi_caches *c);
-int gi_caches_picks(const gi_caches *c, const val_pick **picks);
+int gi_caches_picks(gi_caches *c, const val_pick **picks);
 size_t gi_caches_vals(gi_caches *c, const vpl **vals);
-const cache_proxy *gi_caches_proxies(const gi_caches *c);
+const cache_proxy *gi_caches_proxies(gi_caches *c);
 /* The glossy proxies (caches-glossy on; stale when off) and the viewer they were made for
  * (view_samples_viewer() of the last frame). */
-const cache_proxy *gi_caches_glossy(const gi_caches *c);
+const cache_proxy *gi_caches_glossy(gi_caches *c);
 const float *gi_caches_viewer(const gi_caches *c);
 /* Per cache 1 when it lies under another surface (caches_exact.h): not interpolated. */
 const uint8_t *gi_caches_hidden(const gi_caches *c);

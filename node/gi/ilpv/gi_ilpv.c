@@ -63,6 +63,7 @@ struct gi_ilpv {
     uint32_t reset_epoch;
     int frames;
     double inject_ms, propagate_ms; /* the last frame's stages */
+    gpu_timer *timer;        /* the renderer's: the stages' GPU time */
 };
 
 static const double PI = 3.14159265358979323846;
@@ -228,6 +229,19 @@ static double emitted_energy(const gi_ilpv *r, const frame_params *p)
     return e;
 }
 
+/* The clocks between the stages inject and propagate: host ms and the GPU timer. */
+typedef struct stage_clock {
+    double t1;               /* host: when propagate began */
+    int h;                   /* the running GPU stage */
+} stage_clock;
+
+static void next_stage(gi_ilpv *r, stage_clock *c)
+{
+    c->t1 = clock_now_ms();
+    gpu_timer_end(r->timer, c->h);
+    c->h = gpu_timer_begin(r->timer, "propagate");
+}
+
 static int is_paper(const gi_ilpv *r)
 {
     return r->settings.transport == LPV_TRANSPORT_PAPER;
@@ -235,10 +249,10 @@ static int is_paper(const gi_ilpv *r)
 
 /* The thesis's frame: its injection without origins or splat, classic as lambda 0. */
 static void frame_paper(gi_ilpv *r, const frame_params *p, const lpv_vpl *vpls, size_t count,
-                        double *t1)
+                        stage_clock *c)
 {
     lpv_inject_vpls(ilpv_paper_driver_injection(&r->paper), NULL, &r->lattice, vpls, count, NULL);
-    *t1 = clock_now_ms();
+    next_stage(r, c);
     int classic = r->settings.mode == ILPV_MODE_CLASSIC;
     ilpv_paper_driver_run(&r->paper, &(ilpv_paper_driver_frame){
         .steps = p->lpv_steps, .lambda_incr = classic ? 0.0f : p->lambda_incr,
@@ -247,12 +261,12 @@ static void frame_paper(gi_ilpv *r, const frame_params *p, const lpv_vpl *vpls, 
 }
 
 static void frame_beams(gi_ilpv *r, const frame_params *p, const lpv_vpl *vpls, size_t count,
-                        double *t1)
+                        stage_clock *c)
 {
     ilpv_begin_frame(&r->driver);
     lpv_inject_vpls(ilpv_injection(&r->driver), ilpv_origin(&r->driver), &r->lattice, vpls,
                     count, NULL);
-    *t1 = clock_now_ms();
+    next_stage(r, c);
     ilpv_frame(&r->driver, &(ilpv_frame_desc){
         .steps = p->lpv_steps, .lambda_incr = p->lambda_incr,
         .emitted_energy = emitted_energy(r, p), .classic = r->settings.mode == ILPV_MODE_CLASSIC,
@@ -275,16 +289,18 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
         reset(r);
         r->reset_epoch = p->reset_epoch;
     }
-    double t0 = clock_now_ms(), t1;
+    double t0 = clock_now_ms();
+    stage_clock c = {.h = gpu_timer_begin(r->timer, "inject")};
     size_t count;
     const lpv_vpl *vpls = collect_vpls(r, rsm, &count);
-    (is_paper(r) ? frame_paper : frame_beams)(r, p, vpls, count, &t1);
+    (is_paper(r) ? frame_paper : frame_beams)(r, p, vpls, count, &c);
     const lpv_volume *result = gi_ilpv_volume(r);
     r->checksum = lpv_volume_checksum(result);
     ilpv_gl_upload(r->gl, result, r->shown, r->scratch);
     lpv_converge_end(&r->converge, result, is_paper(r) ? 0 : ilpv_pending(&r->driver), r->pool);
-    r->inject_ms = t1 - t0;
-    r->propagate_ms = clock_now_ms() - t1;
+    gpu_timer_end(r->timer, c.h);
+    r->inject_ms = c.t1 - t0;
+    r->propagate_ms = clock_now_ms() - c.t1;
     r->frames++;
     return r->checksum;
 }
@@ -363,6 +379,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     gi_ilpv *r = xcalloc(1, sizeof *r);
     r->gl = d->gl;
     r->scene = d->scene;
+    r->timer = d->timer;
     ilpv_settings_get(d->frame, &r->settings);
     if (init(r, d, err, errlen) != 0) {
         release(r);

@@ -1,6 +1,7 @@
 /* gi_ldm: the ldm method (gi_ldm.h). */
 #include "gi/ldm/gi_ldm.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,7 +36,9 @@ typedef struct gi_ldm {
     int width, height;           /* the irradiance texture's */
     uint64_t checksum;
     double construct_ms, photons_ms, trace_ms, splat_ms;
-    size_t splits;               /* non-empty split photons */
+    gpu_timer *timer;            /* the renderer's: the stages' GPU time */
+    double splits;               /* non-empty split photons (NaN: not counted, checksum()) */
+    gpu_checksum *sum;           /* the renderer's: the checksum of what stays on the GPU */
 } gi_ldm;
 
 static void release(gi_ldm *g)
@@ -86,6 +89,8 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     g->gl = d->gl;
     g->scene = d->scene;
     g->reuse.never = d->no_reuse;
+    g->timer = d->timer;
+    g->sum = d->sum;
     ldm_settings_get(d->frame, &g->settings);
     const char *split[2] = {"ldm_trace.glsl", "ldm/ldm_split.comp"};
     const char *splat[2] = {"ldm_trace.glsl", "ldm/ldm_splat.frag"};
@@ -186,19 +191,26 @@ static void split(gi_ldm *g, const frame_params *p)
         gl->DispatchCompute((GLuint)((slots + GROUP - 1) / GROUP), 1, 1);
     gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gl->UseProgram(0);
-    gl->Finish();
+    if (g->reuse.never) /* host ms of a measured frame; a node's frame never waits */
+        gl->Finish();
 }
 
+/* The checksum READY carries: the maps' (host) and the split slots' (on the GPU,
+ * gpu_checksum.h). The splits figure reads the slots back: only in measured frames
+ * (benchmarks), NaN otherwise. */
 static void checksum(gi_ldm *g, size_t slots)
 {
+    uint64_t maps = ldm_gl_checksum(g->maps);
+    g->checksum = fnv1a64(FNV1A64_CLUSTER_SEED, &maps, sizeof maps);
+    gpu_checksum_add(g->sum, g->split_buf, 0, slots, SPLIT_VEC4 * 4, SPLIT_VEC4 * 4);
+    g->splits = NAN;
+    if (!g->reuse.never)
+        return;
     float *all = xmalloc((slots ? slots : 1) * SPLIT_VEC4 * 4 * sizeof(float));
     const gl_functions *gl = g->gl;
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, g->split_buf);
     gl->GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(slots * SPLIT_VEC4 * 16), all);
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    uint64_t maps = ldm_gl_checksum(g->maps);
-    g->checksum = fnv1a64(fnv1a64(FNV1A64_CLUSTER_SEED, &maps, sizeof maps), all,
-                        slots * SPLIT_VEC4 * 4 * sizeof(float));
     g->splits = 0;
     for (size_t i = 0; i < slots; i++) {
         const float *f = all + i * SPLIT_VEC4 * 4 + 8;
@@ -215,13 +227,19 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     g->construct_ms = 0;
     if (lay->layers != p->ldm_layers && new_maps(g, p, err, sizeof err) != 0)
         fprintf(stderr, "cavelight-node: %s; the last maps stay\n", err);
+    int h = gpu_timer_begin(g->timer, "construct");
     if (g->maps_stale || g->reuse.never) /* never_reuse: a moving scene's cost is measured */
         g->construct_ms = ldm_gl_build(g->maps, rsm->mesh);
+    gpu_timer_end(g->timer, h);
     g->maps_stale = 0;
     double t0 = clock_now_ms();
+    h = gpu_timer_begin(g->timer, "photons");
     collect(g, p, rsm);
+    gpu_timer_end(g->timer, h);
     double t1 = clock_now_ms();
+    h = gpu_timer_begin(g->timer, "trace");
     split(g, p);
+    gpu_timer_end(g->timer, h);
     double t2 = clock_now_ms();
     checksum(g, g->photon_count * (size_t)ldm_gl_layout(g->maps)->directions);
     g->photons_ms = t1 - t0;
@@ -253,6 +271,7 @@ static void splat(gi_ldm *g, const gi_eye *e)
 {
     const gl_functions *gl = g->gl;
     double t0 = clock_now_ms();
+    int h = gpu_timer_begin(g->timer, "splat");
     gltools_draw_state outer;
     gltools_draw_state_save(gl, &outer);
     target(g, e->width, e->height);
@@ -284,7 +303,9 @@ static void splat(gi_ldm *g, const gi_eye *e)
         gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)(6 * slots));
     gl->Disable(GL_BLEND);
     gltools_draw_state_restore(gl, &outer, e->program);
-    gl->Finish();
+    gpu_timer_end(g->timer, h);
+    if (g->reuse.never)
+        gl->Finish();
     g->splat_ms = clock_now_ms() - t0;
 }
 
@@ -314,7 +335,7 @@ static void stats(const void *state, gi_stats *out)
     out->figure[1] = (gi_stat){"memory_mb", ldm_memory_bytes(l) / (1024.0 * 1024.0)};
     out->figure[2] = (gi_stat){"overflow", (double)ldm_gl_overflow(g->maps)};
     out->figure[3] = (gi_stat){"photons", (double)g->photon_count};
-    out->figure[4] = (gi_stat){"splits", (double)g->splits};
+    out->figure[4] = (gi_stat){"splits", g->splits};
 }
 
 /* Moved or hidden objects: the maps are drawn again, where the objects are now. */

@@ -85,6 +85,7 @@ typedef struct gi_vpl {
     GLuint cluster_tex, list_tex; /* the lists (eye_bind) */
     int cluster_rows, list_rows;  /* rows of LIST_ROW texels they hold */
     double select_ms, shadow_ms, assign_ms; /* the last frame's stages; the last assignment */
+    gpu_timer *timer;        /* the renderer's: the stages' GPU time */
     size_t assignments;      /* its (VPL, cluster) pairs */
 } gi_vpl;
 
@@ -345,6 +346,7 @@ static void *create(const gi_desc *d, char *err, size_t errlen)
     v->rsm_size = d->rsm_size;
     vpl_settings_get(d->frame, &v->settings);
     v->reuse.never = d->no_reuse;
+    v->timer = d->timer;
     memcpy(v->head_to_eye, d->head_to_eye, sizeof v->head_to_eye);
     int bad = init(v, err, errlen);
     if (!bad && v->settings.selection == VPL_SELECT_VIEW) /* Embree, loaded only for it */
@@ -396,6 +398,7 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     gi_vpl *v = state;
     const vpl_settings *st = &v->settings; /* reuse() read them */
     double t0 = clock_now_ms();
+    int h = gpu_timer_begin(v->timer, "select");
     size_t texels, candidates = collect(v, rsm, &texels);
     if (st->selection == VPL_SELECT_VIEW && candidates) {
         float eye[3];
@@ -418,11 +421,15 @@ static uint64_t frame(void *state, const frame_params *p, const gi_rsm *rsm)
     upload_vpls(v);
     v->frame_number++; /* lists of the last VPLs are stale */
     double t1 = clock_now_ms();
+    gpu_timer_end(v->timer, h);
+    h = gpu_timer_begin(v->timer, "shadow");
     if (v->ism)
         v->have_maps = vpl_ism_render(v->ism, v->vpl_tex, v->count) == 0;
     else
         v->have_maps = render_shadows(v, rsm->mesh) == 0;
-    v->gl->Finish();
+    gpu_timer_end(v->timer, h);
+    if (v->reuse.never) /* host ms of a measured frame; a node's frame never waits */
+        v->gl->Finish();
     v->select_ms = t1 - t0;
     v->shadow_ms = clock_now_ms() - t1;
     return v->checksum;
