@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/stat.h>
 #include <cmocka.h>
 
 #include "base/textfile.h"
@@ -53,7 +54,23 @@ static void test_errors(void **state)
     assert_null(strstr(err, "/nonexistent")); /* the caller adds the path */
     err[0] = '\0';
     assert_null(textfile_read("/tmp", NULL, err, sizeof err));
-    assert_string_equal(err, "cannot read (not a regular file)");
+    assert_string_equal(err, "not a regular file (a folder)");
+}
+
+/* A FIFO with no writer is refused at once (a blocking open would wait for one forever:
+ * the alarm ends the test then). */
+static void test_fifo(void **state)
+{
+    (void)state;
+    char path[] = CAVELIGHT_BINARY_DIR "/test_textfile_fifo";
+    unlink(path);
+    assert_int_equal(mkfifo(path, 0600), 0);
+    alarm(20);
+    char err[128] = "";
+    assert_null(textfile_read(path, NULL, err, sizeof err));
+    alarm(0);
+    unlink(path);
+    assert_string_equal(err, "not a regular file (a FIFO)");
 }
 
 int main(void)
@@ -62,6 +79,7 @@ int main(void)
         cmocka_unit_test(test_reads_whole_file),
         cmocka_unit_test(test_empty_file),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_fifo),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
