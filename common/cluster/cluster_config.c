@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json_depth.h"
 #include "base/json_keys.h"
 #include "base/mat4.h"
 #include "warp/mpcdi.h"
@@ -229,6 +230,8 @@ static void parse_scene_transform(parse_ctx *c, const cJSON *o, scene_transform 
 int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen)
 {
     parse_ctx c = {.err = err, .errlen = errlen};
+    if (json_depth_check(json, strlen(json), err, errlen) != 0)
+        return -1;
     cJSON *root = cJSON_Parse(json);
     if (!root) {
         snprintf(err, errlen, "not valid JSON; give one such as '{\"up\": \"z\", \"scale\": 0.01}'");
@@ -644,6 +647,12 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
         h = (h ^ (uint8_t)text[i]) * 1099511628211ull;
     cfg->hash = h;
 
+    char deep[120];
+    if (json_depth_check(text, len, deep, sizeof deep) != 0) {
+        snprintf(err, errlen, "cluster config %s: %s", path, deep);
+        json_keys_destroy(c.keys);
+        return -1;
+    }
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
     if (!root) {
