@@ -340,8 +340,9 @@ static void handshake_cause(const cluster_client *c, uint16_t event, uint32_t va
                  c->closes);
     else if (curve)
         snprintf(out, cap, "the master closed the connection in the CURVE handshake (%d in a row): a master "
-                 "shedding connections under a flood, or %s/master.pub is not this master's key (named as the "
-                 "likely cause if it goes on for %d s)", c->closes, c->cfg->keys_dir, KEY_EVIDENCE_MS / 1000);
+                 "shedding connections under a flood, or %s/master.pub is not this master's key, or the master "
+                 "uses another security mode (%s) (the key is named as the likely cause if it goes on for %d s)",
+                 c->closes, c->cfg->keys_dir, c->cfg->path, KEY_EVIDENCE_MS / 1000);
     else
         snprintf(out, cap, "the master closed the connection in the handshake (%#x): a master with security "
                  "\"curve\" (this node has \"insecure\" from %s), or no cavelight master at %s", value, c->cfg->path,
