@@ -366,7 +366,7 @@ static int parse_config(const input_desc *desc, parsed_config *p, char *err, siz
 {
     memset(p, 0, sizeof *p);
     char why[128];
-    char *text = textfile_read(desc->path, NULL, why, sizeof why);
+    char *text = textfile_read_max(desc->path, (size_t)1 << 20, NULL, why, sizeof why);
     if (!text) {
         snprintf(err, errlen, "input config %s: %s", desc->path, why);
         return -1;

@@ -746,11 +746,9 @@ int cluster_config_load(const char *path, cluster_config *out, char *err, size_t
     enum { MAX_FILE = 1 << 20 };
     char why[128];
     size_t len = 0;
-    char *text = textfile_read(path, &len, why, sizeof why);
-    if (!text || len >= MAX_FILE) {
-        free(text);
-        snprintf(err, errlen, "cluster config %s: %s", path,
-                 text ? "larger than 1 MiB" : why);
+    char *text = textfile_read_max(path, MAX_FILE - 1, &len, why, sizeof why);
+    if (!text) {
+        snprintf(err, errlen, "cluster config %s: %s", path, why);
         return -1;
     }
     int rc = cluster_config_parse(text, len, path, out, err, errlen);

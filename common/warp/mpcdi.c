@@ -15,6 +15,8 @@
 /* Caps on what one archive may hold: the XML, one warp grid, one blend map. */
 enum { XML_MAX = 4 << 20, PFM_MAX = 256 << 20, PNG_MAX = 64 << 20, SIDE_MAX = 16384,
        PFM_HEADER_MAX = 128 };
+/* The archive itself: its members' caps, stored, and room to spare. */
+enum { FILE_MAX = 512 << 20 };
 
 typedef struct ctx {
     const char *name;
@@ -408,7 +410,7 @@ int mpcdi_load(const char *path, const char *region, warp_map *out, char *err, s
 {
     char why[128];
     size_t len = 0;
-    char *bytes = textfile_read(path, &len, why, sizeof why);
+    char *bytes = textfile_read_max(path, FILE_MAX, &len, why, sizeof why);
     if (!bytes) {
         memset(out, 0, sizeof *out);
         snprintf(err, errlen, "MPCDI %s: %s", path, why);

@@ -30,6 +30,26 @@ static void test_reads_whole_file(void **state)
     free(s);
 }
 
+/* A file over the caller's cap is refused from its size, before it is read. */
+static void test_cap(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/cavelight_textfile_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "0123456789", 10), 10);
+    close(fd);
+    char err[128] = "";
+    size_t len = 0;
+    assert_null(textfile_read_max(path, 9, &len, err, sizeof err));
+    assert_string_equal(err, "10 bytes, more than the 9 a file of its kind may hold");
+    char *s = textfile_read_max(path, 10, &len, err, sizeof err);
+    unlink(path);
+    assert_non_null(s);
+    assert_int_equal(len, 10);
+    free(s);
+}
+
 static void test_empty_file(void **state)
 {
     char path[] = "/tmp/cavelight_textfile_XXXXXX";
@@ -80,6 +100,7 @@ int main(void)
         cmocka_unit_test(test_empty_file),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_fifo),
+        cmocka_unit_test(test_cap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
