@@ -2,7 +2,7 @@
 # Hostile input files, as the outside check of issue 34 made them, each refused in one line
 # naming the file and the limit, with a non-zero exit, by the node and by the master's
 # --check: a glTF with huge positions (1e20: a heap overflow in the caches' placement; 1e10:
-# a hang), a glTF and a cluster config of 200,000 nested arrays (a stack overflow in the
+# a hang; a caches cluster of 2 reported only "0 of 2 nodes joined"), a glTF and a cluster config of 200,000 nested arrays (a stack overflow in the
 # JSON parsers), and a FIFO named as a screen's MPCDI file or as the scene (a blocking open).
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/cluster_lib.sh"
@@ -32,6 +32,7 @@ gltf("fine.gltf", 4)
 open(out + "/nested.gltf", "w").write("[" * 200000 + "]" * 200000)
 PY
 make_config "$tmp/c.json" 3000 a
+SETTINGS='"gi": "caches"' make_config "$tmp/c2.json" 3000 a b
 
 refused() { # WHAT PATTERN COMMAND...
   local what=$1 pattern=$2 rc=0; shift 2
@@ -47,6 +48,8 @@ for s in 20 10; do
   refused "master --check, positions 1e$s" "huge$s.gltf: scene triangle 0 has a vertex at 1e+$s m, beyond the limit of 100000 m" \
     "$master" --config "$tmp/c.json" --scene "$tmp/huge$s.gltf" --check
 done
+refused "master session of 2 nodes, positions 1e20" "huge20.gltf: scene triangle 0 has a vertex at 1e+20 m, beyond the limit" \
+  "$master" --config "$tmp/c2.json" --scene "$tmp/huge20.gltf" --bind 'tcp://127.0.0.1:*' --spawn-local --frames 1
 refused "node, nested glTF" "nested.gltf: JSON nested deeper than 128 levels (at byte 128)" \
   "$node" --standalone --scene "$tmp/nested.gltf" --frames 1 --width 64 --out "$tmp/o"
 refused "master --check, nested glTF" "nested.gltf: JSON nested deeper than 128 levels (at byte 128)" \
