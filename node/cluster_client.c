@@ -17,6 +17,11 @@ typedef enum client_state { STATE_HELLO, STATE_JOINED, STATE_LOST } client_state
  * says HELLO at once), and slow on purpose: each HELLO a master reads after the session
  * started is a rejoin that resets every node's LPV history. */
 enum { RETRY_MS = 2000 };
+/* A master that closes every CURVE handshake for this long (and this many times) is most
+ * likely not the one whose key master.pub holds: a master shedding connections under a
+ * flood (conn_guard) closes a node's handshakes too, but lets one through within seconds
+ * (3.6 s at most in the outside check's flood of 100k-200k connections). */
+enum { KEY_EVIDENCE_MS = 6000, KEY_EVIDENCE_CLOSES = 10 };
 /* The socket's connection to the master, from its monitor's events. */
 typedef enum link_state { LINK_OPENING, LINK_UP, LINK_DOWN } link_state;
 
@@ -39,6 +44,10 @@ struct cluster_client {
     ratelog malformed_log, refused_log;
     ratelog link_log;        /* joins, losses, drops, the session's end: cluster_client_log_link() */
     ratelog handshake_log;   /* failed handshakes with the master */
+    /* CURVE handshakes the master closed since the last one that succeeded: how many, since
+     * when; key_taken: one succeeded with master.pub; key_named: the key was named */
+    int closes, key_taken, key_named;
+    double closes_since;
     double last_heard, last_sent, last_hello;
     cluster_client_stats st;
     uint8_t buf[WIRE_MAX_MESSAGE];
@@ -289,6 +298,21 @@ static void ask_snapshot(cluster_client *c)
         send_hello(c);
 }
 
+/* 1 when the master has closed every CURVE handshake long and often enough to blame the
+ * key (KEY_EVIDENCE_MS): a close alone looks the same from here for both causes. */
+static int key_evidence(const cluster_client *c)
+{
+    return c->closes >= KEY_EVIDENCE_CLOSES && clock_now_ms() - c->closes_since >= KEY_EVIDENCE_MS;
+}
+
+/* A handshake the master closed (not refused, not timed out) counts towards the evidence. */
+static int closed_by_master(const cluster_client *c, uint16_t event, uint32_t value)
+{
+    return c->cfg->security == CLUSTER_SECURITY_CURVE && event != ZMQ_EVENT_HANDSHAKE_FAILED_AUTH &&
+           !(event == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL && value == ZMQ_PROTOCOL_ERROR_ZMTP_MECHANISM_MISMATCH) &&
+           !(event == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL && value == EAGAIN);
+}
+
 /* The likely cause of a failed handshake with the master, from the socket's event and
  * its value (a ZAP status, a ZMQ_PROTOCOL_ERROR_* or an errno). */
 static void handshake_cause(const cluster_client *c, uint16_t event, uint32_t value, char *out, size_t cap)
@@ -304,10 +328,21 @@ static void handshake_cause(const cluster_client *c, uint16_t event, uint32_t va
     else if (event == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL && value == EAGAIN)
         snprintf(out, cap, "no answer within %d ms: a stopped or overloaded master, or no cavelight master at "
                  "%s", WIRE_HANDSHAKE_MS, c->endpoint);
-    else if (curve)
+    else if (curve && c->key_taken)
+        snprintf(out, cap, "the master closed the connection in the CURVE handshake, though it took %s/master.pub "
+                 "before: a master shedding connections under a flood (its log says so), or one restarted with "
+                 "new keys", c->cfg->keys_dir);
+    else if (curve && key_evidence(c))
         snprintf(out, cap, "the master closed the connection in the CURVE handshake: most likely %s/master.pub "
                  "is not this master's key (a newer --keygen on its host?): copy master.pub from the master's "
-                 "key folder; or the master uses another security mode (%s)", c->cfg->keys_dir, c->cfg->path);
+                 "key folder; or the master uses another security mode (%s) (every handshake for %.0f s, %d of "
+                 "them, closed)", c->cfg->keys_dir, c->cfg->path, (clock_now_ms() - c->closes_since) / 1000,
+                 c->closes);
+    else if (curve)
+        snprintf(out, cap, "the master closed the connection in the CURVE handshake (%d in a row): a master "
+                 "shedding connections under a flood, or %s/master.pub is not this master's key, or the master "
+                 "uses another security mode (%s) (the key is named as the likely cause if it goes on for %d s)",
+                 c->closes, c->cfg->keys_dir, c->cfg->path, KEY_EVIDENCE_MS / 1000);
     else
         snprintf(out, cap, "the master closed the connection in the handshake (%#x): a master with security "
                  "\"curve\" (this node has \"insecure\" from %s), or no cavelight master at %s", value, c->cfg->path,
@@ -318,7 +353,12 @@ static void handshake_failed(cluster_client *c, uint16_t event, uint32_t value)
 {
     uint64_t skipped = 0;
     c->st.handshakes_failed++;
-    if (!ratelog_event(&c->handshake_log, clock_now_ms(), &skipped))
+    if (closed_by_master(c, event, value) && c->closes++ == 0)
+        c->closes_since = clock_now_ms();
+    /* the first time the evidence names the key is said, whatever the rate limit */
+    int verdict = !c->key_taken && !c->key_named && closed_by_master(c, event, value) && key_evidence(c);
+    c->key_named |= verdict;
+    if (!ratelog_event(&c->handshake_log, clock_now_ms(), &skipped) && !verdict)
         return;
     char cause[1024];
     handshake_cause(c, event, value, cause, sizeof cause);
@@ -350,6 +390,8 @@ static int connection_event(cluster_client *c)
             c->link = LINK_DOWN;
         } else if (event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
             c->link = LINK_UP;
+            c->closes = 0;
+            c->key_taken = 1;
             if (c->state != STATE_JOINED && clock_now_ms() - c->last_hello >= 100)
                 send_hello(c); /* unless one just went out on this connection */
         }

@@ -11,5 +11,8 @@
 #include <stddef.h>
 
 char *textfile_read(const char *path, size_t *len, char *err, size_t errlen);
+/* The same, refusing a file of more than max bytes before anything is read or allocated
+ * ("N bytes, more than the MAX a file of its kind may hold"). */
+char *textfile_read_max(const char *path, size_t max, size_t *len, char *err, size_t errlen);
 
 #endif

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/fnv1a.h"
+#include "base/json_depth.h"
 #include "base/json_keys.h"
 #include "base/mat4.h"
 #include "warp/mpcdi.h"
@@ -241,6 +242,8 @@ static void parse_scene_transform(parse_ctx *c, const cJSON *o, scene_transform 
 int cluster_scene_transform_parse(const char *json, scene_transform *out, char *err, size_t errlen)
 {
     parse_ctx c = {.err = err, .errlen = errlen};
+    if (json_depth_check(json, strlen(json), err, errlen) != 0)
+        return -1;
     cJSON *root = cJSON_Parse(json);
     if (!root) {
         snprintf(err, errlen, "not valid JSON; give one such as '{\"up\": \"z\", \"scale\": 0.01}'");
@@ -766,6 +769,12 @@ int cluster_config_parse(const char *text, size_t len, const char *path, cluster
     snprintf(cfg->path, sizeof cfg->path, "%s", path);
     cfg->hash = fnv1a64(FNV1A64_CLUSTER_SEED, text, len);
 
+    char deep[120];
+    if (json_depth_check(text, len, deep, sizeof deep) != 0) {
+        snprintf(err, errlen, "cluster config %s: %s", path, deep);
+        json_keys_destroy(c.keys);
+        return -1;
+    }
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
     if (!root) {
@@ -802,11 +811,9 @@ int cluster_config_load(const char *path, cluster_config *out, char *err, size_t
     enum { MAX_FILE = 1 << 20 };
     char why[128];
     size_t len = 0;
-    char *text = textfile_read(path, &len, why, sizeof why);
-    if (!text || len >= MAX_FILE) {
-        free(text);
-        snprintf(err, errlen, "cluster config %s: %s", path,
-                 text ? "larger than 1 MiB" : why);
+    char *text = textfile_read_max(path, MAX_FILE - 1, &len, why, sizeof why);
+    if (!text) {
+        snprintf(err, errlen, "cluster config %s: %s", path, why);
         return -1;
     }
     int rc = cluster_config_parse(text, len, path, out, err, errlen);

@@ -5,6 +5,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/regular_file.h"
+
 int cluster_key_path(const cluster_config *c, const char *who, cluster_key_kind kind, char *out,
                      size_t cap)
 {
@@ -71,9 +73,10 @@ int cluster_key_read(const cluster_config *c, const char *reader, const char *wh
         return -1;
     }
     advice(c, reader, what, sizeof what);
-    FILE *f = fopen(path, "r");
+    char why[128];
+    FILE *f = regular_fopen(path, why, sizeof why);
     if (!f) {
-        snprintf(err, errlen, "cluster keys %s: %s: %s", path, strerror(errno), what);
+        snprintf(err, errlen, "cluster keys %s: %s: %s", path, errno == EINVAL ? why : strerror(errno), what);
         return -1;
     }
     struct stat st;

@@ -11,8 +11,11 @@
  *     settings the wall was set up for (the cluster config's "settings" on the defaults),
  *     or with the defaults, whichever is more: heavier settings belong in the config,
  *     where every node reads them;
- *   - memory: the method's state and the RSMs together at most memory_mb (the config's
- *     limits.gi_memory_mb, CLUSTER_GI_MEMORY_MB by default).
+ *   - memory: the method's state, the RSMs and the AO maps together at most memory_mb
+ *     (the config's limits.gi_memory_mb, CLUSTER_GI_MEMORY_MB by default).
+ * The ambient occlusion's maps (ao ldm) count like a method of their own: their work
+ * against the set-up's or the defaults' AO maps, their memory in the total (ldm-memory is
+ * a frame setting too, so it cannot be what bounds them).
  * A frame over a limit keeps the node's last frame settings within them (the renderer,
  * renderer_desc.limits), with one line; the master refuses such settings before any node
  * starts. Models are estimates within a small factor: a limit stops a frame that would
@@ -41,9 +44,13 @@ typedef struct gi_limits {
 /* The frame's method and its RSMs. */
 void gi_cost_method(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out);
 void gi_cost_rsm(const frame_params *p, gi_cost *out);
+/* The ambient occlusion's layered depth maps (ao ldm): texels drawn, bytes held; ssao and
+ * off cost nothing here. Counted in both limits like a method. */
+void gi_cost_ao(const frame_params *p, gi_cost *out);
 /* 1 when p is within the limits; else 0 and one line in why. */
 int gi_cost_within(const gi_limits *l, const frame_params *p, char *why, size_t cap);
-/* Copies the settings the costs depend on (the method, its settings, steps, RSM size). */
+/* Copies the settings the costs depend on (the method, its settings, steps, RSM size, the
+ * AO and its maps). */
 void gi_cost_keep_settings(const frame_params *from, frame_params *to);
 
 #endif

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/regular_file.h"
+
 #include "image/image.h"
 
 int image_write_png(const char *path, int width, int height, const uint8_t *rgb,
@@ -46,9 +48,10 @@ int image_write_pfm(const char *path, int width, int height, const float *rgb,
 int image_read_pfm(const char *path, int *width, int *height, float **rgb,
                    char *err, size_t errlen)
 {
-    FILE *f = fopen(path, "rb");
+    char why[128];
+    FILE *f = regular_fopen(path, why, sizeof why);
     if (!f) {
-        snprintf(err, errlen, "PFM %s: cannot open (%s)", path, strerror(errno));
+        snprintf(err, errlen, "PFM %s: %s", path, why);
         return -1;
     }
     char magic[3] = {0};

@@ -43,6 +43,7 @@
 #include <vector>
 
 extern "C" {
+#include "base/json_depth.h"
 #include "base/mat4.h"
 #include "scene/scene.h"
 }
@@ -229,6 +230,9 @@ std::string type_of(const jvalue &v)
 
 jvalue parse_json(const std::string &text)
 {
+    char deep[120];
+    if (json_depth_check(text.data(), text.size(), deep, sizeof deep) != 0)
+        refuse(deep);
     try {
         return jvalue::parse(text);
     } catch (const jvalue::parse_error &e) {

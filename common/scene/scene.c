@@ -215,9 +215,23 @@ int scene_finish(scene *s, char *err, size_t errlen)
                          "(fix the model's positions)", i / 3);
                 return -1;
             }
+            if (fabsf(x) > SCENE_MAX_COORD) {
+                snprintf(err, errlen, "scene triangle %zu has a vertex at %g m, beyond the "
+                         "limit of %g m from the origin (scale the model down or move it "
+                         "nearer the origin)", i / 3, (double)x, (double)SCENE_MAX_COORD);
+                return -1;
+            }
             if (x < s->bounds_min[a]) s->bounds_min[a] = x;
             if (x > s->bounds_max[a]) s->bounds_max[a] = x;
         }
+    for (int i = 0; i < s->light_count; i++)
+        for (int a = 0; a < 3 && s->lights[i].type != SCENE_LIGHT_DIRECTIONAL; a++)
+            if (!(fabsf(s->lights[i].position[a]) <= SCENE_MAX_COORD)) {
+                snprintf(err, errlen, "scene light %d is at %g m, beyond the limit of %g m "
+                         "from the origin (move it nearer)", i,
+                         (double)s->lights[i].position[a], (double)SCENE_MAX_COORD);
+                return -1;
+            }
     for (uint32_t i = 0; i < s->triangle_count; i++)
         if (s->triangle_material[i] >= s->material_count) {
             snprintf(err, errlen, "scene triangle %u uses material %u of %zu", i,

@@ -23,6 +23,10 @@ enum { SCENE_MAX_LIGHTS = 8 };
 /* Movable parts (scene_object): at most this many per scene, each named in at most
  * SCENE_NAME_MAX - 1 bytes (a parameter-store key each, cluster/scene_keys.h). */
 enum { SCENE_MAX_OBJECTS = 128, SCENE_NAME_MAX = 48 };
+/* No vertex or light farther than this from the origin on any axis, metres (100 km): the
+ * counts that follow from the extent (light cache points, lookup cells) stay bounded and
+ * float positions keep millimetres. */
+#define SCENE_MAX_COORD 1.0e5f
 
 typedef struct scene_material {
     float base_color[4];    /* linear RGBA factor */
@@ -175,7 +179,8 @@ int scene_object_find(const scene *s, const char *name);
 int scene_add_anim_channel(scene *s, const scene_anim_channel *c);
 /* Points the light's axis from its position at target (unchanged if they coincide). */
 void scene_light_aim(scene_light *l, const float target[3]);
-/* Computes the bounds; returns -1 with a reason when the scene has no triangles. */
+/* Computes the bounds; returns -1 with a reason when the scene has no triangles, or a vertex
+ * or light is not finite or lies beyond SCENE_MAX_COORD. */
 int scene_finish(scene *s, char *err, size_t errlen);
 
 /* 1 when some triangle's material emits light. */

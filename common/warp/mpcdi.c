@@ -13,7 +13,10 @@
 #include "base/textfile.h"
 
 /* Caps on what one archive may hold: the XML, one warp grid, one blend map. */
-enum { XML_MAX = 4 << 20, PFM_MAX = 256 << 20, PNG_MAX = 64 << 20, SIDE_MAX = 16384 };
+enum { XML_MAX = 4 << 20, PFM_MAX = 256 << 20, PNG_MAX = 64 << 20, SIDE_MAX = 16384,
+       PFM_HEADER_MAX = 128 };
+/* The archive itself: its members' caps, stored, and room to spare. */
+enum { FILE_MAX = 512 << 20 };
 
 typedef struct ctx {
     const char *name;
@@ -137,7 +140,7 @@ static uint8_t *member(ctx *c, const char *part, const char *path, size_t cap, s
             uint8_t *b = size <= cap ? realloc(buf, grown < cap + 1 ? grown : cap + 1) : NULL;
             if (!b) {
                 if (size > cap)
-                    fail(c, part, "%s is larger than %zu MiB", path, cap >> 20);
+                    fail(c, part, "%s is larger than %zu bytes, the most it may hold", path, cap);
                 else
                     fail(c, part, "out of memory for %s", path);
                 ok = 0;
@@ -261,12 +264,14 @@ static int read_warp(ctx *c, const char *part, const xmlNode *fileset, warp_map 
     double metres = 1;
     if (c->three_d && text(g, "geometricUnit", unit, sizeof unit) && !(metres = unit_metres(unit)))
         return fail(c, part, "geometricUnit '%.20s' is not one of mm, cm, dm, m, in, ft, yd, unknown", unit);
-    size_t len;
-    uint8_t *bytes = member(c, part, path, PFM_MAX, &len);
+    /* At most a sample per projector pixel: the archive is not inflated past what that holds. */
+    size_t len, cap = PFM_HEADER_MAX + 12 * (size_t)m->out_w * (size_t)m->out_h;
+    uint8_t *bytes = member(c, part, path, cap < PFM_MAX ? cap : PFM_MAX, &len);
     if (!bytes)
         return -1;
     char why[200];
-    int channels = 0, rc = warp_decode_pfm(bytes, len, &m->grid_w, &m->grid_h, &channels, &m->grid, why, sizeof why);
+    int channels = 0, rc = warp_decode_pfm(bytes, len, m->out_w, m->out_h, &m->grid_w, &m->grid_h, &channels,
+                                           &m->grid, why, sizeof why);
     free(bytes);
     if (rc)
         return fail(c, part, "geometryWarpFile %s: %s", path, why);
@@ -285,7 +290,7 @@ static int read_warp(ctx *c, const char *part, const xmlNode *fileset, warp_map 
 
 /* An alphaMap or betaMap: its PNG must be what the XML says. Absent: 0 when optional. */
 static int read_map(ctx *c, const char *part, const xmlNode *fileset, const char *tag, int required,
-                    warp_blend_map *out, float *gamma)
+                    int out_w, int out_h, warp_blend_map *out, float *gamma)
 {
     const xmlNode *e = child(fileset, tag);
     if (!e)
@@ -304,7 +309,7 @@ static int read_map(ctx *c, const char *part, const xmlNode *fileset, const char
     uint8_t *bytes = member(c, part, path, PNG_MAX, &len);
     if (!bytes)
         return -1;
-    int rc = warp_decode_png(bytes, len, out, &bits, why, sizeof why);
+    int rc = warp_decode_png(bytes, len, out_w, out_h, out, &bits, why, sizeof why);
     free(bytes);
     if (rc)
         return fail(c, part, "%s %s: %s", tag, path, why);
@@ -357,8 +362,9 @@ static int read_document(ctx *c, xmlDoc *doc, const char *want, warp_map *m)
     if (!fileset)
         return fail(c, part, "missing (no fileset names this region under <files>)");
     m->alpha_gamma = 1;
-    return read_warp(c, part, fileset, m) || read_map(c, part, fileset, "alphaMap", 1, &m->alpha, &m->alpha_gamma) ||
-           read_map(c, part, fileset, "betaMap", 0, &m->beta, NULL) ? -1 : 0;
+    return read_warp(c, part, fileset, m) ||
+           read_map(c, part, fileset, "alphaMap", 1, m->out_w, m->out_h, &m->alpha, &m->alpha_gamma) ||
+           read_map(c, part, fileset, "betaMap", 0, m->out_w, m->out_h, &m->beta, NULL) ? -1 : 0;
 }
 
 int mpcdi_parse(const void *zip, size_t len, const char *name, const char *region, warp_map *out,
@@ -405,7 +411,7 @@ int mpcdi_load(const char *path, const char *region, warp_map *out, char *err, s
 {
     char why[128];
     size_t len = 0;
-    char *bytes = textfile_read(path, &len, why, sizeof why);
+    char *bytes = textfile_read_max(path, FILE_MAX, &len, why, sizeof why);
     if (!bytes) {
         memset(out, 0, sizeof *out);
         snprintf(err, errlen, "MPCDI %s: %s", path, why);

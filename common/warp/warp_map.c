@@ -37,8 +37,30 @@ static int header_number(const uint8_t *d, size_t len, size_t *at, double *out)
     return n > 0 && *end == 0 && isfinite(*out) ? 0 : -1;
 }
 
-int warp_decode_pfm(const uint8_t *d, size_t len, int *width, int *height, int *channels,
-                    float **values, char *why, size_t whylen)
+/* 0 when a w x h grid or map of c channels is within the bounds (warp_map.h), else -1 with
+ * why. */
+static int size_check(const char *what, double w, double h, int c, int max_w, int max_h,
+                      char *why, size_t whylen)
+{
+    if (w != floor(w) || h != floor(h) || w < 1 || h < 1 || w > WARP_MAX_SIDE || h > WARP_MAX_SIDE) {
+        snprintf(why, whylen, "%s size %g x %g is outside 1..%d", what, w, h, WARP_MAX_SIDE);
+        return -1;
+    }
+    if ((max_w > 0 && w > max_w) || (max_h > 0 && h > max_h)) {
+        snprintf(why, whylen, "%s size %g x %g is larger than the %d x %d projector image the "
+                 "file declares", what, w, h, max_w, max_h);
+        return -1;
+    }
+    if (w * h * c > (double)WARP_MAX_VALUES) {
+        snprintf(why, whylen, "%s size %g x %g x %d values is over the limit of %zu (256 MiB)",
+                 what, w, h, c, WARP_MAX_VALUES);
+        return -1;
+    }
+    return 0;
+}
+
+int warp_decode_pfm(const uint8_t *d, size_t len, int max_w, int max_h, int *width,
+                    int *height, int *channels, float **values, char *why, size_t whylen)
 {
     if (len < 2 || d[0] != 'P' || (d[1] != 'F' && d[1] != 'f')) {
         snprintf(why, whylen, "not a PFM (no PF or Pf header)");
@@ -52,10 +74,8 @@ int warp_decode_pfm(const uint8_t *d, size_t len, int *width, int *height, int *
         snprintf(why, whylen, "PFM header is not \"PF width height scale\"");
         return -1;
     }
-    if (w != floor(w) || h != floor(h) || w < 1 || h < 1 || w > WARP_MAX_SIDE || h > WARP_MAX_SIDE) {
-        snprintf(why, whylen, "PFM size %g x %g is outside 1..%d", w, h, WARP_MAX_SIDE);
+    if (size_check("PFM", w, h, c, max_w, max_h, why, whylen))
         return -1;
-    }
     at++; /* the one whitespace character before the samples */
     size_t count = (size_t)w * (size_t)h * (size_t)c;
     if (len - at < count * 4) {
@@ -126,8 +146,8 @@ static float *png_values(const uint8_t *rows, int w, int h, int c, int bits)
     return v;
 }
 
-int warp_decode_png(const uint8_t *data, size_t len, warp_blend_map *out, int *bits, char *why,
-                    size_t whylen)
+int warp_decode_png(const uint8_t *data, size_t len, int max_w, int max_h, warp_blend_map *out,
+                    int *bits, char *why, size_t whylen)
 {
     png_memory m = {.data = data, .len = len, .why = why, .whylen = whylen};
     if (len < 8 || png_sig_cmp(data, 0, 8) != 0) {
@@ -157,6 +177,8 @@ int warp_decode_png(const uint8_t *data, size_t len, warp_blend_map *out, int *b
     png_read_update_info(png, info);
     int w = (int)png_get_image_width(png, info), h = (int)png_get_image_height(png, info);
     int c = png_get_channels(png, info), b = png_get_bit_depth(png, info);
+    if (size_check("PNG", w, h, c, max_w, max_h, why, whylen))
+        longjmp(m.jump, 1);
     size_t stride = png_get_rowbytes(png, info);
     /* not xalloc: a PNG file's size: png_error() refuses it */
     rows = malloc(stride * (size_t)h);

@@ -58,14 +58,21 @@ typedef struct warp_map {
 
 void warp_map_free(warp_map *m);
 
+/* The most float values one decoded grid or map may hold (256 MiB): a 4K projector's RGB
+ * map, an 8K one's grey map. */
+#define WARP_MAX_VALUES ((size_t)1 << 26)
+
 /* Decoders for what MPCDI containers and warp files hold, from memory; each returns 0, or
- * -1 with the reason in why (no file name: the caller names the part). */
+ * -1 with the reason in why (no file name: the caller names the part). A grid or map wider
+ * than max_w or taller than max_h (the projector image the file declares; 0: no such
+ * bound), or of more than WARP_MAX_VALUES values, is refused from its header, before
+ * anything is decoded: a small compressed file cannot claim gigabytes. */
 /* PFM (netpbm: "PF" colour or "Pf" grey, either byte order, rows bottom first). */
-int warp_decode_pfm(const uint8_t *data, size_t len, int *width, int *height, int *channels,
-                    float **values, char *why, size_t whylen);
+int warp_decode_pfm(const uint8_t *data, size_t len, int max_w, int max_h, int *width,
+                    int *height, int *channels, float **values, char *why, size_t whylen);
 /* PNG grey or RGB, 8 or 16 bits, values as stored scaled to 0..1 (no colour conversion:
  * a blend map is data, not a picture); bits: the file's bit depth. */
-int warp_decode_png(const uint8_t *data, size_t len, warp_blend_map *out, int *bits, char *why,
-                    size_t whylen);
+int warp_decode_png(const uint8_t *data, size_t len, int max_w, int max_h, warp_blend_map *out,
+                    int *bits, char *why, size_t whylen);
 
 #endif

@@ -182,7 +182,8 @@ int warp_mesh_load(const char *path, warp_map *out, char *err, size_t errlen)
 {
     char why[128];
     size_t len = 0;
-    char *text = textfile_read(path, &len, why, sizeof why);
+    /* 1024 x 1024 vertices of five numbers: about 40 MB */
+    char *text = textfile_read_max(path, (size_t)64 << 20, &len, why, sizeof why);
     if (!text) {
         memset(out, 0, sizeof *out);
         snprintf(err, errlen, "warp mesh %s: %s", path, why);

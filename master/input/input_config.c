@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json_depth.h"
 #include "base/json_keys.h"
 #include "base/textfile.h"
 #include "base/xalloc.h"
@@ -365,8 +366,13 @@ static int parse_config(const input_desc *desc, parsed_config *p, char *err, siz
 {
     memset(p, 0, sizeof *p);
     char why[128];
-    char *text = textfile_read(desc->path, NULL, why, sizeof why);
+    char *text = textfile_read_max(desc->path, (size_t)1 << 20, NULL, why, sizeof why);
     if (!text) {
+        snprintf(err, errlen, "input config %s: %s", desc->path, why);
+        return -1;
+    }
+    if (json_depth_check(text, strlen(text), why, sizeof why) != 0) {
+        free(text);
         snprintf(err, errlen, "input config %s: %s", desc->path, why);
         return -1;
     }

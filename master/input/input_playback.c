@@ -1,6 +1,7 @@
 /* input_playback: recording file writer and reader (format in input_playback.h). */
 #include "input_playback.h"
 #include "base/xalloc.h"
+#include "base/regular_file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -246,7 +247,8 @@ static void playback_close(input_source *s)
 
 int input_playback_is_recording(const char *path)
 {
-    FILE *f = fopen(path, "rb");
+    char why[128];
+    FILE *f = regular_fopen(path, why, sizeof why);
     if (!f)
         return 0;
     char line[64] = {0};
@@ -268,9 +270,10 @@ input_source *input_playback_open(const input_playback_desc *desc, char *err, si
     pb->desc = *desc;
     pb->desc.path = pb->path;
     pb->desc.name = NULL;
-    pb->f = fopen(desc->path, "rb");
+    char why[128];
+    pb->f = regular_fopen(desc->path, why, sizeof why);
     if (!pb->f) {
-        snprintf(err, errlen, "input playback %s: %s", desc->path, strerror(errno));
+        snprintf(err, errlen, "input playback %s: %s", desc->path, why);
         free(pb);
         return NULL;
     }

@@ -26,8 +26,8 @@ static void check_map(const warp_map *m)
     if (m->out_w < 0 || m->out_h < 0 || m->out_w > 16384 || m->out_h > 16384)
         abort();
     if (m->kind == WARP_UV_GRID || m->kind == WARP_POINT_GRID) {
-        if (m->grid_w < 2 || m->grid_h < 2 || !m->grid)
-            abort();
+        if (m->grid_w < 2 || m->grid_h < 2 || !m->grid || m->grid_w > m->out_w || m->grid_h > m->out_h)
+            abort(); /* no larger than the projector image the file declares */
         for (size_t i = 0; i < (size_t)m->grid_w * m->grid_h * 3; i++)
             if (!isfinite(m->grid[i]))
                 abort();
@@ -42,7 +42,8 @@ static void check_map(const warp_map *m)
     const warp_blend_map *maps[2] = {&m->alpha, &m->beta};
     for (int k = 0; k < 2; k++)
         if (maps[k]->values && (maps[k]->width < 2 || maps[k]->height < 2 ||
-                                (maps[k]->channels != 1 && maps[k]->channels != 3)))
+                                (maps[k]->channels != 1 && maps[k]->channels != 3) ||
+                                (m->kind != WARP_MESH && (maps[k]->width > m->out_w || maps[k]->height > m->out_h))))
             abort();
 }
 
@@ -123,10 +124,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     int w, h, c, bits;
     float *v = NULL;
-    if (warp_decode_pfm(data, size, &w, &h, &c, &v, err, sizeof err) == 0)
+    if (warp_decode_pfm(data, size, 0, 0, &w, &h, &c, &v, err, sizeof err) == 0)
         free(v);
     warp_blend_map b;
-    if (warp_decode_png(data, size, &b, &bits, err, sizeof err) == 0)
+    if (warp_decode_png(data, size, 0, 0, &b, &bits, err, sizeof err) == 0)
         free(b.values);
     return 0;
 }

@@ -134,6 +134,34 @@ static void test_memory(void **state)
     assert_true(r.memory_bytes == 6 * 256.0 * 256 * 48);
 }
 
+/* The ambient occlusion's maps count like a method (issue 34: --ao ldm --ao-directions 512
+ * --ao-resolution 512 --ldm-layers 32 --ldm-memory 65536 asked GL for 16 GB): their work
+ * against the set-up's AO, their memory in the total, whatever ldm-memory says. */
+static void test_ao_counted(void **state)
+{
+    gi_limits l = limits();
+    char why[256];
+    assert_true(within(&l, FRAME({"ao", "ldm"}), why));
+    assert_true(within(&l, FRAME({"ao", "ssao"}), why));
+    frame_params heavy = FRAME({"ao", "ldm"}, {"ao-directions", "512"}, {"ao-resolution", "512"},
+                               {"ldm-layers", "32"}, {"ldm-memory", "65536"});
+    assert_false(within(&l, heavy, why));
+    assert_non_null(strstr(why, "--ao ldm with 512 directions of 512^2 texels x 32 layers"));
+    /* set up for them in the config: the work passes, the memory does not */
+    l.base = heavy;
+    assert_false(within(&l, heavy, why));
+    assert_non_null(strstr(why, "with its RSMs and AO maps would take 16"));
+    assert_non_null(strstr(why, "limits.gi_memory_mb"));
+    gi_cost a;
+    gi_cost_ao(&heavy, &a);
+    assert_true(a.memory_bytes == 512.0 * 512 * 512 * 32 * 4);
+    /* a node keeps its last AO settings within the limits */
+    frame_params kept = FRAME({"ao", "ldm"});
+    gi_cost_keep_settings(&kept, &heavy);
+    l = limits();
+    assert_true(within(&l, heavy, why));
+}
+
 /* The paper transport holds its own volumes: the injection and two for the merge and the
  * steps, 12 floats per cell each; the same work per step. */
 static void test_paper_memory(void **state)
@@ -173,6 +201,7 @@ int main(void)
         cmocka_unit_test(test_caches_work),
         cmocka_unit_test(test_ldm_cost),
         cmocka_unit_test(test_memory),
+        cmocka_unit_test(test_ao_counted),
         cmocka_unit_test(test_paper_memory),
         cmocka_unit_test(test_budget_plan_within),
     };

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <zip.h>
+#include <zlib.h>
 #include <cmocka.h>
 
 #include "warp/mpcdi.h"
@@ -273,6 +274,67 @@ static void test_mpcdi_refused(void **state)
     assert_non_null(strstr(err, "MPCDI /nonexistent/x.mpcdi: cannot open"));
 }
 
+/* A PNG that claims w x h pixels: a tiny one's IHDR rewritten (its CRC too), no more data. */
+static blob png_claiming(const char *name, uint32_t w, uint32_t h)
+{
+    blob b = png(name, 2, 2, 1, 8, ramp);
+    for (int k = 0; k < 4; k++) {
+        b.data[16 + k] = (uint8_t)(w >> (24 - 8 * k));
+        b.data[20 + k] = (uint8_t)(h >> (24 - 8 * k));
+    }
+    uLong crc = crc32(0, b.data + 12, 17);
+    for (int k = 0; k < 4; k++)
+        b.data[29 + k] = (uint8_t)(crc >> (24 - 8 * k));
+    return b;
+}
+
+/* Decompression bombs: grids and maps larger than the projector image the XML declares, or
+ * than the memory limit, are refused from their headers; a warp member is never inflated
+ * past what a sample per projector pixel takes. And libxml2's own depth limit holds (256,
+ * as long as XML_PARSE_HUGE is not set). */
+static void test_mpcdi_bombs(void **state)
+{
+    (void)state;
+    size_t len;
+    const char *big = edited("xResolution=\"960\" yResolution=\"600\"", "xResolution=\"16384\" yResolution=\"16384\"");
+    char xml[4096];
+    snprintf(xml, sizeof xml, "%s", big);
+    blob m[3] = {{"mpcdi.xml", (uint8_t *)strdup(xml), strlen(xml)}, pfm("p1.pfm", 3, 2, 3, uv_sample),
+                 png_claiming("p1_alpha.png", 16384, 16384)};
+    uint8_t *z = make_zip(m, 3, &len);
+    refused(z, len, "p1", "alphaMap p1_alpha.png: PNG size 16384 x 16384 x 1 values is over the limit of 67108864");
+    free(z);
+    free(m[0].data);
+    m[0] = (blob){"mpcdi.xml", (uint8_t *)strdup(XML_2D), strlen(XML_2D)};
+    free(m[2].data);
+    m[2] = png_claiming("p1_alpha.png", 1000, 4);
+    z = make_zip(m, 3, &len);
+    refused(z, len, "p1", "alphaMap p1_alpha.png: PNG size 1000 x 4 is larger than the 960 x 600 projector image");
+    free(z);
+    free(m[1].data);
+    m[1] = pfm("p1.pfm", 1000, 2, 3, uv_sample);
+    z = make_zip(m, 3, &len);
+    refused(z, len, "p1", "geometryWarpFile p1.pfm: PFM size 1000 x 2 is larger than the 960 x 600 projector image");
+    free(z);
+    /* a small grid followed by 7 MB that compress to nothing */
+    free(m[1].data);
+    m[1] = pfm("p1.pfm", 3, 2, 3, uv_sample);
+    size_t pad = 7u << 20;
+    m[1].data = realloc(m[1].data, m[1].len + pad);
+    memset(m[1].data + m[1].len, 0, pad);
+    m[1].len += pad;
+    z = make_zip(m, 3, &len);
+    refused(z, len, "p1", "p1.pfm is larger than 6912128 bytes, the most it may hold");
+    free(z);
+    for (int i = 0; i < 3; i++)
+        free(m[i].data);
+    char deep[8192];
+    int n = snprintf(deep, sizeof deep, "<MPCDI profile=\"2d\"><display>");
+    for (int i = 0; i < 300; i++)
+        n += snprintf(deep + n, sizeof deep - (size_t)n, "<a>");
+    refused_xml(deep, "p1", "Excessive depth in document: 256");
+}
+
 static const char *const MESH =
     "cavelight-warp-mesh 1\n"
     "# a keystone: the top edge is pulled in\n"
@@ -339,7 +401,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mpcdi_2d),     cmocka_unit_test(test_mpcdi_3d),
-        cmocka_unit_test(test_mpcdi_refused), cmocka_unit_test(test_mesh),
+        cmocka_unit_test(test_mpcdi_refused), cmocka_unit_test(test_mpcdi_bombs),
+        cmocka_unit_test(test_mesh),
         cmocka_unit_test(test_mesh_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,3 +1,4 @@
+#define _XOPEN_SOURCE 700 /* S_ISVTX, the sticky bit */
 #include "gi/caches/cache_file.h"
 
 #include <errno.h>
@@ -11,6 +12,7 @@
 #include "base/clock.h"
 #include "base/fnv1a.h"
 #include "base/folder.h"
+#include "base/regular_file.h"
 #include "gi/caches/val_select.h"
 
 /* Layout, little-endian: magic, version u32, edge and angle (float bits) u32, 0 u32, scene
@@ -104,49 +106,57 @@ static int decode(const uint8_t *buf, uint64_t count, const cache_key *key, cach
 int cache_file_read(const char *path, const cache_key *key, cache_set *out, char *why,
                     size_t cap)
 {
-    FILE *f = fopen(path, "rb");
+    /* Only a regular file: a FIFO of that name would block, a folder's "size" is LONG_MAX. */
+    FILE *f = regular_fopen(path, why, cap);
     if (!f) {
-        snprintf(why, cap, "%s", errno == ENOENT ? "absent" : strerror(errno));
+        if (errno == ENOENT)
+            snprintf(why, cap, "absent");
         return -1;
     }
     uint8_t *buf = NULL;
-    struct stat st;
-    /* Only a regular file: a folder of that name opens too, and its "size" is LONG_MAX. */
-    long size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     int rc = -1;
     /* not xalloc: the file's size: a failure is "cannot be read" and a rebuild */
     if (size < 0) {
-        snprintf(why, cap, "not a regular file");
+        snprintf(why, cap, "cannot be read");
     } else if ((uint64_t)size > HEADER + RECORD * MAX_COUNT + TRAILER) {
         snprintf(why, cap, "%ld bytes, more than any light cache file", size);
-    } else if (size < HEADER + TRAILER) {
-        snprintf(why, cap, "truncated: %ld bytes, less than a header", size < 0 ? 0 : size);
-    } else if (!(buf = malloc((size_t)size)) || fseek(f, 0, SEEK_SET) != 0 ||
+    } else if (!(buf = malloc(size ? (size_t)size : 1)) || fseek(f, 0, SEEK_SET) != 0 ||
                fread(buf, 1, (size_t)size, f) != (size_t)size) {
         snprintf(why, cap, "cannot be read");
     } else {
-        uint8_t want[HEADER];
-        uint64_t count = le_get(buf + 32, 8);
-        put_header(want, key, count);
-        uint64_t expect = count <= MAX_COUNT ? HEADER + RECORD * count + TRAILER : 0;
-        if (memcmp(buf, MAGIC, 8) != 0)
-            snprintf(why, cap, "not a light cache file");
-        else if (memcmp(buf, want, HEADER) != 0)
-            snprintf(why, cap, "made for another scene, settings or format version");
-        else if ((uint64_t)size != expect)
-            snprintf(why, cap, "truncated or padded: %ld bytes where %llu caches take %llu",
-                     size, (unsigned long long)count, (unsigned long long)expect);
-        else if (le_get(buf + size - TRAILER, 8) !=
-                 fnv1a64(FNV1A64_OFFSET, buf, (size_t)size - TRAILER))
-            snprintf(why, cap, "checksum mismatch (damaged)");
-        else if (decode(buf, count, key, out) != 0)
-            snprintf(why, cap, "out of memory for %llu caches", (unsigned long long)count);
-        else
-            rc = 0;
+        rc = cache_file_parse(buf, (size_t)size, key, out, why, cap);
     }
     free(buf);
     fclose(f);
     return rc;
+}
+
+int cache_file_parse(const uint8_t *buf, size_t size, const cache_key *key, cache_set *out,
+                     char *why, size_t cap)
+{
+    if (size < HEADER + TRAILER) {
+        snprintf(why, cap, "truncated: %zu bytes, less than a header", size);
+        return -1;
+    }
+    uint8_t want[HEADER];
+    uint64_t count = le_get(buf + 32, 8);
+    put_header(want, key, count);
+    uint64_t expect = count <= MAX_COUNT ? HEADER + RECORD * count + TRAILER : 0;
+    if (memcmp(buf, MAGIC, 8) != 0)
+        snprintf(why, cap, "not a light cache file");
+    else if (memcmp(buf, want, HEADER) != 0)
+        snprintf(why, cap, "made for another scene, settings or format version");
+    else if ((uint64_t)size != expect)
+        snprintf(why, cap, "truncated or padded: %zu bytes where %llu caches take %llu",
+                 size, (unsigned long long)count, (unsigned long long)expect);
+    else if (le_get(buf + size - TRAILER, 8) != fnv1a64(FNV1A64_OFFSET, buf, size - TRAILER))
+        snprintf(why, cap, "checksum mismatch (damaged)");
+    else if (decode(buf, count, key, out) != 0)
+        snprintf(why, cap, "out of memory for %llu caches", (unsigned long long)count);
+    else
+        return 0;
+    return -1;
 }
 
 int cache_file_write(const char *path, const cache_key *key, const cache_set *set, char *why,
@@ -175,19 +185,44 @@ int cache_file_write(const char *path, const cache_key *key, const cache_set *se
     }
     le_put(buf + size - TRAILER, fnv1a64(FNV1A64_OFFSET, buf, size - TRAILER), 8);
     char tmp[600];
-    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
+    snprintf(tmp, sizeof tmp, "%s.XXXXXX", path);
+    int fd = mkstemp(tmp); /* O_CREAT | O_EXCL: never a planted name or symlink */
+    FILE *f = fd >= 0 && fchmod(fd, 0644) == 0 ? fdopen(fd, "wb") : NULL;
     int ok = f && fwrite(buf, 1, size, f) == size;
     if (f && fclose(f) != 0)
         ok = 0;
+    else if (!f && fd >= 0)
+        close(fd);
     if (!ok || rename(tmp, path) != 0) {
         snprintf(why, cap, "cannot write %s: %s", f ? path : tmp, strerror(errno));
-        remove(tmp);
+        if (fd >= 0)
+            remove(tmp);
         free(buf);
         return -1;
     }
     free(buf);
     return 0;
+}
+
+int cache_folder_check(const char *dir, char *why, size_t cap)
+{
+    struct stat st;
+    if (lstat(dir, &st) != 0)
+        return 0; /* made by cache_file_write(), as this user's */
+    if (S_ISLNK(st.st_mode) && stat(dir, &st) != 0)
+        return 0;
+    uid_t me = geteuid();
+    if (!S_ISDIR(st.st_mode))
+        snprintf(why, cap, "%s is not a folder", dir);
+    else if (st.st_uid != me && st.st_uid != 0)
+        snprintf(why, cap, "folder %s belongs to user %ld, not to this one (%ld): another "
+                 "user could replace its files", dir, (long)st.st_uid, (long)me);
+    else if ((st.st_mode & S_IWOTH) && !(st.st_mode & S_ISVTX))
+        snprintf(why, cap, "folder %s is writable by all without the sticky bit: anyone "
+                 "could replace its files (chmod o-w or +t it)", dir);
+    else
+        return 0;
+    return -1;
 }
 
 int cache_store_get(const scene *s, const cache_place_desc *d, const char *dir, cache_set *out,
@@ -197,6 +232,11 @@ int cache_store_get(const scene *s, const cache_place_desc *d, const char *dir, 
     memset(rep, 0, sizeof *rep);
     cache_key key = cache_key_of(s, d);
     char why[700];
+    if (dir && cache_folder_check(dir, why, sizeof why) != 0) {
+        snprintf(rep->note, sizeof rep->note, "light caches: not stored (%s): placed at every "
+                 "start", why);
+        dir = NULL;
+    }
     if (dir) {
         cache_file_path(dir, &key, rep->path, sizeof rep->path);
         if (cache_file_read(rep->path, &key, out, why, sizeof why) == 0) {

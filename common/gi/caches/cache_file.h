@@ -10,7 +10,10 @@
  * file rewritten. Files are written to a temporary name in the same folder and renamed, so
  * a reader sees a whole file or none. A folder that cannot be created or written (read-only,
  * full) costs only the placement's time: the caches are used, and the note says why they
- * were not stored.
+ * were not stored. The temporary is made by mkstemp() (O_EXCL: a name planted in the folder,
+ * a symlink to a file elsewhere, is never opened) and a folder that others could plant or
+ * swap files in (writable by all without the sticky bit, or owned by another user than this
+ * one or root) is not used at all: neither read nor written, with a note saying why.
  *
  * Where: CAVELIGHT_CACHE_DIR when set, else $XDG_CACHE_HOME/cavelight, else
  * $HOME/.cache/cavelight (the XDG base directory rules); no folder (none of them set): no
@@ -46,6 +49,12 @@ void cache_file_path(const char *dir, const cache_key *key, char *out, size_t ca
  * bytes", "checksum mismatch", "made for another scene or settings", ...). */
 int cache_file_read(const char *path, const cache_key *key, cache_set *out, char *why,
                     size_t cap);
+/* cache_file_read()'s checks and decoding of a whole file's bytes (the fuzz target's way in). */
+int cache_file_parse(const uint8_t *buf, size_t size, const cache_key *key, cache_set *out,
+                     char *why, size_t cap);
+/* 0 when the folder dir is safe to keep caches in (above), or when it does not exist yet;
+ * else -1 with why. */
+int cache_folder_check(const char *dir, char *why, size_t cap);
 /* 0, or -1 with why (the folder or file could not be written); the folder is created. */
 int cache_file_write(const char *path, const cache_key *key, const cache_set *set, char *why,
                      size_t cap);

@@ -9,7 +9,8 @@
 #include "base/vec3.h"
 
 /* Points per cube face area: (e / POINT_STEPS)^2 each. At most MAX_POINTS in all (a fine
- * density on a large scene): beyond, the points are spread thinner. */
+ * density on a large scene): beyond, the points are spread thinner. A scene whose triangles
+ * alone need more than CACHE_MAX_POINTS (one point each at least) is refused. */
 enum { POINT_STEPS = 3, MAX_POINTS = 1 << 22, POINT_FLOATS = CACHE_POINT_FLOATS };
 /* A cube's best normal is sought among at most this many of its points' normals. */
 enum { MAX_CANDIDATES = 64 };
@@ -48,6 +49,8 @@ static size_t points_of(const scene *s, size_t t, float step)
         longest = fmaxf(longest, vec3_length(d));
     }
     double k = fmax(ceil((double)a / ((double)step * step)), ceil((double)longest / step));
+    if (!(k <= CACHE_MAX_POINTS)) /* saturated: the sums below never wrap */
+        return (size_t)CACHE_MAX_POINTS + 1;
     return k < 1 ? 1 : (size_t)k;
 }
 
@@ -56,7 +59,7 @@ static size_t points_of(const scene *s, size_t t, float step)
 static float point_step(const scene *s, float edge)
 {
     float step = edge / POINT_STEPS;
-    for (int tries = 0; tries < 32; tries++) {
+    for (int tries = 0; tries < 96; tries++) { /* 1.5^96: any extent within SCENE_MAX_COORD */
         size_t n = 0;
         for (size_t t = 0; t < s->triangle_count && n <= MAX_POINTS; t++)
             n += points_of(s, t, step);
@@ -220,6 +223,12 @@ int cache_place(const scene *s, const cache_place_desc *d, cache_set *out, char 
     size_t n = cache_surface_points(s, d->edge, NULL);
     if (n == 0) {
         snprintf(err, errlen, "light caches: the scene has no surface to place them on");
+        return -1;
+    }
+    if (n > CACHE_MAX_POINTS) {
+        snprintf(err, errlen, "light caches: %zu triangles need %zu surface points, over the "
+                 "limit of %d (a smaller scene or another GI method)", s->triangle_count, n,
+                 CACHE_MAX_POINTS);
         return -1;
     }
     /* not xalloc: the scene's surface points (a density setting): refused in err */

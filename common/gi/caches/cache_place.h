@@ -70,6 +70,8 @@ void cache_set_free(cache_set *set);
 
 /* Floats per surface point: position, normal (unit), area, material roughness. */
 enum { CACHE_POINT_FLOATS = 8 };
+/* cache_place() refuses a scene that needs more surface points than this (512 MB of them). */
+enum { CACHE_MAX_POINTS = 1 << 24 };
 
 /* The surface points of step 1 for edge e: CACHE_POINT_FLOATS each,
  * into out (NULL: only counted). Returns how many. The placement's own sampling, for the
