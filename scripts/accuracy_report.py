@@ -97,8 +97,9 @@ def err(r):
 
 
 def both(r, digits=3):
-    """The debiased relRMSE with the raw figure beside it."""
-    return f"{f(err(r), digits)} (raw {f(raw(r), digits)})"
+    """The debiased relRMSE with the raw figure and the mean HDR-FLIP beside it."""
+    flip = f", FLIP {f(r['flip_indirect'], digits)}" if r.get("flip_indirect") else ""
+    return f"{f(err(r), digits)} (raw {f(raw(r), digits)}{flip})"
 
 
 def met(ok):
@@ -129,7 +130,10 @@ p("Accuracy is that of the indirect light, what the LPV computes: the relative R
   "factor that best fits the indirect image to the reference (above 1: too dark). "
   "Propagation ms is the median over the last frames of a configuration once it reached "
   "its steady state (history weight below 1e-3). Every scene runs with the same settings "
-  "and the renderer's one set of defaults.\n")
+  "and the renderer's one set of defaults. Every relRMSE is debiased by the reference's "
+  "own noise (docs/accuracy-metrics.md), with the raw figure beside it, and beside that the "
+  "mean HDR-FLIP of the indirect image against the reference's over the same pixels "
+  "(Andersson et al.; 0: no visible difference, 1: the largest).\n")
 
 p("## The goal per scene\n")
 g0 = summary(f"sweep_{SCENES[0]}.json").get("goal", {}) if SCENES else {}
@@ -141,7 +145,7 @@ if g0:
       f"between {GOAL_SCALE[0]} and {GOAL_SCALE[1]}, and at steady state a finer lattice "
       "never worse than a coarser one (relative RMSE at 16, 32 and 64 cells, same steps and "
       "lambda).\n")
-    p("| scene | indirect relRMSE debiased (raw) | at most 0.35 | indirect SSIM | at least 0.8 | best level scale | within 0.8..1.25 | relRMSE at 16 / 32 / 64 cells | finer never worse | propagation ms at 32 cells |")
+    p("| scene | indirect relRMSE debiased (raw, FLIP) | at most 0.35 | indirect SSIM | at least 0.8 | best level scale | within 0.8..1.25 | relRMSE at 16 / 32 / 64 cells | finer never worse | propagation ms at 32 cells |")
     p("|---|---|---|---|---|---|---|---|---|---|")
     for sc in SCENES:
         g = summary(f"sweep_{sc}.json").get("goal")
@@ -152,7 +156,8 @@ if g0:
             continue
         rm, ss, bs = g.get("rmse_rel_debiased", g["rmse_rel"]), g["ssim"], g["best_scale"]
         by = " / ".join(f(g.get(f"rmse_rel_{l}"), 3) for l in g["lattices"])
-        p(f"| {sc} | {f(rm, 3)} (raw {f(g['rmse_rel'], 3)}) | {met(rm <= GOAL_RMSE)}{' (moonshot)' if rm <= MOONSHOT_RMSE else ''} | "
+        flip = f", FLIP {f(g['flip'], 3)}" if "flip" in g else ""
+        p(f"| {sc} | {f(rm, 3)} (raw {f(g['rmse_rel'], 3)}{flip}) | {met(rm <= GOAL_RMSE)}{' (moonshot)' if rm <= MOONSHOT_RMSE else ''} | "
           f"{f(ss, 3)} | {met(ss >= GOAL_SSIM)} | {f(bs, 2)} | "
           f"{met(GOAL_SCALE[0] <= bs <= GOAL_SCALE[1])} | {by} | "
           f"{met(g['finer_never_worse'])} | {f(g['propagate_ms'], 2)} |")
@@ -285,7 +290,7 @@ def ldm_section():
       "others' (the indirect image against the reference's one bounce). The goal of issue 23: "
       f"relRMSE at most {GOAL_RMSE} on the closed rooms at the method's defaults (32 maps of "
       "128^2, 32^2 photons per light view).\n")
-    p("| scene | maps | resolution | photons | construct ms | photons ms | trace ms | splat ms | GI ms | whole frame ms | MB | indirect relRMSE debiased (raw) | SSIM | best level scale |")
+    p("| scene | maps | resolution | photons | construct ms | photons ms | trace ms | splat ms | GI ms | whole frame ms | MB | indirect relRMSE debiased (raw, FLIP) | SSIM | best level scale |")
     p("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for sc in scenes:
         for r in rows(f"ldm_{sc}.csv"):
@@ -430,7 +435,7 @@ for s in SCENES:
     front = sorted((r for r in sweep if r["pareto"] == "1"), key=lambda r: float(r["propagate_ms"]))
     p("Pareto front on the indirect relative RMSE (no other configuration is both faster and "
       "more accurate):\n")
-    p("| configuration | lattice cells | propagation ms | whole frame ms | indirect relRMSE debiased (raw) | indirect SSIM | best level scale | display MAE |")
+    p("| configuration | lattice cells | propagation ms | whole frame ms | indirect relRMSE debiased (raw, FLIP) | indirect SSIM | best level scale | display MAE |")
     p("|---|---|---|---|---|---|---|---|")
     j = summary(f"sweep_{s}.json")
     for r in front:
@@ -462,7 +467,7 @@ for s in SCENES:
       f"transport against its own: the best ILPV configuration has a lower indirect relative "
       f"RMSE for **{wins} of {total}** baseline configurations (plain ILPV with lambda 0 and "
       "the classic accumulating LPV, both backends, both transports). Some of them:\n")
-    p("| baseline | ms | indirect relRMSE debiased (raw) | best ILPV no slower | ms | indirect relRMSE debiased (raw) |")
+    p("| baseline | ms | indirect relRMSE debiased (raw, FLIP) | best ILPV no slower | ms | indirect relRMSE debiased (raw, FLIP) |")
     p("|---|---|---|---|---|---|")
     for l in lines:
         p(l)
@@ -475,7 +480,7 @@ for s in SCENES:
           "without indirect light); relRMSE is the mean over its seeds, seed mean the "
           "relRMSE of the seeds' mean image (what does not average away); bound bias the "
           "level the disk bound takes off against unbounded point lights.\n")
-        p("| VPLs | visibility | seeds | GI ms | whole frame ms | indirect relRMSE debiased (raw) | seed mean | indirect SSIM | best level scale | bound bias (level) |")
+        p("| VPLs | visibility | seeds | GI ms | whole frame ms | indirect relRMSE debiased (raw, FLIP) | seed mean | indirect SSIM | best level scale | bound bias (level) |")
         p("|---|---|---|---|---|---|---|---|---|---|")
         for r in vpl:
             p(f"| {r['vpl_count']} | {visibility(r)} | {r['seeds']} | {f(r['gi_ms'], 1)} | {f(r['frame_ms'], 1)} | "
@@ -493,7 +498,7 @@ for s in SCENES:
           "selection, proxy lights, occlusion, and the eye pass's interpolation); vs every "
           "texel is the relRMSE of its image against the same row with every RSM texel as "
           "a VAL (plain LightSkin), speed-up that row's GI ms over this one's.\n")
-        p("| VALs | occlusion | RSM | caches | importance ms | selection ms | proxy ms | occlusion ms | interpolate ms | GI ms | indirect relRMSE debiased (raw) | indirect SSIM | best level scale | vs every texel | speed-up |")
+        p("| VALs | occlusion | RSM | caches | importance ms | selection ms | proxy ms | occlusion ms | interpolate ms | GI ms | indirect relRMSE debiased (raw, FLIP) | indirect SSIM | best level scale | vs every texel | speed-up |")
         p("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in cr:
             vals = "every texel" if r["selection"] == "all" else r["vals"]

@@ -49,7 +49,7 @@ typedef struct sweep_row {
     float lambda;
     double propagate_ms, frame_pass_ms, eye_ms;
     image_metrics indirect, final;
-    double display_mae, self_mae;
+    double display_mae, self_mae, flip;
     int pareto;
 } sweep_row;
 
@@ -113,6 +113,7 @@ static int run_config(acc_setup *s, renderer *r, frame_params *fp, const acc_ref
     }
     memcpy(display, img.rgb, (size_t)w * h * 3);
     row->display_mae = acc_display_mae(display, ref->display, (size_t)w * h);
+    row->flip = acc_flip(s, ref, img.indirect);
     return 0;
 }
 
@@ -147,14 +148,15 @@ static void write_rows(FILE *f, const acc_setup *s, const sweep_row *rows, int n
     for (int i = 0; i < n; i++) {
         const sweep_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%g,%d," FMT_MS ",%.4f,%.4f,%.4f,"
-                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d,%s," FMT_ERROR "\n",
+                   "%.6g," FMT_ERROR ",%.6g,%.5f,%.4f,%.6g,%.6g,%.5f,%.5f,%.5f,%d,%s," FMT_ERROR ",%.5f\n",
                 s->opt.scene, r->backend == ILPV_BACKEND_GL ? "gl" : "cpu",
                 r->classic ? "classic" : "incremental", r->lattice, r->n[0], r->n[1], r->n[2],
                 r->steps, r->lambda, r->frames, r->propagate_ms, r->frame_pass_ms, r->eye_ms,
                 r->frame_pass_ms + r->eye_ms, r->indirect.mae, r->indirect.rmse_rel,
                 r->indirect.relmse, r->indirect.ssim, r->indirect.best_scale,
                 r->indirect.mae_scaled, r->final.mae, r->final.ssim, r->display_mae, r->self_mae,
-                r->pareto, lpv_transport_names[r->transport], r->indirect.rmse_rel_debiased);
+                r->pareto, lpv_transport_names[r->transport], r->indirect.rmse_rel_debiased,
+                r->flip);
     }
 }
 
@@ -243,6 +245,7 @@ static void print_goal(const sweep_row *rows, int n, int steps, float lambda)
            lambda);
     json_number("rmse_rel", "%.6g", at->indirect.rmse_rel);
     json_number("rmse_rel_debiased", "%.6g", at->indirect.rmse_rel_debiased);
+    json_number("flip", "%.6g", at->flip);
     json_number("ssim", "%.6g", at->indirect.ssim);
     json_number("best_scale", "%.6g", at->indirect.best_scale);
     json_number("propagate_ms", "%.4f", at->propagate_ms);
@@ -368,7 +371,7 @@ static int accuracy_sweep(int argc, char **argv)
             "scene,backend,mode,lattice,nx,ny,nz,steps,lambda,frames,propagate_ms,"
             "frame_pass_ms,eye_ms,frame_ms,mae_indirect,rmse_rel_indirect,relmse_indirect,"
             "ssim_indirect,best_scale_indirect,mae_scaled_indirect,mae_final,ssim_final,"
-            "mae_display,mae_self32,pareto,transport,rmse_rel_debiased_indirect");
+            "mae_display,mae_self32,pareto,transport,rmse_rel_debiased_indirect,flip_indirect");
         rc = f ? 0 : 1;
         if (f) {
             write_rows(f, &s, run.rows, run.n);

@@ -92,6 +92,9 @@ typedef struct acc_renderer_desc {
  * them: the frames decide the GI method and its settings). NULL after one line. */
 renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d, frame_params *fp);
 
+/* Mean HDR-FLIP (common/image/flip.h) of an indirect image against the reference's
+ * one-bounce image over its covered pixels; NaN when it cannot be taken. */
+double acc_flip(const acc_setup *s, const acc_reference *ref, const float *indirect);
 /* Mean absolute difference of two 8-bit images, in [0, 1]. */
 double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels);
 /* Mean absolute difference of two linear float images. */

@@ -59,6 +59,7 @@ static int split(const char *text, char items[MAX_ITEMS][32])
 typedef struct row_result {
     double stage[STAGES], gi_ms, frame_ms;
     image_metrics m;
+    double flip;
     size_t caches;
 } row_result;
 
@@ -89,6 +90,7 @@ static int run(acc_setup *s, renderer *r, const frame_params *fp, int frames,
         fprintf(stderr, "bench accuracy caches: %s: no pixel meets geometry\n", s->opt.scene);
         return -1;
     }
+    out->flip = acc_flip(s, ref, image);
     return 0;
 }
 
@@ -135,9 +137,9 @@ static int row(sweep *w, renderer *r, const frame_params *fp)
             density, rsm, x.caches);
     for (int k = 0; k < STAGES; k++)
         fprintf(w->csv, ",%.3f", x.stage[k]);
-    fprintf(w->csv, ",%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.4g,%.6g\n", x.gi_ms, x.frame_ms,
-            x.m.rmse_rel, x.m.ssim, x.m.best_scale, w->noise_rel, vs_all, diff, speedup,
-            x.m.rmse_rel_debiased);
+    fprintf(w->csv, ",%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.4g,%.6g,%.5f\n", x.gi_ms,
+            x.frame_ms, x.m.rmse_rel, x.m.ssim, x.m.best_scale, w->noise_rel, vs_all, diff,
+            speedup, x.m.rmse_rel_debiased, x.flip);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"caches\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"vals\":\"%s\",\"occlusion\":\"%s\","
            "\"density\":%s,\"rsm\":%s,\"caches\":%zu", w->s->opt.scene, w->s->opt.width,
@@ -145,9 +147,9 @@ static int row(sweep *w, renderer *r, const frame_params *fp)
     for (int k = 0; k < STAGES; k++)
         printf(",\"%s_ms\":%.3f", STAGE_NAMES[k], x.stage[k]);
     printf(",\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,\"rmse_rel_debiased\":%.4f,"
-           "\"ssim\":%.4f,\"best_scale\":%.4f,\"reference_noise_rel\":%.4f", x.gi_ms,
-           x.frame_ms, x.m.rmse_rel, x.m.rmse_rel_debiased, x.m.ssim, x.m.best_scale,
-           w->noise_rel);
+           "\"flip\":%.4f,\"ssim\":%.4f,\"best_scale\":%.4f,\"reference_noise_rel\":%.4f",
+           x.gi_ms, x.frame_ms, x.m.rmse_rel, x.m.rmse_rel_debiased, x.flip, x.m.ssim,
+           x.m.best_scale, w->noise_rel);
     if (!isnan(speedup))
         printf(",\"rmse_rel_vs_all\":%.4f,\"rmse_rel_minus_all\":%.4f,\"speedup\":%.3f", vs_all,
                diff, speedup);
@@ -354,7 +356,7 @@ int accuracy_caches(int argc, char **argv)
                          "sat_select_ms,proxy_ms,occlusion_ms,interpolate_ms,gi_ms,frame_ms,"
                          "rmse_rel_indirect,ssim_indirect,best_scale_indirect,"
                          "reference_noise_rel,rmse_rel_vs_all,rmse_rel_minus_all,speedup,"
-                         "rmse_rel_debiased_indirect");
+                         "rmse_rel_debiased_indirect,flip_indirect");
     int rc = w.image && w.all && w.csv ? 0 : 1;
     for (int k = 0; k < l.nr * l.nd && rc == 0; k++)
         rc = rows_of(&w, &l, l.rsm[k / l.nd], l.density[k % l.nd]) ? 1 : 0;

@@ -110,7 +110,7 @@ static int indirect_rows(acc_setup *s, const acc_reference *ref, const int (*cfg
     FILE *f = acc_open_csv(s, "ldm", "scene,directions,resolution,photons,construct_ms,"
                            "photons_ms,trace_ms,splat_ms,gi_ms,frame_ms,memory_mb,"
                            "rmse_rel_indirect,ssim_indirect,best_scale_indirect,"
-                           "rmse_rel_debiased_indirect");
+                           "rmse_rel_debiased_indirect,flip_indirect");
     int rc = f ? 0 : -1;
     for (int c = 0; c < n && rc == 0; c++) {
         frame_params fp = s->base;
@@ -129,20 +129,21 @@ static int indirect_rows(acc_setup *s, const acc_reference *ref, const int (*cfg
             renderer_destroy(r);
         if (rc)
             break;
+        double fl = acc_flip(s, ref, img);
         const gi_stats *g = &t.last;
         double st[4] = {gi_stats_value(g, "construct", NULL), gi_stats_value(g, "photons", NULL),
                         gi_stats_value(g, "trace", NULL), gi_stats_value(g, "splat_ms", NULL)};
         double mb = gi_stats_value(g, "memory_mb", NULL);
-        fprintf(f, "%s,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.6g,%.5f,%.5f,%.6g\n",
+        fprintf(f, "%s,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.6g,%.5f,%.5f,%.6g,%.5f\n",
                 s->opt.scene, cfg[c][0], cfg[c][1], photons, st[0], st[1], st[2], st[3], t.gi_ms,
-                t.frame_ms, mb, m.rmse_rel, m.ssim, m.best_scale, m.rmse_rel_debiased);
+                t.frame_ms, mb, m.rmse_rel, m.ssim, m.best_scale, m.rmse_rel_debiased, fl);
         printf("{\"bench\":\"accuracy\",\"experiment\":\"ldm\",\"scene\":\"%s\",\"width\":%d,"
                "\"height\":%d,\"directions\":%d,\"resolution\":%d,\"photons\":%d,\"spread\":\"%s\","
                "\"construct_ms\":%.3f,\"photons_ms\":%.3f,\"trace_ms\":%.3f,\"splat_ms\":%.3f,"
                "\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"memory_mb\":%.6g,\"rmse_rel\":%.4f,"
-               "\"rmse_rel_debiased\":%.4f,\"ssim\":%.4f,\"best_scale\":%.4f}\n", s->opt.scene,
+               "\"rmse_rel_debiased\":%.4f,\"flip\":%.4f,\"ssim\":%.4f,\"best_scale\":%.4f}\n", s->opt.scene,
                s->opt.width, s->opt.height, cfg[c][0], cfg[c][1], photons, spread, st[0], st[1],
-               st[2], st[3], t.gi_ms, t.frame_ms, mb, m.rmse_rel, m.rmse_rel_debiased, m.ssim,
+               st[2], st[3], t.gi_ms, t.frame_ms, mb, m.rmse_rel, m.rmse_rel_debiased, fl, m.ssim,
                m.best_scale);
         fflush(stdout);
     }

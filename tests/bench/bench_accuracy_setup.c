@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "bench_accuracy.h"
+#include "image/flip.h"
 #include "image/image.h"
 #include "frame/frame_view.h"
 #include "reference/reference.h"
@@ -351,6 +352,14 @@ renderer *acc_renderer_create(acc_setup *s, const acc_renderer_desc *d, frame_pa
     if (!r)
         fprintf(stderr, "bench accuracy: %s\n", err);
     return r;
+}
+
+double acc_flip(const acc_setup *s, const acc_reference *ref, const float *indirect)
+{
+    flip_desc d = {.mask = ref->coverage};
+    flip_result r;
+    return flip_hdr(indirect, ref->indirect1, s->opt.width, s->opt.height, &d, NULL, &r) == 0
+               ? r.mean : NAN;
 }
 
 double acc_display_mae(const uint8_t *a, const uint8_t *b, size_t pixels)

@@ -149,7 +149,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     size_t n = (size_t)s->opt.width * s->opt.height * 3;
     memset(disk, 0, n * sizeof *disk);
     memset(point, 0, n * sizeof *point);
-    double err = 0, err_debiased = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
+    double err = 0, err_debiased = 0, flip = 0, ssim = 0, scale = 0, sel[64], sh[64], gather[64], frame[64];
     int k = seeds < 64 ? seeds : 64;
     double *acc = calloc(6 * n, sizeof *acc), mean_ref = 0, cut_rel = NAN, cut_level = NAN;
     float *one[3] = {calloc(n, sizeof(float)), calloc(n, sizeof(float)), calloc(n, sizeof(float))};
@@ -189,6 +189,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
         }
         err += m.rmse_rel / k;
         err_debiased += m.rmse_rel_debiased / k;
+        flip += acc_flip(s, ref, one[0]) / k;
         ssim += m.ssim / k;
         scale += m.best_scale / k;
         sel[seed] = t.select_ms;
@@ -231,17 +232,17 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
     int ism = strcmp(rd->vpl_visibility, "exact") != 0;
     int size = ism ? rd->ism_size : 0, points = ism ? rd->ism_points : 0;
     fprintf(f, "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.6g,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%s,%d,%d,%d,"
-            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%.6g\n",
+            "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%.6g,%.5f\n",
             s->opt.scene, count, k, ms[0], ms[1], ms[2], ms[0] + ms[1] + ms[2], ms[3], err, ssim,
             scale, mean_err, mean_err_point, level, bias, vis, size, points, rd->vpl_interleave,
             ref_noise, spread, disk_bias, clamp, truth, truth - clamp, cut_rel, cut_level,
-            vpl_selection_names[rule], err_debiased);
+            vpl_selection_names[rule], err_debiased, flip);
     printf("{\"bench\":\"accuracy\",\"experiment\":\"vpl\",\"scene\":\"%s\",\"width\":%d,"
            "\"height\":%d,\"reference_samples\":%d,\"reference_noise_indirect1\":%.6g,"
            "\"vpl_count\":%d,\"seeds\":%d,\"visibility\":\"%s\",\"ism_size\":%d,"
            "\"ism_points\":%d,\"interleave\":%d,\"select_ms\":%.3f,\"shadow_ms\":%.3f,"
            "\"gather_ms\":%.3f,\"gi_ms\":%.3f,\"frame_ms\":%.3f,\"rmse_rel\":%.4f,"
-           "\"rmse_rel_debiased\":%.4f,\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
+           "\"rmse_rel_debiased\":%.4f,\"flip\":%.4f,\"ssim\":%.4f,\"best_scale\":%.4f,\"rmse_rel_seed_mean\":%.4f,"
            "\"rmse_rel_seed_mean_point\":%s,\"bound_level_bias\":%s,"
            "\"bound_bias_rms\":%s,\"reference_noise_rel\":%.4f,\"vpl_spread_rel\":%.4f,"
            "\"point_spread_rel\":%s,\"disk_bias_rel\":%s,\"clamp_bias_rel\":%s,"
@@ -249,7 +250,7 @@ static int measure(acc_setup *s, const acc_reference *ref, renderer *const r[3],
            "\"cut_level_bias\":%s,\"selection\":\"%s\"}\n",
            s->opt.scene, s->opt.width, s->opt.height, 2 * ref->samples,
            ref->noise_indirect1, count, k, vis, size, points, rd->vpl_interleave, ms[0], ms[1], ms[2],
-           ms[0] + ms[1] + ms[2], ms[3], err, err_debiased, ssim, scale, mean_err,
+           ms[0] + ms[1] + ms[2], ms[3], err, err_debiased, flip, ssim, scale, mean_err,
            json_number(mean_err_point, j[0]), json_number(level, j[1]), json_number(bias, j[2]),
            ref_noise, spread, json_number(spread_point, j[3]), json_number(disk_bias, j[4]),
            json_number(clamp, j[5]), json_number(truth, j[6]), json_number(truth - clamp, j[7]),
@@ -323,7 +324,7 @@ int accuracy_vpl(int argc, char **argv)
         "rmse_rel_seed_mean_point,bound_level_bias,bound_bias_rms,visibility,ism_size,"
         "ism_points,interleave,reference_noise_rel,vpl_spread_rel,disk_bias_rel,clamp_bias_rel,"
         "rmse_rel_truth,beyond_clamp,cut_bias_rel,cut_level_bias,selection,"
-        "rmse_rel_debiased_indirect");
+        "rmse_rel_debiased_indirect,flip_indirect");
     int rc = disk && point && none_r && f ? 0 : 1;
     /* The shading pass without indirect light: the gather's baseline. */
     vpl_timing none;

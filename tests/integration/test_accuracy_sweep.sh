@@ -69,7 +69,9 @@ for r in rows:
     raw, deb = float(r["rmse_rel_indirect"]), float(r["rmse_rel_debiased_indirect"])
     assert 0 <= deb <= raw, r
     assert deb == 0 or abs(raw * raw - deb * deb - noise * noise) < 1e-4 * max(1, raw * raw), (r, noise)
+    assert 0 < float(r["flip_indirect"]) < 1, r
 assert abs(g["rmse_rel_debiased"] - float(goal[1]["rmse_rel_debiased_indirect"])) < 1e-5, g
+assert abs(g["flip"] - float(goal[1]["flip_indirect"])) < 1e-5, g
 PY
 
 # The reference alone, in rounds to a noise target: more paths than the first round's, the
@@ -168,7 +170,7 @@ PY
 python3 "$src/scripts/accuracy_report.py" "$out" --quick > "$out/ACCURACY.md" \
     || fail "report generator failed"
 grep -q "^## default: speed against accuracy" "$out/ACCURACY.md" || fail "report lacks the sweep"
-grep -q "^| default | [0-9.]* (raw [0-9.]*) | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
+grep -q "^| default | [0-9.]* (raw [0-9.]*, FLIP [0-9.]*) | .* | [0-9.]* / [0-9.]* / [0-9.]* | .* |$" "$out/ACCURACY.md" \
     || fail "report lacks the goal table"
 grep -q "Modelling no more than the scene needs" "$out/ACCURACY.md" || fail "report lacks savings"
 grep -q "^| every texel | approx | 64 | " "$out/ACCURACY.md" || fail "report lacks the caches rows"
