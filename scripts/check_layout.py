@@ -28,7 +28,7 @@ def sources(root, folder):
 def resolves(root, src, inc, folders):
     """The folder of folders where inc, included from src, is found (its own folder first)."""
     if os.path.exists(os.path.join(root, os.path.dirname(src), inc)):
-        return os.path.relpath(os.path.join(os.path.dirname(src), inc), root).split(os.sep)[0]
+        return os.path.normpath(os.path.join(os.path.dirname(src), inc)).split(os.sep)[0]
     for f in folders:
         if os.path.exists(os.path.join(root, f, inc)):
             return f

@@ -17,7 +17,7 @@ static struct {
 } loaded[MAX_LIBS];
 static int loaded_count;
 
-static int load(const dynlib *lib, char *err, size_t errlen)
+static int open_library(const dynlib *lib, char *err, size_t errlen)
 {
     char first[200] = "";
     void *h = NULL;
@@ -51,7 +51,7 @@ int dynlib_load(const dynlib *lib, char *err, size_t errlen)
         i++;
     if (i == loaded_count && i < MAX_LIBS) {
         loaded[i].lib = lib;
-        loaded[i].rc = load(lib, loaded[i].err, sizeof loaded[i].err);
+        loaded[i].rc = open_library(lib, loaded[i].err, sizeof loaded[i].err);
         loaded_count++;
     }
     int rc = i < MAX_LIBS ? loaded[i].rc : -1;

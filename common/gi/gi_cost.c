@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "frame/light_view.h"
-#include "ldm/ldm_map.h"
+#include "frame/ldm_limits.h"
 #include "gi/gi_settings.h"
 
 void gi_cost_method(const frame_params *p, const float bounds_min[3], const float bounds_max[3], gi_cost *out)
@@ -35,10 +35,8 @@ void gi_cost_ao(const frame_params *p, gi_cost *out)
     *out = (gi_cost){0};
     if (p->ao != FRAME_AO_LDM) /* ssao: a pass over the screen, like the frame itself */
         return;
-    ldm_layout lay = {.directions = p->ao_directions, .resolution = p->ao_resolution,
-                      .layers = p->ldm_layers};
     out->work = (double)p->ao_directions * p->ao_resolution * p->ao_resolution * p->ldm_layers;
-    out->memory_bytes = ldm_memory_bytes(&lay);
+    out->memory_bytes = ldm_limits_memory_bytes(p->ao_directions, p->ao_resolution, p->ldm_layers);
 }
 
 /* The larger cost of the set-up settings and the defaults, for this frame's method, AO and

@@ -376,7 +376,7 @@ static double checked_ppd(int width, int height, const flip_desc *d)
     return ppd;
 }
 
-static float srgb_to_linear(float v)
+static float srgb_decode(float v)
 {
     double s = isfinite(v) ? (v < 0 ? 0 : v > 1 ? 1 : v) : 0;
     return (float)(s <= 0.04045 ? s / 12.92 : pow((s + 0.055) / 1.055, 2.4));
@@ -396,8 +396,8 @@ int flip_ldr(const float *img, const float *ref, int width, int height, const fl
     int rc = -1;
     if (lin && m && work_init(&wk, width, height, ppd) == 0) {
         for (size_t i = 0; i < 3 * n; i++) {
-            lin[i] = srgb_to_linear(img[i]);
-            lin[3 * n + i] = srgb_to_linear(ref[i]);
+            lin[i] = srgb_decode(img[i]);
+            lin[3 * n + i] = srgb_decode(ref[i]);
         }
         flip_linear(&wk, lin, lin + 3 * n, m);
         work_free(&wk);

@@ -291,7 +291,8 @@ static int temporal(acc_setup *s, int frames, int vals)
             frame_params p = fp;
             if (motion >= 0)
                 move(s, &p, motion, f);
-            uint64_t sum = renderer_frame_pass(r, &p);
+            renderer_frame_pass(r, &p);
+            uint64_t sum = renderer_checksum_complete(r); /* READY's GPU part, this frame's */
             if ((rc = renderer_eye_pass(r, &s->view, 1, &img)) != 0)
                 break;
             double ci = f ? change(img.indirect, prev[0], n) : 0;

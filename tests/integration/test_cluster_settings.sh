@@ -125,7 +125,7 @@ one_line "--vpl-interleave 9" "--vpl-interleave 9: expected a whole number in 0.
 one_line "--ism-size 48" "--ism-size 48: expected a power of two in 8..256" --ism-size 48
 one_line "--lpv-mode fast" "expected one of incremental or classic" --lpv-mode fast
 one_line "--lambda 1.5" "--lambda 1.5: expected a number in [0, 0.999]" --lambda 1.5
-one_line "--budget-ms with --lattice" "give either the budget or those two" --budget-ms 10 --lattice 32
+one_line "--budget-ms with --lattice" "--budget-ms chooses --lattice: give either the budget or it" --budget-ms 10 --lattice 32
 one_line "--budget-ms with vpl" "it needs --gi ilpv" --budget-ms 10 --gi vpl
 SETTINGS='"vpl-cuont": 64' make_config "$tmp/bad.json" 30000 a b
 out=$("$build/cavelight-master" --config "$tmp/bad.json" --spawn-local --out "$tmp/bad" 2>&1) \

@@ -24,8 +24,8 @@ cases=(
     "vpl-ism-splat|--gi vpl --vpl-count 64 --vpl-visibility ism-splat"
     "caches-approx|--gi caches --caches-occlusion approx"
     "ldm|--gi ldm --ldm-directions 16 --ldm-resolution 64"
-    "ao-ldm|--gi none --ao ldm"
-    "ao-ssao|--gi none --ao ssao"
+    "ao-ldm|--gi none --ao ldm --ambient 0.5"
+    "ao-ssao|--gi none --ao ssao --ambient 0.5"
 )
 for c in "${cases[@]}"; do
     name=${c%%|*}

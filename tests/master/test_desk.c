@@ -19,7 +19,7 @@
 #include <GLFW/glfw3.h>
 
 #include "input/input.h"
-#include "desk_view.h"
+#include "input/desk_view.h"
 #include "input/input_desk.h"
 #include "interaction.h"
 

@@ -102,11 +102,13 @@ static void test_caches_in_motion(void **state)
     size_t n = (size_t)W * H * 3;
     float *first = malloc(n * sizeof *first);
     renderer_image img;
-    uint64_t c0 = renderer_frame_pass(r, &p);
+    renderer_frame_pass(r, &p); /* READY's GPU part comes a frame late: the whole of this one */
+    uint64_t c0 = renderer_checksum_complete(r);
     assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
     memcpy(first, img.final, n * sizeof *first);
     change light = run(r, &p, &v, 0), walk = run(r, &p, &v, 1);
-    uint64_t c1 = renderer_frame_pass(r, &p);
+    renderer_frame_pass(r, &p);
+    uint64_t c1 = renderer_checksum_complete(r);
     assert_int_equal(renderer_eye_pass(r, &v, 1, &img), 0);
     double again = mad(img.final, first, n);
     printf("static frame again after 40 others: checksum %s, mean |diff| %.3g\n",

@@ -47,7 +47,7 @@ void ldm_project(const ldm_layout *l, const ldm_map *m, const float p[3], float 
 
 double ldm_memory_bytes(const ldm_layout *l)
 {
-    return (double)l->directions * l->resolution * l->resolution * l->layers * 4.0;
+    return ldm_limits_memory_bytes(l->directions, l->resolution, l->layers);
 }
 
 const char *ldm_memory_check(int directions, int resolution, int layers, int cap_mb,
