@@ -1,6 +1,6 @@
 /* lpv_paper_step: the `paper` transport's step (lpv_paper.h) on the CPU, the kernel behind
  * lpv_propagate_step() when desc->transport is LPV_TRANSPORT_PAPER. Internal to
- * common/lpv: call lpv_propagate_step(), which checks the arguments. */
+ * common/gi/ilpv: call lpv_propagate_step(), which checks the arguments. */
 #ifndef CAVELIGHT_LPV_PAPER_STEP_H
 #define CAVELIGHT_LPV_PAPER_STEP_H
 

@@ -3,7 +3,7 @@
  * (-march=native), otherwise plain C with fmaf. Both layers perform the same IEEE
  * operations in the same order (max/min with the x86 NaN rule), so a kernel's result never
  * depends on the thread count, and -ffp-contract=off keeps the compiler from fusing
- * operations behind the kernel's back. Internal to common/lpv; no state. */
+ * operations behind the kernel's back. Internal to common/gi/ilpv; no state. */
 #ifndef CAVELIGHT_LPV_SIMD_H
 #define CAVELIGHT_LPV_SIMD_H
 

@@ -1,6 +1,6 @@
 /* gi_ilpv: the ILPV method (gi_ilpv.h). The VPLs of the RSMs every light type feeds
  * (collect_vpls(), in texel order, so the injection is deterministic) are injected
- * on the host, then the ILPV driver (lpv/ilpv.h) runs the frame on the CPU or GL backend.
+ * on the host, then the ILPV driver (gi/ilpv/ilpv.h) runs the frame on the CPU or GL backend.
  *
  * Units: an RSM texel holds the flux Phi it reflects (W). A Lambertian VPL of flux Phi
  * has radiant intensity Phi/pi cos(theta); lpv_inject adds flux * SH_cos(n), so we pass
@@ -68,7 +68,7 @@ struct gi_ilpv {
 
 static const double PI = 3.14159265358979323846;
 
-/* One VPL per emissive triangle (paper 3.3.5, vpl/vpl_source.h), flux pi * L_e * area
+/* One VPL per emissive triangle (paper 3.3.5, gi/vpl_source.h), flux pi * L_e * area
  * passed as L_e * area (see the units above). */
 static int build_emitters(gi_ilpv *r)
 {

@@ -3,7 +3,7 @@
  *
  * frame(): the RSM texels of every light become VPLs (read back in a fixed order) and one
  * VPL per emissive triangle is added; they are injected on the host (lpv_inject.h), and
- * the ILPV driver (lpv/ilpv.h: the history rule, the splat, the chain, the composition;
+ * the ILPV driver (gi/ilpv/ilpv.h: the history rule, the splat, the chain, the composition;
  * classic mode with --lpv-mode classic) propagates them on the CPU (lpv_propagate.h) or
  * with GL compute shaders (ilpv_gl.h); the checksum is lpv_volume_checksum() of the result,
  * which three SH textures hold for the shading. reuse(): the inputs are unchanged and the
