@@ -13,6 +13,9 @@ set -euo pipefail
 build=$1
 node="$build/cavelight-node"
 command -v apitrace > /dev/null || { echo "SKIP: apitrace not installed (scripts/deps.sh)"; exit 77; }
+# apitrace preloads its GL wrapper ahead of everything, which an ASan build refuses (the
+# sanitizer's runtime must come first): the stalls are counted in the normal build.
+if ldd "$node" | grep -q libasan; then echo "SKIP: apitrace cannot trace an ASan build"; exit 77; fi
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
